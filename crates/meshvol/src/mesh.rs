@@ -89,7 +89,11 @@ impl Mesh {
             Faces::Polygons { offsets, indices } => {
                 if offsets.first() != Some(&0) {
                     let offset = offsets.first().copied().unwrap_or(usize::MAX);
-                    return Err(MeshError::BadOffsets { position: 0, offset, indices: indices.len() });
+                    return Err(MeshError::BadOffsets {
+                        position: 0,
+                        offset,
+                        indices: indices.len(),
+                    });
                 }
                 for (face, w) in offsets.windows(2).enumerate() {
                     if w[1] < w[0] || w[1] > indices.len() {
@@ -120,7 +124,10 @@ impl Mesh {
     }
 
     /// A triangle mesh.
-    pub fn from_triangles(positions: Vec<Point>, triangles: Vec<[u32; 3]>) -> Result<Mesh, MeshError> {
+    pub fn from_triangles(
+        positions: Vec<Point>,
+        triangles: Vec<[u32; 3]>,
+    ) -> Result<Mesh, MeshError> {
         Mesh::new(positions, Faces::Triangles(triangles))
     }
 
@@ -142,7 +149,9 @@ impl Mesh {
     /// Stores all-triangle polygon faces as [`Faces::Triangles`].
     fn compact(self) -> Mesh {
         match &self.faces {
-            Faces::Polygons { offsets, indices } if offsets.windows(2).all(|w| w[1] - w[0] == 3) => {
+            Faces::Polygons { offsets, indices }
+                if offsets.windows(2).all(|w| w[1] - w[0] == 3) =>
+            {
                 let tris = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
                 Mesh { positions: self.positions, faces: Faces::Triangles(tris) }
             }
@@ -183,6 +192,18 @@ impl Mesh {
             Faces::Triangles(t) => &t[face],
             Faces::Polygons { offsets, indices } => &indices[offsets[face]..offsets[face + 1]],
         }
+    }
+
+    /// The same surface with every face replaced by its fan of triangles.
+    pub fn triangulated(&self) -> Mesh {
+        let mut triangles = Vec::with_capacity(self.triangle_count());
+        for f in 0..self.face_count() {
+            let face = self.face(f);
+            for w in face[1..].windows(2) {
+                triangles.push([face[0], w[0], w[1]]);
+            }
+        }
+        Mesh { positions: self.positions.clone(), faces: Faces::Triangles(triangles) }
     }
 
     /// The same mesh with every face's winding reversed.
