@@ -88,26 +88,53 @@ pub fn uv_sphere_volume(radius: f64, segments: u32, rings: u32) -> f64 {
     m as f64 * (2.0 * PI / m as f64).sin() * moment
 }
 
-/// A torus around the z axis: a regular `minor_segments`-gon of circumradius `minor`
-/// centred at distance `major`, revolved in `major_segments` steps; planar quads.
-pub fn torus(major: f64, minor: f64, major_segments: u32, minor_segments: u32) -> Mesh {
-    let (m, n) = (major_segments.max(3), minor_segments.max(3));
+/// Revolves a closed profile polygon about the z axis in `segments` equal steps.
+///
+/// `profile` lists (x, z) points with x > 0, counter-clockwise in the (x, z) plane
+/// (x to the right, z up); every face is a planar trapezoid, wound outward. Parts
+/// turned on a lathe (bushings, flanges, spools) are such solids.
+pub fn revolve(profile: &[(f64, f64)], segments: u32) -> Mesh {
+    let (m, n) = (segments.max(3), profile.len() as u32);
     let mut positions = Vec::with_capacity((m * n) as usize);
     for i in 0..m {
         let theta = 2.0 * PI * i as f64 / m as f64;
-        for j in 0..n {
-            let phi = 2.0 * PI * j as f64 / n as f64;
-            let x = major + minor * phi.cos();
-            positions.push([x * theta.cos(), x * theta.sin(), minor * phi.sin()]);
-        }
+        positions.extend(profile.iter().map(|&(x, z)| [x * theta.cos(), x * theta.sin(), z]));
     }
     let at = |i: u32, j: u32| (i % m) * n + j % n;
     let quads: Vec<[u32; 4]> = (0..m)
         .flat_map(|i| (0..n).map(move |j| [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]))
         .collect();
-    Mesh::from_polygons(positions, quads.iter().map(|q| &q[..])).expect("valid torus")
+    Mesh::from_polygons(positions, quads.iter().map(|q| &q[..])).expect("valid revolved solid")
 }
 
+/// The exact volume of [`revolve`]'s polyhedron: m·sin(2π/m)·∫∫ x dA over the profile,
+/// with ∫∫ x dA = Σ (x₀ + x₁)·(x₀z₁ − x₁z₀)/6 over the profile's edges (Green's theorem).
+pub fn revolve_volume(profile: &[(f64, f64)], segments: u32) -> f64 {
+    let m = segments.max(3) as f64;
+    let moment: f64 = (0..profile.len())
+        .map(|k| {
+            let ((x0, z0), (x1, z1)) = (profile[k], profile[(k + 1) % profile.len()]);
+            (x0 + x1) * (x0 * z1 - x1 * z0) / 6.0
+        })
+        .sum();
+    m * (2.0 * PI / m).sin() * moment
+}
+
+/// A torus around the z axis: a regular `minor_segments`-gon of circumradius `minor`
+/// centred at distance `major`, revolved in `major_segments` steps; planar quads.
+pub fn torus(major: f64, minor: f64, major_segments: u32, minor_segments: u32) -> Mesh {
+    revolve(&torus_profile(major, minor, minor_segments), major_segments)
+}
+
+fn torus_profile(major: f64, minor: f64, segments: u32) -> Vec<(f64, f64)> {
+    let n = segments.max(3);
+    (0..n)
+        .map(|j| {
+            let phi = 2.0 * PI * j as f64 / n as f64;
+            (major + minor * phi.cos(), minor * phi.sin())
+        })
+        .collect()
+}
 /// The exact volume of [`torus`]'s polyhedron: m·sin(2π/m)·A·R, with A the area of the
 /// regular n-gon, (n/2)·r²·sin(2π/n), whose centroid lies at R.
 pub fn torus_volume(major: f64, minor: f64, major_segments: u32, minor_segments: u32) -> f64 {
