@@ -54,9 +54,9 @@ impl Bounds {
     fn include(&mut self, p: Point) {
         // Plain comparisons, not f64::min/max: coordinates are finite, and the NaN
         // handling of min/max costs several instructions each in the hot loop.
-        for k in 0..3 {
-            self.min[k] = if p[k] < self.min[k] { p[k] } else { self.min[k] };
-            self.max[k] = if p[k] > self.max[k] { p[k] } else { self.max[k] };
+        for ((lo, hi), x) in self.min.iter_mut().zip(&mut self.max).zip(p) {
+            *lo = if x < *lo { x } else { *lo };
+            *hi = if x > *hi { x } else { *hi };
         }
     }
 

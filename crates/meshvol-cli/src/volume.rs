@@ -1,0 +1,211 @@
+//! `meshvol volume`: mass properties of each file, as text or one JSON object per line.
+
+use crate::units::{UnitNames, Units};
+use meshvol::accumulate::UNIT_ROUNDOFF;
+use meshvol::{exact_signed_volume, mass_properties, MassProperties, Surface};
+use meshvol_io::Loaded;
+use serde::Serialize;
+use std::fmt::Write;
+
+/// Options of `meshvol volume` that shape a report.
+#[derive(Clone, Copy, Debug)]
+pub struct VolumeOptions {
+    pub density: f64,
+    pub units: Option<Units>,
+    pub exact: bool,
+}
+
+#[derive(Debug, Serialize)]
+pub struct BoundsReport {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
+/// One file's report. Field names are the JSON keys: a public contract.
+#[derive(Debug, Serialize)]
+pub struct VolumeReport {
+    pub file: String,
+    pub format: String,
+    pub vertices: usize,
+    pub faces: usize,
+    pub triangles: usize,
+    pub volume: f64,
+    pub signed_volume: f64,
+    pub volume_error_bound: f64,
+    /// True when `signed_volume` is the correctly rounded exact value (`--exact`).
+    pub exact: bool,
+    pub area: f64,
+    pub centroid: Option<[f64; 3]>,
+    pub inertia: [[f64; 3]; 3],
+    pub principal_moments: [f64; 3],
+    pub principal_axes: [[f64; 3]; 3],
+    pub density: f64,
+    pub mass: f64,
+    pub bounds: Option<BoundsReport>,
+    pub units: Option<UnitNames>,
+    pub warnings: Vec<String>,
+}
+
+fn measure<S: Surface>(surface: &S, exact: bool) -> Result<(MassProperties, bool), String> {
+    let mut mp = mass_properties(surface);
+    if exact {
+        mp.signed_volume = exact_signed_volume(surface).map_err(|e| e.to_string())?;
+        // Correctly rounded: within half an ulp.
+        mp.volume_error_bound = UNIT_ROUNDOFF * mp.signed_volume.abs();
+    }
+    Ok((mp, exact))
+}
+
+/// Measures a loaded file and builds its report.
+pub fn report(
+    file: &str,
+    loaded: &Loaded,
+    options: &VolumeOptions,
+) -> Result<VolumeReport, String> {
+    if loaded.face_count() == 0 {
+        return Err(format!("{file}: no faces: there is no surface to measure"));
+    }
+    let (mp, exact) = measure(&loaded.surface, options.exact)?;
+    let mut warnings = loaded.warnings.clone();
+    if mp.centroid.is_none() {
+        warnings.push(
+            "the volume is zero within rounding: the surface encloses no solid (flat, or open?); \
+             centroid and inertia are undefined"
+                .to_string(),
+        );
+    } else if mp.signed_volume < 0.0 {
+        warnings.push(
+            "signed volume is negative: faces are wound inward (clockwise seen from outside, as \
+             OpenSCAD's polyhedron() expects); volume reports the solid's magnitude"
+                .to_string(),
+        );
+    }
+
+    let f = options.units.map_or(1.0, |u| u.length_factor());
+    let (f2, f3) = (f * f, f * f * f);
+    let rho = options.density;
+    let signed_volume = mp.signed_volume * f3;
+    // Converting rounds a few more times: widen the bound by that.
+    let conversion = if f == 1.0 { 0.0 } else { 4.0 * UNIT_ROUNDOFF * signed_volume.abs() };
+    let inertia = mp.inertia.map(|row| row.map(|x| x * rho * f3 * f2));
+    let principal = mp.principal();
+    Ok(VolumeReport {
+        file: file.to_string(),
+        format: loaded.format.name().to_string(),
+        vertices: loaded.vertex_count(),
+        faces: mp.faces,
+        triangles: mp.triangles,
+        volume: signed_volume.abs(),
+        signed_volume,
+        volume_error_bound: mp.volume_error_bound * f3 + conversion,
+        exact,
+        area: mp.area * f2,
+        centroid: mp.centroid.map(|c| c.map(|x| x * f)),
+        inertia,
+        principal_moments: principal.moments.map(|x| x * rho * f3 * f2),
+        principal_axes: principal.axes,
+        density: rho,
+        mass: rho * signed_volume.abs(),
+        bounds: mp
+            .bounds
+            .map(|b| BoundsReport { min: b.min.map(|x| x * f), max: b.max.map(|x| x * f) }),
+        units: options.units.map(|u| u.names()),
+        warnings,
+    })
+}
+
+/// A number with `digits` significant digits, in plain notation where that is readable.
+fn num(x: f64, digits: usize) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let magnitude = x.abs().log10().floor() as i32;
+    if (-4..12).contains(&magnitude) {
+        let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
+        let s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        format!("{x:.*e}", digits - 1)
+    }
+}
+
+fn vector(v: [f64; 3]) -> String {
+    format!("({}, {}, {})", num(v[0], 10), num(v[1], 10), num(v[2], 10))
+}
+
+/// The human-readable report.
+pub fn text(r: &VolumeReport) -> String {
+    let (len, area, vol) = match &r.units {
+        Some(u) => (format!(" {}", u.length), format!(" {}", u.area), format!(" {}", u.volume)),
+        None => Default::default(),
+    };
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{}: {}, {} faces ({} triangles), {} vertices",
+        r.file, r.format, r.faces, r.triangles, r.vertices
+    );
+    let how = if r.exact { "exact, correctly rounded" } else { "±" };
+    let bound = if r.exact { String::new() } else { format!(" {}", num(r.volume_error_bound, 2)) };
+    let _ = writeln!(s, "  volume             {}{vol}  ({how}{bound})", num(r.volume, 15));
+    if r.signed_volume < 0.0 {
+        let _ = writeln!(s, "  signed volume      {}{vol}", num(r.signed_volume, 15));
+    }
+    let _ = writeln!(s, "  area               {}{area}", num(r.area, 15));
+    if r.density != 1.0 {
+        let _ = writeln!(s, "  mass               {}  (density {})", num(r.mass, 12), r.density);
+    }
+    match r.centroid {
+        Some(c) => {
+            let _ = writeln!(s, "  centroid           {}{len}", vector(c));
+            let _ = writeln!(s, "  inertia about the centroid (density {}):", r.density);
+            for row in r.inertia {
+                let _ = writeln!(
+                    s,
+                    "    [{:>18} {:>18} {:>18}]",
+                    num(row[0], 10),
+                    num(row[1], 10),
+                    num(row[2], 10)
+                );
+            }
+            let m = r.principal_moments;
+            let _ = writeln!(
+                s,
+                "  principal moments  {}, {}, {}",
+                num(m[0], 10),
+                num(m[1], 10),
+                num(m[2], 10)
+            );
+            for (k, axis) in r.principal_axes.iter().enumerate() {
+                let _ = writeln!(s, "  principal axis {}   {}", k + 1, vector(*axis));
+            }
+        }
+        None => {
+            let _ = writeln!(s, "  centroid           undefined");
+        }
+    }
+    if let Some(b) = &r.bounds {
+        let size = [0, 1, 2].map(|k| b.max[k] - b.min[k]);
+        let _ = writeln!(s, "  bounds             {} to {}{len}", vector(b.min), vector(b.max));
+        let _ = writeln!(s, "  size               {}{len}", vector(size));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    #[test]
+    fn numbers_read_well() {
+        assert_eq!(num(1.0, 15), "1");
+        assert_eq!(num(12345.678901234567, 10), "12345.6789"); // trailing zeros trimmed
+        assert_eq!(num(-0.5, 10), "-0.5");
+        assert_eq!(num(1.5e-9, 2), "1.5e-9");
+        assert_eq!(num(2.5e13, 3), "2.50e13");
+    }
+}

@@ -1,0 +1,87 @@
+//! Errors: which file, where in it, and what went wrong.
+//!
+//! Every reader reports the place of a problem in the unit that fits the format: a line
+//! number (1-based) in text formats, a byte offset (0-based) or a triangle index
+//! (0-based, like the face indices of [`meshvol::Mesh`]) in binary STL.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// Where in a file a [`ReadError`] was found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Location {
+    /// A line of a text file, counted from 1.
+    Line(u64),
+    /// A byte offset, counted from 0.
+    Byte(u64),
+    /// A face (a triangle of a binary STL), counted from 0.
+    Face(usize),
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::Line(l) => write!(f, "line {l}"),
+            Location::Byte(b) => write!(f, "byte {b}"),
+            Location::Face(i) => write!(f, "face {i}"),
+        }
+    }
+}
+
+/// A file that could not be read: its path, the place of the problem when one applies,
+/// and what is wrong.
+///
+/// Displays as `{path}: line 12: expected 3 coordinates after 'vertex', found 2`, or
+/// `{path}: {message}` when no place applies.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ReadError {
+    pub path: PathBuf,
+    pub location: Option<Location>,
+    pub message: String,
+}
+
+impl fmt::Display for ReadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: ", self.path.display())?;
+        if let Some(location) = self.location {
+            write!(f, "{location}: ")?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for ReadError {}
+
+/// A problem found while parsing bytes, before the file's path is attached.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct ParseError {
+    pub location: Option<Location>,
+    pub message: String,
+}
+
+impl ParseError {
+    pub fn new(location: Option<Location>, message: impl Into<String>) -> ParseError {
+        ParseError { location, message: message.into() }
+    }
+
+    /// An error at `line` (1-based).
+    pub fn line(line: u64, message: impl Into<String>) -> ParseError {
+        ParseError::new(Some(Location::Line(line)), message)
+    }
+
+    /// An error at the line that holds byte `offset` of `bytes`.
+    pub fn at_offset(bytes: &[u8], offset: usize, message: impl Into<String>) -> ParseError {
+        ParseError::line(line_of(bytes, offset), message)
+    }
+
+    pub fn with_path(self, path: PathBuf) -> ReadError {
+        ReadError { path, location: self.location, message: self.message }
+    }
+}
+
+/// The 1-based number of the line that holds byte `offset` (the line after the last one
+/// when `offset` is at or past the end).
+pub(crate) fn line_of(bytes: &[u8], offset: usize) -> u64 {
+    let end = offset.min(bytes.len());
+    1 + memchr::memchr_iter(b'\n', &bytes[..end]).count() as u64
+}

@@ -1,0 +1,612 @@
+//! Wavefront OBJ: the polygon geometry.
+//!
+//! Read, one statement per line (lines may end with CRLF; a line ending with `\\`
+//! continues on the next):
+//! - `v x y z [w | r g b ...]`: a vertex; the first three numbers are its position,
+//!   further columns (a weight, vertex colours) are allowed and not read.
+//! - `f i j k ...`: a face of three or more vertices. Each token is `v`, `v/vt`,
+//!   `v/vt/vn` or `v//vn`; only `v` is used. Indices start at 1; a negative index counts
+//!   back from the last vertex defined so far (-1 is the latest). A positive index may
+//!   name a vertex defined later in the file: ranges are checked after reading. Faces keep
+//!   their size ([`meshvol::Faces::Polygons`] unless every face is a triangle).
+//!
+//! Ignored quietly: comments (`#`), `vt`, `vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`.
+//! Counted and reported in one warning: `l` (line) and `p` (point) elements, which hold
+//! no volume, and other statements (free-form curves and surfaces).
+//!
+//! Errors, with the line: a `v` with fewer than three numbers, a NaN or infinite
+//! coordinate, index 0, an index out of range, a face with fewer than three vertices, a
+//! line that does not start with a statement keyword, more than `u32::MAX` vertices.
+//!
+//! The parser works on bytes, with no allocation per line, in parallel: the file is cut
+//! into chunks at line ends; each chunk is parsed on its own, negative indices kept
+//! relative to the chunk's own vertex count; the chunks' vertex counts then fix every
+//! index in a second, parallel pass.
+
+use meshvol::{Faces, Mesh, Point};
+use rayon::prelude::*;
+
+use crate::error::ParseError;
+use crate::text::{self, NumberError};
+
+/// Target bytes per parallel chunk.
+const CHUNK: usize = 1 << 20;
+
+/// Added to a chunk-relative index (which may be negative, naming a vertex of an earlier
+/// chunk) so that it is stored as a negative number, apart from absolute indices (≥ 0).
+const RELATIVE: i64 = 1 << 62;
+
+/// Indices beyond this are errors at once (no mesh has that many vertices).
+const MAX_INDEX: i64 = 1 << 40;
+
+/// What kind of statement a line holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Statement {
+    Vertex,
+    Face,
+    Line,
+    Point,
+    /// Known and not needed, or empty / comment.
+    Skip,
+    /// A keyword that is not read.
+    Unknown,
+    /// Not a keyword at all.
+    Invalid,
+}
+
+/// Whether byte `i` ends a word: a blank, a newline, or the end.
+#[inline]
+fn ends_word(b: &[u8], i: usize) -> bool {
+    b.get(i).is_none_or(|&c| text::is_space(c))
+}
+
+/// Classifies the statement whose first non-blank byte is at `s`; returns the kind and
+/// where its keyword ends.
+#[inline]
+fn classify(b: &[u8], s: usize) -> (Statement, usize) {
+    // The common cases first.
+    match b.get(s) {
+        None | Some(b'\n') | Some(b'#') => return (Statement::Skip, s),
+        Some(b'v') if ends_word(b, s + 1) => return (Statement::Vertex, s + 1),
+        Some(b'f') if ends_word(b, s + 1) => return (Statement::Face, s + 1),
+        _ => {}
+    }
+    let e = text::token_end(b, s);
+    let kind = match &b[s..e] {
+        b"l" => Statement::Line,
+        b"p" => Statement::Point,
+        b"vt" | b"vn" | b"vp" | b"o" | b"g" | b"s" | b"usemtl" | b"mtllib" => Statement::Skip,
+        [first, rest @ ..]
+            if first.is_ascii_alphabetic()
+                && rest.iter().all(|b| b.is_ascii_alphanumeric() || *b == b'_') =>
+        {
+            Statement::Unknown
+        }
+        _ => Statement::Invalid,
+    };
+    (kind, e)
+}
+
+/// Whether a line ends with `\` (before blanks or CR): it continues on the next line.
+#[inline]
+fn continues(line: &[u8]) -> bool {
+    let mut e = line.len();
+    while e > 0 && text::is_blank(line[e - 1]) {
+        e -= 1;
+    }
+    e > 0 && line[e - 1] == b'\\'
+}
+
+/// The start of the next line after `pos`, skipping continued lines.
+#[inline]
+fn skip_line(b: &[u8], mut pos: usize) -> usize {
+    if b.get(pos) == Some(&b'\n') {
+        return pos + 1;
+    }
+    loop {
+        match memchr::memchr(b'\n', &b[pos.min(b.len())..]) {
+            None => return b.len(),
+            Some(i) => {
+                let nl = pos + i;
+                if !continues(&b[pos..nl]) {
+                    return nl + 1;
+                }
+                pos = nl + 1;
+            }
+        }
+    }
+}
+
+/// Skips blanks and line continuations (`\`, blanks, newline).
+#[inline]
+fn skip_blank_continued(b: &[u8], mut pos: usize) -> usize {
+    loop {
+        pos = text::skip_blank(b, pos);
+        if b.get(pos) != Some(&b'\\') {
+            return pos;
+        }
+        let after = text::skip_blank(b, pos + 1);
+        match b.get(after) {
+            Some(b'\n') => pos = after + 1,
+            None => return after,
+            Some(_) => return pos,
+        }
+    }
+}
+
+/// Whether the start of the file reads as OBJ (for files whose extension says nothing):
+/// text whose lines are all known statements, with at least one vertex.
+pub(crate) fn looks_like_obj(bytes: &[u8]) -> bool {
+    let start = text::bom_len(bytes);
+    let mut prefix = &bytes[start..bytes.len().min(start + (64 << 10))];
+    if prefix.len() < bytes.len() - start {
+        // Whole lines only.
+        prefix = &prefix[..memchr::memrchr(b'\n', prefix).unwrap_or(0)];
+    }
+    if !text::looks_like_text(prefix) {
+        return false;
+    }
+    let mut vertices = 0;
+    let mut pos = 0;
+    while pos < prefix.len() {
+        let s = text::skip_blank(prefix, pos);
+        let (kind, e) = classify(prefix, s);
+        match kind {
+            Statement::Vertex => vertices += 1,
+            Statement::Invalid | Statement::Unknown => return false,
+            _ => {}
+        }
+        pos = skip_line(prefix, e);
+    }
+    vertices > 0
+}
+
+/// What one chunk gave.
+#[derive(Default)]
+struct Chunk {
+    positions: Vec<Point>,
+    /// Vertex indices: ≥ 0 absolute (0-based); < 0 chunk-relative minus [`RELATIVE`].
+    indices: Vec<i64>,
+    /// End of each face in `indices`.
+    face_ends: Vec<usize>,
+    all_triangles: bool,
+    lines: usize,
+    points: usize,
+    unknown: usize,
+    unknown_names: Vec<String>,
+    error: Option<(usize, String)>,
+}
+
+/// Parses an OBJ file.
+pub(crate) fn read(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, ParseError> {
+    read_chunked(bytes, warnings, CHUNK)
+}
+
+/// [`read`] with chunks of about `chunk` bytes.
+fn read_chunked(
+    bytes: &[u8],
+    warnings: &mut Vec<String>,
+    chunk: usize,
+) -> Result<Mesh, ParseError> {
+    let start = text::bom_len(bytes);
+    let bounds = line_boundaries(bytes, start, chunk.max(1));
+    let chunks: Vec<Chunk> =
+        bounds.par_windows(2).map(|w| parse_chunk(bytes, w[0], w[1])).collect();
+    if let Some((at, message)) = chunks.iter().find_map(|c| c.error.as_ref()) {
+        return Err(ParseError::at_offset(bytes, *at, message.clone()));
+    }
+
+    let vertex_count: usize = chunks.iter().map(|c| c.positions.len()).sum();
+    if u32::try_from(vertex_count).is_err() {
+        return Err(ParseError::new(
+            None,
+            format!("{vertex_count} vertices do not fit 32-bit indices"),
+        ));
+    }
+    warn_ignored(&chunks, warnings);
+
+    // Where each chunk's vertices and indices start in the whole mesh.
+    let mut vertex_base = Vec::with_capacity(chunks.len());
+    let mut index_base = Vec::with_capacity(chunks.len());
+    let (mut v, mut i) = (0usize, 0usize);
+    for c in &chunks {
+        vertex_base.push(v);
+        index_base.push(i);
+        v += c.positions.len();
+        i += c.indices.len();
+    }
+    // All triangles: resolve straight into the triangle array.
+    let all_triangles = chunks.iter().all(|c| c.all_triangles);
+    let mut triangles: Vec<[u32; 3]> = Vec::new();
+    let mut indices: Vec<u32> = Vec::new();
+    let out: &mut [u32] = if all_triangles {
+        triangles = vec![[0; 3]; i / 3];
+        triangles.as_flattened_mut()
+    } else {
+        indices = vec![0; i];
+        &mut indices
+    };
+    let mut slices = Vec::with_capacity(chunks.len());
+    let mut rest = out;
+    for c in &chunks {
+        let (head, tail) = rest.split_at_mut(c.indices.len().min(rest.len()));
+        slices.push(head);
+        rest = tail;
+    }
+    let bad = chunks
+        .par_iter()
+        .zip(slices.into_par_iter())
+        .zip(vertex_base.par_iter())
+        .enumerate()
+        .map(|(k, ((chunk, out), &base))| {
+            resolve(chunk, out, base, vertex_count).map(|(at, message)| (k, at, message))
+        })
+        .find_first(|bad| bad.is_some())
+        .flatten();
+    if let Some((k, at, message)) = bad {
+        let chunk = &chunks[k];
+        let face = chunk.face_ends.partition_point(|&end| end <= at);
+        let offset = face_offset(bytes, bounds[k], bounds[k + 1], face);
+        return Err(ParseError::at_offset(bytes, offset, message));
+    }
+
+    let mut positions = Vec::with_capacity(vertex_count);
+    for c in &chunks {
+        positions.extend_from_slice(&c.positions);
+    }
+    let faces = if all_triangles {
+        Faces::Triangles(triangles)
+    } else {
+        let face_count: usize = chunks.iter().map(|c| c.face_ends.len()).sum();
+        let mut offsets = Vec::with_capacity(face_count + 1);
+        offsets.push(0);
+        for (c, &base) in chunks.iter().zip(&index_base) {
+            offsets.extend(c.face_ends.iter().map(|&e| base + e));
+        }
+        Faces::Polygons { offsets, indices }
+    };
+    drop(chunks);
+    Mesh::new(positions, faces).map_err(|e| ParseError::new(None, e.to_string()))
+}
+
+/// Turns a chunk's stored indices into absolute ones; on a bad index returns its
+/// position in the chunk's index list and the message.
+fn resolve(
+    chunk: &Chunk,
+    out: &mut [u32],
+    base: usize,
+    vertices: usize,
+) -> Option<(usize, String)> {
+    for (at, (&stored, slot)) in chunk.indices.iter().zip(out.iter_mut()).enumerate() {
+        let absolute = if stored >= 0 { stored } else { stored + RELATIVE + base as i64 };
+        if absolute < 0 {
+            return Some((
+                at,
+                format!(
+                    "negative vertex index points before the first vertex ({} too far back)",
+                    -absolute
+                ),
+            ));
+        }
+        if absolute as u64 >= vertices as u64 {
+            let message = if stored >= 0 {
+                format!(
+                    "vertex index {} is out of range: the file has {vertices} vertices",
+                    absolute + 1
+                )
+            } else {
+                format!("negative vertex index is out of range ({vertices} vertices)")
+            };
+            return Some((at, message));
+        }
+        *slot = absolute as u32;
+    }
+    None
+}
+
+/// One warning for everything read and not used.
+fn warn_ignored(chunks: &[Chunk], warnings: &mut Vec<String>) {
+    let lines: usize = chunks.iter().map(|c| c.lines).sum();
+    let points: usize = chunks.iter().map(|c| c.points).sum();
+    let mut parts = Vec::new();
+    if lines > 0 {
+        parts.push(format!("{lines} line elements (l)"));
+    }
+    if points > 0 {
+        parts.push(format!("{points} point elements (p)"));
+    }
+    if !parts.is_empty() {
+        warnings.push(format!("ignored {}", parts.join(" and ")));
+    }
+    let unknown: usize = chunks.iter().map(|c| c.unknown).sum();
+    if unknown > 0 {
+        let mut names: Vec<&str> = Vec::new();
+        for name in chunks.iter().flat_map(|c| &c.unknown_names) {
+            if !names.contains(&name.as_str()) && names.len() < 8 {
+                names.push(name);
+            }
+        }
+        warnings.push(format!("ignored {unknown} unsupported statements ({})", names.join(", ")));
+    }
+}
+
+/// Chunk boundaries at line starts, about `target` bytes apart, never inside a
+/// continued line.
+fn line_boundaries(bytes: &[u8], start: usize, target: usize) -> Vec<usize> {
+    let mut bounds = vec![start];
+    let mut from = start.saturating_add(target);
+    while from < bytes.len() {
+        match memchr::memchr(b'\n', &bytes[from..]) {
+            Some(i) if from + i + 1 < bytes.len() => {
+                let nl = from + i;
+                let line_start = memchr::memrchr(b'\n', &bytes[..nl]).map_or(0, |j| j + 1);
+                if continues(&bytes[line_start..nl]) {
+                    from = nl + 1;
+                    continue;
+                }
+                bounds.push(nl + 1);
+                from = (nl + 1).saturating_add(target);
+            }
+            _ => break,
+        }
+    }
+    bounds.push(bytes.len());
+    bounds
+}
+
+/// The byte offset of the `face`-th face statement in `[start, end)`.
+fn face_offset(bytes: &[u8], start: usize, end: usize, face: usize) -> usize {
+    let b = &bytes[..end];
+    let mut seen = 0;
+    let mut pos = start;
+    while pos < b.len() {
+        let s = text::skip_blank(b, pos);
+        let (kind, e) = classify(b, s);
+        if kind == Statement::Face {
+            if seen == face {
+                return s;
+            }
+            seen += 1;
+        }
+        pos = skip_line(b, e);
+    }
+    end
+}
+
+/// Parses the lines in `[start, end)`; `end` is a line start or the end of the file.
+fn parse_chunk(bytes: &[u8], start: usize, end: usize) -> Chunk {
+    let b = &bytes[..end];
+    let mut chunk = Chunk {
+        // About 30 bytes per vertex line and per face line.
+        positions: Vec::with_capacity((end - start) / 64),
+        indices: Vec::with_capacity((end - start) / 16),
+        face_ends: Vec::with_capacity((end - start) / 64),
+        all_triangles: true,
+        ..Chunk::default()
+    };
+    let mut pos = start;
+    while pos < b.len() {
+        let s = text::skip_blank(b, pos);
+        let (kind, e) = classify(b, s);
+        let result = match kind {
+            Statement::Vertex => parse_vertex(b, s, e).map(|(p, end)| {
+                chunk.positions.push(p);
+                end
+            }),
+            Statement::Face => parse_face(b, s, e, &mut chunk),
+            Statement::Skip => Ok(e),
+            Statement::Line => {
+                chunk.lines += 1;
+                Ok(e)
+            }
+            Statement::Point => {
+                chunk.points += 1;
+                Ok(e)
+            }
+            Statement::Unknown => {
+                chunk.unknown += 1;
+                let name = &b[s..e];
+                if chunk.unknown_names.len() < 8
+                    && !chunk.unknown_names.iter().any(|n| n.as_bytes() == name)
+                {
+                    chunk.unknown_names.push(text::show(name));
+                }
+                Ok(e)
+            }
+            Statement::Invalid => {
+                Err((s, format!("expected an OBJ statement, found '{}'", text::show(&b[s..e]))))
+            }
+        };
+        match result {
+            Ok(e) => pos = skip_line(b, e),
+            Err(error) => {
+                chunk.error = Some(error);
+                break;
+            }
+        }
+    }
+    chunk
+}
+
+/// Reads the first three numbers after `v` (keyword at `s`, arguments from `pos`);
+/// returns the point and where reading stopped.
+#[inline]
+fn parse_vertex(b: &[u8], s: usize, mut pos: usize) -> Result<(Point, usize), (usize, String)> {
+    let mut p = [0.0; 3];
+    for (found, c) in p.iter_mut().enumerate() {
+        pos = skip_blank_continued(b, pos);
+        match text::parse_f64(b, pos) {
+            Ok((value, end)) => {
+                *c = value;
+                pos = end;
+            }
+            Err(NumberError::Missing) if matches!(b.get(pos), None | Some(b'\n' | b'#')) => {
+                return Err((s, format!("expected 3 coordinates after 'v', found {found}")))
+            }
+            Err(NumberError::NonFinite) => {
+                return Err((pos, format!("non-finite coordinate '{}'", text::show_token(b, pos))))
+            }
+            Err(_) => return Err((pos, format!("invalid number '{}'", text::show_token(b, pos)))),
+        }
+    }
+    Ok((p, pos))
+}
+
+/// Reads the vertex indices of an `f` statement (keyword at `s`, arguments from `pos`);
+/// returns where reading stopped.
+#[inline]
+fn parse_face(
+    b: &[u8],
+    s: usize,
+    mut pos: usize,
+    chunk: &mut Chunk,
+) -> Result<usize, (usize, String)> {
+    let local = chunk.positions.len() as i64;
+    let first = chunk.indices.len();
+    loop {
+        pos = skip_blank_continued(b, pos);
+        let token = pos;
+        let (negative, digits) = match b.get(pos) {
+            None | Some(b'\n' | b'#') => break,
+            Some(b'-') => (true, pos + 1),
+            Some(b'+') => (false, pos + 1),
+            Some(_) => (false, pos),
+        };
+        pos = digits;
+        let mut value: i64 = 0;
+        while let Some(&d) = b.get(pos).filter(|d| d.is_ascii_digit()) {
+            value = value * 10 + i64::from(d - b'0');
+            if value > MAX_INDEX {
+                let shown = text::show_token(b, token);
+                return Err((token, format!("vertex index '{shown}' is too large")));
+            }
+            pos += 1;
+        }
+        if pos == digits || !(ends_word(b, pos) || b[pos] == b'/') {
+            let shown = text::show_token(b, token);
+            return Err((token, format!("invalid vertex index '{shown}'")));
+        }
+        // Skip `/vt/vn`.
+        pos = text::token_end(b, pos);
+        if value == 0 {
+            return Err((token, "vertex index 0: OBJ indices start at 1".to_string()));
+        }
+        chunk.indices.push(if negative { local - value - RELATIVE } else { value - 1 });
+    }
+    let count = chunk.indices.len() - first;
+    if count < 3 {
+        chunk.indices.truncate(first);
+        return Err((s, format!("face has {count} vertices; a face needs at least 3")));
+    }
+    chunk.all_triangles &= count == 3;
+    chunk.face_ends.push(chunk.indices.len());
+    Ok(pos)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn statements() {
+        let kind = |line: &[u8]| classify(line, text::skip_blank(line, 0));
+        assert_eq!(kind(b"  v 1 2 3"), (Statement::Vertex, 3));
+        assert_eq!(kind(b"vt 1 2").0, Statement::Skip);
+        assert_eq!(kind(b"\tf 1 2 3\r\n").0, Statement::Face);
+        assert_eq!(kind(b"f\r\n").0, Statement::Face);
+        assert_eq!(kind(b"#v 1 2 3").0, Statement::Skip);
+        assert_eq!(kind(b"\r\n").0, Statement::Skip);
+        assert_eq!(kind(b"curv 0 1 2"), (Statement::Unknown, 4));
+        assert_eq!(kind(b"1 2 3").0, Statement::Invalid);
+        assert_eq!(kind(b"v1 2 3").0, Statement::Unknown);
+    }
+
+    #[test]
+    fn continued_lines() {
+        assert_eq!(skip_line(b"a \\\r\nb\nc", 0), 7);
+        assert_eq!(skip_line(b"a\n", 1), 2);
+        assert_eq!(skip_blank_continued(b" \\ \r\n  7", 0), 7);
+        assert_eq!(skip_blank_continued(b" \\x", 0), 1);
+    }
+
+    #[test]
+    fn chunked_negative_indices_resolve_across_chunks() {
+        let mut file = String::new();
+        for i in 0..200 {
+            file += &format!("v {i} 0 0\nv {i} 1 0\nv {i} 0 1\nf -3 -2 -1\n");
+        }
+        let bytes = file.as_bytes();
+        let mesh = read_chunked(bytes, &mut vec![], 100).unwrap();
+        let bounds = line_boundaries(bytes, 0, 100);
+        assert!(bounds.len() > 10);
+        assert_eq!(mesh.face_count(), 200);
+        for f in 0..200 {
+            assert_eq!(mesh.face(f), &[3 * f as u32, 3 * f as u32 + 1, 3 * f as u32 + 2]);
+        }
+    }
+
+    /// Any chunking gives what one sequential pass gives.
+    #[test]
+    fn chunking_does_not_change_the_result() {
+        use crate::text::mutate::{mutate, Rng};
+        let mut file = String::from("# test\nv 0 0 0\nv 1 0 0\n");
+        for i in 0..12 {
+            file += &format!("v {i} 1 0 1 0 0\nf -1 -2 -3\nvt 0 0\nf 1/1 2//1 {} 3\n", i + 3);
+            if i % 4 == 0 {
+                file += "l 1 2\nf 1 2 \\\n 3\r\n";
+            }
+        }
+        file += "f 12 13 14\n";
+        let pieces: &[&[u8]] = &[
+            b"\nf ",
+            b"\nv ",
+            b" -1",
+            b" -9",
+            b" 0",
+            b" 99",
+            b"/",
+            b"//",
+            b"\\",
+            b"\\\n",
+            b"\n",
+            b" ",
+            b"#",
+            b"nan",
+            b"l",
+            b"p 1\n",
+            b"curv 1\n",
+            b"1",
+        ];
+        let run = |bytes: &[u8], chunk: usize| {
+            let mut warnings = vec![];
+            let result = read_chunked(bytes, &mut warnings, chunk)
+                .map(|m| (m.positions().to_vec(), m.faces().clone()))
+                .map_err(|e| (e.location, e.message));
+            (result, warnings)
+        };
+        let mut rng = Rng(11);
+        let (mut ok, mut err) = (0, 0);
+        for round in 0..3000 {
+            let input = if round == 0 {
+                file.as_bytes().to_vec()
+            } else {
+                mutate(&mut rng, file.as_bytes(), pieces)
+            };
+            let whole = run(&input, usize::MAX / 2);
+            if whole.0.is_ok() {
+                ok += 1
+            } else {
+                err += 1
+            }
+            for chunk in [1, 20, 100] {
+                assert_eq!(
+                    run(&input, chunk),
+                    whole,
+                    "chunk {chunk}: {}",
+                    String::from_utf8_lossy(&input)
+                );
+            }
+        }
+        assert!(ok > 100 && err > 100, "{ok} {err}");
+    }
+}
