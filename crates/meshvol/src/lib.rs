@@ -19,7 +19,7 @@ pub mod shapes;
 mod vector;
 
 pub use exact::{exact_signed_volume, ExactError};
-pub use mesh::{Faces, Mesh, MeshError, Surface};
+pub use mesh::{FaceRange, Faces, Mesh, MeshError, Surface};
 pub use properties::{mass_properties, Bounds, MassProperties, Principal};
 
 /// A point or vector in 3D.
