@@ -11,11 +11,13 @@
 //! Threads come from the caller's rayon pool (`ThreadPool::install`).
 
 pub mod accumulate;
+mod bvh;
 mod eigen;
 pub mod exact;
 pub mod mesh;
 pub mod properties;
 pub mod shapes;
+pub mod topology;
 mod vector;
 
 pub use exact::{exact_signed_volume, ExactError};

@@ -1,0 +1,662 @@
+//! Plane polygons with holes: area, perimeter, centroid and second moments, and the
+//! checks that say whether those numbers mean what they seem to.
+//!
+//! # Math
+//! Green's theorem turns each integral over a region into a sum over its boundary edges.
+//! For an edge from a = (x₀, y₀) to b = (x₁, y₁), with k = x₀y₁ − x₁y₀ (twice the signed
+//! area of the triangle (0, a, b)):
+//!
+//! - area:           A     = Σ k / 2
+//! - first moments:  ∫x dA = Σ (x₀ + x₁) k / 6,  ∫y dA = Σ (y₀ + y₁) k / 6
+//! - second moments: ∫x² dA = Σ (x₀² + x₀x₁ + x₁²) k / 12, ∫y² dA likewise,
+//!   ∫xy dA = Σ (2x₀y₀ + x₀y₁ + x₁y₀ + 2x₁y₁) k / 24
+//!
+//! A ring's sums are signed by its winding: positive counter-clockwise. A region counts
+//! once whatever its rings' windings: each [`Polygon`]'s exterior adds |its sums| and each
+//! hole subtracts |its sums| (the sums of a ring are all multiplied by the sign of its
+//! area, then by +1 or −1 for its role). The polygons of a set add up, so polygons that
+//! overlap each other count twice: [`polygon_issues`] reports them.
+//!
+//! [`SecondMoments`] are about the centroid c: `ix` = ∫(y − c_y)² dA (about the axis
+//! through c parallel to x), `iy` = ∫(x − c_x)² dA, the product `ixy` = ∫(x − c_x)(y − c_y) dA
+//! and the polar moment `ix + iy`.
+//!
+//! # Accuracy
+//! Coordinates in survey systems (UTM, state plane) are 10⁶–10⁷ while parcels are
+//! 10–10³ wide: the naive shoelace Σ x₀y₁ − x₁y₀ adds and cancels products of 10¹⁴,
+//! whose rounding (≈ 0.02 each) swamps the area's last digits. Here:
+//!
+//! - Every ring is summed about its own first vertex r: `x − r` is exact whenever x and
+//!   r are within a factor of two (Sterbenz), which holds for any parcel far from the
+//!   origin, so the terms are the size of the parcel, not of its offset.
+//! - k is computed with fused multiply-adds (Kahan's 2×2 determinant: error below
+//!   1.5 ulp of k itself, however much x₀y₁ and x₁y₀ cancel), and every sum is a
+//!   [`CompensatedSum`].
+//! - The second moments are summed in a second pass about the centroid itself, never
+//!   shifted with the parallel-axis theorem (which subtracts two large numbers).
+//!
+//! The area of a ring with coordinates of at most 2²⁶ units after the translation comes
+//! out correctly rounded in practice; the tests compare with exact integer arithmetic.
+
+use std::borrow::Borrow;
+use std::fmt;
+
+use crate::accumulate::{CompensatedSum, UNIT_ROUNDOFF};
+
+/// A point in the plane.
+pub type Point2 = [f64; 2];
+
+/// A polygon: one exterior ring and any number of holes.
+///
+/// Rings are open: the last vertex is not a copy of the first (readers drop a closing
+/// copy; a copy left in adds a zero-length edge, which changes nothing). Any winding is
+/// accepted; holes subtract whatever their winding.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Polygon {
+    pub exterior: Vec<Point2>,
+    pub holes: Vec<Vec<Point2>>,
+}
+
+impl Polygon {
+    pub fn new(exterior: Vec<Point2>, holes: Vec<Vec<Point2>>) -> Polygon {
+        Polygon { exterior, holes }
+    }
+
+    /// The rings in order: the exterior (ring 0), then the holes (rings 1, 2, …).
+    pub fn rings(&self) -> impl Iterator<Item = &[Point2]> {
+        std::iter::once(self.exterior.as_slice()).chain(self.holes.iter().map(Vec::as_slice))
+    }
+}
+
+/// The second moments of an area about its centroid (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SecondMoments {
+    /// ∫(y − c_y)² dA: about the axis through the centroid parallel to x.
+    pub ix: f64,
+    /// ∫(x − c_x)² dA: about the axis through the centroid parallel to y.
+    pub iy: f64,
+    /// ∫(x − c_x)(y − c_y) dA.
+    pub ixy: f64,
+    /// ix + iy: about the axis through the centroid normal to the plane.
+    pub polar: f64,
+}
+
+impl SecondMoments {
+    /// The principal moments (larger first) and the angle, in radians counter-clockwise
+    /// from the x axis, of the axis about which the first one is taken.
+    ///
+    /// ```
+    /// use meshvol::polygon::SecondMoments;
+    /// // A 2 × 1 rectangle turned by 30°: principal moments 2/3 and 1/6.
+    /// let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    /// let (a, b) = (1.0 / 6.0, 2.0 / 3.0); // about its own x and y axes
+    /// let m = SecondMoments {
+    ///     ix: a * c * c + b * s * s,
+    ///     iy: a * s * s + b * c * c,
+    ///     ixy: (b - a) * s * c,
+    ///     polar: a + b,
+    /// };
+    /// let ([big, small], angle) = m.principal();
+    /// assert!((big - 2.0 / 3.0).abs() < 1e-15 && (small - 1.0 / 6.0).abs() < 1e-15);
+    /// assert!((angle - 120f64.to_radians()).abs() < 1e-12);
+    /// ```
+    pub fn principal(&self) -> ([f64; 2], f64) {
+        let mean = (self.ix + self.iy) / 2.0;
+        let half_difference = (self.ix - self.iy) / 2.0;
+        let radius = half_difference.hypot(self.ixy);
+        // The moment about the axis at angle θ is mean + half_difference·cos 2θ
+        // − ixy·sin 2θ, largest where (cos 2θ, sin 2θ) points along
+        // (half_difference, −ixy).
+        let angle = 0.5 * (-self.ixy).atan2(half_difference);
+        let angle = if angle < 0.0 { angle + std::f64::consts::PI } else { angle };
+        ([mean + radius, mean - radius], angle)
+    }
+}
+
+/// Whether a ring bounds its polygon from outside or is a hole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RingRole {
+    Exterior,
+    Hole,
+}
+
+/// One ring as it was given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RingProperties {
+    /// The polygon's index in the set.
+    pub polygon: usize,
+    /// The ring's index in its polygon: 0 for the exterior, 1, 2, … for the holes.
+    pub ring: usize,
+    pub role: RingRole,
+    pub vertices: usize,
+    /// Area as wound: positive counter-clockwise.
+    pub signed_area: f64,
+    pub perimeter: f64,
+}
+
+/// What [`area_properties`] measures.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AreaProperties {
+    /// Σ |exteriors| − Σ |holes|.
+    pub area: f64,
+    /// The length of every ring, holes included.
+    pub perimeter: f64,
+    /// `None` when the area is zero within rounding.
+    pub centroid: Option<Point2>,
+    /// About the centroid; zero when the centroid is `None`.
+    pub inertia: SecondMoments,
+    /// Every ring, polygon by polygon.
+    pub rings: Vec<RingProperties>,
+}
+
+/// Ring sums about a reference point: twice the area, six times the first moments,
+/// Σ|k| and the perimeter.
+#[derive(Clone, Copy, Default)]
+struct FirstSums {
+    double_area: CompensatedSum,
+    six_first: [CompensatedSum; 2],
+    abs_double_area: f64,
+    perimeter: CompensatedSum,
+}
+
+/// x₀y₁ − x₁y₀ to within 1.5 ulp of the result (Kahan's algorithm with FMA).
+#[inline(always)]
+pub(crate) fn cross(a: Point2, b: Point2) -> f64 {
+    let w = b[0] * a[1];
+    let error = b[0].mul_add(a[1], -w);
+    a[0].mul_add(b[1], -w) - error
+}
+
+/// Calls `edge(a, b)` for each edge of `ring` with both ends taken as
+/// (p − `origin`) − `offset`.
+#[inline(always)]
+fn for_each_edge(
+    ring: &[Point2],
+    origin: Point2,
+    offset: Point2,
+    mut edge: impl FnMut(Point2, Point2),
+) {
+    let relative = |p: Point2| [(p[0] - origin[0]) - offset[0], (p[1] - origin[1]) - offset[1]];
+    let Some(&last) = ring.last() else { return };
+    let mut a = relative(last);
+    for &p in ring {
+        let b = relative(p);
+        edge(a, b);
+        a = b;
+    }
+}
+
+fn first_sums(ring: &[Point2]) -> FirstSums {
+    let mut s = FirstSums::default();
+    let Some(&origin) = ring.first() else { return s };
+    for_each_edge(ring, origin, [0.0; 2], |a, b| {
+        let k = cross(a, b);
+        s.double_area.add(k);
+        s.abs_double_area += k.abs();
+        s.six_first[0].add((a[0] + b[0]) * k);
+        s.six_first[1].add((a[1] + b[1]) * k);
+        s.perimeter.add((b[0] - a[0]).hypot(b[1] - a[1]));
+    });
+    s
+}
+
+/// 12 ∫x² dA, 12 ∫y² dA and 24 ∫xy dA of a ring about `origin + offset`, as wound.
+fn second_sums(ring: &[Point2], origin: Point2, offset: Point2) -> [f64; 3] {
+    let mut sums = [CompensatedSum::default(); 3];
+    for_each_edge(ring, origin, offset, |a, b| {
+        let k = cross(a, b);
+        sums[0].add((a[0] * a[0] + a[0] * b[0] + b[0] * b[0]) * k);
+        sums[1].add((a[1] * a[1] + a[1] * b[1] + b[1] * b[1]) * k);
+        sums[2].add((a[0] * (2.0 * a[1] + b[1]) + b[0] * (a[1] + 2.0 * b[1])) * k);
+    });
+    sums.map(|s| s.value())
+}
+
+/// The signed area of a ring: positive when it winds counter-clockwise.
+///
+/// ```
+/// use meshvol::polygon::signed_area;
+/// assert_eq!(signed_area(&[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]), 2.0);
+/// assert_eq!(signed_area(&[[0.0, 0.0], [0.0, 1.0], [2.0, 1.0], [2.0, 0.0]]), -2.0);
+/// ```
+pub fn signed_area(ring: &[Point2]) -> f64 {
+    first_sums(ring).double_area.value() / 2.0
+}
+
+/// Area, perimeter, centroid and second moments of a set of polygons (a multipolygon,
+/// or one polygon as a one-element slice).
+///
+/// ```
+/// use meshvol::polygon::{area_properties, Polygon};
+/// // A 4 × 2 rectangle with a 1 × 1 hole, far from the origin; the hole is wound the same
+/// // way as the exterior and still subtracts.
+/// let o = [5.0e6, 1.0e7];
+/// let at = |x: f64, y: f64| [o[0] + x, o[1] + y];
+/// let square = Polygon::new(
+///     vec![at(0.0, 0.0), at(4.0, 0.0), at(4.0, 2.0), at(0.0, 2.0)],
+///     vec![vec![at(1.0, 0.5), at(2.0, 0.5), at(2.0, 1.5), at(1.0, 1.5)]],
+/// );
+/// let p = area_properties(&[square]);
+/// assert_eq!(p.area, 7.0);
+/// assert_eq!(p.perimeter, 16.0);
+/// let c = p.centroid.unwrap();
+/// assert_eq!([c[0] - o[0], c[1] - o[1]], [(8.0 * 2.0 - 1.5) / 7.0, 1.0]);
+/// // ix: the rectangle's 4·2³/12 minus the hole's 1/12 (both centred on y = 1).
+/// assert!((p.inertia.ix - (32.0 / 12.0 - 1.0 / 12.0)).abs() < 1e-13);
+/// assert_eq!(p.rings[1].signed_area, 1.0);
+/// ```
+pub fn area_properties<P: Borrow<Polygon>>(polygons: &[P]) -> AreaProperties {
+    let reference = polygons.iter().find_map(|p| p.borrow().exterior.first().copied());
+    let mut rings = Vec::new();
+    let mut double_area = CompensatedSum::default();
+    let mut abs_double_area = 0.0;
+    let mut six_first = [CompensatedSum::default(); 2];
+    let mut perimeter = CompensatedSum::default();
+    // Per ring: the weight (±1 or 0) that turns its sums into the region's, and its
+    // first vertex.
+    let mut weights: Vec<(f64, Point2)> = Vec::new();
+    let origin = reference.unwrap_or_default();
+    for (index, polygon) in polygons.iter().enumerate() {
+        for (ring_index, ring) in polygon.borrow().rings().enumerate() {
+            let sums = first_sums(ring);
+            let signed = sums.double_area.value();
+            let (role, role_sign) =
+                if ring_index == 0 { (RingRole::Exterior, 1.0) } else { (RingRole::Hole, -1.0) };
+            let weight = if signed > 0.0 {
+                role_sign
+            } else if signed < 0.0 {
+                -role_sign
+            } else {
+                0.0
+            };
+            let ring_origin = ring.first().copied().unwrap_or(origin);
+            // The ring's own origin relative to the common one; its area times this
+            // moves the ring's first moment to the common origin.
+            let shift = [ring_origin[0] - origin[0], ring_origin[1] - origin[1]];
+            double_area.add(weight * signed);
+            abs_double_area += sums.abs_double_area;
+            for axis in 0..2 {
+                six_first[axis].add(weight * sums.six_first[axis].value());
+                six_first[axis].add(weight * 3.0 * signed * shift[axis]);
+            }
+            perimeter.add(sums.perimeter.value());
+            weights.push((weight, ring_origin));
+            rings.push(RingProperties {
+                polygon: index,
+                ring: ring_index,
+                role,
+                vertices: ring.len(),
+                signed_area: signed / 2.0,
+                perimeter: sums.perimeter.value(),
+            });
+        }
+    }
+    let double = double_area.value();
+    let mut centroid = None;
+    let mut inertia = SecondMoments::default();
+    // Below this the rings cancel to rounding: no centroid.
+    if double.abs() > 8.0 * UNIT_ROUNDOFF * abs_double_area {
+        // The centroid relative to the common origin.
+        let c = six_first.map(|s| s.value() / (3.0 * double));
+        let mut sums = [CompensatedSum::default(); 3];
+        let mut weights = weights.iter();
+        for polygon in polygons {
+            for ring in polygon.borrow().rings() {
+                let Some(&(weight, ring_origin)) = weights.next() else { break };
+                if weight == 0.0 {
+                    continue;
+                }
+                // Coordinates about the centroid as (p − ring origin) − (c − shift): both
+                // differences are small, so the second pass keeps full precision.
+                let shift = [ring_origin[0] - origin[0], ring_origin[1] - origin[1]];
+                let offset = [c[0] - shift[0], c[1] - shift[1]];
+                let [xx, yy, xy] = second_sums(ring, ring_origin, offset);
+                sums[0].add(weight * xx);
+                sums[1].add(weight * yy);
+                sums[2].add(weight * xy);
+            }
+        }
+        let [xx, yy, xy] = sums.map(|s| s.value());
+        let (iy, ix, ixy) = (xx / 12.0, yy / 12.0, xy / 24.0);
+        inertia = SecondMoments { ix, iy, ixy, polar: ix + iy };
+        centroid = Some([origin[0] + c[0], origin[1] + c[1]]);
+    }
+    AreaProperties {
+        area: double / 2.0,
+        perimeter: perimeter.value(),
+        centroid,
+        inertia,
+        rings,
+    }
+}
+
+/// Something that makes a polygon's numbers mean other than they seem.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PolygonIssue {
+    /// Edges of one ring that are not neighbours meet (cross, touch or overlap): the
+    /// ring is not simple, and its signed area counts each lobe by its winding.
+    SelfIntersection {
+        polygon: usize,
+        ring: usize,
+        /// The first pair of edges found to meet (edge j runs from vertex j to j + 1).
+        edges: [usize; 2],
+        near: Point2,
+        /// How many edge pairs of the ring meet.
+        contacts: u64,
+    },
+    /// Edges of two rings (of one polygon or of two) cross or overlap along a stretch:
+    /// a hole that leaves its exterior, or polygons of a set that overlap (and so count
+    /// twice). Rings that only touch at a point are allowed.
+    RingsCross {
+        /// (polygon, ring) of each.
+        rings: [(usize, usize); 2],
+        edges: [usize; 2],
+        near: Point2,
+        contacts: u64,
+    },
+    /// A hole that lies outside its polygon's exterior: it subtracts area that is not
+    /// there.
+    HoleOutside { polygon: usize, ring: usize },
+    /// A ring that encloses no area: fewer than three distinct vertices, or all on one
+    /// line.
+    Degenerate { polygon: usize, ring: usize, vertices: usize },
+    /// The intersection check stopped after `pairs` edge pairs (see
+    /// [`MAX_EDGE_PAIR_TESTS`]); rings may intersect unreported.
+    CheckIncomplete { pairs: u64 },
+}
+
+impl fmt::Display for PolygonIssue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let count = |n: u64| if n > 1 { format!(" ({n} edge pairs meet)") } else { String::new() };
+        match self {
+            PolygonIssue::SelfIntersection { polygon, ring, edges, near, contacts } => write!(
+                f,
+                "polygon {polygon} ring {ring} intersects itself: edges {} and {} meet near \
+                 ({}, {}){}; its signed area counts each lobe by its winding",
+                edges[0],
+                edges[1],
+                near[0],
+                near[1],
+                count(*contacts)
+            ),
+            PolygonIssue::RingsCross { rings, edges, near, contacts } => {
+                let [(p0, r0), (p1, r1)] = *rings;
+                let what = if p0 == p1 {
+                    "a hole crosses its polygon's boundary or another hole"
+                } else {
+                    "the polygons overlap, and overlapping area counts twice"
+                };
+                write!(
+                    f,
+                    "polygon {p0} ring {r0} and polygon {p1} ring {r1} cross: edges {} and {} \
+                     meet near ({}, {}){}; {what}",
+                    edges[0],
+                    edges[1],
+                    near[0],
+                    near[1],
+                    count(*contacts)
+                )
+            }
+            PolygonIssue::HoleOutside { polygon, ring } => write!(
+                f,
+                "polygon {polygon} ring {ring} is a hole outside its exterior ring: it \
+                 subtracts area that is not there"
+            ),
+            PolygonIssue::Degenerate { polygon, ring, vertices } => write!(
+                f,
+                "polygon {polygon} ring {ring} ({vertices} vertices) encloses no area: its \
+                 vertices are repeated or on one line"
+            ),
+            PolygonIssue::CheckIncomplete { pairs } => write!(
+                f,
+                "the intersection check stopped after {pairs} edge pairs: rings may intersect \
+                 unreported"
+            ),
+        }
+    }
+}
+
+/// The most edge pairs [`polygon_issues`] tests (about a quarter of a second). Rings
+/// with n edges need about n·w tests, where w is the number of edges that overlap a
+/// typical edge's x range: a few for ordinary outlines (a million-vertex coastline is
+/// far below the limit), up to n for combs of thin vertical spikes.
+pub const MAX_EDGE_PAIR_TESTS: u64 = 1 << 25;
+
+/// How two segments meet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Contact {
+    /// They cross at a point inside both.
+    Cross(Point2),
+    /// An end of one lies on the other.
+    Touch(Point2),
+    /// They are collinear and share a stretch of positive length.
+    Overlap(Point2),
+}
+
+fn orient(a: Point2, b: Point2, c: Point2) -> f64 {
+    let coord = |p: Point2| robust::Coord { x: p[0], y: p[1] };
+    robust::orient2d(coord(a), coord(b), coord(c))
+}
+
+/// Whether and how segments a and b meet, decided with exact orientation signs.
+fn contact(a: [Point2; 2], b: [Point2; 2]) -> Option<Contact> {
+    let o = [orient(a[0], a[1], b[0]), orient(a[0], a[1], b[1])];
+    if o[0] * o[1] > 0.0 {
+        return None;
+    }
+    let p = [orient(b[0], b[1], a[0]), orient(b[0], b[1], a[1])];
+    if p[0] * p[1] > 0.0 {
+        return None;
+    }
+    if o == [0.0; 2] {
+        // Collinear: compare the extents along a's longer axis.
+        let axis = usize::from((a[1][1] - a[0][1]).abs() > (a[1][0] - a[0][0]).abs());
+        let (a0, a1) = (a[0][axis].min(a[1][axis]), a[0][axis].max(a[1][axis]));
+        let (b0, b1) = (b[0][axis].min(b[1][axis]), b[0][axis].max(b[1][axis]));
+        let (lo, hi) = (a0.max(b0), a1.min(b1));
+        let point_at = |v: f64| if a[0][axis] == v { a[0] } else if a[1][axis] == v { a[1] } else if b[0][axis] == v { b[0] } else { b[1] };
+        return match lo.partial_cmp(&hi)? {
+            std::cmp::Ordering::Less => Some(Contact::Overlap(point_at(lo))),
+            std::cmp::Ordering::Equal => Some(Contact::Touch(point_at(lo))),
+            std::cmp::Ordering::Greater => None,
+        };
+    }
+    if o[0] == 0.0 {
+        Some(Contact::Touch(b[0]))
+    } else if o[1] == 0.0 {
+        Some(Contact::Touch(b[1]))
+    } else if p[0] == 0.0 {
+        Some(Contact::Touch(a[0]))
+    } else if p[1] == 0.0 {
+        Some(Contact::Touch(a[1]))
+    } else {
+        // A proper crossing; o[0] and o[1] have opposite signs, so t is in (0, 1).
+        let t = o[0] / (o[0] - o[1]);
+        Some(Contact::Cross([b[0][0] + t * (b[1][0] - b[0][0]), b[0][1] + t * (b[1][1] - b[0][1])]))
+    }
+}
+
+/// An edge of positive length, for the sweep.
+#[derive(Clone, Copy)]
+struct SweepEdge {
+    x_range: [f64; 2],
+    y_range: [f64; 2],
+    ends: [Point2; 2],
+    polygon: u32,
+    ring: u32,
+    /// The edge's index in its ring (edge j runs from vertex j).
+    index: u32,
+    /// Its position among the ring's edges of positive length, and their number:
+    /// neighbours in this order share a vertex.
+    rank: u32,
+    ring_edges: u32,
+}
+
+/// Whether `point` is inside `ring` (`Some(true)`), outside (`Some(false)`), or on its
+/// boundary (`None`), by the winding number with exact orientation signs.
+fn inside(ring: &[Point2], point: Point2) -> Option<bool> {
+    let mut winding = 0i64;
+    let Some(&last) = ring.last() else { return Some(false) };
+    let mut a = last;
+    for &b in ring {
+        let side = orient(a, b, point);
+        let within_box = point[0] >= a[0].min(b[0])
+            && point[0] <= a[0].max(b[0])
+            && point[1] >= a[1].min(b[1])
+            && point[1] <= a[1].max(b[1]);
+        if side == 0.0 && within_box {
+            return None;
+        }
+        if a[1] <= point[1] {
+            if b[1] > point[1] && side > 0.0 {
+                winding += 1;
+            }
+        } else if b[1] <= point[1] && side < 0.0 {
+            winding -= 1;
+        }
+        a = b;
+    }
+    Some(winding != 0)
+}
+
+/// Checks a set of polygons: rings that intersect themselves, rings that cross each
+/// other (holes leaving their exterior, overlapping polygons), holes outside their
+/// exterior, and rings with no area.
+///
+/// Edges are swept in order of their smallest x; each is tested against the edges whose
+/// x range it overlaps, with exact orientation predicates (Shewchuk's, from the `robust`
+/// crate), so touching and collinear cases are decided exactly. The work is bounded by
+/// [`MAX_EDGE_PAIR_TESTS`].
+///
+/// ```
+/// use meshvol::polygon::{polygon_issues, Polygon, PolygonIssue};
+/// // A bow tie: its signed area is 0, not 2.
+/// let bow_tie = Polygon::new(vec![[0.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]], vec![]);
+/// let issues = polygon_issues(&[bow_tie]);
+/// assert!(matches!(
+///     issues[..],
+///     [PolygonIssue::SelfIntersection { polygon: 0, ring: 0, edges: [0, 2], near: [1.0, 1.0], .. }]
+/// ));
+/// ```
+pub fn polygon_issues<P: Borrow<Polygon>>(polygons: &[P]) -> Vec<PolygonIssue> {
+    let mut issues = Vec::new();
+    let mut edges: Vec<SweepEdge> = Vec::new();
+    for (polygon_index, polygon) in polygons.iter().enumerate() {
+        let polygon = polygon.borrow();
+        for (ring_index, ring) in polygon.rings().enumerate() {
+            let start = edges.len();
+            let n = ring.len();
+            for j in 0..n {
+                let ends = [ring[j], ring[(j + 1) % n]];
+                if ends[0] == ends[1] {
+                    continue;
+                }
+                edges.push(SweepEdge {
+                    x_range: [ends[0][0].min(ends[1][0]), ends[0][0].max(ends[1][0])],
+                    y_range: [ends[0][1].min(ends[1][1]), ends[0][1].max(ends[1][1])],
+                    ends,
+                    polygon: polygon_index as u32,
+                    ring: ring_index as u32,
+                    index: j as u32,
+                    rank: (edges.len() - start) as u32,
+                    ring_edges: 0,
+                });
+            }
+            let count = edges.len() - start;
+            for e in &mut edges[start..] {
+                e.ring_edges = count as u32;
+            }
+            if count < 3 || signed_area(ring) == 0.0 {
+                issues.push(PolygonIssue::Degenerate {
+                    polygon: polygon_index,
+                    ring: ring_index,
+                    vertices: n,
+                });
+            }
+        }
+        for (hole_index, hole) in polygon.holes.iter().enumerate() {
+            if polygon.exterior.len() < 3 {
+                break;
+            }
+            let verdict = hole.iter().find_map(|&p| inside(&polygon.exterior, p));
+            if verdict == Some(false) {
+                issues.push(PolygonIssue::HoleOutside { polygon: polygon_index, ring: hole_index + 1 });
+            }
+        }
+    }
+    sweep(&mut edges, &mut issues);
+    issues
+}
+
+/// Tests every pair of edges whose x ranges overlap; reports each pair of rings once.
+fn sweep(edges: &mut [SweepEdge], issues: &mut Vec<PolygonIssue>) {
+    edges.sort_unstable_by(|a, b| a.x_range[0].total_cmp(&b.x_range[0]));
+    // Issues already reported, by ring pair: index into `issues`.
+    let mut reported: std::collections::BTreeMap<[u32; 4], usize> = Default::default();
+    let mut active: Vec<u32> = Vec::new();
+    let mut pairs = 0u64;
+    for (i, edge) in edges.iter().enumerate() {
+        active.retain(|&k| edges[k as usize].x_range[1] >= edge.x_range[0]);
+        for &k in &active {
+            let other = &edges[k as usize];
+            pairs += 1;
+            if other.y_range[1] < edge.y_range[0] || other.y_range[0] > edge.y_range[1] {
+                continue;
+            }
+            let same_ring = other.polygon == edge.polygon && other.ring == edge.ring;
+            if same_ring {
+                let gap = other.rank.abs_diff(edge.rank);
+                if gap == 1 || gap + 1 == edge.ring_edges {
+                    continue; // neighbours share a vertex
+                }
+            }
+            let Some(found) = contact(other.ends, edge.ends) else { continue };
+            let near = match found {
+                Contact::Cross(p) | Contact::Overlap(p) => p,
+                Contact::Touch(p) if same_ring => p,
+                Contact::Touch(_) => continue,
+            };
+            let (first, second) =
+                if (other.polygon, other.ring, other.index) <= (edge.polygon, edge.ring, edge.index) {
+                    (other, edge)
+                } else {
+                    (edge, other)
+                };
+            let key = [first.polygon, first.ring, second.polygon, second.ring];
+            if let Some(&at) = reported.get(&key) {
+                if let PolygonIssue::SelfIntersection { contacts, .. }
+                | PolygonIssue::RingsCross { contacts, .. } = &mut issues[at]
+                {
+                    *contacts += 1;
+                }
+                continue;
+            }
+            reported.insert(key, issues.len());
+            let edges = [first.index as usize, second.index as usize];
+            issues.push(if same_ring {
+                PolygonIssue::SelfIntersection {
+                    polygon: first.polygon as usize,
+                    ring: first.ring as usize,
+                    edges,
+                    near,
+                    contacts: 1,
+                }
+            } else {
+                PolygonIssue::RingsCross {
+                    rings: [
+                        (first.polygon as usize, first.ring as usize),
+                        (second.polygon as usize, second.ring as usize),
+                    ],
+                    edges,
+                    near,
+                    contacts: 1,
+                }
+            });
+        }
+        if pairs > MAX_EDGE_PAIR_TESTS {
+            issues.push(PolygonIssue::CheckIncomplete { pairs });
+            return;
+        }
+        active.push(i as u32);
+    }
+}

@@ -1,0 +1,759 @@
+//! Can the volume be trusted? Topology of a surface: welding, edges, shells, winding,
+//! nesting, overlaps, holes, and the solid the surface most plausibly bounds.
+//!
+//! # What is computed
+//! 1. **Weld** corners into vertices (exact positions, or snapped to a tolerance grid).
+//! 2. **Faces**: a face with a repeated vertex, or zero vector area, is *degenerate*; a
+//!    face with the same vertex set as an earlier one is a *duplicate*. Both are left
+//!    out of everything below (and out of the solid's volume).
+//! 3. **Edges**: the undirected edges of the remaining faces, with their uses. One use:
+//!    *boundary*; two: *manifold*, and *consistent* when the two faces traverse it in
+//!    opposite directions; more: *non-manifold*. A vertex whose faces form more than one
+//!    fan around it (a bowtie) is a *non-manifold vertex*.
+//! 4. **Shells**: connected components of faces through shared edges. Within a shell,
+//!    orientation is propagated across manifold edges; a shell where that is impossible
+//!    (a Möbius strip, a Klein bottle) is *non-orientable*.
+//! 5. **Holes**: boundary edges chain into loops; each loop is capped with a fan from
+//!    its centroid, so open shells still get a volume. `volume_uncertainty` adds, per
+//!    cap, its area times the rim's largest distance from the cap's plane: zero for a
+//!    flat hole (a missing planar face is recovered exactly), large for a ragged one.
+//! 6. **Nesting**: for each shell, a ray from one of its vertices counts signed
+//!    crossings (winding numbers) with every other shell, using exact orientation
+//!    predicates and a [`Bvh`]. A shell inside an odd number of others bounds a
+//!    *cavity*. The solid's volume is Σ ±|shell volume|, + for solids and − for
+//!    cavities, whatever each shell's winding in the file.
+//! 7. **Crossings**: pairs of triangles whose interiors cross, found through a [`Bvh`]
+//!    (never all pairs), skipping pairs that share a vertex. Pairs from one shell are
+//!    *self-intersections*; from two shells, *overlapping shells*, whose common volume
+//!    a plain sum counts twice.
+//! 8. **Euler characteristic** V − E + F per shell, and genus (2 − χ)/2 for closed
+//!    orientable shells.
+//!
+//! [`Check::solid`] gives a [`Surface`] of the solid: shells turned outward (cavities
+//! inward), degenerate and duplicate faces dropped, holes capped, so that
+//! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
+
+mod predicates;
+mod solid;
+mod weld;
+
+pub use solid::Solid;
+
+use crate::accumulate::CompensatedSum;
+use crate::bvh::Bvh;
+use crate::properties::Bounds;
+use crate::vector::{add, cross, dot, norm, scale, sub};
+use crate::{Point, Surface};
+use rayon::prelude::*;
+
+/// How to check.
+#[derive(Clone, Copy, Debug)]
+pub struct CheckOptions {
+    /// Weld positions that snap to the same point of a grid with this pitch; `None`
+    /// welds exactly equal positions only.
+    pub weld_tolerance: Option<f64>,
+    /// Look for crossing triangles (self-intersections, overlapping shells).
+    pub intersections: bool,
+    /// How many example face pairs to keep.
+    pub examples: usize,
+}
+
+impl Default for CheckOptions {
+    fn default() -> Self {
+        CheckOptions { weld_tolerance: None, intersections: true, examples: 5 }
+    }
+}
+
+/// How the file's faces are wound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Orientation {
+    /// Every shell is wound so its normals point out of the solid (counter-clockwise
+    /// seen from outside); cavities' normals point into the void.
+    Outward,
+    /// Every shell is wound the other way (clockwise seen from outside, as OpenSCAD's
+    /// polyhedron() wants).
+    Inward,
+    /// Some shells one way, some the other, or faces within a shell disagree.
+    Mixed,
+}
+
+/// One connected component of faces.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shell {
+    /// Faces in the shell (degenerate and duplicate faces are in no shell).
+    pub faces: usize,
+    /// Every edge used by exactly two faces.
+    pub closed: bool,
+    /// Orientation could be propagated consistently over the shell.
+    pub orientable: bool,
+    /// Its faces are consistently wound in the file.
+    pub consistently_oriented: bool,
+    /// Volume enclosed (holes capped), positive.
+    pub volume: f64,
+    /// The shell bounds a void inside another shell.
+    pub cavity: bool,
+    /// The smallest shell containing this one.
+    pub parent: Option<usize>,
+    /// Whether the file winds it the right way for its role (outward for a solid,
+    /// inward for a cavity); `None` when not consistently oriented.
+    pub wound_outward: Option<bool>,
+    /// Boundary loops (holes) in this shell.
+    pub boundary_loops: usize,
+    /// V − E + F.
+    pub euler_characteristic: i64,
+    /// (2 − χ)/2 for closed orientable shells.
+    pub genus: Option<i64>,
+}
+
+/// The facts [`check`] finds. See the module docs for the definitions.
+#[derive(Clone, Debug)]
+pub struct Check {
+    /// Welded vertices used by faces.
+    pub vertices: usize,
+    pub edges: usize,
+    pub faces: usize,
+    /// Every edge used by exactly two faces (after dropping degenerate and duplicate
+    /// faces), and at least one face.
+    pub closed: bool,
+    pub boundary_edges: usize,
+    pub boundary_loops: usize,
+    pub non_manifold_edges: usize,
+    pub non_manifold_vertices: usize,
+    pub degenerate_faces: usize,
+    pub duplicate_faces: usize,
+    /// Every manifold edge's two faces traverse it in opposite directions.
+    pub consistently_oriented: bool,
+    /// `None` when there is no shell to judge.
+    pub orientation: Option<Orientation>,
+    pub shells: Vec<Shell>,
+    pub cavities: usize,
+    /// Pairs of shells whose surfaces cross.
+    pub overlapping_shells: Vec<[usize; 2]>,
+    /// Crossing face pairs within a shell; `None` when not looked for.
+    pub self_intersections: Option<usize>,
+    /// A few crossing face pairs (within or between shells).
+    pub intersection_examples: Vec<[usize; 2]>,
+    /// V − E + F of the whole surface.
+    pub euler_characteristic: i64,
+    /// The solid's volume: Σ ±|shell volume| (cavities negative), holes capped.
+    pub volume: f64,
+    /// How much the caps on holes could be off (0 when closed).
+    pub volume_uncertainty: f64,
+    solid: Solid,
+}
+
+impl Check {
+    /// The surface bounds a volume: closed, manifold, orientable, without crossings.
+    pub fn bounds_a_volume(&self) -> bool {
+        self.closed
+            && self.non_manifold_edges == 0
+            && self.shells.iter().all(|s| s.orientable)
+            && self.overlapping_shells.is_empty()
+            && self.self_intersections.unwrap_or(0) == 0
+    }
+
+    /// The solid as a surface over `surface` (which must be the one checked): shells
+    /// turned outward (cavities inward), degenerate and duplicate faces dropped, holes
+    /// capped.
+    pub fn solid<'a, S: Surface + ?Sized>(&'a self, surface: &'a S) -> solid::SolidView<'a, S> {
+        self.solid.view(surface)
+    }
+
+    /// What [`Check::solid`] changes: (faces flipped, faces dropped, cap triangles).
+    pub fn repairs(&self) -> (usize, usize, usize) {
+        self.solid.changes()
+    }
+}
+
+/// Union–find with path halving.
+struct Components(Vec<u32>);
+
+impl Components {
+    fn new(n: usize) -> Self {
+        Components((0..n as u32).collect())
+    }
+    fn find(&mut self, mut x: u32) -> u32 {
+        while self.0[x as usize] != x {
+            let up = self.0[self.0[x as usize] as usize];
+            self.0[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    fn join(&mut self, a: u32, b: u32) {
+        let (a, b) = (self.find(a), self.find(b));
+        // The smaller root wins, so component roots do not depend on join order.
+        if a < b {
+            self.0[b as usize] = a;
+        } else {
+            self.0[a as usize] = b;
+        }
+    }
+}
+
+/// One use of an undirected edge: by face `face`, from corner `corner` to the next.
+#[derive(Clone, Copy)]
+struct EdgeUse {
+    key: u64,
+    face: u32,
+    corner: u32,
+    /// Traversed from the smaller vertex to the larger.
+    forward: bool,
+}
+
+/// Faces as loops of corners.
+struct Loops {
+    corners: Vec<Point>,
+    start: Vec<usize>,
+}
+
+impl Loops {
+    fn of<S: Surface + ?Sized>(surface: &S) -> Loops {
+        let mut corners = Vec::new();
+        let mut start = Vec::with_capacity(surface.face_count() + 1);
+        for f in 0..surface.face_count() {
+            start.push(corners.len());
+            let mut first = true;
+            let mut last = [0.0; 3];
+            surface.fan(f, |a, b, c| {
+                if first {
+                    corners.push(a);
+                    first = false;
+                }
+                corners.push(b);
+                last = c;
+            });
+            if !first {
+                corners.push(last);
+            }
+        }
+        start.push(corners.len());
+        Loops { corners, start }
+    }
+
+    fn face(&self, f: usize) -> std::ops::Range<usize> {
+        self.start[f]..self.start[f + 1]
+    }
+
+    /// The corner after `c` in its face.
+    fn next(&self, f: usize, c: usize) -> usize {
+        if c + 1 == self.start[f + 1] {
+            self.start[f]
+        } else {
+            c + 1
+        }
+    }
+}
+
+/// Why a surface could not be checked.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum CheckError {
+    #[error("{corners} face corners: checks index corners with 32 bits (at most 4294967295)")]
+    TooLarge { corners: usize },
+}
+
+/// Checks the topology of `surface`.
+///
+/// ```
+/// use meshvol::shapes::cuboid;
+/// use meshvol::topology::{check, CheckOptions, Orientation};
+/// let c = check(&cuboid([0.0; 3], [2.0; 3]), &CheckOptions::default()).unwrap();
+/// assert!(c.closed && c.bounds_a_volume());
+/// assert_eq!(c.orientation, Some(Orientation::Outward));
+/// assert_eq!((c.shells.len(), c.euler_characteristic, c.volume), (1, 2, 8.0));
+/// ```
+pub fn check<S: Surface + ?Sized>(
+    surface: &S,
+    options: &CheckOptions,
+) -> Result<Check, CheckError> {
+    let loops = Loops::of(surface);
+    if u32::try_from(loops.corners.len()).is_err() {
+        return Err(CheckError::TooLarge { corners: loops.corners.len() });
+    }
+    let faces = surface.face_count();
+    let welded = weld::weld(&loops.corners, options.weld_tolerance);
+    let vid = |c: usize| welded.corner_vertex[c];
+
+    // Degenerate faces: a repeated vertex, or zero vector area.
+    let degenerate: Vec<bool> = (0..faces)
+        .into_par_iter()
+        .map(|f| {
+            let r = loops.face(f);
+            let repeated = (r.start..r.end).any(|i| (r.start..i).any(|j| vid(j) == vid(i)));
+            let apex = loops.corners[r.start];
+            let area = (r.start + 1..r.end - 1).fold([0.0; 3], |s, c| {
+                add(s, cross(sub(loops.corners[c], apex), sub(loops.corners[c + 1], apex)))
+            });
+            repeated || area == [0.0; 3]
+        })
+        .collect();
+    // Duplicates: same sorted vertex list as an earlier face.
+    let mut sorted_ids: Vec<u32> = (0..loops.corners.len()).map(vid).collect();
+    for f in 0..faces {
+        sorted_ids[loops.face(f)].sort_unstable();
+    }
+    let mut by_vertices: Vec<u32> =
+        (0..faces as u32).filter(|&f| !degenerate[f as usize]).collect();
+    by_vertices.par_sort_unstable_by(|&a, &b| {
+        sorted_ids[loops.face(a as usize)].cmp(&sorted_ids[loops.face(b as usize)]).then(a.cmp(&b))
+    });
+    let mut duplicate = vec![false; faces];
+    for w in by_vertices.windows(2) {
+        if sorted_ids[loops.face(w[0] as usize)] == sorted_ids[loops.face(w[1] as usize)] {
+            duplicate[w[1] as usize] = true;
+        }
+    }
+    drop(sorted_ids);
+    let kept: Vec<bool> = (0..faces).map(|f| !degenerate[f] && !duplicate[f]).collect();
+
+    // Edge uses, sorted by edge.
+    let mut uses: Vec<EdgeUse> = Vec::with_capacity(loops.corners.len());
+    for f in (0..faces).filter(|&f| kept[f]) {
+        for c in loops.face(f) {
+            let (u, v) = (vid(c), vid(loops.next(f, c)));
+            let (lo, hi) = (u.min(v), u.max(v));
+            uses.push(EdgeUse {
+                key: (u64::from(lo) << 32) | u64::from(hi),
+                face: f as u32,
+                corner: c as u32,
+                forward: u < v,
+            });
+        }
+    }
+    uses.par_sort_unstable_by_key(|e| (e.key, e.face, e.corner));
+    let groups: Vec<&[EdgeUse]> = uses.chunk_by(|a, b| a.key == b.key).collect();
+
+    let mut shells_of = Components::new(faces);
+    let mut corner_fans = Components::new(loops.corners.len());
+    let (mut boundary_edges, mut non_manifold_edges) = (0, 0);
+    let mut consistently_oriented = true;
+    // Manifold neighbours for orientation propagation: (face, other face, same direction).
+    let mut neighbours: Vec<(u32, u32, bool)> = Vec::new();
+    let mut face_inconsistent = vec![false; faces];
+    for g in &groups {
+        for e in &g[1..] {
+            shells_of.join(g[0].face, e.face);
+        }
+        match g.len() {
+            1 => boundary_edges += 1,
+            2 => {
+                let same = g[0].forward == g[1].forward;
+                if same {
+                    consistently_oriented = false;
+                    face_inconsistent[g[0].face as usize] = true;
+                    face_inconsistent[g[1].face as usize] = true;
+                }
+                neighbours.push((g[0].face, g[1].face, same));
+                neighbours.push((g[1].face, g[0].face, same));
+            }
+            _ => non_manifold_edges += 1,
+        }
+        // Corners at the same end of one edge are in the same fan around that vertex.
+        for pair in g.windows(2) {
+            let ends = |e: &EdgeUse| {
+                let (c, n) = (e.corner as usize, loops.next(e.face as usize, e.corner as usize));
+                if e.forward {
+                    (c, n)
+                } else {
+                    (n, c)
+                }
+            };
+            let (a, b) = (ends(&pair[0]), ends(&pair[1]));
+            corner_fans.join(a.0 as u32, b.0 as u32);
+            corner_fans.join(a.1 as u32, b.1 as u32);
+        }
+    }
+    neighbours.sort_unstable();
+
+    // Non-manifold vertices: corners of one vertex in more than one fan.
+    let mut non_manifold_vertices = 0;
+    let mut used_vertices = 0;
+    let mut roots = Vec::new();
+    for v in 0..welded.positions.len() {
+        let range = welded.vertex_start[v] as usize..welded.vertex_start[v + 1] as usize;
+        roots.clear();
+        for &c in &welded.order[range] {
+            if kept[face_of(&loops, c as usize)] {
+                roots.push(corner_fans.find(c));
+            }
+        }
+        if !roots.is_empty() {
+            used_vertices += 1;
+        }
+        roots.sort_unstable();
+        roots.dedup();
+        if roots.len() > 1 {
+            non_manifold_vertices += 1;
+        }
+    }
+
+    // Shells, numbered by their first face.
+    let mut shell_of_face = vec![u32::MAX; faces];
+    let mut shell_count = 0u32;
+    let mut shell_root = std::collections::HashMap::new();
+    for f in (0..faces).filter(|&f| kept[f]) {
+        let root = shells_of.find(f as u32);
+        let s = *shell_root.entry(root).or_insert_with(|| {
+            shell_count += 1;
+            shell_count - 1
+        });
+        shell_of_face[f] = s;
+    }
+    let shell_count = shell_count as usize;
+
+    // Orientation propagation: flip[f] makes f agree with its shell's first face.
+    let mut flip = vec![false; faces];
+    let mut seen = vec![false; faces];
+    let mut orientable = vec![true; shell_count];
+    let mut queue = std::collections::VecDeque::new();
+    for f in (0..faces).filter(|&f| kept[f]) {
+        if seen[f] {
+            continue;
+        }
+        seen[f] = true;
+        queue.push_back(f as u32);
+        while let Some(g) = queue.pop_front() {
+            let start = neighbours.partition_point(|n| n.0 < g);
+            for &(_, h, same) in neighbours[start..].iter().take_while(|n| n.0 == g) {
+                let want = flip[g as usize] ^ same;
+                if !seen[h as usize] {
+                    seen[h as usize] = true;
+                    flip[h as usize] = want;
+                    queue.push_back(h);
+                } else if flip[h as usize] != want {
+                    orientable[shell_of_face[f] as usize] = false;
+                }
+            }
+        }
+    }
+
+    // Boundary loops, following each face's propagated direction, and their caps.
+    let boundary: Vec<(u32, u32, u32)> = groups
+        .iter()
+        .filter(|g| g.len() == 1)
+        .map(|g| {
+            let e = g[0];
+            let (c, n) = (e.corner as usize, loops.next(e.face as usize, e.corner as usize));
+            let (u, v) = if flip[e.face as usize] { (vid(n), vid(c)) } else { (vid(c), vid(n)) };
+            (u, v, shell_of_face[e.face as usize])
+        })
+        .collect();
+    let loops_found = boundary_loops(&boundary);
+    let mut caps: Vec<[Point; 3]> = Vec::new();
+    let mut cap_shell: Vec<u32> = Vec::new();
+    let mut shell_loops = vec![0usize; shell_count];
+    let mut volume_uncertainty = 0.0;
+    for (shell, ring) in &loops_found {
+        shell_loops[*shell as usize] += 1;
+        let pts: Vec<Point> = ring.iter().map(|&v| welded.positions[v as usize]).collect();
+        let centre = scale(pts.iter().fold([0.0; 3], |s, &p| add(s, p)), 1.0 / pts.len() as f64);
+        let mut vector_area = [0.0; 3];
+        for i in 0..pts.len() {
+            let (p, q) = (pts[i], pts[(i + 1) % pts.len()]);
+            // The cap traverses each rim edge against its face: (centre, q, p).
+            caps.push([centre, q, p]);
+            cap_shell.push(*shell);
+            vector_area = add(vector_area, cross(sub(q, centre), sub(p, centre)));
+        }
+        let area = norm(vector_area) / 2.0;
+        if area > 0.0 {
+            let n = scale(vector_area, 0.5 / area);
+            let thickness = pts.iter().map(|&p| dot(sub(p, centre), n).abs()).fold(0.0, f64::max);
+            volume_uncertainty += area * thickness;
+        }
+    }
+
+    // Per-shell signed volume (propagated orientation, holes capped), about a local point.
+    let reference = loops.corners.first().copied().unwrap_or([0.0; 3]);
+    let six_volume = |a: Point, b: Point, c: Point| {
+        let (a, b, c) = (sub(a, reference), sub(b, reference), sub(c, reference));
+        dot(a, cross(b, c))
+    };
+    let face_six: Vec<f64> = (0..faces)
+        .into_par_iter()
+        .map(|f| {
+            if !kept[f] {
+                return 0.0;
+            }
+            let mut s = 0.0;
+            surface.fan(f, |a, b, c| s += six_volume(a, b, c));
+            if flip[f] {
+                -s
+            } else {
+                s
+            }
+        })
+        .collect();
+    let mut shell_six = vec![CompensatedSum::default(); shell_count];
+    for f in (0..faces).filter(|&f| kept[f]) {
+        shell_six[shell_of_face[f] as usize].add(face_six[f]);
+    }
+    for (cap, &s) in caps.iter().zip(&cap_shell) {
+        shell_six[s as usize].add(six_volume(cap[0], cap[1], cap[2]));
+    }
+    let shell_signed: Vec<f64> = shell_six.iter().map(|s| s.value() / 6.0).collect();
+
+    // Triangles (fans of kept faces) with their boxes, for nesting and crossings.
+    let mut triangles: Vec<([u32; 3], u32)> = Vec::with_capacity(loops.corners.len());
+    for f in (0..faces).filter(|&f| kept[f]) {
+        let r = loops.face(f);
+        for c in r.start + 1..r.end - 1 {
+            triangles.push(([vid(r.start), vid(c), vid(c + 1)], f as u32));
+        }
+    }
+    let corner_points = |t: &[u32; 3]| t.map(|v| welded.positions[v as usize]);
+    let boxes: Vec<Bounds> = triangles
+        .par_iter()
+        .map(|(t, _)| {
+            let p = corner_points(t);
+            Bounds {
+                min: [0, 1, 2].map(|k| p[0][k].min(p[1][k]).min(p[2][k])),
+                max: [0, 1, 2].map(|k| p[0][k].max(p[1][k]).max(p[2][k])),
+            }
+        })
+        .collect();
+    let bvh = Bvh::new(&boxes);
+
+    // Nesting: which closed, orientable shells contain which.
+    let mut shell_open = vec![false; shell_count];
+    for g in groups.iter().filter(|g| g.len() != 2) {
+        shell_open[shell_of_face[g[0].face as usize] as usize] = true;
+    }
+    let solid_shell: Vec<bool> =
+        (0..shell_count).map(|s| orientable[s] && !shell_open[s]).collect();
+    let mut shell_bounds: Vec<Option<Bounds>> = vec![None; shell_count];
+    for (i, (_, f)) in triangles.iter().enumerate() {
+        let s = shell_of_face[*f as usize] as usize;
+        shell_bounds[s] = Some(match shell_bounds[s] {
+            None => boxes[i],
+            Some(b) => Bounds {
+                min: [0, 1, 2].map(|k| b.min[k].min(boxes[i].min[k])),
+                max: [0, 1, 2].map(|k| b.max[k].max(boxes[i].max[k])),
+            },
+        });
+    }
+    let mut first_vertices: Vec<Vec<u32>> = vec![Vec::new(); shell_count];
+    for (t, f) in &triangles {
+        let s = shell_of_face[*f as usize] as usize;
+        if first_vertices[s].len() < 16 {
+            first_vertices[s].push(t[0]);
+        }
+    }
+    let inside_of = |a: usize| -> Vec<usize> {
+        let Some(ba) = shell_bounds[a] else { return vec![] };
+        let candidates: Vec<usize> = (0..shell_count)
+            .filter(|&b| {
+                b != a
+                    && solid_shell[b]
+                    && shell_bounds[b].is_some_and(|bb| {
+                        (0..3).all(|k| bb.min[k] <= ba.min[k] && ba.max[k] <= bb.max[k])
+                    })
+            })
+            .collect();
+        if candidates.is_empty() {
+            return vec![];
+        }
+        for &v in &first_vertices[a] {
+            let p = welded.positions[v as usize];
+            let ray = Bounds { min: p, max: [f64::INFINITY, p[1], p[2]] };
+            let mut winding = vec![0i64; shell_count];
+            let mut grazed = false;
+            bvh.overlapping(&ray, |i| {
+                let (t, f) = &triangles[i];
+                let s = shell_of_face[*f as usize] as usize;
+                if s == a || !candidates.contains(&s) || grazed {
+                    return;
+                }
+                let q = corner_points(t);
+                match predicates::ray_crossing(p, q[0], q[1], q[2]) {
+                    Some(w) => winding[s] += if flip[*f as usize] { -w } else { w } as i64,
+                    None => grazed = true,
+                }
+            });
+            if !grazed {
+                return candidates.into_iter().filter(|&b| winding[b] != 0).collect();
+            }
+        }
+        vec![] // every ray grazed an edge: treat as not nested
+    };
+    let containers: Vec<Vec<usize>> = (0..shell_count).into_par_iter().map(inside_of).collect();
+
+    // Crossing triangles.
+    let mut overlapping_shells = std::collections::BTreeSet::new();
+    let mut self_intersections = None;
+    let mut intersection_examples = Vec::new();
+    if options.intersections {
+        let pairs: Vec<Vec<[u32; 2]>> = (0..triangles.len())
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|i| {
+                let mut found = Vec::new();
+                let (t, _) = &triangles[i];
+                bvh.overlapping(&boxes[i], |j| {
+                    if j <= i {
+                        return;
+                    }
+                    let (u, _) = &triangles[j];
+                    if t.iter().any(|v| u.contains(v)) {
+                        return;
+                    }
+                    if predicates::triangles_cross(corner_points(t), corner_points(u)) {
+                        found.push([i as u32, j as u32]);
+                    }
+                });
+                found.sort_unstable();
+                found
+            })
+            .collect();
+        let mut within = 0;
+        for &[i, j] in pairs.iter().flatten() {
+            let (fi, fj) = (triangles[i as usize].1 as usize, triangles[j as usize].1 as usize);
+            let (si, sj) = (shell_of_face[fi] as usize, shell_of_face[fj] as usize);
+            if si == sj {
+                within += 1;
+            } else {
+                overlapping_shells.insert([si.min(sj), si.max(sj)]);
+            }
+            if intersection_examples.len() < options.examples {
+                intersection_examples.push([fi.min(fj), fi.max(fj)]);
+            }
+        }
+        self_intersections = Some(within);
+    }
+
+    // Roles: nesting depth parity decides solid or cavity.
+    let mut shells = Vec::with_capacity(shell_count);
+    let mut per_shell = vec![(0usize, 0usize, false); shell_count]; // faces, edges, inconsistent
+    for f in (0..faces).filter(|&f| kept[f]) {
+        let s = shell_of_face[f] as usize;
+        per_shell[s].0 += 1;
+        per_shell[s].2 |= face_inconsistent[f];
+    }
+    for g in &groups {
+        per_shell[shell_of_face[g[0].face as usize] as usize].1 += 1;
+    }
+    let mut shell_vertices = vec![0i64; shell_count];
+    {
+        let mut last_shell_of_vertex = vec![u32::MAX; welded.positions.len()];
+        for f in (0..faces).filter(|&f| kept[f]) {
+            let s = shell_of_face[f];
+            for c in loops.face(f) {
+                let v = vid(c) as usize;
+                if last_shell_of_vertex[v] != s {
+                    // A vertex can be shared by shells only at non-manifold points; count
+                    // it once per shell visit run, which is exact for manifold meshes.
+                    last_shell_of_vertex[v] = s;
+                    shell_vertices[s as usize] += 1;
+                }
+            }
+        }
+    }
+    let mut flip_shell = vec![false; shell_count];
+    let mut volume = CompensatedSum::default();
+    for s in 0..shell_count {
+        let depth = containers[s].len();
+        let cavity = depth % 2 == 1;
+        let parent = containers[s]
+            .iter()
+            .copied()
+            .min_by(|&a, &b| shell_signed[a].abs().total_cmp(&shell_signed[b].abs()));
+        let (faces_in, edges_in, inconsistent) = per_shell[s];
+        let positive_as_propagated = shell_signed[s] >= 0.0;
+        // The first face keeps its file winding, so as-propagated is as-wound when the
+        // shell is consistent.
+        let wound_outward =
+            (!inconsistent && orientable[s]).then_some(positive_as_propagated != cavity);
+        flip_shell[s] = positive_as_propagated == cavity;
+        let v = shell_signed[s].abs();
+        volume.add(if cavity { -v } else { v });
+        let chi = shell_vertices[s] - edges_in as i64 + faces_in as i64;
+        let closed = !shell_open[s];
+        shells.push(Shell {
+            faces: faces_in,
+            closed,
+            orientable: orientable[s],
+            consistently_oriented: !inconsistent,
+            volume: v,
+            cavity,
+            parent,
+            wound_outward,
+            boundary_loops: shell_loops[s],
+            euler_characteristic: chi,
+            genus: (closed && orientable[s] && chi % 2 == 0).then_some((2 - chi) / 2),
+        });
+    }
+    let orientation = if shells.is_empty() {
+        None
+    } else if shells.iter().all(|s| s.wound_outward == Some(true)) {
+        Some(Orientation::Outward)
+    } else if shells.iter().all(|s| s.wound_outward == Some(false)) {
+        Some(Orientation::Inward)
+    } else {
+        Some(Orientation::Mixed)
+    };
+
+    let face_flip: Vec<bool> =
+        (0..faces).map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize])).collect();
+    let cap_flip: Vec<bool> = cap_shell.iter().map(|&s| flip_shell[s as usize]).collect();
+    let solid = Solid::new(&kept, &face_flip, caps, &cap_flip);
+
+    let edges = groups.len();
+    let kept_faces = kept.iter().filter(|&&k| k).count();
+    Ok(Check {
+        vertices: used_vertices,
+        edges,
+        faces,
+        closed: kept_faces > 0 && boundary_edges == 0 && non_manifold_edges == 0,
+        boundary_edges,
+        boundary_loops: loops_found.len(),
+        non_manifold_edges,
+        non_manifold_vertices,
+        degenerate_faces: degenerate.iter().filter(|&&d| d).count(),
+        duplicate_faces: duplicate.iter().filter(|&&d| d).count(),
+        consistently_oriented,
+        orientation,
+        cavities: shells.iter().filter(|s| s.cavity).count(),
+        shells,
+        overlapping_shells: overlapping_shells.into_iter().collect(),
+        self_intersections,
+        intersection_examples,
+        euler_characteristic: used_vertices as i64 - edges as i64 + kept_faces as i64,
+        volume: volume.value(),
+        volume_uncertainty,
+        solid,
+    })
+}
+
+fn face_of(loops: &Loops, corner: usize) -> usize {
+    loops.start.partition_point(|&s| s <= corner) - 1
+}
+
+/// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's
+/// direction where the next edge continues it, against it where only that continues
+/// (across the seam of a non-orientable strip).
+fn boundary_loops(edges: &[(u32, u32, u32)]) -> Vec<(u32, Vec<u32>)> {
+    // Every edge listed at both ends: (vertex, edge, the edge starts there).
+    let mut ends: Vec<(u32, usize, bool)> =
+        edges.iter().enumerate().flat_map(|(i, e)| [(e.0, i, true), (e.1, i, false)]).collect();
+    ends.sort_unstable_by_key(|&(v, i, starts)| (v, !starts, i));
+    let mut used = vec![false; edges.len()];
+    let mut loops = Vec::new();
+    for first in 0..edges.len() {
+        if used[first] {
+            continue;
+        }
+        used[first] = true;
+        let mut ring = vec![edges[first].0];
+        let mut at = edges[first].1;
+        while at != edges[first].0 {
+            ring.push(at);
+            let from = ends.partition_point(|e| e.0 < at);
+            let next = ends[from..].iter().take_while(|e| e.0 == at).find(|e| !used[e.1]);
+            let Some(&(_, e, starts)) = next else { break }; // a broken chain: close it here
+            used[e] = true;
+            at = if starts { edges[e].1 } else { edges[e].0 };
+        }
+        loops.push((edges[first].2, ring));
+    }
+    loops
+}

@@ -1,0 +1,246 @@
+//! Topology checks on hand-built tricky cases, against facts known by construction.
+
+use meshvol::shapes::{cuboid, torus, uv_sphere};
+use meshvol::topology::{check, Check, CheckOptions, Orientation};
+use meshvol::{mass_properties, Mesh};
+
+fn checked(mesh: &Mesh) -> Check {
+    check(mesh, &CheckOptions::default()).unwrap()
+}
+
+/// The meshes side by side in one mesh (faces of each kept as polygons).
+fn merge(meshes: &[Mesh]) -> Mesh {
+    let mut positions = Vec::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for m in meshes {
+        let base = positions.len() as u32;
+        positions.extend_from_slice(m.positions());
+        faces.extend((0..m.face_count()).map(|f| m.face(f).iter().map(|i| i + base).collect()));
+    }
+    Mesh::from_polygons(positions, faces.iter().map(|f| &f[..])).unwrap()
+}
+
+fn without_face(mesh: &Mesh, drop: usize) -> Mesh {
+    let faces: Vec<&[u32]> =
+        (0..mesh.face_count()).filter(|&f| f != drop).map(|f| mesh.face(f)).collect();
+    Mesh::from_polygons(mesh.positions().to_vec(), faces).unwrap()
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * b.abs().max(1.0)
+}
+
+#[test]
+fn closed_box_and_torus_genus() {
+    let c = checked(&cuboid([0.0; 3], [1.0; 3]));
+    assert!(c.closed && c.consistently_oriented && c.bounds_a_volume());
+    assert_eq!((c.vertices, c.edges, c.faces), (8, 12, 6));
+    assert_eq!((c.euler_characteristic, c.shells[0].genus), (2, Some(0)));
+    let t = checked(&torus(3.0, 1.0, 24, 12));
+    assert_eq!((t.euler_characteristic, t.shells[0].genus), (0, Some(1)));
+    assert!(close(t.volume, mass_properties(&torus(3.0, 1.0, 24, 12)).signed_volume));
+}
+
+#[test]
+fn inside_out_sphere_is_inward_and_still_measured() {
+    let sphere = uv_sphere(1.0, 32, 16);
+    let inverted = sphere.flipped();
+    let c = checked(&inverted);
+    assert_eq!(c.orientation, Some(Orientation::Inward));
+    assert_eq!(c.shells[0].wound_outward, Some(false));
+    let expected = mass_properties(&sphere);
+    assert!(close(c.volume, expected.signed_volume));
+    let solid = mass_properties(&c.solid(&inverted));
+    assert!(close(solid.signed_volume, expected.signed_volume));
+    assert_eq!(c.repairs().0, inverted.face_count()); // every face turned
+}
+
+/// A 2×2×2 box with a 1×1×1 cavity off-centre: volume 7, centroid (8·1 − 1·0.75)/7.
+fn box_with_cavity(cavity_wound_like_a_solid: bool) -> Mesh {
+    let outer = cuboid([0.0; 3], [2.0; 3]);
+    let inner = cuboid([0.25; 3], [1.25; 3]);
+    merge(&[outer, if cavity_wound_like_a_solid { inner } else { inner.flipped() }])
+}
+
+#[test]
+fn cavity_is_subtracted_whatever_its_winding() {
+    for like_a_solid in [false, true] {
+        let mesh = box_with_cavity(like_a_solid);
+        let c = checked(&mesh);
+        assert_eq!((c.shells.len(), c.cavities), (2, 1), "{like_a_solid}");
+        assert!(c.shells[1].cavity && !c.shells[0].cavity);
+        assert_eq!(c.shells[1].parent, Some(0));
+        assert!(close(c.volume, 7.0));
+        assert!(c.overlapping_shells.is_empty());
+        let expected_orientation =
+            if like_a_solid { Orientation::Mixed } else { Orientation::Outward };
+        assert_eq!(c.orientation, Some(expected_orientation));
+        let mp = mass_properties(&c.solid(&mesh));
+        assert!(close(mp.signed_volume, 7.0));
+        let centroid = (8.0 - 0.75) / 7.0;
+        assert!(mp.centroid.unwrap().iter().all(|&x| close(x, centroid)), "{:?}", mp.centroid);
+        // The plain sum is wrong exactly when the cavity is wound like a solid.
+        let plain = mass_properties(&mesh).signed_volume;
+        assert!(close(plain, if like_a_solid { 9.0 } else { 7.0 }));
+    }
+}
+
+#[test]
+fn nested_solid_inside_a_cavity() {
+    // Box, cavity, and an island inside the cavity: 8 − 3.375 + 1 (depth 0, 1, 2).
+    let mesh = merge(&[
+        cuboid([0.0; 3], [2.0; 3]),
+        cuboid([0.25; 3], [1.75; 3]),
+        cuboid([0.5; 3], [1.5; 3]),
+    ]);
+    let c = checked(&mesh);
+    assert_eq!(c.cavities, 1);
+    assert_eq!(c.shells[2].parent, Some(1));
+    assert!(close(c.volume, 8.0 - 3.375 + 1.0));
+    assert!(close(mass_properties(&c.solid(&mesh)).signed_volume, 5.625));
+}
+
+#[test]
+fn missing_face_is_capped_exactly_when_flat() {
+    let open = without_face(&cuboid([0.0; 3], [1.0; 3]), 1);
+    let c = checked(&open);
+    assert!(!c.closed && !c.bounds_a_volume());
+    assert_eq!((c.boundary_edges, c.boundary_loops), (4, 1));
+    assert!(close(c.volume, 1.0));
+    assert_eq!(c.volume_uncertainty, 0.0);
+    assert!(close(mass_properties(&c.solid(&open)).signed_volume, 1.0));
+    assert_eq!(c.repairs().2, 4); // a fan of four cap triangles
+                                  // A hole in a sphere's side is not flat: the cap is a guess, and says so.
+    let sphere = uv_sphere(1.0, 16, 8);
+    let around_vertex_20: Vec<&[u32]> =
+        (0..sphere.face_count()).map(|f| sphere.face(f)).filter(|f| !f.contains(&20)).collect();
+    let holed = Mesh::from_polygons(sphere.positions().to_vec(), around_vertex_20).unwrap();
+    let c = checked(&holed);
+    assert_eq!(c.boundary_loops, 1);
+    assert!(c.volume_uncertainty > 0.0);
+    let truth = mass_properties(&sphere).signed_volume;
+    assert!((c.volume - truth).abs() <= c.volume_uncertainty, "{} vs {truth}", c.volume);
+}
+
+#[test]
+fn overlapping_shells_are_found() {
+    let mesh = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 1.5])]);
+    let c = checked(&mesh);
+    assert_eq!(c.overlapping_shells, vec![[0, 1]]);
+    assert_eq!(c.self_intersections, Some(0));
+    assert!(!c.intersection_examples.is_empty() && !c.bounds_a_volume());
+    // Touching boxes (sharing a face's plane) do not overlap.
+    let touching = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0])]);
+    assert!(checked(&touching).overlapping_shells.is_empty());
+}
+
+#[test]
+fn self_intersection_in_one_shell() {
+    // Push the box's top corner (1, 1, 1) down through the bottom face.
+    let mut p = cuboid([0.0; 3], [1.0; 3]).positions().to_vec();
+    p[6] = [0.6, 0.6, -0.5];
+    let mesh = Mesh::new(p, cuboid([0.0; 3], [1.0; 3]).faces().clone()).unwrap();
+    let c = checked(&mesh);
+    assert_eq!(c.shells.len(), 1);
+    assert!(c.self_intersections.unwrap() > 0);
+}
+
+#[test]
+fn mobius_strip_is_not_orientable() {
+    // A strip of n quads around a circle with a half twist.
+    let n = 12;
+    let mut p = Vec::new();
+    for i in 0..n {
+        let t = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+        let (dx, dz) = ((t / 2.0).cos() * 0.3, (t / 2.0).sin() * 0.3);
+        let r = [t.cos(), t.sin(), 0.0];
+        p.push([r[0] * (1.0 + dx), r[1] * (1.0 + dx), dz]);
+        p.push([r[0] * (1.0 - dx), r[1] * (1.0 - dx), -dz]);
+    }
+    let quads: Vec<[u32; 4]> = (0..n)
+        .map(|i| {
+            let (a, b) = (2 * i, 2 * i + 1);
+            // After a full turn the strip's sides have swapped.
+            let (c, d) = if i + 1 == n { (1, 0) } else { (2 * i + 2, 2 * i + 3) };
+            [a, c, d, b]
+        })
+        .collect();
+    let mesh = Mesh::from_polygons(p, quads.iter().map(|q| &q[..])).unwrap();
+    let c = checked(&mesh);
+    assert!(!c.shells[0].orientable && !c.consistently_oriented);
+    assert_eq!(c.orientation, Some(Orientation::Mixed));
+    assert_eq!(c.boundary_loops, 1); // a Möbius strip has one edge
+}
+
+#[test]
+fn bowtie_vertex_and_non_manifold_edge() {
+    // Two tetrahedra sharing only the vertex at the origin.
+    let t = |s: f64| {
+        Mesh::from_triangles(
+            vec![[0.0; 3], [s, 0.0, 0.0], [0.0, s, 0.0], [0.0, 0.0, s]],
+            vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+        )
+        .unwrap()
+    };
+    let bowtie = merge(&[t(1.0), t(-1.0).flipped()]);
+    let c = checked(&bowtie);
+    assert_eq!((c.non_manifold_vertices, c.non_manifold_edges, c.shells.len()), (1, 0, 2));
+    assert!(close(c.volume, 2.0 / 6.0));
+    // Three triangles on one edge.
+    let fin = Mesh::from_triangles(
+        vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]],
+        vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]],
+    )
+    .unwrap();
+    assert_eq!(checked(&fin).non_manifold_edges, 1);
+}
+
+#[test]
+fn duplicate_and_degenerate_faces_are_dropped() {
+    let cube = cuboid([0.0; 3], [1.0; 3]).triangulated();
+    let mut faces: Vec<Vec<u32>> = (0..cube.face_count()).map(|f| cube.face(f).to_vec()).collect();
+    faces.push(faces[3].clone()); // duplicate
+    faces.push(vec![faces[5][2], faces[5][0], faces[5][1]]); // same triangle, rotated
+    let mut p = cube.positions().to_vec();
+    p.push([0.5, 0.0, 0.0]); // on the edge from vertex 0 to 1: a zero-area sliver
+    faces.push(vec![0, 8, 1]);
+    let mesh = Mesh::from_polygons(p, faces.iter().map(|f| &f[..])).unwrap();
+    let c = checked(&mesh);
+    assert_eq!((c.duplicate_faces, c.degenerate_faces), (2, 1));
+    assert!(c.closed);
+    assert!(close(c.volume, 1.0));
+    assert!(close(mass_properties(&c.solid(&mesh)).signed_volume, 1.0));
+}
+
+#[test]
+fn unwelded_soup_welds_exactly_or_with_a_tolerance() {
+    // A triangle soup: every triangle has its own copies of its corners.
+    let cube = cuboid([0.0; 3], [1.0; 3]).triangulated();
+    let mut p = Vec::new();
+    let mut tris = Vec::new();
+    for f in 0..cube.face_count() {
+        let base = p.len() as u32;
+        p.extend(cube.face(f).iter().map(|&i| cube.positions()[i as usize]));
+        tris.push([base, base + 1, base + 2]);
+    }
+    let soup = Mesh::from_triangles(p.clone(), tris.clone()).unwrap();
+    let c = checked(&soup);
+    assert!(c.closed && c.vertices == 8);
+    // Jitter the copies by 1e-9: exact welding leaves it open, a tolerance closes it.
+    let jittered: Vec<_> =
+        p.iter().enumerate().map(|(i, v)| v.map(|x| x + 1e-9 * (i % 3) as f64)).collect();
+    let soup = Mesh::from_triangles(jittered, tris).unwrap();
+    assert!(!checked(&soup).closed);
+    let tol = CheckOptions { weld_tolerance: Some(1e-6), ..CheckOptions::default() };
+    assert!(check(&soup, &tol).unwrap().closed);
+}
+
+#[test]
+fn same_result_at_any_thread_count() {
+    let mesh = merge(&[uv_sphere(2.0, 96, 48), uv_sphere(1.0, 64, 32), cuboid([1.5; 3], [3.0; 3])]);
+    let run = |n| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+        pool.install(|| format!("{:?}", checked(&mesh)))
+    };
+    assert_eq!(run(1), run(3));
+}
