@@ -26,6 +26,8 @@ struct Node {
 pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
+    /// `boxes[order[i]]`, stored in leaf order so a leaf's boxes are contiguous.
+    leaf_boxes: Vec<Bounds>,
 }
 
 fn union(a: &Bounds, b: &Bounds) -> Bounds {
@@ -42,7 +44,11 @@ fn overlaps(a: &Bounds, b: &Bounds) -> bool {
 impl Bvh {
     /// Builds the hierarchy over `boxes` (item i has box `boxes[i]`).
     pub fn new(boxes: &[Bounds]) -> Bvh {
-        let mut bvh = Bvh { nodes: Vec::new(), order: (0..boxes.len() as u32).collect() };
+        let mut bvh = Bvh {
+            nodes: Vec::new(),
+            order: (0..boxes.len() as u32).collect(),
+            leaf_boxes: Vec::new(),
+        };
         if boxes.is_empty() {
             return bvh;
         }
@@ -72,6 +78,7 @@ impl Bvh {
             stack.push((left, start, start + mid));
             stack.push((left + 1, start + mid, end));
         }
+        bvh.leaf_boxes = bvh.order.iter().map(|&i| boxes[i as usize]).collect();
         bvh
     }
 
@@ -89,8 +96,12 @@ impl Bvh {
                 continue;
             }
             if node.count > 0 {
-                let (s, c) = (node.start as usize, node.count as usize);
-                self.order[s..s + c].iter().for_each(|&i| visit(i as usize));
+                let range = node.start as usize..(node.start + node.count) as usize;
+                for (&i, b) in self.order[range.clone()].iter().zip(&self.leaf_boxes[range]) {
+                    if overlaps(b, query) {
+                        visit(i as usize);
+                    }
+                }
             } else {
                 stack.push(node.start as usize);
                 stack.push(node.start as usize + 1);

@@ -1,7 +1,7 @@
 //! Topology checks on hand-built tricky cases, against facts known by construction.
 
 use meshvol::shapes::{cuboid, torus, uv_sphere};
-use meshvol::topology::{check, Check, CheckOptions, Orientation};
+use meshvol::topology::{check, Check, CheckOptions, Orientation, Weld};
 use meshvol::{mass_properties, Mesh};
 
 fn checked(mesh: &Mesh) -> Check {
@@ -124,11 +124,16 @@ fn missing_face_is_capped_exactly_when_flat() {
 
 #[test]
 fn overlapping_shells_are_found() {
-    let mesh = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 1.5])]);
+    // In general position, triangles cross.
+    let mesh = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5, 0.6, 0.7], [1.5, 1.6, 1.7])]);
     let c = checked(&mesh);
     assert_eq!(c.overlapping_shells, vec![[0, 1]]);
     assert_eq!(c.self_intersections, Some(0));
     assert!(!c.intersection_examples.is_empty() && !c.bounds_a_volume());
+    // Symmetric: every crossing point lies on a quad's diagonal, so no triangle pair
+    // crosses strictly; the vertex inside the other box still reveals the overlap.
+    let mesh = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5; 3], [1.5; 3])]);
+    assert_eq!(checked(&mesh).overlapping_shells, vec![[0, 1]]);
     // Touching boxes (sharing a face's plane) do not overlap.
     let touching = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0])]);
     assert!(checked(&touching).overlapping_shells.is_empty());
@@ -230,9 +235,22 @@ fn unwelded_soup_welds_exactly_or_with_a_tolerance() {
     let jittered: Vec<_> =
         p.iter().enumerate().map(|(i, v)| v.map(|x| x + 1e-9 * (i % 3) as f64)).collect();
     let soup = Mesh::from_triangles(jittered, tris).unwrap();
-    assert!(!checked(&soup).closed);
-    let tol = CheckOptions { weld_tolerance: Some(1e-6), ..CheckOptions::default() };
+    let exact = CheckOptions { weld: Weld::Exact, ..CheckOptions::default() };
+    assert!(!check(&soup, &exact).unwrap().closed);
+    let tol = CheckOptions { weld: Weld::Tolerance(1e-6), ..CheckOptions::default() };
     assert!(check(&soup, &tol).unwrap().closed);
+    // The default retries within 1e-9 of the diagonal (√3 here) and says so.
+    let auto = checked(&soup);
+    assert!(auto.closed);
+    let used = auto.weld_tolerance.unwrap();
+    assert!((used - 1e-9 * 3f64.sqrt()).abs() < 1e-15, "{used}");
+    // Jitter beyond that stays open by default.
+    let far: Vec<_> =
+        p.iter().enumerate().map(|(i, v)| v.map(|x| x + 1e-6 * (i % 3) as f64)).collect();
+    let far =
+        Mesh::from_triangles(far, (0..12u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect());
+    let far = checked(&far.unwrap());
+    assert!(!far.closed && far.weld_tolerance.is_none());
 }
 
 #[test]

@@ -17,15 +17,18 @@
 //!    its centroid, so open shells still get a volume. `volume_uncertainty` adds, per
 //!    cap, its area times the rim's largest distance from the cap's plane: zero for a
 //!    flat hole (a missing planar face is recovered exactly), large for a ragged one.
-//! 6. **Nesting**: for each shell, a ray from one of its vertices counts signed
-//!    crossings (winding numbers) with every other shell, using exact orientation
-//!    predicates and a [`Bvh`]. A shell inside an odd number of others bounds a
-//!    *cavity*. The solid's volume is Σ ±|shell volume|, + for solids and − for
-//!    cavities, whatever each shell's winding in the file.
-//! 7. **Crossings**: pairs of triangles whose interiors cross, found through a [`Bvh`]
-//!    (never all pairs), skipping pairs that share a vertex. Pairs from one shell are
-//!    *self-intersections*; from two shells, *overlapping shells*, whose common volume
-//!    a plain sum counts twice.
+//! 6. **Nesting**: from the corners of up to 32 triangles spread over each shell, rays
+//!    count signed crossings (winding numbers) with every other closed shell whose box
+//!    overlaps, using exact orientation predicates and a [`Bvh`] (a ray that grazes an
+//!    edge tries the next axis direction; a corner on another surface is skipped). Inside for every sample: the shell is *nested*;
+//!    inside for some and outside for others: the two *overlap*. A shell inside an odd
+//!    number of others bounds a *cavity*. The solid's volume is Σ ±|shell volume|, +
+//!    for solids and − for cavities, whatever each shell's winding in the file.
+//! 7. **Crossings**: pairs of triangles where an edge of one passes strictly through
+//!    the interior of the other, found through a [`Bvh`] (never all pairs), skipping
+//!    pairs that share a vertex. Pairs from one shell are *self-intersections*; from two
+//!    shells, *overlapping shells*, whose common volume a plain sum counts twice.
+//!    Touching (shared planes, an edge lying on a face) is not crossing.
 //! 8. **Euler characteristic** V − E + F per shell, and genus (2 − χ)/2 for closed
 //!    orientable shells.
 //!
@@ -46,12 +49,31 @@ use crate::vector::{add, cross, dot, norm, scale, sub};
 use crate::{Point, Surface};
 use rayon::prelude::*;
 
+/// How corners are welded into vertices.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Weld {
+    /// Exactly equal positions only.
+    Exact,
+    /// Positions that snap to the same point of a grid with this pitch.
+    Tolerance(f64),
+    /// Exactly; and if that leaves boundary edges, again within [`AUTO_WELD`] times the
+    /// bounding box diagonal, keeping whichever leaves fewer. Files written in float32
+    /// often repeat a vertex with coordinates that differ in the last bits (a CAD
+    /// exporter's rounding), which opens cracks no user means to have.
+    Auto,
+}
+
+/// Triangles per shell whose corners are classified against other shells for nesting
+/// and overlap.
+const NESTING_SAMPLES: usize = 32;
+
+/// The relative tolerance [`Weld::Auto`] retries with.
+pub const AUTO_WELD: f64 = 1e-9;
+
 /// How to check.
 #[derive(Clone, Copy, Debug)]
 pub struct CheckOptions {
-    /// Weld positions that snap to the same point of a grid with this pitch; `None`
-    /// welds exactly equal positions only.
-    pub weld_tolerance: Option<f64>,
+    pub weld: Weld,
     /// Look for crossing triangles (self-intersections, overlapping shells).
     pub intersections: bool,
     /// How many example face pairs to keep.
@@ -60,7 +82,7 @@ pub struct CheckOptions {
 
 impl Default for CheckOptions {
     fn default() -> Self {
-        CheckOptions { weld_tolerance: None, intersections: true, examples: 5 }
+        CheckOptions { weld: Weld::Auto, intersections: true, examples: 5 }
     }
 }
 
@@ -108,6 +130,8 @@ pub struct Shell {
 /// The facts [`check`] finds. See the module docs for the definitions.
 #[derive(Clone, Debug)]
 pub struct Check {
+    /// The weld tolerance used; `None` for exact welding.
+    pub weld_tolerance: Option<f64>,
     /// Welded vertices used by faces.
     pub vertices: usize,
     pub edges: usize,
@@ -270,8 +294,48 @@ pub fn check<S: Surface + ?Sized>(
     if u32::try_from(loops.corners.len()).is_err() {
         return Err(CheckError::TooLarge { corners: loops.corners.len() });
     }
+    Ok(match options.weld {
+        Weld::Exact => analyse(surface, &loops, None, options),
+        Weld::Tolerance(t) => analyse(surface, &loops, Some(t), options),
+        Weld::Auto => {
+            let exact = analyse(surface, &loops, None, options);
+            let diagonal = match loops.corners.first() {
+                None => 0.0,
+                Some(&first) => {
+                    let b = loops.corners.iter().fold(
+                        Bounds { min: first, max: first },
+                        |mut b, &p| {
+                            b.min = [0, 1, 2].map(|k| b.min[k].min(p[k]));
+                            b.max = [0, 1, 2].map(|k| b.max[k].max(p[k]));
+                            b
+                        },
+                    );
+                    norm(b.size())
+                }
+            };
+            if exact.boundary_edges == 0 || diagonal == 0.0 {
+                exact
+            } else {
+                let welded = analyse(surface, &loops, Some(AUTO_WELD * diagonal), options);
+                if welded.boundary_edges < exact.boundary_edges {
+                    welded
+                } else {
+                    exact
+                }
+            }
+        }
+    })
+}
+
+/// Checks the faces `loops` of `surface`, welded with `tolerance`.
+fn analyse<S: Surface + ?Sized>(
+    surface: &S,
+    loops: &Loops,
+    tolerance: Option<f64>,
+    options: &CheckOptions,
+) -> Check {
     let faces = surface.face_count();
-    let welded = weld::weld(&loops.corners, options.weld_tolerance);
+    let welded = weld::weld(&loops.corners, tolerance);
     let vid = |c: usize| welded.corner_vertex[c];
 
     // Degenerate faces: a repeated vertex, or zero vector area.
@@ -532,54 +596,118 @@ pub fn check<S: Surface + ?Sized>(
             },
         });
     }
-    let mut first_vertices: Vec<Vec<u32>> = vec![Vec::new(); shell_count];
+    // Sample up to NESTING_SAMPLES vertices spread over each shell.
+    let mut shell_triangles = vec![0usize; shell_count];
+    for (_, f) in &triangles {
+        shell_triangles[shell_of_face[*f as usize] as usize] += 1;
+    }
+    let mut samples: Vec<Vec<u32>> = vec![Vec::new(); shell_count];
+    let mut seen_in_shell = vec![0usize; shell_count];
     for (t, f) in &triangles {
         let s = shell_of_face[*f as usize] as usize;
-        if first_vertices[s].len() < 16 {
-            first_vertices[s].push(t[0]);
+        let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
+        if seen_in_shell[s] % stride == 0 {
+            samples[s].extend_from_slice(t);
         }
+        seen_in_shell[s] += 1;
     }
-    let inside_of = |a: usize| -> Vec<usize> {
+    // Far enough that an oblique segment from any vertex leaves every shell's box.
+    let reach = {
+        let all = shell_bounds.iter().flatten().fold(None, |acc: Option<Bounds>, b| {
+            Some(acc.map_or(*b, |a| Bounds {
+                min: [0, 1, 2].map(|k| a.min[k].min(b.min[k])),
+                max: [0, 1, 2].map(|k| a.max[k].max(b.max[k])),
+            }))
+        });
+        all.map_or(1.0, |b| 4.0 * norm(b.size()) + 1.0)
+    };
+    // For each shell, how many of its samples lie inside / outside each other closed
+    // shell whose box overlaps its own.
+    let classify = |a: usize| -> Vec<(usize, usize, usize)> {
         let Some(ba) = shell_bounds[a] else { return vec![] };
         let candidates: Vec<usize> = (0..shell_count)
             .filter(|&b| {
                 b != a
                     && solid_shell[b]
                     && shell_bounds[b].is_some_and(|bb| {
-                        (0..3).all(|k| bb.min[k] <= ba.min[k] && ba.max[k] <= bb.max[k])
+                        (0..3).all(|k| bb.min[k] <= ba.max[k] && ba.min[k] <= bb.max[k])
                     })
             })
             .collect();
+        let mut counts: Vec<(usize, usize, usize)> =
+            candidates.iter().map(|&b| (b, 0, 0)).collect();
         if candidates.is_empty() {
-            return vec![];
+            return counts;
         }
-        for &v in &first_vertices[a] {
+        let mut winding = vec![0i64; shell_count];
+        for &v in &samples[a] {
             let p = welded.positions[v as usize];
-            let ray = Bounds { min: p, max: [f64::INFINITY, p[1], p[2]] };
-            let mut winding = vec![0i64; shell_count];
-            let mut grazed = false;
-            bvh.overlapping(&ray, |i| {
-                let (t, f) = &triangles[i];
-                let s = shell_of_face[*f as usize] as usize;
-                if s == a || !candidates.contains(&s) || grazed {
-                    return;
-                }
-                let q = corner_points(t);
-                match predicates::ray_crossing(p, q[0], q[1], q[2]) {
-                    Some(w) => winding[s] += if flip[*f as usize] { -w } else { w } as i64,
-                    None => grazed = true,
-                }
+            // Rays along each axis direction in turn, until one crosses cleanly; then
+            // an oblique segment to beyond the mesh (it meets many boxes, so it is the
+            // last resort, for symmetric meshes where every axis ray hits an edge).
+            let clean = (0..=predicates::RAY_FRAMES.len()).any(|frame| {
+                let oblique = frame == predicates::RAY_FRAMES.len();
+                let q = add(p, scale(predicates::OBLIQUE, reach));
+                let (min, max) = if oblique {
+                    ([0, 1, 2].map(|k| p[k].min(q[k])), [0, 1, 2].map(|k| p[k].max(q[k])))
+                } else {
+                    predicates::ray_box(p, frame)
+                };
+                candidates.iter().for_each(|&b| winding[b] = 0);
+                let mut grazed = false;
+                bvh.overlapping(&Bounds { min, max }, |i| {
+                    let (t, f) = &triangles[i];
+                    let s = shell_of_face[*f as usize] as usize;
+                    if grazed || s == a || candidates.binary_search(&s).is_err() {
+                        return;
+                    }
+                    let v = corner_points(t);
+                    let crossing = if oblique {
+                        predicates::segment_crossing(p, q, v[0], v[1], v[2])
+                    } else {
+                        let rotate = predicates::RAY_FRAMES[frame];
+                        let v = v.map(rotate);
+                        predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
+                    };
+                    match crossing {
+                        Some(w) => winding[s] += if flip[*f as usize] { -w } else { w } as i64,
+                        None => grazed = true,
+                    }
+                });
+                !grazed
             });
-            if !grazed {
-                return candidates.into_iter().filter(|&b| winding[b] != 0).collect();
+            if !clean {
+                continue; // on another surface: this sample cannot tell
+            }
+            for c in counts.iter_mut() {
+                if winding[c.0] != 0 {
+                    c.1 += 1;
+                } else {
+                    c.2 += 1;
+                }
             }
         }
-        vec![] // every ray grazed an edge: treat as not nested
+        counts
     };
-    let containers: Vec<Vec<usize>> = (0..shell_count).into_par_iter().map(inside_of).collect();
+    let classified: Vec<Vec<(usize, usize, usize)>> =
+        (0..shell_count).into_par_iter().map(classify).collect();
+    // Inside every sample that could tell: nested. Inside for some, outside for others:
+    // the surfaces cross, and the shells overlap.
+    let mut overlapping_shells = std::collections::BTreeSet::new();
+    let containers: Vec<Vec<usize>> = classified
+        .iter()
+        .enumerate()
+        .map(|(a, counts)| {
+            for &(b, inside, outside) in counts {
+                if inside > 0 && outside > 0 {
+                    overlapping_shells.insert([a.min(b), a.max(b)]);
+                }
+            }
+            counts.iter().filter(|c| c.1 > 0 && c.2 == 0).map(|c| c.0).collect()
+        })
+        .collect();
 
     // Crossing triangles.
-    let mut overlapping_shells = std::collections::BTreeSet::new();
     let mut self_intersections = None;
     let mut intersection_examples = Vec::new();
     if options.intersections {
@@ -699,7 +827,8 @@ pub fn check<S: Surface + ?Sized>(
 
     let edges = groups.len();
     let kept_faces = kept.iter().filter(|&&k| k).count();
-    Ok(Check {
+    Check {
+        weld_tolerance: tolerance,
         vertices: used_vertices,
         edges,
         faces,
@@ -721,7 +850,7 @@ pub fn check<S: Surface + ?Sized>(
         volume: volume.value(),
         volume_uncertainty,
         solid,
-    })
+    }
 }
 
 fn face_of(loops: &Loops, corner: usize) -> usize {

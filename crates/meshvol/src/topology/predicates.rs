@@ -4,6 +4,18 @@
 use crate::Point;
 use robust::{orient2d, orient3d, Coord, Coord3D};
 
+/// −1, 0 or +1. (Not `f64::signum`, which gives ±1 for ±0: the exact zeros the
+/// predicates return are what tells touching from crossing.)
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
 fn c3(p: Point) -> Coord3D<f64> {
     Coord3D { x: p[0], y: p[1], z: p[2] }
 }
@@ -11,7 +23,7 @@ fn c3(p: Point) -> Coord3D<f64> {
 /// Sign of det[a − d; b − d; c − d]: positive when d lies behind the triangle (a, b, c),
 /// i.e. on the side its normal (b − a) × (c − a) points away from.
 pub(crate) fn orient(a: Point, b: Point, c: Point, d: Point) -> f64 {
-    orient3d(c3(a), c3(b), c3(c), c3(d)).signum()
+    sign(orient3d(c3(a), c3(b), c3(c), c3(d)))
 }
 
 /// Whether segment pq crosses triangle abc properly: p and q strictly on opposite sides
@@ -34,6 +46,56 @@ pub(crate) fn triangles_cross(t: [Point; 3], u: [Point; 3]) -> bool {
         || edges(u).iter().any(|&(p, q)| segment_crosses(p, q, t[0], t[1], t[2]))
 }
 
+/// The six axis directions a ray can take, as rotations of coordinates that carry the
+/// direction to +x: (x, y, z), (y, z, x), (z, x, y), (−x, −y, z), (−y, −z, x), (−z, −x, y).
+/// Rotations keep orientation, so winding signs mean the same in every frame.
+pub(crate) const RAY_FRAMES: [fn(Point) -> Point; 6] = [
+    |p| p,
+    |p| [p[1], p[2], p[0]],
+    |p| [p[2], p[0], p[1]],
+    |p| [-p[0], -p[1], p[2]],
+    |p| [-p[1], -p[2], p[0]],
+    |p| [-p[2], -p[0], p[1]],
+];
+
+/// The box, in original coordinates, swept by the ray from `p` along the direction
+/// `RAY_FRAMES[frame]` carries to +x.
+pub(crate) fn ray_box(p: Point, frame: usize) -> (Point, Point) {
+    let (mut min, mut max) = (p, p);
+    match frame {
+        0 => max[0] = f64::INFINITY,
+        1 => max[1] = f64::INFINITY,
+        2 => max[2] = f64::INFINITY,
+        3 => min[0] = f64::NEG_INFINITY,
+        4 => min[1] = f64::NEG_INFINITY,
+        _ => min[2] = f64::NEG_INFINITY,
+    }
+    (min, max)
+}
+
+/// A direction no axis-aligned or diagonal feature of a mesh lines up with, for the
+/// last-resort oblique ray.
+pub(crate) const OBLIQUE: Point = [0.8017837257372732, 0.5345224838248488, 0.2672612419124244];
+
+/// How segment pq, from `p` to a point `q` beyond all geometry, meets triangle
+/// (a, b, c): `Some(±1)` when it passes strictly through the interior (+1 where it
+/// leaves through the triangle's back, i.e. exits an outward-wound solid), `Some(0)`
+/// when it misses, `None` when it grazes an edge or starts on the triangle.
+pub(crate) fn segment_crossing(p: Point, q: Point, a: Point, b: Point, c: Point) -> Option<i32> {
+    let (sp, sq) = (orient(a, b, c, p), orient(a, b, c, q));
+    if sp * sq > 0.0 || (sp == 0.0 && sq == 0.0) {
+        return Some(0);
+    }
+    let s = [orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a)];
+    if s.contains(&1.0) && s.contains(&-1.0) {
+        return Some(0);
+    }
+    if s.contains(&0.0) || sp == 0.0 {
+        return None;
+    }
+    Some(sp as i32)
+}
+
 /// How the ray from `p` in +x meets triangle (a, b, c): `Some(±1)` when it passes
 /// strictly through the interior, the sign being that of the triangle's normal's x
 /// component (+1 where the ray leaves an outward-wound solid); `Some(0)` when it misses;
@@ -41,7 +103,7 @@ pub(crate) fn triangles_cross(t: [Point; 3], u: [Point; 3]) -> bool {
 /// (the caller then tries another ray).
 pub(crate) fn ray_crossing(p: Point, a: Point, b: Point, c: Point) -> Option<i32> {
     let yz = |v: Point| Coord { x: v[1], y: v[2] };
-    let normal_x = orient2d(yz(a), yz(b), yz(c)).signum();
+    let normal_x = sign(orient2d(yz(a), yz(b), yz(c)));
     if normal_x == 0.0 {
         return Some(0); // edge-on to the ray: parallel, no crossing
     }
@@ -50,7 +112,7 @@ pub(crate) fn ray_crossing(p: Point, a: Point, b: Point, c: Point) -> Option<i32
         orient2d(yz(b), yz(c), yz(p)),
         orient2d(yz(c), yz(a), yz(p)),
     ]
-    .map(f64::signum);
+    .map(sign);
     if e.iter().any(|&s| s == -normal_x) {
         return Some(0); // p's projection is outside the triangle's
     }
@@ -81,6 +143,54 @@ mod tests {
         assert!(!triangles_cross(t, [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, -1.0, 1.0]]));
         // Far away.
         assert!(!triangles_cross(t, [[5.0, 5.0, -1.0], [5.0, 5.0, 1.0], [6.0, 6.0, 0.0]]));
+    }
+
+    #[test]
+    fn coplanar_edge_on_a_wall_is_not_a_crossing() {
+        // A floor triangle whose edge lies in a vertical wall that dips 3e-16 below it
+        // (corpus featuretype.STL): they touch along the edge and do not cross.
+        let (a, b) = ([-0.128, -0.977, 0.0], [-0.13, -1.0, 0.0]);
+        let floor = [a, b, [-0.56, -1.19, 0.0]];
+        let wall = [[a[0], a[1], -2.7e-16], [a[0], a[1], 0.75], [b[0], b[1], 0.75]];
+        assert!(!triangles_cross(floor, wall));
+    }
+
+    #[test]
+    fn ray_frames_are_rotations_that_carry_each_axis_to_x() {
+        let det = |f: fn(Point) -> Point| {
+            let (x, y, z) = (f([1.0, 0.0, 0.0]), f([0.0, 1.0, 0.0]), f([0.0, 0.0, 1.0]));
+            x[0] * (y[1] * z[2] - y[2] * z[1]) - x[1] * (y[0] * z[2] - y[2] * z[0])
+                + x[2] * (y[0] * z[1] - y[1] * z[0])
+        };
+        let directions = [
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, -1.0],
+        ];
+        for (k, f) in RAY_FRAMES.iter().enumerate() {
+            assert_eq!(det(*f), 1.0);
+            assert_eq!(f(directions[k]), [1.0, 0.0, 0.0]);
+            let (min, max) = ray_box([0.0; 3], k);
+            let far = directions[k].map(|d| d * f64::INFINITY);
+            assert!((0..3).all(|i| d_in(far[i], min[i], max[i])));
+        }
+        fn d_in(x: f64, lo: f64, hi: f64) -> bool {
+            x.is_nan() || (lo <= x && x <= hi)
+        }
+    }
+
+    #[test]
+    fn segment_crossings_agree_with_the_axis_ray() {
+        let (a, b, c) = ([1.0, -1.0, -1.0], [1.0, 1.0, -1.0], [1.0, -1.0, 1.0]);
+        let p = [0.0, -0.5, -0.5];
+        let q = [10.0, -0.4, -0.45];
+        assert_eq!(segment_crossing(p, q, a, b, c), ray_crossing(p, a, b, c));
+        assert_eq!(segment_crossing(p, q, a, c, b), Some(-1));
+        assert_eq!(segment_crossing(p, [-10.0, -0.4, -0.45], a, b, c), Some(0));
+        assert_eq!(segment_crossing(p, [10.0, 30.0, 30.0], a, b, c), Some(0)); // passes at y = z = 2.55
     }
 
     #[test]
