@@ -262,3 +262,26 @@ fn same_result_at_any_thread_count() {
     };
     assert_eq!(run(1), run(3));
 }
+
+#[test]
+fn repaired_mesh_is_a_clean_outward_solid() {
+    // A cavity wound like a solid, plus an open box elsewhere, plus a duplicate face.
+    let open_box = without_face(&cuboid([5.0; 3], [6.0; 3]), 2);
+    let mut mesh = merge(&[box_with_cavity(true), open_box]);
+    let faces: Vec<Vec<u32>> = (0..mesh.face_count())
+        .map(|f| mesh.face(f).to_vec())
+        .chain([mesh.face(0).to_vec()])
+        .collect();
+    mesh = Mesh::from_polygons(mesh.positions().to_vec(), faces.iter().map(|f| &f[..])).unwrap();
+    let c = checked(&mesh);
+    assert_eq!((c.duplicate_faces, c.boundary_loops, c.cavities), (1, 1, 1));
+    let repaired = c.solid_mesh(true);
+    let again = checked(&repaired);
+    assert!(again.closed && again.bounds_a_volume());
+    assert_eq!(again.orientation, Some(Orientation::Outward));
+    assert_eq!((again.duplicate_faces, again.cavities, again.shells.len()), (0, 1, 3));
+    // Now even the plain signed sum is the solid's volume: 8 − 1 + 1.
+    assert!(close(mass_properties(&repaired).signed_volume, 8.0));
+    // Without caps the hole stays.
+    assert_eq!(checked(&c.solid_mesh(false)).boundary_loops, 1);
+}

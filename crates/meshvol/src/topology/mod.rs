@@ -183,6 +183,13 @@ impl Check {
         self.solid.view(surface)
     }
 
+    /// The solid as a welded mesh, ready to write: shells turned outward (cavities
+    /// inward), degenerate and duplicate faces dropped, and, with `with_caps`, holes
+    /// capped.
+    pub fn solid_mesh(&self, with_caps: bool) -> crate::Mesh {
+        self.solid.mesh(with_caps)
+    }
+
     /// What [`Check::solid`] changes: (faces flipped, faces dropped, cap triangles).
     pub fn repairs(&self) -> (usize, usize, usize) {
         self.solid.changes()
@@ -504,6 +511,9 @@ fn analyse<S: Surface + ?Sized>(
         .collect();
     let loops_found = boundary_loops(&boundary);
     let mut caps: Vec<[Point; 3]> = Vec::new();
+    // The same caps as vertex ids, each centre a new vertex after the welded ones.
+    let mut cap_ids: Vec<[u32; 3]> = Vec::new();
+    let mut centres: Vec<Point> = Vec::new();
     let mut cap_shell: Vec<u32> = Vec::new();
     let mut shell_loops = vec![0usize; shell_count];
     let mut volume_uncertainty = 0.0;
@@ -511,11 +521,14 @@ fn analyse<S: Surface + ?Sized>(
         shell_loops[*shell as usize] += 1;
         let pts: Vec<Point> = ring.iter().map(|&v| welded.positions[v as usize]).collect();
         let centre = scale(pts.iter().fold([0.0; 3], |s, &p| add(s, p)), 1.0 / pts.len() as f64);
+        let centre_id = (welded.positions.len() + centres.len()) as u32;
+        centres.push(centre);
         let mut vector_area = [0.0; 3];
         for i in 0..pts.len() {
             let (p, q) = (pts[i], pts[(i + 1) % pts.len()]);
             // The cap traverses each rim edge against its face: (centre, q, p).
             caps.push([centre, q, p]);
+            cap_ids.push([centre_id, ring[(i + 1) % ring.len()], ring[i]]);
             cap_shell.push(*shell);
             vector_area = add(vector_area, cross(sub(q, centre), sub(p, centre)));
         }
@@ -823,7 +836,18 @@ fn analyse<S: Surface + ?Sized>(
     let face_flip: Vec<bool> =
         (0..faces).map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize])).collect();
     let cap_flip: Vec<bool> = cap_shell.iter().map(|&s| flip_shell[s as usize]).collect();
-    let solid = Solid::new(&kept, &face_flip, caps, &cap_flip);
+    let mut vertices = welded.positions.clone();
+    vertices.extend(centres);
+    let solid = Solid::new(
+        solid::Faces {
+            kept: &kept,
+            flip: &face_flip,
+            corners: &welded.corner_vertex,
+            start: &loops.start,
+        },
+        vertices,
+        solid::Caps { points: caps, ids: cap_ids, flip: &cap_flip },
+    );
 
     let edges = groups.len();
     let kept_faces = kept.iter().filter(|&&k| k).count();

@@ -1,8 +1,34 @@
-//! The solid a checked surface bounds, as a [`Surface`] over the original one: faces
-//! kept or dropped, each possibly reversed, plus cap triangles over holes. No geometry
-//! is copied except the caps.
+//! The solid a checked surface bounds, as a [`Surface`] over the original one (faces
+//! kept or dropped, each possibly reversed, plus cap triangles over holes), or as a
+//! welded [`Mesh`] to write out.
 
-use crate::{Point, Surface};
+use crate::{Mesh, Point, Surface};
+
+/// The checked surface's faces: which are kept and reversed, and their welded corners.
+pub(crate) struct Faces<'a> {
+    pub kept: &'a [bool],
+    pub flip: &'a [bool],
+    /// Welded vertex of each corner; face f's corners are `start[f]..start[f + 1]`.
+    pub corners: &'a [u32],
+    pub start: &'a [usize],
+}
+
+/// Cap triangles over holes, as points and as vertex ids, wound as their shell was
+/// propagated; `flip` turns a cap the way its shell is turned.
+pub(crate) struct Caps<'a> {
+    pub points: Vec<[Point; 3]>,
+    pub ids: Vec<[u32; 3]>,
+    pub flip: &'a [bool],
+}
+
+/// A triangle the other way round, when `reverse`.
+fn turn<T: Copy>(t: [T; 3], reverse: bool) -> [T; 3] {
+    if reverse {
+        [t[0], t[2], t[1]]
+    } else {
+        t
+    }
+}
 
 /// Which faces of the checked surface make the solid, which way round, and the caps.
 #[derive(Clone, Debug, Default)]
@@ -12,24 +38,60 @@ pub struct Solid {
     caps: Vec<[Point; 3]>,
     flipped: usize,
     dropped: usize,
+    /// Welded vertices (cap centres last), kept faces' vertex loops (reversed where
+    /// flipped), and the caps, for [`Solid::mesh`].
+    vertices: Vec<Point>,
+    loops: Vec<u32>,
+    loop_start: Vec<usize>,
+    cap_ids: Vec<[u32; 3]>,
 }
 
 impl Solid {
-    pub(crate) fn new(
-        kept: &[bool],
-        flip: &[bool],
-        caps: Vec<[Point; 3]>,
-        cap_flip: &[bool],
-    ) -> Solid {
-        let faces: Vec<(usize, bool)> =
+    pub(crate) fn new(faces: Faces, vertices: Vec<Point>, caps: Caps) -> Solid {
+        let Faces { kept, flip, corners, start } = faces;
+        let kept_faces: Vec<(usize, bool)> =
             (0..kept.len()).filter(|&f| kept[f]).map(|f| (f, flip[f])).collect();
-        let flipped = flip.iter().filter(|&&x| x).count();
-        let caps = caps
-            .into_iter()
-            .zip(cap_flip)
-            .map(|(c, &f)| if f { [c[0], c[2], c[1]] } else { c })
-            .collect();
-        Solid { dropped: kept.len() - faces.len(), faces, caps, flipped }
+        let mut loops = Vec::new();
+        let mut loop_start = vec![0];
+        for &(f, reversed) in &kept_faces {
+            let ids = &corners[start[f]..start[f + 1]];
+            if reversed {
+                loops.extend(ids.iter().rev());
+            } else {
+                loops.extend(ids);
+            }
+            loop_start.push(loops.len());
+        }
+        Solid {
+            dropped: kept.len() - kept_faces.len(),
+            flipped: flip.iter().filter(|&&x| x).count(),
+            faces: kept_faces,
+            caps: caps.points.into_iter().zip(caps.flip).map(|(c, &f)| turn(c, f)).collect(),
+            vertices,
+            loops,
+            loop_start,
+            cap_ids: caps.ids.into_iter().zip(caps.flip).map(|(c, &f)| turn(c, f)).collect(),
+        }
+    }
+
+    /// The solid as a welded mesh (unused vertices left out), with or without the caps.
+    pub(crate) fn mesh(&self, with_caps: bool) -> Mesh {
+        let cap_ids = if with_caps { &self.cap_ids[..] } else { &[] };
+        let mut new_id = vec![u32::MAX; self.vertices.len()];
+        let mut positions = Vec::new();
+        let mut renumber = |v: u32| {
+            if new_id[v as usize] == u32::MAX {
+                new_id[v as usize] = positions.len() as u32;
+                positions.push(self.vertices[v as usize]);
+            }
+            new_id[v as usize]
+        };
+        let indices: Vec<u32> =
+            self.loops.iter().chain(cap_ids.iter().flatten()).map(|&v| renumber(v)).collect();
+        let mut offsets = self.loop_start.clone();
+        offsets.extend((1..=cap_ids.len()).map(|k| self.loops.len() + 3 * k));
+        Mesh::new(positions, crate::Faces::Polygons { offsets, indices })
+            .expect("kept faces and caps index welded vertices")
     }
 
     pub(crate) fn view<'a, S: Surface + ?Sized>(&'a self, surface: &'a S) -> SolidView<'a, S> {
