@@ -236,6 +236,8 @@ struct EdgeUse {
 struct Loops {
     corners: Vec<Point>,
     start: Vec<usize>,
+    /// The face of each corner.
+    face_of: Vec<u32>,
 }
 
 impl Loops {
@@ -259,7 +261,11 @@ impl Loops {
             }
         }
         start.push(corners.len());
-        Loops { corners, start }
+        let mut face_of = vec![0u32; corners.len()];
+        for (f, w) in start.windows(2).enumerate() {
+            face_of[w[0]..w[1]].fill(f as u32);
+        }
+        Loops { corners, start, face_of }
     }
 
     fn face(&self, f: usize) -> std::ops::Range<usize> {
@@ -377,21 +383,31 @@ fn analyse<S: Surface + ?Sized>(
     drop(sorted_ids);
     let kept: Vec<bool> = (0..faces).map(|f| !degenerate[f] && !duplicate[f]).collect();
 
-    // Edge uses, sorted by edge.
-    let mut uses: Vec<EdgeUse> = Vec::with_capacity(loops.corners.len());
+    // Edge uses, sorted by edge, packed as (edge, face, corner) in one u128 so the sort
+    // compares plain integers.
+    let mut packed: Vec<u128> = Vec::with_capacity(loops.corners.len());
     for f in (0..faces).filter(|&f| kept[f]) {
         for c in loops.face(f) {
             let (u, v) = (vid(c), vid(loops.next(f, c)));
-            let (lo, hi) = (u.min(v), u.max(v));
-            uses.push(EdgeUse {
-                key: (u64::from(lo) << 32) | u64::from(hi),
-                face: f as u32,
-                corner: c as u32,
-                forward: u < v,
-            });
+            let edge = (u64::from(u.min(v)) << 32) | u64::from(u.max(v));
+            packed.push((u128::from(edge) << 64) | ((f as u128) << 32) | c as u128);
         }
     }
-    uses.par_sort_unstable_by_key(|e| (e.key, e.face, e.corner));
+    packed.par_sort_unstable();
+    let uses: Vec<EdgeUse> = packed
+        .par_iter()
+        .map(|&p| {
+            let (face, corner) = ((p >> 32) as u32, p as u32);
+            let next = loops.next(face as usize, corner as usize);
+            EdgeUse {
+                key: (p >> 64) as u64,
+                face,
+                corner,
+                forward: vid(corner as usize) < vid(next),
+            }
+        })
+        .collect();
+    drop(packed);
     let groups: Vec<&[EdgeUse]> = uses.chunk_by(|a, b| a.key == b.key).collect();
 
     let mut shells_of = Components::new(faces);
@@ -434,7 +450,21 @@ fn analyse<S: Surface + ?Sized>(
             corner_fans.join(a.1 as u32, b.1 as u32);
         }
     }
-    neighbours.sort_unstable();
+    // Neighbours of each face, contiguous (compressed rows).
+    let mut neighbour_start = vec![0u32; faces + 1];
+    for n in &neighbours {
+        neighbour_start[n.0 as usize + 1] += 1;
+    }
+    for f in 0..faces {
+        neighbour_start[f + 1] += neighbour_start[f];
+    }
+    let mut fill = neighbour_start.clone();
+    let mut adjacent = vec![(0u32, false); neighbours.len()];
+    for &(f, g, same) in &neighbours {
+        adjacent[fill[f as usize] as usize] = (g, same);
+        fill[f as usize] += 1;
+    }
+    drop((neighbours, fill));
 
     // Non-manifold vertices: corners of one vertex in more than one fan.
     let mut non_manifold_vertices = 0;
@@ -444,7 +474,7 @@ fn analyse<S: Surface + ?Sized>(
         let range = welded.vertex_start[v] as usize..welded.vertex_start[v + 1] as usize;
         roots.clear();
         for &c in &welded.order[range] {
-            if kept[face_of(&loops, c as usize)] {
+            if kept[loops.face_of[c as usize] as usize] {
                 roots.push(corner_fans.find(c));
             }
         }
@@ -461,14 +491,14 @@ fn analyse<S: Surface + ?Sized>(
     // Shells, numbered by their first face.
     let mut shell_of_face = vec![u32::MAX; faces];
     let mut shell_count = 0u32;
-    let mut shell_root = std::collections::HashMap::new();
+    let mut shell_of_root = vec![u32::MAX; faces];
     for f in (0..faces).filter(|&f| kept[f]) {
-        let root = shells_of.find(f as u32);
-        let s = *shell_root.entry(root).or_insert_with(|| {
+        let root = shells_of.find(f as u32) as usize;
+        if shell_of_root[root] == u32::MAX {
+            shell_of_root[root] = shell_count;
             shell_count += 1;
-            shell_count - 1
-        });
-        shell_of_face[f] = s;
+        }
+        shell_of_face[f] = shell_of_root[root];
     }
     let shell_count = shell_count as usize;
 
@@ -484,8 +514,9 @@ fn analyse<S: Surface + ?Sized>(
         seen[f] = true;
         queue.push_back(f as u32);
         while let Some(g) = queue.pop_front() {
-            let start = neighbours.partition_point(|n| n.0 < g);
-            for &(_, h, same) in neighbours[start..].iter().take_while(|n| n.0 == g) {
+            let row =
+                neighbour_start[g as usize] as usize..neighbour_start[g as usize + 1] as usize;
+            for &(h, same) in &adjacent[row] {
                 let want = flip[g as usize] ^ same;
                 if !seen[h as usize] {
                     seen[h as usize] = true;
@@ -724,30 +755,16 @@ fn analyse<S: Surface + ?Sized>(
     let mut self_intersections = None;
     let mut intersection_examples = Vec::new();
     if options.intersections {
-        let pairs: Vec<Vec<[u32; 2]>> = (0..triangles.len())
-            .into_par_iter()
-            .with_min_len(1024)
-            .map(|i| {
-                let mut found = Vec::new();
-                let (t, _) = &triangles[i];
-                bvh.overlapping(&boxes[i], |j| {
-                    if j <= i {
-                        return;
-                    }
-                    let (u, _) = &triangles[j];
-                    if t.iter().any(|v| u.contains(v)) {
-                        return;
-                    }
-                    if predicates::triangles_cross(corner_points(t), corner_points(u)) {
-                        found.push([i as u32, j as u32]);
-                    }
-                });
-                found.sort_unstable();
-                found
-            })
-            .collect();
+        let pairs: Vec<[u32; 2]> = bvh.overlapping_pairs(|i, j| {
+            let (t, u) = (&triangles[i].0, &triangles[j].0);
+            if t.iter().any(|v| u.contains(v)) {
+                return None; // neighbours meet at shared vertices by design
+            }
+            predicates::triangles_cross(corner_points(t), corner_points(u))
+                .then_some([i.min(j) as u32, i.max(j) as u32])
+        });
         let mut within = 0;
-        for &[i, j] in pairs.iter().flatten() {
+        for &[i, j] in &pairs {
             let (fi, fj) = (triangles[i as usize].1 as usize, triangles[j as usize].1 as usize);
             let (si, sj) = (shell_of_face[fi] as usize, shell_of_face[fj] as usize);
             if si == sj {
@@ -875,10 +892,6 @@ fn analyse<S: Surface + ?Sized>(
         volume_uncertainty,
         solid,
     }
-}
-
-fn face_of(loops: &Loops, corner: usize) -> usize {
-    loops.start.partition_point(|&s| s <= corner) - 1
 }
 
 /// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's

@@ -28,20 +28,22 @@ fn group_by_key<K: Ord + Send + Sync>(
     corners: &[Point],
     key: impl Fn(usize) -> K + Sync,
 ) -> Welded {
-    let keys: Vec<K> = (0..corners.len()).into_par_iter().map(&key).collect();
-    let mut order: Vec<u32> = (0..corners.len() as u32).collect();
-    order.par_sort_unstable_by(|&a, &b| keys[a as usize].cmp(&keys[b as usize]).then(a.cmp(&b)));
+    // (key, corner) pairs sorted directly: comparisons read contiguous memory.
+    let mut keyed: Vec<(K, u32)> =
+        (0..corners.len()).into_par_iter().map(|c| (key(c), c as u32)).collect();
+    keyed.par_sort_unstable();
     let mut corner_vertex = vec![0u32; corners.len()];
     let mut positions = Vec::new();
     let mut vertex_start = Vec::new();
-    for (rank, &c) in order.iter().enumerate() {
-        if rank == 0 || keys[c as usize] != keys[order[rank - 1] as usize] {
-            positions.push(corners[c as usize]);
+    for (rank, (k, c)) in keyed.iter().enumerate() {
+        if rank == 0 || *k != keyed[rank - 1].0 {
+            positions.push(corners[*c as usize]);
             vertex_start.push(rank as u32);
         }
-        corner_vertex[c as usize] = positions.len() as u32 - 1;
+        corner_vertex[*c as usize] = positions.len() as u32 - 1;
     }
-    vertex_start.push(order.len() as u32);
+    vertex_start.push(keyed.len() as u32);
+    let order = keyed.into_iter().map(|(_, c)| c).collect();
     Welded { corner_vertex, positions, order, vertex_start }
 }
 
