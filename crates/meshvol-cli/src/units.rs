@@ -1,4 +1,10 @@
-//! `--units FILE[:REPORT]`: the length unit the file uses and the unit to report in.
+//! `--units FILE[:REPORT]` or `--units :REPORT`: the length unit the file uses and the
+//! unit to report in.
+//!
+//! A file that declares its unit (3MF's `unit` attribute; glTF, which is in metres) gives
+//! the file unit when `--units` does not: no `--units` reports in the declared unit,
+//! `--units :cm` converts from it. An explicit FILE unit wins over the declaration, with
+//! a warning when they differ. `:REPORT` for a file that declares nothing is an error.
 
 use serde::Serialize;
 use std::str::FromStr;
@@ -6,6 +12,7 @@ use std::str::FromStr;
 /// A length unit, or a volume unit that implies one (mL = cm³, L = dm³).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Unit {
+    Um,
     Mm,
     Cm,
     M,
@@ -19,6 +26,7 @@ impl Unit {
     /// Metres per length unit.
     fn metres(self) -> f64 {
         match self {
+            Unit::Um => 1e-6,
             Unit::Mm => 1e-3,
             Unit::Cm | Unit::Ml => 1e-2,
             Unit::M => 1.0,
@@ -30,6 +38,7 @@ impl Unit {
 
     fn length_name(self) -> &'static str {
         match self {
+            Unit::Um => "um",
             Unit::Mm => "mm",
             Unit::Cm | Unit::Ml => "cm",
             Unit::M => "m",
@@ -44,6 +53,7 @@ impl FromStr for Unit {
     type Err = String;
     fn from_str(s: &str) -> Result<Unit, String> {
         Ok(match s.to_ascii_lowercase().as_str() {
+            "um" | "µm" | "micron" => Unit::Um,
             "mm" => Unit::Mm,
             "cm" => Unit::Cm,
             "m" => Unit::M,
@@ -53,7 +63,7 @@ impl FromStr for Unit {
             "l" => Unit::L,
             _ => {
                 return Err(format!(
-                    "unknown unit '{s}' (use mm, cm, m, in, ft, or mL/L to report)"
+                    "unknown unit '{s}' (use um, mm, cm, m, in, ft, or mL/L to report)"
                 ))
             }
         })
@@ -67,18 +77,77 @@ pub struct Units {
     pub file: Unit,
     /// The unit results are reported in.
     pub report: Unit,
+    /// The unit the file declares, if it declares one.
+    pub declared: Option<Unit>,
 }
 
-impl FromStr for Units {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Units, String> {
-        let (file, report) = s.split_once(':').unwrap_or((s, s));
-        let file: Unit = file.parse()?;
-        if matches!(file, Unit::Ml | Unit::L) {
-            return Err(format!("'{s}': the file's unit must be a length (mm, cm, m, in, ft)"));
+impl Unit {
+    /// The unit a file declares.
+    pub fn declared(unit: meshvol_io::LengthUnit) -> Unit {
+        use meshvol_io::LengthUnit as L;
+        match unit {
+            L::Micrometre => Unit::Um,
+            L::Millimetre => Unit::Mm,
+            L::Centimetre => Unit::Cm,
+            L::Metre => Unit::M,
+            L::Inch => Unit::In,
+            L::Foot => Unit::Ft,
         }
-        Ok(Units { file, report: report.parse()? })
     }
+}
+
+/// What `--units` says: `FILE`, `FILE:REPORT`, or `:REPORT` (the file unit from the
+/// file's declaration).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UnitsArg {
+    pub file: Option<Unit>,
+    pub report: Unit,
+}
+
+impl FromStr for UnitsArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<UnitsArg, String> {
+        let (file, report) = s.split_once(':').unwrap_or((s, s));
+        let file: Option<Unit> = if file.is_empty() { None } else { Some(file.parse()?) };
+        if matches!(file, Some(Unit::Ml | Unit::L)) {
+            return Err(format!("'{s}': the file's unit must be a length (um, mm, cm, m, in, ft)"));
+        }
+        let report = match (report, file) {
+            ("", Some(file)) => file,
+            ("", None) => return Err(format!("'{s}': no unit given")),
+            (report, _) => report.parse()?,
+        };
+        Ok(UnitsArg { file, report })
+    }
+}
+
+/// The units for one file: from `--units` and what the file declares. Returns them (none
+/// when neither says anything) and a warning when `--units` overrides the declaration.
+pub fn resolve(
+    arg: Option<UnitsArg>,
+    declared: Option<meshvol_io::LengthUnit>,
+) -> Result<(Option<Units>, Option<String>), String> {
+    let declared = declared.map(Unit::declared);
+    let units = |file, report| Some(Units { file, report, declared });
+    Ok(match (arg, declared) {
+        (None, None) => (None, None),
+        (None, Some(d)) => (units(d, d), None),
+        (Some(UnitsArg { file: Some(f), report }), d) => {
+            let warning = d.filter(|&d| d != f).map(|d| {
+                format!(
+                    "the file declares its lengths in {}; --units says {}: using {}",
+                    d.length_name(),
+                    f.length_name(),
+                    f.length_name()
+                )
+            });
+            (units(f, report), warning)
+        }
+        (Some(UnitsArg { file: None, report }), Some(d)) => (units(d, report), None),
+        (Some(UnitsArg { file: None, .. }), None) => {
+            return Err("the file declares no length unit: give it, as in --units mm:cm".into())
+        }
+    })
 }
 
 /// Names of the reported units, as printed and in JSON.
@@ -87,6 +156,10 @@ pub struct UnitNames {
     pub length: String,
     pub area: String,
     pub volume: String,
+    /// The length unit the file's numbers were taken to be in.
+    pub file: String,
+    /// The length unit the file declares (3MF, glTF), or null.
+    pub file_declared: Option<String>,
 }
 
 impl Units {
@@ -102,7 +175,13 @@ impl Units {
             Unit::L => "L".to_string(),
             _ => format!("{length}^3"),
         };
-        UnitNames { length: length.to_string(), area: format!("{length}^2"), volume }
+        UnitNames {
+            length: length.to_string(),
+            area: format!("{length}^2"),
+            volume,
+            file: self.file.length_name().to_string(),
+            file_declared: self.declared.map(|d| d.length_name().to_string()),
+        }
     }
 }
 
@@ -110,16 +189,44 @@ impl Units {
 mod tests {
     use super::*;
 
+    fn units(s: &str, declared: Option<meshvol_io::LengthUnit>) -> Units {
+        resolve(Some(s.parse().unwrap()), declared).unwrap().0.unwrap()
+    }
+
     #[test]
     fn parses_and_converts() {
-        let u: Units = "mm:cm".parse().unwrap();
+        let u = units("mm:cm", None);
         assert_eq!(u.length_factor(), 0.1);
-        let u: Units = "in:mL".parse().unwrap();
+        let u = units("in:mL", None);
         // 1 in = 2.54 cm, so 1 in³ = 16.387064 mL.
         assert!((u.length_factor().powi(3) - 16.387064).abs() < 1e-12);
         assert_eq!(u.names().volume, "mL");
-        assert_eq!("ft".parse::<Units>().unwrap().length_factor(), 1.0);
-        assert!("mL".parse::<Units>().is_err());
-        assert!("mm:furlong".parse::<Units>().unwrap_err().contains("furlong"));
+        assert_eq!(units("ft", None).length_factor(), 1.0);
+        assert_eq!(units("um:mm", None).length_factor(), 1e-3);
+        assert!("mL".parse::<UnitsArg>().is_err());
+        assert!(":".parse::<UnitsArg>().is_err());
+        assert!("mm:furlong".parse::<UnitsArg>().unwrap_err().contains("furlong"));
+    }
+
+    #[test]
+    fn declared_units() {
+        use meshvol_io::LengthUnit as L;
+        // Nothing given: the declaration, reported as is.
+        let (u, w) = resolve(None, Some(L::Inch)).unwrap();
+        let u = u.unwrap();
+        assert_eq!((u.file, u.report, u.length_factor(), w), (Unit::In, Unit::In, 1.0, None));
+        assert_eq!(u.names().file_declared.as_deref(), Some("in"));
+        // A report unit only: converted from the declaration.
+        let u = units(":cm", Some(L::Inch));
+        assert!((u.length_factor() - 2.54).abs() < 1e-15);
+        assert_eq!(u.names().file, "in");
+        // An explicit file unit wins, with a warning when it differs.
+        let (u, w) = resolve(Some("mm:cm".parse().unwrap()), Some(L::Inch)).unwrap();
+        assert_eq!(u.unwrap().file, Unit::Mm);
+        assert!(w.unwrap().contains("declares its lengths in in"));
+        assert_eq!(resolve(Some("mm".parse().unwrap()), Some(L::Millimetre)).unwrap().1, None);
+        // Nothing declared and no file unit.
+        assert!(resolve(Some(":cm".parse().unwrap()), None).unwrap_err().contains("declares no"));
+        assert_eq!(resolve(None, None).unwrap(), (None, None));
     }
 }

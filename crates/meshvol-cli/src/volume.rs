@@ -1,8 +1,10 @@
 //! `meshvol volume`: mass properties of each file, as text or one JSON object per line.
 
-use crate::units::{UnitNames, Units};
+use crate::check::CheckReport;
+use crate::units::{UnitNames, UnitsArg};
 use meshvol::accumulate::UNIT_ROUNDOFF;
-use meshvol::{exact_signed_volume, mass_properties, MassProperties, Surface};
+use meshvol::topology::CheckOptions;
+use meshvol::{exact_signed_volume, mass_properties, FaceRange, MassProperties, Surface};
 use meshvol_io::Loaded;
 use serde::Serialize;
 use std::fmt::Write;
@@ -11,8 +13,12 @@ use std::fmt::Write;
 #[derive(Clone, Copy, Debug)]
 pub struct VolumeOptions {
     pub density: f64,
-    pub units: Option<Units>,
+    /// `--units`, resolved per file against the unit the file declares.
+    pub units: Option<UnitsArg>,
     pub exact: bool,
+    /// Check the surface and measure the solid it bounds; `None` measures the surface
+    /// as wound.
+    pub check: Option<CheckOptions>,
 }
 
 #[derive(Debug, Serialize)]
@@ -26,6 +32,8 @@ pub struct BoundsReport {
 pub struct VolumeReport {
     pub file: String,
     pub format: String,
+    /// What decided the format: `extension` or `content`.
+    pub format_source: &'static str,
     pub vertices: usize,
     pub faces: usize,
     pub triangles: usize,
@@ -44,16 +52,60 @@ pub struct VolumeReport {
     pub bounds: Option<BoundsReport>,
     pub units: Option<UnitNames>,
     pub warnings: Vec<String>,
+    /// The file's objects (solids, groups, 3MF items, glTF nodes), when it has two or
+    /// more; the other keys hold the total.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub objects: Option<Vec<ObjectReport>>,
+    /// Topology facts (absent with `--no-check`).
+    #[serde(flatten)]
+    pub check: Option<CheckReport>,
 }
 
-fn measure<S: Surface>(surface: &S, exact: bool) -> Result<(MassProperties, bool), String> {
+/// One object of a file, measured as wound (no topology check), in the report's units.
+#[derive(Debug, Serialize)]
+pub struct ObjectReport {
+    pub name: String,
+    /// Its faces in the file: `[first, end)`.
+    pub faces: [usize; 2],
+    pub triangles: usize,
+    pub volume: f64,
+    pub signed_volume: f64,
+    pub area: f64,
+    pub centroid: Option<[f64; 3]>,
+}
+
+/// Each object's properties, scaled by the length factor `f`.
+fn objects(loaded: &Loaded, f: f64) -> Option<Vec<ObjectReport>> {
+    if loaded.objects.is_empty() {
+        return None;
+    }
+    let reports = loaded
+        .objects
+        .iter()
+        .map(|o| {
+            let mp = mass_properties(&FaceRange::new(&loaded.surface, o.faces.clone()));
+            ObjectReport {
+                name: o.name.clone(),
+                faces: [o.faces.start, o.faces.end],
+                triangles: mp.triangles,
+                volume: mp.signed_volume.abs() * f * f * f,
+                signed_volume: mp.signed_volume * f * f * f,
+                area: mp.area * f * f,
+                centroid: mp.centroid.map(|c| c.map(|x| x * f)),
+            }
+        })
+        .collect();
+    Some(reports)
+}
+
+fn measure<S: Surface + ?Sized>(surface: &S, exact: bool) -> Result<MassProperties, String> {
     let mut mp = mass_properties(surface);
     if exact {
         mp.signed_volume = exact_signed_volume(surface).map_err(|e| e.to_string())?;
         // Correctly rounded: within half an ulp.
         mp.volume_error_bound = UNIT_ROUNDOFF * mp.signed_volume.abs();
     }
-    Ok((mp, exact))
+    Ok(mp)
 }
 
 /// Measures a loaded file and builds its report.
@@ -65,15 +117,42 @@ pub fn report(
     if loaded.face_count() == 0 {
         return Err(format!("{file}: no faces: there is no surface to measure"));
     }
-    let (mp, exact) = measure(&loaded.surface, options.exact)?;
+    let exact = options.exact;
+    let as_wound = measure(&loaded.surface, exact)?;
     let mut warnings = loaded.warnings.clone();
+    let (units, unit_warning) =
+        crate::units::resolve(options.units, loaded.unit).map_err(|e| format!("{file}: {e}"))?;
+    warnings.extend(unit_warning);
+    // With a check, the properties are the solid's: shells turned outward, cavities
+    // subtracted, degenerate and duplicate faces dropped, holes capped.
+    let (mp, check) = match &options.check {
+        None => (as_wound, None),
+        Some(check_options) => {
+            let (checked, report) = crate::check::check(&loaded.surface, check_options)?;
+            let solid = checked.solid(&loaded.surface);
+            let mp =
+                if checked.repairs() == (0, 0, 0) { as_wound } else { measure(&solid, exact)? };
+            let (_, dropped, caps) = checked.repairs();
+            let inward = report.orientation == Some("inward");
+            if !report.bounds_a_volume
+                || dropped > 0
+                || caps > 0
+                || (!inward && checked.repairs().0 > 0)
+            {
+                warnings.push(report.verdict.clone());
+            }
+            (mp, Some(report))
+        }
+    };
     if mp.centroid.is_none() {
         warnings.push(
             "the volume is zero within rounding: the surface encloses no solid (flat, or open?); \
              centroid and inertia are undefined"
                 .to_string(),
         );
-    } else if mp.signed_volume < 0.0 {
+    } else if as_wound.signed_volume < 0.0
+        && check.as_ref().is_none_or(|c| c.orientation == Some("inward"))
+    {
         warnings.push(
             "signed volume is negative: faces are wound inward (clockwise seen from outside, as \
              OpenSCAD's polyhedron() expects); volume reports the solid's magnitude"
@@ -81,21 +160,29 @@ pub fn report(
         );
     }
 
-    let f = options.units.map_or(1.0, |u| u.length_factor());
+    let f = units.map_or(1.0, |u| u.length_factor());
     let (f2, f3) = (f * f, f * f * f);
     let rho = options.density;
-    let signed_volume = mp.signed_volume * f3;
+    let signed_volume = as_wound.signed_volume * f3;
+    let volume = mp.signed_volume.abs() * f3;
     // Converting rounds a few more times: widen the bound by that.
-    let conversion = if f == 1.0 { 0.0 } else { 4.0 * UNIT_ROUNDOFF * signed_volume.abs() };
+    let conversion = if f == 1.0 { 0.0 } else { 4.0 * UNIT_ROUNDOFF * volume };
     let inertia = mp.inertia.map(|row| row.map(|x| x * rho * f3 * f2));
+    let check = check.map(|mut c| {
+        c.solid_volume *= f3;
+        c.volume_uncertainty *= f3;
+        c.shell_details.iter_mut().for_each(|s| s.volume *= f3);
+        c
+    });
     let principal = mp.principal();
     Ok(VolumeReport {
         file: file.to_string(),
         format: loaded.format.name().to_string(),
+        format_source: loaded.format_source.name(),
         vertices: loaded.vertex_count(),
-        faces: mp.faces,
-        triangles: mp.triangles,
-        volume: signed_volume.abs(),
+        faces: as_wound.faces,
+        triangles: as_wound.triangles,
+        volume,
         signed_volume,
         volume_error_bound: mp.volume_error_bound * f3 + conversion,
         exact,
@@ -105,17 +192,19 @@ pub fn report(
         principal_moments: principal.moments.map(|x| x * rho * f3 * f2),
         principal_axes: principal.axes,
         density: rho,
-        mass: rho * signed_volume.abs(),
+        mass: rho * volume,
         bounds: mp
             .bounds
             .map(|b| BoundsReport { min: b.min.map(|x| x * f), max: b.max.map(|x| x * f) }),
-        units: options.units.map(|u| u.names()),
+        units: units.map(|u| u.names()),
         warnings,
+        objects: objects(loaded, f),
+        check,
     })
 }
 
 /// A number with `digits` significant digits, in plain notation where that is readable.
-fn num(x: f64, digits: usize) -> String {
+pub fn num(x: f64, digits: usize) -> String {
     if x == 0.0 {
         return "0".into();
     }
@@ -155,6 +244,16 @@ pub fn text(r: &VolumeReport) -> String {
     if r.signed_volume < 0.0 {
         let _ = writeln!(s, "  signed volume      {}{vol}", num(r.signed_volume, 15));
     }
+    if let Some(c) = &r.check {
+        let _ = writeln!(s, "  check              {}", c.verdict);
+        if c.volume_uncertainty > 0.0 {
+            let _ = writeln!(
+                s,
+                "  uncertainty        ± {}{vol} (from capping holes)",
+                num(c.volume_uncertainty, 3)
+            );
+        }
+    }
     let _ = writeln!(s, "  area               {}{area}", num(r.area, 15));
     if r.density != 1.0 {
         let _ = writeln!(s, "  mass               {}  (density {})", num(r.mass, 12), r.density);
@@ -192,6 +291,29 @@ pub fn text(r: &VolumeReport) -> String {
         let size = [0, 1, 2].map(|k| b.max[k] - b.min[k]);
         let _ = writeln!(s, "  bounds             {} to {}{len}", vector(b.min), vector(b.max));
         let _ = writeln!(s, "  size               {}{len}", vector(size));
+    }
+    if let Some(objects) = &r.objects {
+        let width = objects.iter().map(|o| o.name.chars().count()).max().unwrap_or(0).max(4);
+        let _ = writeln!(s, "  objects ({}, measured as wound):", objects.len());
+        let _ = writeln!(
+            s,
+            "    {:<width$}  {:>9}  {:>18}  {:>18}  centroid{len}",
+            "name",
+            "triangles",
+            format!("volume{vol}"),
+            format!("area{area}")
+        );
+        for o in objects {
+            let centroid = o.centroid.map_or("undefined".to_string(), vector);
+            let _ = writeln!(
+                s,
+                "    {:<width$}  {:>9}  {:>18}  {:>18}  {centroid}",
+                o.name,
+                o.triangles,
+                num(o.signed_volume, 10),
+                num(o.area, 10)
+            );
+        }
     }
     s
 }

@@ -1,21 +1,26 @@
 //! Errors: which file, where in it, and what went wrong.
 //!
 //! Every reader reports the place of a problem in the unit that fits the format: a line
-//! number (1-based) in text formats, a byte offset (0-based) or a triangle index
-//! (0-based, like the face indices of [`meshvol::Mesh`]) in binary STL.
+//! number (1-based) in text formats, a byte offset (0-based) in binary ones, a face index
+//! (0-based, like the face indices of [`meshvol::Mesh`]), a line of one part of a 3MF
+//! archive, or the JSON path of a glTF item.
 
 use std::fmt;
 use std::path::PathBuf;
 
 /// Where in a file a [`ReadError`] was found.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Location {
     /// A line of a text file, counted from 1.
     Line(u64),
     /// A byte offset, counted from 0.
     Byte(u64),
-    /// A face (a triangle of a binary STL), counted from 0.
+    /// A face (a triangle of a binary STL, a face element of a PLY), counted from 0.
     Face(usize),
+    /// A line (counted from 1) of one part of an archive: `3D/3dmodel.model` in a 3MF.
+    PartLine { part: String, line: u64 },
+    /// An item of a JSON document, as a path: `accessors[3]`, `meshes[0].primitives[1]`.
+    Json(String),
 }
 
 impl fmt::Display for Location {
@@ -24,6 +29,8 @@ impl fmt::Display for Location {
             Location::Line(l) => write!(f, "line {l}"),
             Location::Byte(b) => write!(f, "byte {b}"),
             Location::Face(i) => write!(f, "face {i}"),
+            Location::PartLine { part, line } => write!(f, "{part} line {line}"),
+            Location::Json(path) => f.write_str(path),
         }
     }
 }
@@ -43,7 +50,7 @@ pub struct ReadError {
 impl fmt::Display for ReadError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: ", self.path.display())?;
-        if let Some(location) = self.location {
+        if let Some(location) = &self.location {
             write!(f, "{location}: ")?;
         }
         f.write_str(&self.message)

@@ -1,19 +1,39 @@
-//! Mesh file readers for meshvol: STL (binary and ASCII), OBJ and OFF.
+//! Mesh file readers for meshvol: STL (binary and ASCII), OBJ, OFF, PLY, 3MF, glTF/GLB.
 //!
 //! [`read`] picks the format from the file's extension (any case: `.stl`, `.obj`,
-//! `.off`), tells binary from ASCII STL by the file's size, and for other extensions
-//! recognises the content (an OFF header, the binary STL size rule, a `solid` line, OBJ
-//! statements). Each format's rules are in its module: [`stl`], [`obj`], [`off`].
+//! `.off`, `.ply`, `.3mf`, `.gltf`, `.glb`) and checks it against the content: where the
+//! content is clearly another format (a `.stl` that is OBJ text, a `.ply` that is a GLB),
+//! that format is read and a warning says so. Files without a known extension (and
+//! standard input, read with [`read_bytes`]) are recognised by content: the PLY, GLB and
+//! zip (3MF) magic bytes, a glTF JSON object, an OFF header, the binary STL size rule, a
+//! `solid` line, OBJ statements. [`Loaded::format_source`] says which decided. Each
+//! format's rules are in its module: [`stl`], [`obj`], [`off`], [`ply`], [`threemf`],
+//! [`gltf`].
 //!
 //! A binary STL is not copied: it stays memory-mapped and is read as a [`StlSoup`]. The
-//! text formats are parsed (in parallel where the format allows) into a
+//! other formats are parsed (in parallel where the format allows) into a
 //! [`meshvol::Mesh`]. Both implement [`meshvol::Surface`], and so does
 //! [`LoadedSurface`], so kernels can take whatever was loaded.
 //!
+//! # Objects
+//!
+//! Files that hold several named parts (solids of an ASCII STL, OBJ `o` or `g` groups,
+//! 3MF build items, glTF nodes with meshes) list them in [`Loaded::objects`]: contiguous
+//! runs of the surface's faces, in file order, covering every face, each with its name.
+//! The list is empty when the file holds fewer than two objects: a single part, or a
+//! format without objects (binary STL, OFF, PLY). Measure one object with
+//! [`meshvol::FaceRange`].
+//!
+//! # Units
+//!
+//! A file that declares its length unit sets [`Loaded::unit`]: a 3MF model's `unit`
+//! attribute (millimetres when absent, as the 3MF specification says), and glTF, whose
+//! specification fixes metres. The other formats carry no unit.
+//!
 //! Nothing here panics on any input: every problem is a [`ReadError`] naming the file,
-//! the place (line, byte or face) and what is wrong. Things that are read but not used
-//! (OBJ line elements, bytes after a binary STL's triangles, several solids in one STL)
-//! are reported in [`Loaded::warnings`].
+//! the place (line, byte, face, archive part or JSON item) and what is wrong. Things that
+//! are read but not used (OBJ line elements, bytes after a binary STL's triangles, glTF
+//! point and line primitives) are reported in [`Loaded::warnings`].
 //!
 //! ```no_run
 //! use meshvol::Surface;
@@ -35,13 +55,27 @@ use std::path::{Path, PathBuf};
 use meshvol::{Mesh, Point, Surface};
 
 mod error;
+pub mod geojson;
+pub mod gltf;
+pub mod grid_out;
 pub mod obj;
 pub mod off;
+pub mod ply;
+pub mod points;
+pub mod polygons;
 mod source;
 pub mod stl;
 mod text;
+pub mod threemf;
+mod transform;
+pub mod wkt;
+pub mod write;
 
 pub use error::{Location, ReadError};
+pub use points::{read_points, PointCloud, PointSource};
+pub use polygons::{
+    read_polygons, read_polygons_bytes, PolygonFeature, PolygonFile, PolygonFormat,
+};
 pub use stl::StlSoup;
 
 use error::ParseError;
@@ -54,18 +88,106 @@ pub enum Format {
     StlAscii,
     Obj,
     Off,
+    PlyAscii,
+    PlyBinaryLittleEndian,
+    PlyBinaryBigEndian,
+    ThreeMf,
+    /// glTF 2.0 JSON (`.gltf`), buffers embedded or beside it.
+    Gltf,
+    /// Binary glTF 2.0 (`.glb`).
+    Glb,
 }
 
 impl Format {
-    /// A short name: `stl-binary`, `stl-ascii`, `obj`, `off`.
+    /// A short name: `stl-binary`, `stl-ascii`, `obj`, `off`, `ply-ascii`,
+    /// `ply-binary-le`, `ply-binary-be`, `3mf`, `gltf`, `glb`.
     pub fn name(&self) -> &'static str {
         match self {
             Format::StlBinary => "stl-binary",
             Format::StlAscii => "stl-ascii",
             Format::Obj => "obj",
             Format::Off => "off",
+            Format::PlyAscii => "ply-ascii",
+            Format::PlyBinaryLittleEndian => "ply-binary-le",
+            Format::PlyBinaryBigEndian => "ply-binary-be",
+            Format::ThreeMf => "3mf",
+            Format::Gltf => "gltf",
+            Format::Glb => "glb",
         }
     }
+}
+
+/// What decided the format of a file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FormatSource {
+    /// The file's extension, and the content agreed.
+    Extension,
+    /// The content: the file had no known extension (or was standard input), or its
+    /// content is clearly another format than its extension says (a warning says so).
+    Content,
+}
+
+impl FormatSource {
+    /// `extension` or `content`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            FormatSource::Extension => "extension",
+            FormatSource::Content => "content",
+        }
+    }
+}
+
+/// A length unit a file can declare.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LengthUnit {
+    Micrometre,
+    Millimetre,
+    Centimetre,
+    Metre,
+    Inch,
+    Foot,
+}
+
+impl LengthUnit {
+    /// Metres per unit.
+    pub fn metres(&self) -> f64 {
+        match self {
+            LengthUnit::Micrometre => 1e-6,
+            LengthUnit::Millimetre => 1e-3,
+            LengthUnit::Centimetre => 1e-2,
+            LengthUnit::Metre => 1.0,
+            LengthUnit::Inch => 0.0254,
+            LengthUnit::Foot => 0.3048,
+        }
+    }
+
+    /// The symbol: `um`, `mm`, `cm`, `m`, `in`, `ft`.
+    pub fn symbol(&self) -> &'static str {
+        match self {
+            LengthUnit::Micrometre => "um",
+            LengthUnit::Millimetre => "mm",
+            LengthUnit::Centimetre => "cm",
+            LengthUnit::Metre => "m",
+            LengthUnit::Inch => "in",
+            LengthUnit::Foot => "ft",
+        }
+    }
+}
+
+impl fmt::Display for LengthUnit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.symbol())
+    }
+}
+
+/// A named part of a file: a contiguous run of the loaded surface's faces.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Object {
+    /// The name the file gives it (an STL solid's name, an OBJ `o`/`g` name, a 3MF
+    /// object's name, a glTF node's or mesh's name); possibly empty.
+    pub name: String,
+    /// Its faces: indices into [`Loaded::surface`]'s faces.
+    pub faces: std::ops::Range<usize>,
 }
 
 impl fmt::Display for Format {
@@ -127,11 +249,18 @@ impl Surface for LoadedSurface {
     }
 }
 
-/// A file read: its format, its surface, and what was read but not used.
+/// A file read: its format, its surface, its objects and unit, and what was read but
+/// not used.
 #[derive(Debug)]
 pub struct Loaded {
     pub format: Format,
+    /// Whether the extension or the content decided the format.
+    pub format_source: FormatSource,
     pub surface: LoadedSurface,
+    /// The file's objects when it holds two or more (see the crate docs); else empty.
+    pub objects: Vec<Object>,
+    /// The length unit the file declares, if its format declares one.
+    pub unit: Option<LengthUnit>,
     pub warnings: Vec<String>,
 }
 
@@ -152,7 +281,7 @@ impl Loaded {
     }
 }
 
-/// Reads a mesh file, choosing the format by extension, then by content.
+/// Reads a mesh file, choosing the format by extension and content.
 pub fn read(path: &Path) -> Result<Loaded, ReadError> {
     let bytes = Bytes::open(path).map_err(|e| ReadError {
         path: path.to_path_buf(),
@@ -163,7 +292,9 @@ pub fn read(path: &Path) -> Result<Loaded, ReadError> {
 }
 
 /// Reads a mesh from bytes already in memory, as [`read`] would read a file at `path`
-/// with these contents (`path` gives the extension and names the file in errors).
+/// with these contents (`path` gives the extension, names the file in errors, and is
+/// where a `.gltf` file's external buffers are looked for). Standard input is read with
+/// a path such as `-`: no extension, so the content decides.
 pub fn read_bytes(path: &Path, bytes: Vec<u8>) -> Result<Loaded, ReadError> {
     load(path, Bytes::Owned(bytes))
 }
@@ -174,29 +305,93 @@ enum Family {
     Stl,
     Obj,
     Off,
+    Ply,
+    ThreeMf,
+    Gltf,
+}
+
+impl Family {
+    fn of_extension(ext: &str) -> Option<Family> {
+        Some(match ext {
+            "stl" => Family::Stl,
+            "obj" => Family::Obj,
+            "off" => Family::Off,
+            "ply" => Family::Ply,
+            "3mf" => Family::ThreeMf,
+            "gltf" | "glb" => Family::Gltf,
+            _ => return None,
+        })
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Family::Stl => "STL",
+            Family::Obj => "OBJ",
+            Family::Off => "OFF",
+            Family::Ply => "PLY",
+            Family::ThreeMf => "3MF",
+            Family::Gltf => "glTF",
+        }
+    }
+
+    /// Whether the content can be this family's (a cheap check of its first bytes).
+    fn accepts(self, bytes: &[u8]) -> bool {
+        match self {
+            Family::Stl => stl::classify(bytes).is_ok(),
+            Family::Obj => obj::looks_like_obj(bytes),
+            Family::Off => off::looks_like_off(bytes),
+            Family::Ply => ply::looks_like_ply(bytes),
+            Family::ThreeMf => threemf::looks_like_zip(bytes),
+            Family::Gltf => gltf::looks_like_glb(bytes) || gltf::looks_like_json(bytes),
+        }
+    }
+}
+
+/// The object list's rule: two or more objects, else none.
+fn objects_if_several(objects: Vec<Object>) -> Vec<Object> {
+    if objects.len() >= 2 {
+        objects
+    } else {
+        Vec::new()
+    }
 }
 
 fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
     let with_path = |e: ParseError| e.with_path(PathBuf::from(path));
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let family = match ext.as_deref() {
-        Some("stl") => Family::Stl,
-        Some("obj") => Family::Obj,
-        Some("off") => Family::Off,
-        _ => sniff(&bytes).ok_or_else(|| {
+    let mut warnings = Vec::new();
+    let by_extension = ext.as_deref().and_then(Family::of_extension);
+    let (family, format_source) = match (by_extension, sniff(&bytes)) {
+        (Some(named), Some(found)) if named != found && !named.accepts(&bytes) => {
+            warnings.push(format!(
+                "the content is {}, not {} as the extension '.{}' says: read as {}",
+                found.name(),
+                named.name(),
+                ext.as_deref().unwrap_or_default(),
+                found.name()
+            ));
+            (found, FormatSource::Content)
+        }
+        (Some(named), _) => (named, FormatSource::Extension),
+        (None, Some(found)) => (found, FormatSource::Content),
+        (None, None) => {
             let what = match &ext {
-                Some(ext) => format!("the extension '.{ext}' is not one of .stl, .obj, .off"),
+                Some(ext) => format!(
+                    "the extension '.{ext}' is not one of .stl, .obj, .off, .ply, .3mf, .gltf, \
+                     .glb"
+                ),
                 None => "the file has no extension".to_string(),
             };
             let what = if bytes.is_empty() {
                 format!("{what}, and the file is empty")
             } else {
-                format!("{what}, and the content looks like none of STL, OBJ, OFF")
+                format!("{what}, and the content looks like none of STL, OBJ, OFF, PLY, 3MF, glTF")
             };
-            ReadError { path: path.to_path_buf(), location: None, message: what }
-        })?,
+            return Err(ReadError { path: path.to_path_buf(), location: None, message: what });
+        }
     };
-    let mut warnings = Vec::new();
+    let mut objects = Vec::new();
+    let mut unit = None;
     let (format, surface) = match family {
         Family::Stl => match stl::classify(&bytes).map_err(with_path)? {
             stl::Kind::Binary { triangles, trailing } => {
@@ -205,29 +400,68 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
                 (Format::StlBinary, LoadedSurface::StlSoup(soup))
             }
             stl::Kind::Ascii => {
-                let mesh = stl::read_ascii(&bytes, &mut warnings).map_err(with_path)?;
+                let (mesh, solids) = stl::read_ascii(&bytes, &mut warnings).map_err(with_path)?;
+                objects = solids;
                 (Format::StlAscii, LoadedSurface::Mesh(mesh))
             }
         },
         Family::Obj => {
-            let mesh = obj::read(&bytes, &mut warnings).map_err(with_path)?;
+            let (mesh, groups) = obj::read(&bytes, &mut warnings).map_err(with_path)?;
+            objects = groups;
             (Format::Obj, LoadedSurface::Mesh(mesh))
         }
         Family::Off => {
             let mesh = off::read(&bytes, &mut warnings).map_err(with_path)?;
             (Format::Off, LoadedSurface::Mesh(mesh))
         }
+        Family::Ply => {
+            let (encoding, mesh) = ply::read(&bytes, &mut warnings).map_err(with_path)?;
+            let format = match encoding {
+                ply::Encoding::Ascii => Format::PlyAscii,
+                ply::Encoding::BinaryLittleEndian => Format::PlyBinaryLittleEndian,
+                ply::Encoding::BinaryBigEndian => Format::PlyBinaryBigEndian,
+            };
+            (format, LoadedSurface::Mesh(mesh))
+        }
+        Family::ThreeMf => {
+            let model = threemf::read(&bytes, &mut warnings).map_err(with_path)?;
+            objects = model.objects;
+            unit = Some(model.unit);
+            (Format::ThreeMf, LoadedSurface::Mesh(model.mesh))
+        }
+        Family::Gltf => {
+            let scene = gltf::read(path, &bytes, &mut warnings).map_err(with_path)?;
+            objects = scene.objects;
+            unit = Some(LengthUnit::Metre);
+            let format = if scene.binary { Format::Glb } else { Format::Gltf };
+            (format, LoadedSurface::Mesh(scene.mesh))
+        }
     };
-    Ok(Loaded { format, surface, warnings })
+    Ok(Loaded {
+        format,
+        format_source,
+        surface,
+        objects: objects_if_several(objects),
+        unit,
+        warnings,
+    })
 }
 
-/// Recognises a format by content: an OFF header, the binary STL size rule, a leading
-/// `solid`, or lines of OBJ statements.
+/// Recognises a format by content: magic bytes (PLY, GLB, zip), an OFF header, the
+/// binary STL size rule, a leading `solid`, a JSON object, or lines of OBJ statements.
 fn sniff(bytes: &[u8]) -> Option<Family> {
-    if off::looks_like_off(bytes) {
+    if ply::looks_like_ply(bytes) {
+        Some(Family::Ply)
+    } else if gltf::looks_like_glb(bytes) {
+        Some(Family::Gltf)
+    } else if threemf::looks_like_zip(bytes) {
+        Some(Family::ThreeMf)
+    } else if off::looks_like_off(bytes) {
         Some(Family::Off)
     } else if stl::is_binary_stl_by_size(bytes) || stl::is_ascii_stl(bytes) {
         Some(Family::Stl)
+    } else if gltf::looks_like_json(bytes) {
+        Some(Family::Gltf)
     } else if obj::looks_like_obj(bytes) {
         Some(Family::Obj)
     } else {

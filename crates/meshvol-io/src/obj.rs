@@ -10,7 +10,12 @@
 //!   name a vertex defined later in the file: ranges are checked after reading. Faces keep
 //!   their size ([`meshvol::Faces::Polygons`] unless every face is a triangle).
 //!
-//! Ignored quietly: comments (`#`), `vt`, `vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`.
+//! Objects: `o name` starts an object; in a file without `o` statements, `g name` starts
+//! one. An object holds the faces up to the next such statement; the faces before the
+//! first one form an object with an empty name; objects without faces are left out (see
+//! [`crate::Object`]).
+//!
+//! Ignored quietly: comments (`#`), `vt`, `vn`, `vp`, `s`, `usemtl`, `mtllib`.
 //! Counted and reported in one warning: `l` (line) and `p` (point) elements, which hold
 //! no volume, and other statements (free-form curves and surfaces).
 //!
@@ -28,6 +33,7 @@ use rayon::prelude::*;
 
 use crate::error::ParseError;
 use crate::text::{self, NumberError};
+use crate::Object;
 
 /// Target bytes per parallel chunk.
 const CHUNK: usize = 1 << 20;
@@ -46,6 +52,10 @@ enum Statement {
     Face,
     Line,
     Point,
+    /// `o name`.
+    Object,
+    /// `g name`.
+    Group,
     /// Known and not needed, or empty / comment.
     Skip,
     /// A keyword that is not read.
@@ -75,7 +85,9 @@ fn classify(b: &[u8], s: usize) -> (Statement, usize) {
     let kind = match &b[s..e] {
         b"l" => Statement::Line,
         b"p" => Statement::Point,
-        b"vt" | b"vn" | b"vp" | b"o" | b"g" | b"s" | b"usemtl" | b"mtllib" => Statement::Skip,
+        b"o" => Statement::Object,
+        b"g" => Statement::Group,
+        b"vt" | b"vn" | b"vp" | b"s" | b"usemtl" | b"mtllib" => Statement::Skip,
         [first, rest @ ..]
             if first.is_ascii_alphabetic()
                 && rest.iter().all(|b| b.is_ascii_alphanumeric() || *b == b'_') =>
@@ -174,12 +186,44 @@ struct Chunk {
     points: usize,
     unknown: usize,
     unknown_names: Vec<String>,
+    /// `o` and `g` statements: which, the byte range of the name, the chunk's face count
+    /// before it.
+    markers: Vec<(Statement, (usize, usize), usize)>,
     error: Option<(usize, String)>,
 }
 
-/// Parses an OBJ file.
-pub(crate) fn read(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, ParseError> {
+/// Parses an OBJ file into a mesh and its objects.
+pub(crate) fn read(
+    bytes: &[u8],
+    warnings: &mut Vec<String>,
+) -> Result<(Mesh, Vec<Object>), ParseError> {
     read_chunked(bytes, warnings, CHUNK)
+}
+
+/// The objects that `o` statements start, or `g` statements where there is no `o`.
+fn objects(bytes: &[u8], chunks: &[Chunk]) -> Vec<Object> {
+    let kind = if chunks.iter().any(|c| c.markers.iter().any(|m| m.0 == Statement::Object)) {
+        Statement::Object
+    } else {
+        Statement::Group
+    };
+    let mut starts = vec![(String::new(), 0)];
+    let mut faces = 0;
+    for chunk in chunks {
+        for &(k, (s, e), first) in &chunk.markers {
+            if k == kind {
+                starts.push((text::lossy_name(&bytes[s..e]), faces + first));
+            }
+        }
+        faces += chunk.face_ends.len();
+    }
+    let ends: Vec<usize> = starts.iter().skip(1).map(|s| s.1).chain([faces]).collect();
+    starts
+        .into_iter()
+        .zip(ends)
+        .filter(|((_, start), end)| end > start)
+        .map(|((name, start), end)| Object { name, faces: start..end })
+        .collect()
 }
 
 /// [`read`] with chunks of about `chunk` bytes.
@@ -187,7 +231,7 @@ fn read_chunked(
     bytes: &[u8],
     warnings: &mut Vec<String>,
     chunk: usize,
-) -> Result<Mesh, ParseError> {
+) -> Result<(Mesh, Vec<Object>), ParseError> {
     let start = text::bom_len(bytes);
     let bounds = line_boundaries(bytes, start, chunk.max(1));
     let chunks: Vec<Chunk> =
@@ -204,6 +248,7 @@ fn read_chunked(
         ));
     }
     warn_ignored(&chunks, warnings);
+    let objects = objects(bytes, &chunks);
 
     // Where each chunk's vertices and indices start in the whole mesh.
     let mut vertex_base = Vec::with_capacity(chunks.len());
@@ -266,7 +311,8 @@ fn read_chunked(
         Faces::Polygons { offsets, indices }
     };
     drop(chunks);
-    Mesh::new(positions, faces).map_err(|e| ParseError::new(None, e.to_string()))
+    let mesh = Mesh::new(positions, faces).map_err(|e| ParseError::new(None, e.to_string()))?;
+    Ok((mesh, objects))
 }
 
 /// Turns a chunk's stored indices into absolute ones; on a bad index returns its
@@ -395,6 +441,11 @@ fn parse_chunk(bytes: &[u8], start: usize, end: usize) -> Chunk {
             }),
             Statement::Face => parse_face(b, s, e, &mut chunk),
             Statement::Skip => Ok(e),
+            Statement::Object | Statement::Group => {
+                let line_end = memchr::memchr(b'\n', &b[e..]).map_or(b.len(), |i| e + i);
+                chunk.markers.push((kind, (e, line_end), chunk.face_ends.len()));
+                Ok(e)
+            }
             Statement::Line => {
                 chunk.lines += 1;
                 Ok(e)
@@ -512,6 +563,8 @@ mod tests {
         let kind = |line: &[u8]| classify(line, text::skip_blank(line, 0));
         assert_eq!(kind(b"  v 1 2 3"), (Statement::Vertex, 3));
         assert_eq!(kind(b"vt 1 2").0, Statement::Skip);
+        assert_eq!(kind(b"o part").0, Statement::Object);
+        assert_eq!(kind(b"g\n").0, Statement::Group);
         assert_eq!(kind(b"\tf 1 2 3\r\n").0, Statement::Face);
         assert_eq!(kind(b"f\r\n").0, Statement::Face);
         assert_eq!(kind(b"#v 1 2 3").0, Statement::Skip);
@@ -536,7 +589,7 @@ mod tests {
             file += &format!("v {i} 0 0\nv {i} 1 0\nv {i} 0 1\nf -3 -2 -1\n");
         }
         let bytes = file.as_bytes();
-        let mesh = read_chunked(bytes, &mut vec![], 100).unwrap();
+        let (mesh, _) = read_chunked(bytes, &mut vec![], 100).unwrap();
         let bounds = line_boundaries(bytes, 0, 100);
         assert!(bounds.len() > 10);
         assert_eq!(mesh.face_count(), 200);
@@ -576,11 +629,13 @@ mod tests {
             b"p 1\n",
             b"curv 1\n",
             b"1",
+            b"\no part\n",
+            b"\ng group\n",
         ];
         let run = |bytes: &[u8], chunk: usize| {
             let mut warnings = vec![];
             let result = read_chunked(bytes, &mut warnings, chunk)
-                .map(|m| (m.positions().to_vec(), m.faces().clone()))
+                .map(|(m, objects)| (m.positions().to_vec(), m.faces().clone(), objects))
                 .map_err(|e| (e.location, e.message));
             (result, warnings)
         };

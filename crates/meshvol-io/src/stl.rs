@@ -22,8 +22,8 @@
 //!
 //! Keywords in any case, tokens separated by any whitespace (CRLF included), a name that
 //! is the rest of the `solid` / `endsolid` line (possibly empty, as OpenSCAD and FreeCAD
-//! write it), and any number of `solid` blocks, whose triangles are concatenated (a
-//! warning names the solids). The normal is not read (writers put `nan` there for
+//! write it), and any number of `solid` blocks, whose triangles are concatenated; with
+//! two or more solids each is an [`Object`] named after its `solid` line. The normal is not read (writers put `nan` there for
 //! degenerate facets). Each facet must have exactly three vertices. A file that ends
 //! inside a solid after a complete facet is accepted with a warning; one that ends inside
 //! a facet is an error.
@@ -50,6 +50,7 @@ use rayon::prelude::*;
 use crate::error::{line_of, Location, ParseError};
 use crate::source::Bytes;
 use crate::text::{self, NumberError};
+use crate::Object;
 
 /// Bytes before the first record: the 80-byte header and the triangle count.
 const DATA: usize = 84;
@@ -300,19 +301,29 @@ enum State {
 /// What one chunk of an ASCII file gave.
 struct Chunk {
     positions: Vec<Point>,
-    /// The byte ranges of the names of the solids opened in the chunk.
-    solids: Vec<(usize, usize)>,
+    /// The solids opened in the chunk.
+    solids: Vec<Solid>,
     end_state: State,
     /// The first token of the chunk (where a state mismatch is reported).
     first_token: usize,
     error: Option<(usize, String)>,
 }
 
+/// A `solid` line: the byte range of its name, and the chunk's facet count before it.
+#[derive(Clone, Copy)]
+struct Solid {
+    name: (usize, usize),
+    first_facet: usize,
+}
+
 /// Target bytes per parallel chunk of an ASCII file.
 const ASCII_CHUNK: usize = 1 << 20;
 
-/// Parses an ASCII STL into a mesh with three vertices per facet.
-pub(crate) fn read_ascii(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, ParseError> {
+/// Parses an ASCII STL into a mesh with three vertices per facet, and its solids.
+pub(crate) fn read_ascii(
+    bytes: &[u8],
+    warnings: &mut Vec<String>,
+) -> Result<(Mesh, Vec<Object>), ParseError> {
     read_ascii_chunked(bytes, warnings, ASCII_CHUNK)
 }
 
@@ -321,7 +332,7 @@ fn read_ascii_chunked(
     bytes: &[u8],
     warnings: &mut Vec<String>,
     chunk: usize,
-) -> Result<Mesh, ParseError> {
+) -> Result<(Mesh, Vec<Object>), ParseError> {
     let start = text::bom_len(bytes);
     let bounds = facet_boundaries(bytes, start, chunk.max(1));
     let chunks: Vec<Chunk> = bounds
@@ -349,36 +360,35 @@ fn read_ascii_chunked(
         }
         state = chunk.end_state;
     }
-    let solids: Vec<(usize, usize)> =
-        chunks.iter().flat_map(|c| c.solids.iter().copied()).collect();
     if state == State::InSolid {
         warnings.push(format!(
             "the file ends at line {} without 'endsolid'",
             line_of(bytes, bytes.len())
         ));
     }
-    if solids.len() > 1 {
-        let mut names: Vec<String> = solids
-            .iter()
-            .take(5)
-            .map(|&(s, e)| format!("'{}'", text::show(&bytes[s..e])))
-            .collect();
-        if solids.len() > 5 {
-            names.push("…".into());
-        }
-        warnings.push(format!(
-            "{} solids in one file ({}); their triangles are measured together",
-            solids.len(),
-            names.join(", ")
-        ));
-    }
 
-    let total: usize = chunks.iter().map(|c| c.positions.len()).sum();
-    let mut positions = Vec::with_capacity(total);
+    // Each solid runs to the next one's first facet.
+    let mut starts = Vec::new();
+    let mut facets = 0;
+    for chunk in &chunks {
+        starts.extend(chunk.solids.iter().map(|s| (s.name, facets + s.first_facet)));
+        facets += chunk.positions.len() / 3;
+    }
+    let objects = starts
+        .iter()
+        .enumerate()
+        .map(|(i, &((s, e), first))| Object {
+            name: text::lossy_name(&bytes[s..e]),
+            faces: first..starts.get(i + 1).map_or(facets, |next| next.1),
+        })
+        .collect();
+
+    let mut positions = Vec::with_capacity(3 * facets);
     for chunk in chunks {
         positions.extend_from_slice(&chunk.positions);
     }
-    soup_mesh(positions).map_err(|e| ParseError::new(None, e.to_string()))
+    let mesh = soup_mesh(positions).map_err(|e| ParseError::new(None, e.to_string()))?;
+    Ok((mesh, objects))
 }
 
 /// Chunk boundaries: `start`, then line starts whose first token is `facet`, at least
@@ -497,7 +507,8 @@ fn parse_chunk(bytes: &[u8], start: usize, end: usize, mut state: State) -> Chun
         }
         match state {
             State::Outside if cur.is(tok, b"solid") => {
-                chunk.solids.push(cur.rest_of_line());
+                let name = cur.rest_of_line();
+                chunk.solids.push(Solid { name, first_facet: chunk.positions.len() / 3 });
                 state = State::InSolid;
             }
             State::Outside => {
@@ -648,7 +659,7 @@ mod tests {
             })
             .collect();
         assert_eq!(chunks.iter().sum::<usize>(), 30);
-        assert_eq!(read_ascii(file.as_bytes(), &mut warnings).unwrap().face_count(), 10);
+        assert_eq!(read_ascii(file.as_bytes(), &mut warnings).unwrap().0.face_count(), 10);
     }
 
     /// Any chunking gives what one sequential pass gives: the same triangles or the same
@@ -688,7 +699,7 @@ mod tests {
         let run = |bytes: &[u8], chunk: usize| {
             let mut warnings = vec![];
             let result = read_ascii_chunked(bytes, &mut warnings, chunk)
-                .map(|m| m.positions().to_vec())
+                .map(|(m, objects)| (m.positions().to_vec(), objects))
                 .map_err(|e| (e.location, e.message));
             (result, warnings)
         };

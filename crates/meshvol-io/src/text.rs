@@ -100,6 +100,12 @@ pub fn show(token: &[u8]) -> String {
     }
 }
 
+/// A name as the file writes it (an STL solid's, an OBJ group's): lossy UTF-8, trimmed,
+/// not shortened.
+pub fn lossy_name(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).trim().to_string()
+}
+
 /// The token that starts at `pos`, for messages.
 pub fn show_token(bytes: &[u8], pos: usize) -> String {
     let pos = pos.min(bytes.len());

@@ -1,11 +1,17 @@
-//! The shared corpus of real files (../shared/corpus), when it is present.
+//! The shared corpus of real files (../shared/corpus), when it is present: every file
+//! reads or fails clearly, facts known from outside, and agreement with trimesh's
+//! volumes (tests/data/corpus-trimesh.json, written by scripts/corpus-reference.py).
 
 mod common;
 
 use std::path::{Path, PathBuf};
 
 use common::*;
-use meshvol_io::{read, Format};
+use meshvol_io::{read, Format, FormatSource, LengthUnit};
+
+/// The mesh formats read; the corpus's `.zip` sets (zipped STL and OBJ files, glTF
+/// scenes with textures) are not opened.
+const EXTENSIONS: [&str; 7] = ["stl", "obj", "off", "ply", "3mf", "gltf", "glb"];
 
 fn corpus() -> Option<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
@@ -25,7 +31,7 @@ fn mesh_files(dir: &Path, out: &mut Vec<PathBuf>) {
         if path.is_dir() {
             mesh_files(&path, out);
         } else if let Some(ext) = path.extension().and_then(|e| e.to_str()) {
-            if ["stl", "obj", "off"].contains(&ext.to_ascii_lowercase().as_str()) {
+            if EXTENSIONS.contains(&ext.to_ascii_lowercase().as_str()) {
                 out.push(path);
             }
         }
@@ -96,10 +102,46 @@ fn known_facts() {
         assert_close(volume(&off.surface).abs(), edge.powi(3), 1e-4);
     }
 
-    // Two cubes in one ASCII STL: warned about, measured together.
+    // Two bodies in one ASCII STL: two objects.
     let two = read(&models.join("multibody.stl")).unwrap();
     assert_eq!(two.format, Format::StlAscii);
-    assert!(two.warnings.iter().any(|w| w.contains("2 solids")), "{:?}", two.warnings);
+    let names: Vec<&str> = two.objects.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names, ["bodyB", "bodyA"]);
+
+    // 3MF: units and objects. featuretype is in inches; the same part as an STL.
+    let part = read(&models.join("featuretype.3MF")).unwrap();
+    assert_eq!((part.format, part.unit), (Format::ThreeMf, Some(LengthUnit::Inch)));
+    let stl = read(&models.join("featuretype.STL")).unwrap();
+    assert_close(volume(&part.surface) / volume(&stl.surface), 1.0, 1e-3);
+    let pyramids = read(&models.join("pyramids.3mf")).unwrap();
+    assert_eq!(pyramids.unit, Some(LengthUnit::Millimetre));
+    assert_eq!(pyramids.objects.len(), 9, "{:?}", pyramids.objects);
+    // Items 1..3 place the same object: equal volumes, different places.
+    let v = |i: usize| {
+        volume(&meshvol::FaceRange::new(&pyramids.surface, pyramids.objects[i].faces.clone()))
+    };
+    assert_close(v(1), v(0), 1e-9 * v(0));
+    // counterXP places five copies of one component with rotations: the same volume as
+    // the STL export of the whole (counter.unitsmm.STL) to the STL's f32 rounding.
+    let placed = read(&models.join("counterXP.3MF")).unwrap();
+    let exported = read(&models.join("counter.unitsmm.STL")).unwrap();
+    assert_close(volume(&placed.surface) / volume(&exported.surface), 1.0, 1e-6);
+
+    // glTF: metres; nodes are objects; the default scene only.
+    let boxes = read(&models.join("BoxInterleaved.glb")).unwrap();
+    assert_eq!((boxes.format, boxes.unit), (Format::Glb, Some(LengthUnit::Metre)));
+    assert_close(volume(&boxes.surface), 1.0, 1e-6);
+    let scene = read(&models.join("TestScene.gltf")).unwrap();
+    assert_eq!(scene.format, Format::Gltf);
+    assert!(scene.objects.len() >= 2, "{:?}", scene.objects);
+
+    // PLY: a point cloud reads with no faces; the textured ASCII fuze has extra values.
+    let points = read(&models.join("points_bin.ply")).unwrap();
+    assert_eq!((points.face_count(), points.vertex_count()), (0, 5));
+    let fuze = read(&models.join("fuze_ascii.ply")).unwrap();
+    let binary = read(&models.join("fuze.ply")).unwrap();
+    assert_eq!(fuze.format_source, FormatSource::Extension);
+    assert_close(volume(&fuze.surface), volume(&binary.surface), 1e-9);
 
     // Broken on purpose.
     assert!(read(&models.join("notenoughindices.obj")).is_err());
@@ -126,4 +168,51 @@ fn mutated_corpus_files_never_panic() {
             }
         }
     }
+}
+
+/// Closed meshes (trimesh: watertight and consistently wound) where meshvol and trimesh
+/// differ by more than the relative 1e-6, with the reason. None so far. Files that are
+/// not closed are not compared: their "volume" depends on the reference point of the
+/// sum (multibody.stl: both bodies watertight but inconsistently wound, trimesh 0.01404
+/// about its reference, meshvol's kernel -0.00248 about its own, the plain origin sum
+/// 0.00370).
+const TRIMESH_EXCEPTIONS: &[(&str, &str)] = &[];
+
+/// meshvol's volume against trimesh's for every closed mesh of the corpus. Three files
+/// differ by more than rounding, far below 1e-6, and the cause is known where checked:
+/// - sphere.ply (4.0e-9): ASCII coordinates declared `float`; trimesh rounds the
+///   decimals to f32 (volume 4.152740112525789 by a plain sum over f32-rounded values),
+///   meshvol parses the digits written to f64 (4.152740129088976 by the same sum).
+/// - counterXP.3MF (1.0e-9): the exact volume of the file's decimals and transforms, in
+///   rational arithmetic, is 888808.1287328213; meshvol gives 888808.1287328196,
+///   trimesh 888808.1278410442 (the same with `process=False`, so not vertex merging).
+/// - pins.glb (2.7e-9): not traced; node transforms as in counterXP.
+#[test]
+fn volumes_agree_with_trimesh() {
+    let Some(dir) = corpus() else { return };
+    let reference: serde_json::Value =
+        serde_json::from_str(include_str!("data/corpus-trimesh.json")).unwrap();
+    let files = reference["files"].as_object().unwrap();
+    let mut compared = 0;
+    let mut disagree = vec![];
+    for (name, r) in files {
+        let closed = r["watertight"].as_bool() == Some(true)
+            && r["winding_consistent"].as_bool() == Some(true);
+        if !closed {
+            continue;
+        }
+        let expected = r["volume"].as_f64().unwrap();
+        let loaded = read(&dir.join(name)).unwrap_or_else(|e| panic!("trimesh reads it: {e}"));
+        let v = meshvol::mass_properties(&loaded.surface).signed_volume;
+        let relative = (v - expected).abs() / expected.abs();
+        let exception = TRIMESH_EXCEPTIONS.iter().find(|(file, _)| file == name);
+        println!("{name}: meshvol {v}, trimesh {expected}, relative {relative:.1e}");
+        if relative > 1e-6 && exception.is_none() {
+            disagree.push(format!("{name}: meshvol {v}, trimesh {expected}"));
+        }
+        compared += 1;
+    }
+    println!("{compared} closed meshes compared with trimesh {}", reference["trimesh_version"]);
+    assert!(compared >= 40, "{compared}");
+    assert!(disagree.is_empty(), "{disagree:#?}");
 }

@@ -151,7 +151,7 @@ fn errors_carry_lines() {
         let line = line_of(from);
         let e = read_err("e.obj", good.replacen(from, to, 1));
         assert_eq!(
-            (e.location, e.message.as_str()),
+            (e.location.clone(), e.message.as_str()),
             (Some(Location::Line(line)), *message),
             "{to}"
         );
@@ -168,7 +168,11 @@ fn errors_carry_lines() {
         ("v 1 2 x", "invalid number 'x'"),
     ] {
         let e = read_err("e.obj", good.replacen(&v, to, 1));
-        assert_eq!((e.location, e.message.as_str()), (Some(Location::Line(line)), message), "{to}");
+        assert_eq!(
+            (e.location.clone(), e.message.as_str()),
+            (Some(Location::Line(line)), message),
+            "{to}"
+        );
     }
     let e = read_err("e.obj", good.clone() + "3 4 5\n");
     assert_eq!(e.message, "expected an OBJ statement, found '3'");

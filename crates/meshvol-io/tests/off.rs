@@ -108,7 +108,7 @@ fn errors_carry_lines() {
     for (from, to, line, message) in &cases {
         let e = read_err("e.off", good.replacen(from.as_str(), to, 1));
         assert_eq!(
-            (e.location, e.message.as_str()),
+            (e.location.clone(), e.message.as_str()),
             (Some(Location::Line(*line)), *message),
             "{to}"
         );

@@ -5,7 +5,7 @@ mod common;
 use std::path::Path;
 
 use common::*;
-use meshvol_io::{read, Format, Location, ReadError};
+use meshvol_io::{read, Format, FormatSource, Location, ReadError};
 
 fn obj_tetra() -> String {
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n".into()
@@ -13,11 +13,36 @@ fn obj_tetra() -> String {
 
 #[test]
 fn format_names() {
-    let names: Vec<String> = [Format::StlBinary, Format::StlAscii, Format::Obj, Format::Off]
-        .iter()
-        .map(|f| f.to_string())
-        .collect();
-    assert_eq!(names, ["stl-binary", "stl-ascii", "obj", "off"]);
+    let names: Vec<String> = [
+        Format::StlBinary,
+        Format::StlAscii,
+        Format::Obj,
+        Format::Off,
+        Format::PlyAscii,
+        Format::PlyBinaryLittleEndian,
+        Format::PlyBinaryBigEndian,
+        Format::ThreeMf,
+        Format::Gltf,
+        Format::Glb,
+    ]
+    .iter()
+    .map(|f| f.to_string())
+    .collect();
+    assert_eq!(
+        names,
+        [
+            "stl-binary",
+            "stl-ascii",
+            "obj",
+            "off",
+            "ply-ascii",
+            "ply-binary-le",
+            "ply-binary-be",
+            "3mf",
+            "gltf",
+            "glb"
+        ]
+    );
     assert_eq!(Format::Obj.name(), "obj");
 }
 
@@ -35,10 +60,11 @@ fn unknown_extensions_are_sniffed() {
             Format::Off,
         ),
     ];
-    for name in ["mesh.dat", "mesh", "mesh.txt"] {
+    for name in ["mesh.dat", "mesh", "mesh.txt", "-"] {
         for (bytes, format) in &cases {
             let loaded = read_as(name, bytes.clone()).unwrap();
             assert_eq!(loaded.format, *format);
+            assert_eq!(loaded.format_source, FormatSource::Content);
             assert_close(volume(&loaded.surface), 1.0 / 6.0, 1e-7);
         }
     }
@@ -46,16 +72,16 @@ fn unknown_extensions_are_sniffed() {
 
 #[test]
 fn unrecognised_content_is_a_clear_error() {
-    let e = read_err("model.ply", "ply\nformat ascii 1.0\nend_header\n");
+    let e = read_err("model.xyz", "1 2 3\n4 5 6\n");
     assert_eq!(e.location, None);
     assert_eq!(
         e.to_string(),
-        "model.ply: the extension '.ply' is not one of .stl, .obj, .off, and the content looks like none of STL, OBJ, OFF"
+        "model.xyz: the extension '.xyz' is not one of .stl, .obj, .off, .ply, .3mf, .gltf, .glb, and the content looks like none of STL, OBJ, OFF, PLY, 3MF, glTF"
     );
     let e = read_err("noext", "");
     assert!(e.message.contains("no extension") && e.message.contains("empty"), "{e}");
     let e = read_err("x.3mf", vec![0x50, 0x4b, 3, 4, 0, 0, 0, 0]);
-    assert!(e.message.contains(".3mf"), "{e}");
+    assert!(e.message.contains("zip"), "{e}");
 }
 
 #[test]
@@ -103,4 +129,62 @@ fn read_error_display() {
     assert_eq!(e.to_string(), "a/b.stl: m");
     let _: &dyn std::error::Error = &e;
     assert_eq!(e.path, Path::new("a/b.stl"));
+}
+
+#[test]
+fn content_that_contradicts_the_extension_wins_with_a_warning() {
+    // A .stl that is OBJ text, a .obj that is OFF, a .ply that is a binary STL.
+    let off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    let cases: Vec<(&str, Vec<u8>, Format, &str)> = vec![
+        (
+            "part.stl",
+            obj_tetra().into_bytes(),
+            Format::Obj,
+            "the content is OBJ, not STL as the extension '.stl' says: read as OBJ",
+        ),
+        ("part.obj", off.into(), Format::Off, "the content is OFF, not OBJ"),
+        (
+            "part.ply",
+            binary_stl("", &tetra_triangles()),
+            Format::StlBinary,
+            "the content is STL, not PLY",
+        ),
+    ];
+    for (name, bytes, format, warning) in cases {
+        let loaded = read_as(name, bytes).unwrap();
+        assert_eq!((loaded.format, loaded.format_source), (format, FormatSource::Content));
+        assert!(loaded.warnings[0].starts_with(warning), "{:?}", loaded.warnings);
+        assert_close(volume(&loaded.surface), 1.0 / 6.0, 1e-7);
+    }
+    // Content the extension's reader accepts: the extension decides, no warning.
+    let loaded = read_as("part.obj", obj_tetra()).unwrap();
+    assert_eq!((loaded.format_source, loaded.warnings.len()), (FormatSource::Extension, 0));
+    // A broken file of the extension's format is that format's error, not a guess.
+    let e = read_err("part.obj", "v 0 0 0\nf 1 2 x\n");
+    assert_eq!(e.location, Some(Location::Line(2)));
+}
+
+#[test]
+fn obj_objects_from_o_or_g() {
+    let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n");
+    let tetra = "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    text += "g ignored when there are o statements\n";
+    text += tetra;
+    text += "o first one\ng group\n";
+    text += tetra;
+    text += "o empty\no  last \n";
+    text += tetra;
+    let loaded = read_as("m.obj", text).unwrap();
+    let objects: Vec<_> =
+        loaded.objects.iter().map(|o| (o.name.as_str(), o.faces.clone())).collect();
+    assert_eq!(objects, [("", 0..4), ("first one", 4..8), ("last", 8..12)]);
+    // Without o, g names the objects; a single group gives no list.
+    let groups =
+        read_as("g.obj", format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\ng a\n{tetra}g b\n{tetra}"))
+            .unwrap();
+    let names: Vec<&str> = groups.objects.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names, ["a", "b"]);
+    let one =
+        read_as("g.obj", format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\ng a\n{tetra}")).unwrap();
+    assert!(one.objects.is_empty());
 }

@@ -5,6 +5,7 @@ mod common;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use common::*;
+use meshvol_io::write::PlyEncoding;
 
 fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     let tris = box_triangles([0.0, 0.0, 0.0], [1.0, 2.0, 3.0]);
@@ -21,6 +22,14 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
             obj += &format!("f {} {} {} {}\r\n", n[0], n[1], n[2], n[3]);
         }
     }
+    let mesh = box_mesh([0.0; 3], [1.0, 2.0, 3.0]);
+    let ply = |encoding| {
+        let mut out = vec![];
+        meshvol_io::write::ply(&mut out, &mesh, encoding).unwrap();
+        out
+    };
+    let mut glb = vec![];
+    meshvol_io::write::glb(&mut glb, &mesh).unwrap();
     let mut off = String::from("OFF\n# box\n8 6 12\n");
     for p in box_corners([0.0; 3], [1.0, 2.0, 3.0]) {
         off += &format!("{} {} {}\n", p[0], p[1], p[2]);
@@ -38,6 +47,17 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
         ),
         ("m.obj", obj.into_bytes()),
         ("m.off", off.into_bytes()),
+        ("m.ply", ply(PlyEncoding::Ascii)),
+        ("m.ply", ply(PlyEncoding::BinaryLittleEndian)),
+        ("m.ply", ply(PlyEncoding::BinaryBigEndian)),
+        ("m.glb", glb),
+        (
+            "m.3mf",
+            three_mf(&format!(
+                r#"<model unit="inch"><resources><object id="1">{}</object><object id="2"><components><component objectid="1" transform="1 0 0 0 1 0 0 0 1 5 0 0"/></components></object></resources><build><item objectid="1"/><item objectid="2"/></build></model>"#,
+                three_mf_box_mesh([0.0; 3], [1.0, 2.0, 3.0])
+            )),
+        ),
     ]
 }
 
@@ -91,7 +111,7 @@ fn random_bytes_never_panic() {
     for round in 0..2000 {
         let n = rng.below(300);
         let input: Vec<u8> = (0..n).map(|_| rng.next() as u8).collect();
-        for name in ["r.stl", "r.obj", "r.off", "r"] {
+        for name in ["r.stl", "r.obj", "r.off", "r.ply", "r.3mf", "r.gltf", "r.glb", "r"] {
             let result = catch_unwind(AssertUnwindSafe(|| read_as(name, input.clone())));
             assert!(result.is_ok(), "{name} round {round} panicked on {input:?}");
         }

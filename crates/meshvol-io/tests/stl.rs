@@ -171,15 +171,22 @@ fn ascii_any_case_any_whitespace_bom() {
 }
 
 #[test]
-fn ascii_several_solids_are_concatenated() {
+fn ascii_several_solids_are_objects() {
     let a = box_triangles(ORIGIN, SIZE);
     let b = box_triangles([10.0, 10.0, 10.0], [1.0, 1.0, 1.0]);
-    let text = ascii_solid("bodyA", &a, "\n") + &ascii_solid("bodyB", &b, "\n");
+    let text = ascii_solid("bodyA", &a, "\n") + &ascii_solid("body B", &b, "\n");
     let loaded = read_as("two.stl", text).unwrap();
     assert_eq!(loaded.face_count(), 24);
     assert_close(volume(&loaded.surface), BOX_VOLUME + 1.0, 1e-12);
-    assert_eq!(loaded.warnings.len(), 1);
-    assert!(loaded.warnings[0].contains("'bodyA', 'bodyB'"), "{:?}", loaded.warnings);
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let objects: Vec<_> =
+        loaded.objects.iter().map(|o| (o.name.as_str(), o.faces.clone())).collect();
+    assert_eq!(objects, [("bodyA", 0..12), ("body B", 12..24)]);
+    let second = meshvol::FaceRange::new(&loaded.surface, loaded.objects[1].faces.clone());
+    assert_close(volume(&second), 1.0, 1e-12);
+    // One solid: no object list.
+    let one = read_as("one.stl", ascii_solid("only", &a, "\n")).unwrap();
+    assert!(one.objects.is_empty());
 }
 
 #[test]
@@ -242,7 +249,7 @@ fn ascii_errors_carry_lines() {
         assert_ne!(bad, good);
         let e = read_err("e.stl", bad);
         assert_eq!(
-            (e.location, e.message.as_str()),
+            (e.location.clone(), e.message.as_str()),
             (Some(Location::Line(*line)), *message),
             "{to}"
         );

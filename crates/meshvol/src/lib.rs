@@ -6,7 +6,14 @@
 //!
 //! - [`mass_properties`]: volume, area, centroid and inertia in one parallel pass, with a
 //!   bound on the rounding error and the same bits at any thread count;
-//! - [`exact_signed_volume`]: the correctly rounded volume of the polyhedron.
+//! - [`exact_signed_volume`]: the correctly rounded volume of the polyhedron;
+//! - [`polygon::area_properties`] and [`polygon::polygon_issues`]: area, centroid and
+//!   second moments of plane polygons with holes, and whether their rings are simple;
+//! - [`section::section`]: the cross-section of a surface by a plane, as polygons;
+//! - `hull::convex_hull` (cargo feature `hull`): the convex hull of a point set;
+//! - [`grid::cell_volumes`], [`grid::profile`] and [`grid::union`]: the exact volume in
+//!   each cell of a grid, volume below each level along an axis, and the volume of a union
+//!   of overlapping bodies as a certified interval.
 //!
 //! Threads come from the caller's rayon pool (`ThreadPool::install`).
 
@@ -14,8 +21,13 @@ pub mod accumulate;
 mod bvh;
 mod eigen;
 pub mod exact;
+pub mod grid;
+#[cfg(feature = "hull")]
+pub mod hull;
 pub mod mesh;
+pub mod polygon;
 pub mod properties;
+pub mod section;
 pub mod shapes;
 pub mod topology;
 mod vector;

@@ -107,8 +107,12 @@ impl SecondMoments {
         // The moment about the axis at angle θ is mean + half_difference·cos 2θ
         // − ixy·sin 2θ, largest where (cos 2θ, sin 2θ) points along
         // (half_difference, −ixy).
-        let angle = 0.5 * (-self.ixy).atan2(half_difference);
-        let angle = if angle < 0.0 { angle + std::f64::consts::PI } else { angle };
+        // (+ 0.0 turns an angle of −0 into 0.)
+        let angle = 0.5 * (-self.ixy).atan2(half_difference) + 0.0;
+        // Axes are directions modulo π: report the angle in [0, π).
+        let pi = std::f64::consts::PI;
+        let angle = if angle < 0.0 { angle + pi } else { angle };
+        let angle = if angle >= pi { angle - pi } else { angle };
         ([mean + radius, mean - radius], angle)
     }
 }
@@ -239,8 +243,9 @@ pub fn signed_area(ring: &[Point2]) -> f64 {
 /// let p = area_properties(&[square]);
 /// assert_eq!(p.area, 7.0);
 /// assert_eq!(p.perimeter, 16.0);
+/// // The centroid is exact to the last digit of its world coordinates (1e-9 at 5e6).
 /// let c = p.centroid.unwrap();
-/// assert_eq!([c[0] - o[0], c[1] - o[1]], [(8.0 * 2.0 - 1.5) / 7.0, 1.0]);
+/// assert!((c[0] - (o[0] + 14.5 / 7.0)).abs() < 1e-9 && c[1] == o[1] + 1.0);
 /// // ix: the rectangle's 4·2³/12 minus the hole's 1/12 (both centred on y = 1).
 /// assert!((p.inertia.ix - (32.0 / 12.0 - 1.0 / 12.0)).abs() < 1e-13);
 /// assert_eq!(p.rings[1].signed_area, 1.0);
@@ -321,13 +326,7 @@ pub fn area_properties<P: Borrow<Polygon>>(polygons: &[P]) -> AreaProperties {
         inertia = SecondMoments { ix, iy, ixy, polar: ix + iy };
         centroid = Some([origin[0] + c[0], origin[1] + c[1]]);
     }
-    AreaProperties {
-        area: double / 2.0,
-        perimeter: perimeter.value(),
-        centroid,
-        inertia,
-        rings,
-    }
+    AreaProperties { area: double / 2.0, perimeter: perimeter.value(), centroid, inertia, rings }
 }
 
 /// Something that makes a polygon's numbers mean other than they seem.
@@ -454,7 +453,17 @@ fn contact(a: [Point2; 2], b: [Point2; 2]) -> Option<Contact> {
         let (a0, a1) = (a[0][axis].min(a[1][axis]), a[0][axis].max(a[1][axis]));
         let (b0, b1) = (b[0][axis].min(b[1][axis]), b[0][axis].max(b[1][axis]));
         let (lo, hi) = (a0.max(b0), a1.min(b1));
-        let point_at = |v: f64| if a[0][axis] == v { a[0] } else if a[1][axis] == v { a[1] } else if b[0][axis] == v { b[0] } else { b[1] };
+        let point_at = |v: f64| {
+            if a[0][axis] == v {
+                a[0]
+            } else if a[1][axis] == v {
+                a[1]
+            } else if b[0][axis] == v {
+                b[0]
+            } else {
+                b[1]
+            }
+        };
         return match lo.partial_cmp(&hi)? {
             std::cmp::Ordering::Less => Some(Contact::Overlap(point_at(lo))),
             std::cmp::Ordering::Equal => Some(Contact::Touch(point_at(lo))),
@@ -492,9 +501,16 @@ struct SweepEdge {
     ring_edges: u32,
 }
 
+/// Whether every vertex of `ring` lies on one line (exactly).
+fn collinear(ring: &[Point2]) -> bool {
+    let Some(&a) = ring.first() else { return true };
+    let Some(&b) = ring.iter().find(|&&p| p != a) else { return true };
+    ring.iter().all(|&p| orient(a, b, p) == 0.0)
+}
+
 /// Whether `point` is inside `ring` (`Some(true)`), outside (`Some(false)`), or on its
 /// boundary (`None`), by the winding number with exact orientation signs.
-fn inside(ring: &[Point2], point: Point2) -> Option<bool> {
+pub(crate) fn point_in_ring(ring: &[Point2], point: Point2) -> Option<bool> {
     let mut winding = 0i64;
     let Some(&last) = ring.last() else { return Some(false) };
     let mut a = last;
@@ -566,7 +582,7 @@ pub fn polygon_issues<P: Borrow<Polygon>>(polygons: &[P]) -> Vec<PolygonIssue> {
             for e in &mut edges[start..] {
                 e.ring_edges = count as u32;
             }
-            if count < 3 || signed_area(ring) == 0.0 {
+            if count < 3 || collinear(ring) {
                 issues.push(PolygonIssue::Degenerate {
                     polygon: polygon_index,
                     ring: ring_index,
@@ -578,9 +594,12 @@ pub fn polygon_issues<P: Borrow<Polygon>>(polygons: &[P]) -> Vec<PolygonIssue> {
             if polygon.exterior.len() < 3 {
                 break;
             }
-            let verdict = hole.iter().find_map(|&p| inside(&polygon.exterior, p));
+            let verdict = hole.iter().find_map(|&p| point_in_ring(&polygon.exterior, p));
             if verdict == Some(false) {
-                issues.push(PolygonIssue::HoleOutside { polygon: polygon_index, ring: hole_index + 1 });
+                issues.push(PolygonIssue::HoleOutside {
+                    polygon: polygon_index,
+                    ring: hole_index + 1,
+                });
             }
         }
     }
@@ -616,12 +635,13 @@ fn sweep(edges: &mut [SweepEdge], issues: &mut Vec<PolygonIssue>) {
                 Contact::Touch(p) if same_ring => p,
                 Contact::Touch(_) => continue,
             };
-            let (first, second) =
-                if (other.polygon, other.ring, other.index) <= (edge.polygon, edge.ring, edge.index) {
-                    (other, edge)
-                } else {
-                    (edge, other)
-                };
+            let (first, second) = if (other.polygon, other.ring, other.index)
+                <= (edge.polygon, edge.ring, edge.index)
+            {
+                (other, edge)
+            } else {
+                (edge, other)
+            };
             let key = [first.polygon, first.ring, second.polygon, second.ring];
             if let Some(&at) = reported.get(&key) {
                 if let PolygonIssue::SelfIntersection { contacts, .. }
@@ -658,5 +678,261 @@ fn sweep(edges: &mut [SweepEdge], issues: &mut Vec<PolygonIssue>) {
             return;
         }
         active.push(i as u32);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic pseudo-random numbers (xorshift64*).
+    struct Rng(u64);
+
+    impl Rng {
+        fn below(&mut self, n: i64) -> i64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as i64 % n
+        }
+    }
+
+    /// A star-shaped ring around (cx, cy) with integer vertices, counter-clockwise.
+    fn star(rng: &mut Rng, n: usize, centre: [i64; 2], radius: i64) -> Vec<[i64; 2]> {
+        (0..n)
+            .map(|i| {
+                let angle = std::f64::consts::TAU * i as f64 / n as f64;
+                let r = (radius / 2 + rng.below(radius / 2)) as f64;
+                [centre[0] + (r * angle.cos()) as i64, centre[1] + (r * angle.sin()) as i64]
+            })
+            .collect()
+    }
+
+    /// Exact sums of a ring with integer vertices, as wound: 2A, 6∫x, 6∫y, 12∫x², 12∫y²,
+    /// 24∫xy.
+    fn exact_sums(ring: &[[i64; 2]]) -> [i128; 6] {
+        let mut s = [0i128; 6];
+        for (j, a) in ring.iter().enumerate() {
+            let b = ring[(j + 1) % ring.len()];
+            let (x0, y0, x1, y1) = (a[0] as i128, a[1] as i128, b[0] as i128, b[1] as i128);
+            let k = x0 * y1 - x1 * y0;
+            s[0] += k;
+            s[1] += (x0 + x1) * k;
+            s[2] += (y0 + y1) * k;
+            s[3] += (x0 * x0 + x0 * x1 + x1 * x1) * k;
+            s[4] += (y0 * y0 + y0 * y1 + y1 * y1) * k;
+            s[5] += (2 * x0 * y0 + x0 * y1 + x1 * y0 + 2 * x1 * y1) * k;
+        }
+        s
+    }
+
+    /// Area, centroid and (ix, iy, ixy) of a polygon with integer vertices, from exact
+    /// integer sums (holes subtract), each rounded once or twice at the end.
+    fn exact_properties(rings: &[Vec<[i64; 2]>]) -> (f64, [f64; 2], [f64; 3]) {
+        let mut total = [0i128; 6];
+        for (i, ring) in rings.iter().enumerate() {
+            let s = exact_sums(ring);
+            let sign = s[0].signum() * if i == 0 { 1 } else { -1 };
+            for (t, x) in total.iter_mut().zip(s) {
+                *t += sign * x;
+            }
+        }
+        let [k, sx, sy, sxx, syy, sxy] = total;
+        // A = k/2, c = s/(3k), ∫x² about c = sxx/12 − sx²/(18k), ∫xy = sxy/24 − sx·sy/(18k).
+        let about = |s2: i128, s2_div: i128, a: i128, b: i128| {
+            (s2 * 18 * k - s2_div * a * b) as f64 / (s2_div * 18 * k) as f64
+        };
+        (
+            k as f64 / 2.0,
+            [sx as f64 / (3 * k) as f64, sy as f64 / (3 * k) as f64],
+            [about(syy, 12, sy, sy), about(sxx, 12, sx, sx), about(sxy, 24, sx, sy)],
+        )
+    }
+
+    #[test]
+    fn parcel_at_utm_coordinates_keeps_every_digit() {
+        // A parcel of about 300 m with vertices on a 1/1024 m grid at (5e6, 1e7): every
+        // coordinate is exact in f64, so the exact area is known.
+        const SCALE: f64 = 1.0 / 1024.0;
+        let offset = [5.0e6, 1.0e7];
+        let mut rng = Rng(7);
+        let outer = star(&mut rng, 60, [160_000, 160_000], 150_000);
+        let hole = star(&mut rng, 20, [150_000, 150_000], 30_000);
+        let world = |ring: &[[i64; 2]]| -> Vec<Point2> {
+            ring.iter()
+                .map(|p| [offset[0] + p[0] as f64 * SCALE, offset[1] + p[1] as f64 * SCALE])
+                .collect()
+        };
+        let polygon = Polygon::new(world(&outer), vec![world(&hole)]);
+        let (exact_area, exact_centroid, exact_moments) =
+            exact_properties(&[outer.clone(), hole.clone()]);
+        let exact_area = exact_area * SCALE * SCALE;
+
+        let p = area_properties(&[&polygon]);
+        assert_eq!(p.area, exact_area);
+
+        // The textbook shoelace on world coordinates.
+        let naive = |ring: &[Point2]| {
+            let mut s = 0.0;
+            for (j, a) in ring.iter().enumerate() {
+                let b = ring[(j + 1) % ring.len()];
+                s += a[0] * b[1] - b[0] * a[1];
+            }
+            s / 2.0
+        };
+        let naive_area = naive(&polygon.exterior) - naive(&polygon.holes[0]);
+        let naive_error = (naive_area - exact_area).abs() / exact_area;
+        assert!(naive_error > 1e-9, "naive shoelace error only {naive_error:e}");
+
+        let c = p.centroid.unwrap();
+        for axis in 0..2 {
+            let exact = offset[axis] + exact_centroid[axis] * SCALE;
+            // Within one ulp of the world coordinate (1.9e-9 at 1e7).
+            assert!((c[axis] - exact).abs() <= 2e-9, "centroid {axis}: {} vs {exact}", c[axis]);
+        }
+        let scale4 = SCALE.powi(4);
+        let got = [p.inertia.ix, p.inertia.iy, p.inertia.ixy];
+        for (g, e) in got.iter().zip(exact_moments) {
+            let e = e * scale4;
+            assert!((g - e).abs() <= 1e-13 * p.inertia.polar, "moment {g} vs {e}");
+        }
+        assert_eq!(p.inertia.polar, p.inertia.ix + p.inertia.iy);
+    }
+
+    #[test]
+    fn holes_subtract_whatever_their_winding() {
+        let outer = vec![[0.0, 0.0], [0.0, 3.0], [3.0, 3.0], [3.0, 0.0]]; // clockwise
+        let ccw_hole = vec![[1.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0]];
+        let cw_hole: Vec<Point2> = ccw_hole.iter().rev().copied().collect();
+        for hole in [ccw_hole, cw_hole] {
+            let p = area_properties(&[Polygon::new(outer.clone(), vec![hole.clone()])]);
+            assert_eq!(p.area, 8.0);
+            assert_eq!(p.centroid, Some([1.5, 1.5]));
+            // Square frame: (3⁴ − 1⁴)/12 about each axis.
+            assert_eq!(p.inertia.ix, 80.0 / 12.0);
+            assert_eq!(p.inertia.ixy, 0.0);
+            assert_eq!(p.rings[0].signed_area, -9.0);
+            assert_eq!(p.rings[1].role, RingRole::Hole);
+            assert_eq!(p.perimeter, 16.0);
+        }
+    }
+
+    #[test]
+    fn moments_of_an_l_shape_match_its_rectangles() {
+        // L = [0,4]×[0,1] ∪ [0,1]×[1,3]; the rectangles' moments by the parallel-axis
+        // theorem are the independent value.
+        let l = Polygon::new(
+            vec![[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [1.0, 1.0], [1.0, 3.0], [0.0, 3.0]],
+            vec![],
+        );
+        let rects = [(4.0, 1.0, [2.0, 0.5]), (1.0, 2.0, [0.5, 2.0])];
+        let area: f64 = rects.iter().map(|r| r.0 * r.1).sum();
+        let c = [0, 1].map(|k| rects.iter().map(|r| r.0 * r.1 * r.2[k]).sum::<f64>() / area);
+        let (mut ix, mut iy, mut ixy) = (0.0, 0.0, 0.0);
+        for (w, h, rc) in rects {
+            let (dx, dy) = (rc[0] - c[0], rc[1] - c[1]);
+            ix += w * h * h * h / 12.0 + w * h * dy * dy;
+            iy += h * w * w * w / 12.0 + w * h * dx * dx;
+            ixy += w * h * dx * dy;
+        }
+        let p = area_properties(&[l]);
+        assert_eq!(p.area, area);
+        let got = p.centroid.unwrap();
+        assert!((got[0] - c[0]).abs() < 1e-15 && (got[1] - c[1]).abs() < 1e-15);
+        for (g, e) in [(p.inertia.ix, ix), (p.inertia.iy, iy), (p.inertia.ixy, ixy)] {
+            assert!((g - e).abs() < 1e-14, "{g} vs {e}");
+        }
+    }
+
+    #[test]
+    fn random_integer_polygons_match_exact_arithmetic() {
+        let mut rng = Rng(99);
+        for trial in 0..50 {
+            let n = 3 + rng.below(40) as usize;
+            let ring = star(&mut rng, n, [2000, 2000], 2000);
+            let polygon = Polygon::new(ring.iter().map(|p| p.map(|x| x as f64)).collect(), vec![]);
+            let (area, centroid, moments) = exact_properties(&[ring]);
+            let p = area_properties(&[polygon]);
+            assert_eq!(p.area, area, "trial {trial}");
+            let c = p.centroid.unwrap();
+            for k in 0..2 {
+                assert!((c[k] - centroid[k]).abs() <= 1e-12 * centroid[k].abs());
+            }
+            for (g, e) in [p.inertia.ix, p.inertia.iy, p.inertia.ixy].iter().zip(moments) {
+                assert!((g - e).abs() <= 1e-12 * p.inertia.polar, "trial {trial}: {g} vs {e}");
+            }
+        }
+    }
+
+    #[test]
+    fn multipolygons_add_and_empty_input_has_no_centroid() {
+        let unit =
+            |x: f64| Polygon::new(vec![[x, 0.0], [x + 1.0, 0.0], [x + 1.0, 1.0], [x, 1.0]], vec![]);
+        let p = area_properties(&[unit(0.0), unit(2.0)]);
+        assert_eq!(p.area, 2.0);
+        assert_eq!(p.centroid, Some([1.5, 0.5]));
+        // Two unit squares 2 apart: iy = 2·(1/12 + 1²).
+        assert_eq!(p.inertia.iy, 2.0 * (1.0 / 12.0 + 1.0));
+        assert_eq!(p.rings.len(), 2);
+        assert!(polygon_issues(&[unit(0.0), unit(2.0)]).is_empty());
+
+        let empty = area_properties::<Polygon>(&[]);
+        assert_eq!((empty.area, empty.centroid), (0.0, None));
+        let line = Polygon::new(vec![[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]], vec![]);
+        assert_eq!(area_properties(&[&line]).centroid, None);
+        assert!(matches!(polygon_issues(&[&line])[..], [PolygonIssue::Degenerate { ring: 0, .. }]));
+    }
+
+    #[test]
+    fn issues_name_the_rings_and_the_place() {
+        let square = |o: f64, s: f64| vec![[o, o], [o + s, o], [o + s, o + s], [o, o + s]];
+        // A hole that sticks out of its exterior.
+        let p = Polygon::new(square(0.0, 2.0), vec![square(1.0, 2.0)]);
+        let issues = polygon_issues(&[p]);
+        assert!(
+            matches!(
+                issues[..],
+                [PolygonIssue::RingsCross { rings: [(0, 0), (0, 1)], contacts: 2, .. }]
+            ),
+            "{issues:?}"
+        );
+        // A hole entirely outside.
+        let p = Polygon::new(square(0.0, 2.0), vec![square(5.0, 1.0)]);
+        assert_eq!(polygon_issues(&[p]), vec![PolygonIssue::HoleOutside { polygon: 0, ring: 1 }]);
+        // A hole touching the exterior at one corner is allowed; overlapping polygons are not.
+        let p = Polygon::new(square(0.0, 2.0), vec![vec![[0.0, 0.0], [1.0, 0.5], [0.5, 1.0]]]);
+        assert!(polygon_issues(&[p]).is_empty());
+        let issues = polygon_issues(&[
+            Polygon::new(square(0.0, 2.0), vec![]),
+            Polygon::new(square(1.0, 2.0), vec![]),
+        ]);
+        assert!(matches!(issues[..], [PolygonIssue::RingsCross { rings: [(0, 0), (1, 0)], .. }]));
+        assert!(issues[0].to_string().contains("overlap"));
+        // A ring that touches itself at a vertex (two triangles joined at (1, 1)).
+        let pinched = vec![[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [2.0, 2.0], [1.0, 1.0], [0.0, 2.0]];
+        let issues = polygon_issues(&[Polygon::new(pinched, vec![])]);
+        assert!(matches!(issues[..], [PolygonIssue::SelfIntersection { near: [1.0, 1.0], .. }]));
+        // Repeated vertices and a closing copy of the first vertex are not intersections.
+        let repeated = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]];
+        assert!(polygon_issues(&[Polygon::new(repeated, vec![])]).is_empty());
+    }
+
+    #[test]
+    fn the_sweep_finds_a_crossing_in_a_large_ring() {
+        // A 100 000-gon whose last vertex is pulled across the first edges.
+        let n = 100_000;
+        let mut ring: Vec<Point2> = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        assert!(polygon_issues(&[Polygon::new(ring.clone(), vec![])]).is_empty());
+        ring[n - 1] = [1.0, 0.5];
+        let issues = polygon_issues(&[Polygon::new(ring, vec![])]);
+        assert!(
+            matches!(issues[..], [PolygonIssue::SelfIntersection { polygon: 0, ring: 0, .. }]),
+            "{issues:?}"
+        );
     }
 }

@@ -230,3 +230,51 @@ pub fn mutate(rng: &mut Rng, input: &[u8]) -> Vec<u8> {
     }
     out
 }
+
+/// The box of [`box_corners`] as a mesh of six outward quads.
+pub fn box_mesh(origin: Point, size: Point) -> meshvol::Mesh {
+    let quads: Vec<Vec<u32>> =
+        BOX_QUADS.iter().map(|q| q.iter().map(|&i| i as u32).collect()).collect();
+    meshvol::Mesh::from_polygons(box_corners(origin, size), quads.iter().map(|q| q.as_slice()))
+        .unwrap()
+}
+
+/// A 3MF package holding `model` as its model part, with the relationships and content
+/// types a 3MF needs.
+pub fn three_mf(model: &str) -> Vec<u8> {
+    use std::io::Write;
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    let parts = [
+        (
+            "[Content_Types].xml",
+            r#"<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types"><Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/><Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>"#,
+        ),
+        (
+            "_rels/.rels",
+            r#"<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>"#,
+        ),
+        ("3D/3dmodel.model", model),
+    ];
+    for (name, text) in parts {
+        zip.start_file(name, options).unwrap();
+        zip.write_all(text.as_bytes()).unwrap();
+    }
+    zip.finish().unwrap().into_inner()
+}
+
+/// A 3MF `<mesh>` of the box of [`box_triangles`].
+pub fn three_mf_box_mesh(origin: Point, size: Point) -> String {
+    let mut s = String::from("<mesh><vertices>");
+    for p in box_corners(origin, size) {
+        s += &format!(r#"<vertex x="{}" y="{}" z="{}"/>"#, p[0], p[1], p[2]);
+    }
+    s += "</vertices><triangles>";
+    for q in BOX_QUADS {
+        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            s += &format!(r#"<triangle v1="{}" v2="{}" v3="{}"/>"#, t[0], t[1], t[2]);
+        }
+    }
+    s + "</triangles></mesh>"
+}

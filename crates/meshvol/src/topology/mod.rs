@@ -190,10 +190,60 @@ impl Check {
         self.solid.mesh(with_caps)
     }
 
+    /// A one-line verdict, most important fact first: "closed, 2 shells, 1 cavity:
+    /// volume is exact", or what stops the surface from bounding a volume.
+    pub fn verdict(&self) -> String {
+        let c = self;
+        let shells = plural(c.shells.len(), "shell", "shells");
+        let cavities = match c.cavities {
+            0 => String::new(),
+            n => format!(", {}", plural(n, "cavity", "cavities")),
+        };
+        if c.shells.is_empty() {
+            return "no usable faces: nothing bounds a volume".into();
+        }
+        if c.bounds_a_volume() {
+            let wound = match c.orientation {
+                Some(Orientation::Outward) => "",
+                Some(Orientation::Inward) => " (wound inward)",
+                _ => " (shells wound inconsistently; corrected)",
+            };
+            return format!("closed, {shells}{cavities}: volume is exact{wound}");
+        }
+        let mut problems = Vec::new();
+        if c.boundary_loops > 0 {
+            problems.push(format!(
+                "open ({}, capped: volume ± {:.3e})",
+                plural(c.boundary_loops, "hole", "holes"),
+                c.volume_uncertainty
+            ));
+        }
+        if !c.overlapping_shells.is_empty() {
+            problems.push(format!(
+                "{} overlap (their common volume is counted twice: use `meshvol union`)",
+                plural(c.overlapping_shells.len(), "pair of shells", "pairs of shells")
+            ));
+        }
+        if let Some(n) = c.self_intersections.filter(|&n| n > 0) {
+            problems.push(plural(n, "self-intersection", "self-intersections"));
+        }
+        if c.non_manifold_edges > 0 {
+            problems.push(plural(c.non_manifold_edges, "non-manifold edge", "non-manifold edges"));
+        }
+        if c.shells.iter().any(|s| !s.orientable) {
+            problems.push("not orientable (no inside and outside)".into());
+        }
+        format!("does not bound a volume: {}; {shells}{cavities}", problems.join(", "))
+    }
+
     /// What [`Check::solid`] changes: (faces flipped, faces dropped, cap triangles).
     pub fn repairs(&self) -> (usize, usize, usize) {
         self.solid.changes()
     }
+}
+
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// Union–find with path halving.

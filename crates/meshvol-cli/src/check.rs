@@ -1,0 +1,196 @@
+//! `meshvol check`: can the volume be trusted? The same facts appear in `meshvol volume`.
+
+use meshvol::topology::{self, Check, CheckOptions, Orientation};
+use meshvol::Surface;
+use serde::Serialize;
+use std::fmt::Write;
+
+/// One shell in the report.
+#[derive(Debug, Serialize)]
+pub struct ShellReport {
+    pub faces: usize,
+    pub closed: bool,
+    pub orientable: bool,
+    pub volume: f64,
+    pub cavity: bool,
+    pub parent: Option<usize>,
+    pub wound_outward: Option<bool>,
+    pub boundary_loops: usize,
+    pub euler_characteristic: i64,
+    pub genus: Option<i64>,
+}
+
+/// The topology facts. Field names are JSON keys (a public contract); in `volume`
+/// reports they are flattened into the top level.
+#[derive(Debug, Serialize)]
+pub struct CheckReport {
+    pub bounds_a_volume: bool,
+    pub verdict: String,
+    pub closed: bool,
+    /// The weld tolerance used (`null`: exact).
+    pub weld_tolerance: Option<f64>,
+    pub welded_vertices: usize,
+    pub edges: usize,
+    pub boundary_edges: usize,
+    pub boundary_loops: usize,
+    pub non_manifold_edges: usize,
+    pub non_manifold_vertices: usize,
+    pub degenerate_faces: usize,
+    pub duplicate_faces: usize,
+    pub consistently_oriented: bool,
+    /// `outward`, `inward` or `mixed`.
+    pub orientation: Option<&'static str>,
+    /// `ccw` (counter-clockwise seen from outside) or `cw` (as OpenSCAD wants).
+    pub winding: Option<&'static str>,
+    pub shells: usize,
+    pub cavities: usize,
+    pub shell_details: Vec<ShellReport>,
+    pub overlapping_shells: Vec<[usize; 2]>,
+    pub self_intersections: Option<usize>,
+    pub intersection_examples: Vec<[usize; 2]>,
+    pub euler_characteristic: i64,
+    /// The solid's volume from the topology (cavities subtracted, holes capped).
+    pub solid_volume: f64,
+    pub volume_uncertainty: f64,
+}
+
+/// How many shells or pairs the text report lists before summarising.
+const LISTED: usize = 10;
+
+/// Checks `surface` and builds the report.
+pub fn check<S: Surface + ?Sized>(
+    surface: &S,
+    options: &CheckOptions,
+) -> Result<(Check, CheckReport), String> {
+    let c = topology::check(surface, options).map_err(|e| e.to_string())?;
+    let orientation = c.orientation.map(|o| match o {
+        Orientation::Outward => "outward",
+        Orientation::Inward => "inward",
+        Orientation::Mixed => "mixed",
+    });
+    let winding = match c.orientation {
+        Some(Orientation::Outward) => Some("ccw"),
+        Some(Orientation::Inward) => Some("cw"),
+        _ => None,
+    };
+    let report = CheckReport {
+        bounds_a_volume: c.bounds_a_volume(),
+        verdict: c.verdict(),
+        closed: c.closed,
+        weld_tolerance: c.weld_tolerance,
+        welded_vertices: c.vertices,
+        edges: c.edges,
+        boundary_edges: c.boundary_edges,
+        boundary_loops: c.boundary_loops,
+        non_manifold_edges: c.non_manifold_edges,
+        non_manifold_vertices: c.non_manifold_vertices,
+        degenerate_faces: c.degenerate_faces,
+        duplicate_faces: c.duplicate_faces,
+        consistently_oriented: c.consistently_oriented,
+        orientation,
+        winding,
+        shells: c.shells.len(),
+        cavities: c.cavities,
+        shell_details: c
+            .shells
+            .iter()
+            .map(|s| ShellReport {
+                faces: s.faces,
+                closed: s.closed,
+                orientable: s.orientable,
+                volume: s.volume,
+                cavity: s.cavity,
+                parent: s.parent,
+                wound_outward: s.wound_outward,
+                boundary_loops: s.boundary_loops,
+                euler_characteristic: s.euler_characteristic,
+                genus: s.genus,
+            })
+            .collect(),
+        overlapping_shells: c.overlapping_shells.clone(),
+        self_intersections: c.self_intersections,
+        intersection_examples: c.intersection_examples.clone(),
+        euler_characteristic: c.euler_characteristic,
+        solid_volume: c.volume,
+        volume_uncertainty: c.volume_uncertainty,
+    };
+    Ok((c, report))
+}
+
+/// The human-readable report: the verdict first, details after.
+pub fn text(file: &str, format: &str, r: &CheckReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{file}: {}", r.verdict);
+    let _ = writeln!(s, "  format             {format}");
+    let _ = writeln!(
+        s,
+        "  closed             {} ({} boundary edges in {} loops)",
+        r.closed, r.boundary_edges, r.boundary_loops
+    );
+    let weld = r.weld_tolerance.map_or("exact".to_string(), |t| format!("within {t:.3e}"));
+    let _ = writeln!(
+        s,
+        "  vertices           {} welded ({weld}), {} edges",
+        r.welded_vertices, r.edges
+    );
+    let _ = writeln!(
+        s,
+        "  manifold           {} non-manifold edges, {} non-manifold vertices",
+        r.non_manifold_edges, r.non_manifold_vertices
+    );
+    let _ = writeln!(
+        s,
+        "  faces dropped      {} degenerate, {} duplicate",
+        r.degenerate_faces, r.duplicate_faces
+    );
+    let _ = writeln!(
+        s,
+        "  orientation        {} (consistent: {}; winding {})",
+        r.orientation.unwrap_or("none"),
+        r.consistently_oriented,
+        r.winding.unwrap_or("undetermined")
+    );
+    let _ = writeln!(s, "  shells             {} ({} cavities)", r.shells, r.cavities);
+    for (i, sh) in r.shell_details.iter().enumerate().take(LISTED) {
+        let role = if sh.cavity { "cavity" } else { "solid" };
+        let parent = sh.parent.map(|p| format!(" inside shell {p}")).unwrap_or_default();
+        let genus = sh.genus.map(|g| format!(", genus {g}")).unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "    shell {i}: {role}{parent}, {} faces, volume {}, {}{}, χ = {}{genus}",
+            sh.faces,
+            crate::volume::num(sh.volume, 10),
+            if sh.closed { "closed" } else { "open" },
+            if sh.orientable { "" } else { ", not orientable" },
+            sh.euler_characteristic
+        );
+    }
+    if r.shell_details.len() > LISTED {
+        let _ = writeln!(s, "    ... and {} more (see --json)", r.shell_details.len() - LISTED);
+    }
+    if !r.overlapping_shells.is_empty() {
+        let shown = &r.overlapping_shells[..r.overlapping_shells.len().min(LISTED)];
+        let more = r.overlapping_shells.len() - shown.len();
+        let more = if more > 0 { format!(" and {more} more") } else { String::new() };
+        let _ = writeln!(s, "  overlapping shells {shown:?}{more}");
+    }
+    match r.self_intersections {
+        Some(n) => {
+            let _ = writeln!(s, "  self-intersections {n}");
+        }
+        None => {
+            let _ = writeln!(s, "  self-intersections not checked");
+        }
+    }
+    if !r.intersection_examples.is_empty() {
+        let _ = writeln!(s, "  crossing faces     {:?}", r.intersection_examples);
+    }
+    let _ = writeln!(s, "  euler char.        {}", r.euler_characteristic);
+    let _ = writeln!(
+        s,
+        "  volume             {} ± {}",
+        crate::volume::num(r.solid_volume, 15),
+        crate::volume::num(r.volume_uncertainty, 3)
+    );
+    s
+}

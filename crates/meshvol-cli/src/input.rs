@@ -1,0 +1,102 @@
+//! Reading the inputs: files, or `-` for standard input, with a progress bar on stderr
+//! for large inputs.
+//!
+//! The bar shows only when stderr is a terminal, `--quiet` is not given, and the inputs
+//! take more than a moment: standard input, or files of 16 MiB or more in all. It counts
+//! the input bytes done and names the current file and stage; warnings and results are
+//! printed around it. `--quiet` also silences warnings (errors are always printed).
+
+use std::io::{IsTerminal, Read};
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use meshvol_io::Loaded;
+
+/// Inputs of at least this many bytes in all get a progress bar.
+const LARGE: u64 = 16 << 20;
+
+/// The path that means standard input.
+pub fn is_stdin(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// Reads a mesh from a file, or from standard input for `-` (all of it, then the format
+/// from its content).
+pub fn load(path: &Path) -> Result<Loaded, String> {
+    if is_stdin(path) {
+        let mut bytes = Vec::new();
+        std::io::stdin()
+            .lock()
+            .read_to_end(&mut bytes)
+            .map_err(|e| format!("-: cannot read standard input: {e}"))?;
+        return meshvol_io::read_bytes(path, bytes).map_err(|e| e.to_string());
+    }
+    meshvol_io::read(path).map_err(|e| e.to_string())
+}
+
+/// Progress on stderr, and the warnings printed around it.
+pub struct Progress {
+    bar: Option<ProgressBar>,
+    quiet: bool,
+}
+
+impl Progress {
+    pub fn new(paths: &[PathBuf], quiet: bool) -> Progress {
+        let stdin = paths.iter().any(|p| is_stdin(p));
+        let total: u64 =
+            paths.iter().filter_map(|p| std::fs::metadata(p).ok()).map(|m| m.len()).sum();
+        let show = !quiet && std::io::stderr().is_terminal() && (stdin || total >= LARGE);
+        let bar = show.then(|| {
+            let bar = ProgressBar::new(total);
+            let style = ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:30} {bytes}/{total_bytes} {wide_msg}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+            bar.set_style(style);
+            bar.enable_steady_tick(Duration::from_millis(120));
+            bar
+        });
+        Progress { bar, quiet }
+    }
+
+    /// Says what is being done to which file.
+    pub fn stage(&self, what: &str, path: &Path) {
+        if let Some(bar) = &self.bar {
+            bar.set_message(format!("{what} {}", path.display()));
+        }
+    }
+
+    /// Counts a file as done.
+    pub fn done(&self, path: &Path) {
+        if let Some(bar) = &self.bar {
+            bar.inc(std::fs::metadata(path).map_or(0, |m| m.len()));
+        }
+    }
+
+    /// Runs `f` (which prints) with the bar hidden.
+    pub fn suspend<T>(&self, f: impl FnOnce() -> T) -> T {
+        match &self.bar {
+            Some(bar) => bar.suspend(f),
+            None => f(),
+        }
+    }
+
+    /// Prints a warning about `name`, unless quiet.
+    pub fn warn(&self, name: &str, warning: &str) {
+        if !self.quiet {
+            self.suspend(|| eprintln!("meshvol: warning: {name}: {warning}"));
+        }
+    }
+
+    /// Prints an error.
+    pub fn error(&self, error: &str) {
+        self.suspend(|| eprintln!("meshvol: error: {error}"));
+    }
+
+    pub fn finish(self) {
+        if let Some(bar) = self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}

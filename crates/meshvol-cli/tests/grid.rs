@@ -1,0 +1,357 @@
+//! `meshvol grid`, `profile` and `union` end to end: the built binary on files written
+//! here, checked against closed forms (boxes) and by reading the outputs back.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn meshvol(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
+}
+
+fn json(out: &Output) -> Value {
+    assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+fn keys(v: &Value) -> Vec<String> {
+    let mut k: Vec<String> = v.as_object().expect("an object").keys().cloned().collect();
+    k.sort();
+    k
+}
+
+/// OBJ text of the box `lo..hi` (quads wound outward), its vertices numbered from
+/// `first`.
+fn box_obj(lo: [f64; 3], hi: [f64; 3], first: usize) -> String {
+    let mut s = String::new();
+    for k in 0..8 {
+        let p =
+            [0, 1, 2]
+                .map(|a| if [k & 1, (k >> 1) & 1, (k >> 2) & 1][a] == 1 { hi[a] } else { lo[a] });
+        s += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    // Corners: bit 0 = x, bit 1 = y, bit 2 = z.
+    for q in [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [1, 3, 7, 5], [3, 2, 6, 7], [2, 0, 4, 6]] {
+        s += &format!("f {} {} {} {}\n", q[0] + first, q[1] + first, q[2] + first, q[3] + first);
+    }
+    s
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn p(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+/// Reads a little-endian f64 array.
+fn f64s(bytes: &[u8]) -> Vec<f64> {
+    bytes.chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
+}
+
+/// The data of a `.npy` file and its shape.
+fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+    let n = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let header = std::str::from_utf8(&bytes[10..10 + n]).unwrap();
+    assert!(header.contains("'descr': '<f8'") && header.contains("'fortran_order': False"));
+    let shape = header.split("'shape': (").nth(1).unwrap().split(')').next().unwrap();
+    let shape = shape
+        .split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| s.trim().parse().unwrap())
+        .collect();
+    (shape, f64s(&bytes[10 + n..]))
+}
+
+/// The value of attribute `name` in the first tag that has it.
+fn attribute<'a>(xml: &'a str, name: &str) -> &'a str {
+    let start = xml.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+    &xml[start..start + xml[start..].find('"').unwrap()]
+}
+
+/// A `.vti` file read back: extent, origin, spacing, and the `volume` and `fraction`
+/// arrays (x fastest, as VTK stores them).
+struct Vti {
+    extent: Vec<usize>,
+    origin: Vec<f64>,
+    spacing: Vec<f64>,
+    volume: Vec<f64>,
+    fraction: Vec<f64>,
+}
+
+fn read_vti(path: &Path) -> Vti {
+    let bytes = std::fs::read(path).unwrap();
+    let marker = b"<AppendedData encoding=\"raw\">\n_";
+    let at = bytes.windows(marker.len()).position(|w| w == marker).unwrap();
+    let xml = std::str::from_utf8(&bytes[..at]).unwrap();
+    assert!(xml.contains("type=\"ImageData\"") && xml.contains("header_type=\"UInt64\""));
+    assert!(xml.contains("Name=\"volume\"") && xml.contains("Name=\"fraction\""));
+    let numbers =
+        |s: &str| s.split_whitespace().map(|x| x.parse::<f64>().unwrap()).collect::<Vec<_>>();
+    let data = &bytes[at + marker.len()..];
+    let array = |offset: usize| {
+        let n = u64::from_le_bytes(data[offset..offset + 8].try_into().unwrap()) as usize;
+        f64s(&data[offset + 8..offset + 8 + n])
+    };
+    let offsets: Vec<usize> = xml
+        .match_indices("offset=\"")
+        .map(|(i, _)| {
+            let rest = &xml[i + 8..];
+            rest[..rest.find('"').unwrap()].parse().unwrap()
+        })
+        .collect();
+    assert!(std::str::from_utf8(&bytes[bytes.len() - 30..]).unwrap().contains("</VTKFile>"));
+    Vti {
+        extent: numbers(attribute(xml, "WholeExtent")).iter().map(|&x| x as usize).collect(),
+        origin: numbers(attribute(xml, "Origin")),
+        spacing: numbers(attribute(xml, "Spacing")),
+        volume: array(offsets[0]),
+        fraction: array(offsets[1]),
+    }
+}
+
+/// Length of [a0, a1] ∩ [b0, b1].
+fn overlap(a0: f64, a1: f64, b0: f64, b1: f64) -> f64 {
+    (a1.min(b1) - a0.max(b0)).max(0.0)
+}
+
+#[test]
+fn grid_writes_npy_vti_and_csv_that_read_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let (lo, hi) = ([0.25, 0.5, -0.3], [1.5, 1.25, 0.9]);
+    let mesh = write(dir.path(), "box.obj", &box_obj(lo, hi, 1));
+    // A negative first number must not read as a flag.
+    let bounds = "-0,0,-0.5,2,1.5,1";
+    let (npy, vti, csv) =
+        (dir.path().join("c.npy"), dir.path().join("c.vti"), dir.path().join("c.csv"));
+    for out in [&npy, &vti, &csv] {
+        let summary = json(&meshvol(&[
+            "grid",
+            p(&mesh),
+            "--cells",
+            "4,3,5",
+            "--bounds",
+            bounds,
+            "--out",
+            p(out),
+            "--json",
+        ]));
+        assert_eq!(summary["cells"], serde_json::json!([4, 3, 5]));
+        assert_eq!(summary["bounds_from"], "given");
+        assert_eq!(summary["bounds"]["min"], serde_json::json!([0.0, 0.0, -0.5]));
+        let volume = 1.25 * 0.75 * 1.2;
+        assert!((f(&summary["total"]) - volume).abs() < 1e-14);
+        assert!((f(&summary["mesh_volume"]) - volume).abs() < 1e-14);
+        let counted = ["cells_full", "cells_partial", "cells_empty"]
+            .iter()
+            .map(|k| summary[k].as_u64().unwrap())
+            .sum::<u64>();
+        assert_eq!(counted, 60);
+    }
+    // The box against every cell: the product of the overlaps of the intervals.
+    let (cell, origin) = ([0.5, 0.5, 0.3], [0.0, 0.0, -0.5]);
+    let expected = |i: usize, j: usize, k: usize| -> f64 {
+        (0..3)
+            .map(|a| {
+                let c0 = origin[a] + [i, j, k][a] as f64 * cell[a];
+                overlap(c0, c0 + cell[a], lo[a], hi[a])
+            })
+            .product()
+    };
+    let (shape, values) = read_npy(&npy);
+    assert_eq!(shape, vec![4, 3, 5]);
+    for i in 0..4 {
+        for j in 0..3 {
+            for k in 0..5 {
+                let v = values[(i * 3 + j) * 5 + k];
+                assert!((v - expected(i, j, k)).abs() < 1e-15, "npy {i},{j},{k}: {v}");
+            }
+        }
+    }
+    let v = read_vti(&vti);
+    assert_eq!(v.extent, vec![0, 4, 0, 3, 0, 5]);
+    assert_eq!(v.origin, origin.to_vec());
+    assert_eq!(v.spacing, vec![0.5, 0.5, 0.3]);
+    for k in 0..5 {
+        for j in 0..3 {
+            for i in 0..4 {
+                let at = (k * 3 + j) * 4 + i;
+                assert_eq!(v.volume[at], values[(i * 3 + j) * 5 + k]);
+                let cell_volume = 0.5 * 0.5 * 0.3;
+                assert!((v.fraction[at] - values[(i * 3 + j) * 5 + k] / cell_volume).abs() < 1e-15);
+            }
+        }
+    }
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("i,j,k,volume,fraction"));
+    let rows: Vec<Vec<f64>> =
+        lines.map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), values.iter().filter(|&&x| x != 0.0).count());
+    for r in rows {
+        let (i, j, k) = (r[0] as usize, r[1] as usize, r[2] as usize);
+        assert_eq!(r[3], values[(i * 3 + j) * 5 + k]);
+    }
+    // --fraction: volumes over the cell volume.
+    let fractions = dir.path().join("f.npy");
+    json(&meshvol(&[
+        "grid",
+        p(&mesh),
+        "--cells",
+        "4,3,5",
+        "--bounds",
+        bounds,
+        "--out",
+        p(&fractions),
+        "--fraction",
+        "--json",
+    ]));
+    let (_, fr) = read_npy(&fractions);
+    let cell_volume = 0.5 * 0.5 * 0.3;
+    assert!(fr.iter().zip(&values).all(|(a, b)| (a - b / cell_volume).abs() < 1e-15));
+}
+
+#[test]
+fn grid_defaults_to_the_bounding_box_and_draws_a_slice() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = write(dir.path(), "box.obj", &box_obj([0.0; 3], [1.0, 2.0, 3.0], 1));
+    let png = dir.path().join("s.png");
+    let summary = json(&meshvol(&[
+        "grid",
+        p(&mesh),
+        "--pitch",
+        "0.4",
+        "--json",
+        "--png",
+        p(&png),
+        "--slice",
+        "y=2",
+    ]));
+    // 1/0.4 → 3 cells, 2/0.4 → 5, 3/0.4 → 8: the box grows to whole cells.
+    assert_eq!(summary["cells"], serde_json::json!([3, 5, 8]));
+    assert_eq!(summary["bounds_from"], "mesh");
+    assert_eq!(summary["bounds"]["min"], serde_json::json!([0.0, 0.0, 0.0]));
+    assert!((f(&summary["total"]) - 6.0).abs() < 1e-14);
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    // Text: says which bounds were used.
+    let out = meshvol(&["grid", p(&mesh), "--cells", "2,2,2"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("(from the meshes' bounding box)") && text.contains("total          6"),
+        "{text}"
+    );
+}
+
+#[test]
+fn grid_refuses_bad_grids_with_clear_messages() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = write(dir.path(), "box.obj", &box_obj([0.0; 3], [1.0; 3], 1));
+    let usage = [
+        vec!["--cells", "0,4,4"],
+        vec!["--cells", "4,4"],
+        vec!["--cells", "a,b,c"],
+        vec!["--pitch", "-1"],
+        vec!["--cells", "2,2,2", "--bounds", "0,0,0,1,1"],
+        vec!["--cells", "2,2,2", "--bounds", "1,0,0,0,1,1"],
+        vec!["--cells", "2,2,2", "--out", "x.txt"],
+        vec!["--cells", "2,2,2", "--png", "x.png", "--slice", "w=1"],
+    ];
+    for extra in usage {
+        let mut args = vec!["grid", p(&mesh)];
+        args.extend(extra.iter().copied());
+        let out = meshvol(&args);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let out = meshvol(&["grid", p(&mesh), "--cells", "1000000,1000000,1000000"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("meshvol: error:") && err.contains("6.9 EiB"), "{err}");
+    // A slice outside the grid.
+    let png = dir.path().join("s.png");
+    let out = meshvol(&["grid", p(&mesh), "--cells", "2,2,2", "--png", p(&png), "--slice", "z=5"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("outside the grid"));
+    // A flat mesh has no box of its own.
+    let flat = write(dir.path(), "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    let out = meshvol(&["grid", p(&flat), "--cells", "2,2,2"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("give --bounds"));
+}
+
+#[test]
+fn profile_json_and_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = write(dir.path(), "box.obj", &box_obj([0.0; 3], [2.0, 3.0, 4.0], 1));
+    let v = json(&meshvol(&["profile", p(&mesh), "--levels", "4", "--json"]));
+    assert_eq!(keys(&v), ["axis", "levels", "section_area", "slab_volume", "volume_below"]);
+    assert_eq!(v["axis"], "z");
+    assert_eq!(v["levels"], serde_json::json!([0.0, 1.0, 2.0, 3.0, 4.0]));
+    assert_eq!(v["volume_below"], serde_json::json!([0.0, 6.0, 12.0, 18.0, 24.0]));
+    assert_eq!(v["slab_volume"], serde_json::json!([6.0, 6.0, 6.0, 6.0]));
+    assert_eq!(v["section_area"], serde_json::json!([6.0, 6.0, 6.0, 6.0, 6.0]));
+    let v = json(&meshvol(&["profile", p(&mesh), "--axis", "y", "--step", "2", "--json"]));
+    assert_eq!(v["levels"], serde_json::json!([0.0, 2.0, 4.0]));
+    assert_eq!(v["volume_below"], serde_json::json!([0.0, 16.0, 24.0]));
+    let out = meshvol(&["profile", p(&mesh), "--axis", "x", "--levels", "2", "--csv"]);
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap(),
+        "level,volume_below,slab_volume,section_area\n0.0,0.0,12.0,12.0\n1.0,12.0,12.0,12.0\n2.0,24.0,,12.0\n"
+    );
+    assert_eq!(meshvol(&["profile", p(&mesh), "--levels", "0"]).status.code(), Some(2));
+    assert_eq!(meshvol(&["profile", p(&mesh)]).status.code(), Some(2));
+}
+
+#[test]
+fn union_of_files_and_of_shells() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (([0.0; 3], [2.0; 3]), ([1.0, 0.5, 1.5], [3.0, 1.75, 2.5]));
+    let exact = 8.0 + 2.0 * 1.25 * 1.0 - 1.0 * 1.25 * 0.5;
+    let fa = write(dir.path(), "a.obj", &box_obj(a.0, a.1, 1));
+    let fb = write(dir.path(), "b.obj", &box_obj(b.0, b.1, 1));
+    let both = write(dir.path(), "ab.obj", &(box_obj(a.0, a.1, 1) + &box_obj(b.0, b.1, 9)));
+    for files in [vec![p(&fa), p(&fb)], vec![p(&both)]] {
+        let mut args = vec!["union"];
+        args.extend(files);
+        args.push("--json");
+        let v = json(&meshvol(&args));
+        assert_eq!(
+            keys(&v),
+            [
+                "bodies",
+                "cells_refined",
+                "cells_resolved_exactly",
+                "lower",
+                "sum_of_volumes",
+                "upper",
+                "volume"
+            ]
+        );
+        assert_eq!(v["bodies"], 2);
+        assert_eq!(f(&v["sum_of_volumes"]), 10.5);
+        assert!(f(&v["lower"]) <= exact && exact <= f(&v["upper"]), "{v}");
+        assert!(f(&v["upper"]) - f(&v["lower"]) <= 1e-6 * exact);
+        // (serde_json's default parser may be an ulp off.)
+        assert!((f(&v["volume"]) - 0.5 * (f(&v["lower"]) + f(&v["upper"]))).abs() < 1e-14);
+    }
+    // The grid of the union sums to the union's volume.
+    let v = json(&meshvol(&["grid", p(&both), "--union", "--cells", "7,5,6", "--json"]));
+    assert_eq!(v["bodies"], 2);
+    assert!((f(&v["total"]) - exact).abs() < 1e-13, "{v}");
+    let v = json(&meshvol(&["grid", p(&both), "--cells", "7,5,6", "--json"]));
+    assert!((f(&v["total"]) - 10.5).abs() < 1e-13, "{v}");
+}

@@ -1,0 +1,249 @@
+//! Writers for per-cell grid values: NumPy `.npy`, VTK ImageData `.vti`, `.csv`, and a
+//! `.png` picture of one slice.
+//!
+//! Every writer takes the [`Grid`] and its cell volumes in C order (`[i, j, k]` at
+//! `(i·ny + j)·nz + k`, as [`meshvol::grid::cell_volumes`] returns them). Fractions are
+//! volume / cell volume.
+//!
+//! - **`.npy`** (format 1.0): little-endian float64, shape `(nx, ny, nz)`, C order, so
+//!   `numpy.load(f)[i, j, k]` is the cell starting at `origin + (i, j, k)·cell`.
+//! - **`.vti`** (VTK XML ImageData, version 1.0): `WholeExtent="0 nx 0 ny 0 nz"` (point
+//!   extents: the cells are `nx × ny × nz`), `Origin` and `Spacing` written as f64
+//!   text that reads back to the same bits, and two `Float64` cell arrays, `volume`
+//!   and `fraction`, in VTK's order (x fastest), as raw little-endian appended data with
+//!   `UInt64` byte counts: ParaView, VisIt and `vtk` read it.
+//! - **`.csv`**: `i,j,k,volume,fraction`, one row per non-empty cell (|volume| above
+//!   [`OCCUPANCY_TOLERANCE`] of a cell), numbers in shortest round-trip form.
+//! - **`.png`**: one slice of fractions, white (empty) to dark blue (full), red for
+//!   negative (inward-wound) fractions; scaled up to about 512 pixels (down to at most
+//!   4096), with cell borders where cells are at least 6 pixels wide. Image right is the slice's first in-plane
+//!   axis (x for a z slice, y for an x slice, x for a y slice) and up the second.
+
+use meshvol::grid::{Grid, OCCUPANCY_TOLERANCE};
+use std::io::{self, Write};
+
+fn check_len(grid: &Grid, volumes: &[f64]) -> io::Result<()> {
+    if volumes.len() != grid.cell_count() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{} values for a grid of {} cells", volumes.len(), grid.cell_count()),
+        ));
+    }
+    Ok(())
+}
+
+/// Writes f64 values as little-endian bytes, in blocks.
+fn write_f64s(out: &mut impl Write, values: impl Iterator<Item = f64>) -> io::Result<()> {
+    let mut block = Vec::with_capacity(1 << 16);
+    for v in values {
+        block.extend_from_slice(&v.to_le_bytes());
+        if block.len() >= 1 << 16 {
+            out.write_all(&block)?;
+            block.clear();
+        }
+    }
+    out.write_all(&block)
+}
+
+/// A `.npy` file of the cell volumes, or of the fractions with `fraction`.
+pub fn npy(out: &mut impl Write, grid: &Grid, volumes: &[f64], fraction: bool) -> io::Result<()> {
+    check_len(grid, volumes)?;
+    let [nx, ny, nz] = grid.counts;
+    let mut header =
+        format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({nx}, {ny}, {nz}), }}");
+    // Magic (6) + version (2) + length (2) + header, padded with spaces to a multiple of
+    // 64 bytes and ended by a newline.
+    let unpadded = 10 + header.len() + 1;
+    header.push_str(&" ".repeat(unpadded.next_multiple_of(64) - unpadded));
+    header.push('\n');
+    out.write_all(b"\x93NUMPY\x01\x00")?;
+    out.write_all(&(header.len() as u16).to_le_bytes())?;
+    out.write_all(header.as_bytes())?;
+    let scale = if fraction { 1.0 / grid.cell_volume() } else { 1.0 };
+    write_f64s(out, volumes.iter().map(|v| if fraction { v * scale } else { *v }))
+}
+
+/// A `.vti` file with cell arrays `volume` and `fraction`.
+pub fn vti(out: &mut impl Write, grid: &Grid, volumes: &[f64]) -> io::Result<()> {
+    check_len(grid, volumes)?;
+    let [nx, ny, nz] = grid.counts;
+    let [ox, oy, oz] = grid.origin;
+    let [dx, dy, dz] = grid.cell;
+    let bytes = volumes.len() as u64 * 8;
+    write!(
+        out,
+        "<?xml version=\"1.0\"?>\n\
+<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
+  <ImageData WholeExtent=\"0 {nx} 0 {ny} 0 {nz}\" Origin=\"{ox:?} {oy:?} {oz:?}\" Spacing=\"{dx:?} {dy:?} {dz:?}\">\n\
+    <Piece Extent=\"0 {nx} 0 {ny} 0 {nz}\">\n\
+      <CellData Scalars=\"fraction\">\n\
+        <DataArray type=\"Float64\" Name=\"volume\" NumberOfComponents=\"1\" format=\"appended\" offset=\"0\"/>\n\
+        <DataArray type=\"Float64\" Name=\"fraction\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>\n\
+      </CellData>\n\
+    </Piece>\n\
+  </ImageData>\n\
+  <AppendedData encoding=\"raw\">\n_",
+        8 + bytes
+    )?;
+    // VTK orders cells with x fastest: (k·ny + j)·nx + i.
+    let vtk_order = || {
+        (0..nz).flat_map(move |k| {
+            (0..ny).flat_map(move |j| (0..nx).map(move |i| (i * ny + j) * nz + k))
+        })
+    };
+    let scale = 1.0 / grid.cell_volume();
+    out.write_all(&bytes.to_le_bytes())?;
+    write_f64s(out, vtk_order().map(|c| volumes[c]))?;
+    out.write_all(&bytes.to_le_bytes())?;
+    write_f64s(out, vtk_order().map(|c| volumes[c] * scale))?;
+    out.write_all(b"\n  </AppendedData>\n</VTKFile>\n")
+}
+
+/// A `.csv` of the non-empty cells; returns how many rows were written.
+pub fn csv(out: &mut impl Write, grid: &Grid, volumes: &[f64]) -> io::Result<usize> {
+    check_len(grid, volumes)?;
+    let [_, ny, nz] = grid.counts;
+    let cell = grid.cell_volume();
+    let tolerance = OCCUPANCY_TOLERANCE * cell;
+    writeln!(out, "i,j,k,volume,fraction")?;
+    let mut rows = 0;
+    for (c, &v) in volumes.iter().enumerate() {
+        if v.abs() > tolerance {
+            let (i, j, k) = (c / (ny * nz), c / nz % ny, c % nz);
+            writeln!(out, "{i},{j},{k},{v:?},{:?}", v / cell)?;
+            rows += 1;
+        }
+    }
+    Ok(rows)
+}
+
+/// A slice of the grid: all cells with index `index` along `axis` (0, 1, 2 for x, y, z).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Slice {
+    pub axis: usize,
+    pub index: usize,
+}
+
+/// Largest picture side, in pixels.
+const MAX_SIDE: usize = 4096;
+
+/// A `.png` of the fractions in one slice (see the module docs for the colours).
+pub fn png(out: &mut impl Write, grid: &Grid, volumes: &[f64], slice: Slice) -> io::Result<()> {
+    check_len(grid, volumes)?;
+    let invalid = |m: String| io::Error::new(io::ErrorKind::InvalidInput, m);
+    if slice.axis > 2 || slice.index >= grid.counts[slice.axis.min(2)] {
+        let axis = ["x", "y", "z"].get(slice.axis).copied().unwrap_or("?");
+        return Err(invalid(format!(
+            "slice {axis}={} is outside the grid (0 to {})",
+            slice.index,
+            grid.counts[slice.axis.min(2)].saturating_sub(1)
+        )));
+    }
+    // In-plane axes: (u, v) = (y, z) for an x slice, (x, z) for y, (x, y) for z.
+    let (u, v) = match slice.axis {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    };
+    let (nu, nv) = (grid.counts[u], grid.counts[v]);
+    // Pixels per cell for small slices; cells per pixel (nearest) for huge ones.
+    let side = nu.max(nv);
+    let scale = (512 / side).max(1);
+    let shrink = side.div_ceil(MAX_SIDE);
+    let (width, height) = ((nu * scale).div_ceil(shrink), (nv * scale).div_ceil(shrink));
+    let cell_volume = grid.cell_volume();
+    let fraction_at = |a: usize, b: usize| {
+        let mut ijk = [0; 3];
+        ijk[slice.axis] = slice.index;
+        ijk[u] = a;
+        ijk[v] = b;
+        volumes[grid.index(ijk)] / cell_volume
+    };
+    let mut pixels = vec![0u8; width * height * 3];
+    for y in 0..height {
+        let b = (height - 1 - y) * shrink / scale; // up is +v
+        for x in 0..width {
+            let a = x * shrink / scale;
+            let f = fraction_at(a.min(nu - 1), b.min(nv - 1));
+            let border = scale >= 6 && (x % scale == 0 || (height - 1 - y) % scale == 0);
+            let rgb = colour(f, border);
+            pixels[(y * width + x) * 3..][..3].copy_from_slice(&rgb);
+        }
+    }
+    let mut encoder = ::png::Encoder::new(out, width as u32, height as u32);
+    encoder.set_color(::png::ColorType::Rgb);
+    encoder.set_depth(::png::BitDepth::Eight);
+    let mut writer = encoder.write_header().map_err(io::Error::other)?;
+    writer.write_image_data(&pixels).map_err(io::Error::other)?;
+    writer.finish().map_err(io::Error::other)
+}
+
+/// White at 0, dark blue at 1, dark red at −1; borders slightly darker.
+fn colour(fraction: f64, border: bool) -> [u8; 3] {
+    let f = if fraction.is_finite() { fraction.clamp(-1.0, 1.0) } else { 0.0 };
+    let (target, t) = if f >= 0.0 { ([24.0, 64.0, 160.0], f) } else { ([170.0, 30.0, 30.0], -f) };
+    let shade = if border { 0.85 } else { 1.0 };
+    target.map(|c: f64| ((255.0 + (c - 255.0) * t) * shade).round() as u8)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid() -> Grid {
+        Grid::new([0.5, -1.0, 2.0], [0.5, 0.25, 1.0], [2, 3, 4]).unwrap()
+    }
+
+    fn values(g: &Grid) -> Vec<f64> {
+        (0..g.cell_count()).map(|c| c as f64 / 256.0).collect()
+    }
+
+    #[test]
+    fn npy_header_and_data() {
+        let g = grid();
+        let mut out = Vec::new();
+        npy(&mut out, &g, &values(&g), false).unwrap();
+        assert_eq!(&out[..8], b"\x93NUMPY\x01\x00");
+        let header_len = u16::from_le_bytes([out[8], out[9]]) as usize;
+        assert_eq!((10 + header_len) % 64, 0);
+        let header = std::str::from_utf8(&out[10..10 + header_len]).unwrap();
+        assert!(header.contains("'shape': (2, 3, 4)") && header.ends_with('\n'), "{header}");
+        let data = &out[10 + header_len..];
+        assert_eq!(data.len(), 24 * 8);
+        let at = |c: usize| f64::from_le_bytes(data[c * 8..c * 8 + 8].try_into().unwrap());
+        assert_eq!(at(g.index([1, 2, 3])), g.index([1, 2, 3]) as f64 / 256.0);
+        // Fractions: the cell volume is 0.125.
+        let mut out = Vec::new();
+        npy(&mut out, &g, &values(&g), true).unwrap();
+        let data = &out[10 + header_len..];
+        assert_eq!(f64::from_le_bytes(data[8..16].try_into().unwrap()), 8.0 / 256.0);
+    }
+
+    #[test]
+    fn csv_rows_for_non_empty_cells() {
+        let g = grid();
+        let mut v = vec![0.0; 24];
+        v[g.index([1, 0, 2])] = 0.0625;
+        let mut out = Vec::new();
+        assert_eq!(csv(&mut out, &g, &v).unwrap(), 1);
+        assert_eq!(String::from_utf8(out).unwrap(), "i,j,k,volume,fraction\n1,0,2,0.0625,0.5\n");
+    }
+
+    #[test]
+    fn png_is_a_png_and_bad_slices_are_refused() {
+        let g = grid();
+        let mut out = Vec::new();
+        png(&mut out, &g, &values(&g), Slice { axis: 2, index: 1 }).unwrap();
+        assert_eq!(&out[..8], b"\x89PNG\r\n\x1a\n");
+        let err = png(&mut Vec::new(), &g, &values(&g), Slice { axis: 2, index: 4 }).unwrap_err();
+        assert!(err.to_string().contains("z=4 is outside the grid (0 to 3)"), "{err}");
+        // A slice wider than 4096 cells is shrunk to fit, not cut off.
+        let wide = Grid::new([0.0; 3], [1.0; 3], [5000, 3, 1]).unwrap();
+        let mut out = Vec::new();
+        png(&mut out, &wide, &vec![1.0; 15000], Slice { axis: 2, index: 0 }).unwrap();
+        let width = u32::from_be_bytes(out[16..20].try_into().unwrap());
+        assert_eq!(width, 2500);
+        assert_eq!(colour(0.0, false), [255, 255, 255]);
+        assert_eq!(colour(1.0, false), [24, 64, 160]);
+    }
+}

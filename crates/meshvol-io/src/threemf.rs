@@ -1,0 +1,582 @@
+//! 3MF: a zip archive (OPC package) whose model part, an XML document, holds the mesh.
+//!
+//! ```text
+//! <model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
+//!   <resources>
+//!     <object id="1" name="bolt" type="model">
+//!       <mesh>
+//!         <vertices> <vertex x="0" y="0" z="0"/> ... </vertices>
+//!         <triangles> <triangle v1="0" v2="1" v3="2"/> ... </triangles>
+//!       </mesh>
+//!     </object>
+//!     <object id="2"> <components> <component objectid="1" transform="..."/> </components> </object>
+//!   </resources>
+//!   <build> <item objectid="2" transform="m00 m01 m02 m10 m11 m12 m20 m21 m22 m30 m31 m32"/> </build>
+//! </model>
+//! ```
+//!
+//! The model part is the target of the package's `3dmodel` relationship
+//! (`_rels/.rels`), or `3D/3dmodel.model`. Read: every build item, its object expanded
+//! through components (any depth), each mesh placed by the product of the component
+//! and item transforms (3 × 4 affine matrices, row-vector convention: a point
+//! `[x y z 1]` times the matrix). A mirroring transform (negative determinant) reverses
+//! the winding, so outward faces stay outward. Each build item is an
+//! [`Object`](crate::Object), named after its object's `name`, else the item's
+//! `partnumber`, else `object ID`. Items whose object is of type `support`, `surface` or
+//! `other` hold no solid: skipped with a warning.
+//!
+//! The model's `unit` (`micron`, `millimeter` — the default —, `centimeter`, `inch`,
+//! `foot`, `meter`) becomes [`crate::Loaded::unit`]. Elements of other namespaces
+//! (materials, beam lattices, slices) are ignored; a component or item in another model
+//! part (the production extension's `p:path`) is an error, as it is not read.
+//!
+//! Checked: every coordinate finite, every triangle's indices within its object's
+//! vertices, every referenced object defined, no component cycles, and the expanded
+//! build within 32-bit vertex indices and 10 million placements before anything is
+//! reserved. Errors name the archive part and its line.
+
+use std::borrow::Cow;
+use std::collections::HashMap;
+use std::io::Read;
+
+use meshvol::{Mesh, Point};
+use quick_xml::events::{BytesStart, Event};
+use quick_xml::name::ResolveResult;
+use quick_xml::NsReader;
+
+use crate::error::{line_of, Location, ParseError};
+use crate::transform::{Affine, Placed};
+use crate::{LengthUnit, Object};
+
+/// The 3MF core namespace.
+const CORE: &[u8] = b"http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
+/// The model part when the package names none.
+const DEFAULT_MODEL: &str = "3D/3dmodel.model";
+/// The most bytes one archive part may decompress to.
+const MAX_PART: u64 = 1 << 32;
+/// The most placements (build items and components, expanded) that are read.
+const MAX_PLACEMENTS: u64 = 10_000_000;
+
+/// What a 3MF file gave.
+pub(crate) struct Model {
+    pub mesh: Mesh,
+    pub objects: Vec<Object>,
+    pub unit: LengthUnit,
+}
+
+/// Whether the bytes start like a zip archive.
+pub(crate) fn looks_like_zip(bytes: &[u8]) -> bool {
+    bytes.starts_with(b"PK\x03\x04")
+}
+
+/// Reads a 3MF package.
+pub(crate) fn read(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Model, ParseError> {
+    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes))
+        .map_err(|e| ParseError::new(None, format!("not a readable zip archive: {e}")))?;
+    let part = model_part(&mut archive)?;
+    let xml = read_part(&mut archive, &part)?;
+    let in_part = |at: usize, message: String| {
+        let line = line_of(&xml, at);
+        ParseError::new(Some(Location::PartLine { part: part.clone(), line }), message)
+    };
+    let parsed = parse_model(&xml).map_err(|(at, message)| in_part(at, message))?;
+    build(&parsed, warnings, &in_part)
+}
+
+/// The name of the model part: the `3dmodel` relationship's target, or the default.
+fn model_part(archive: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>) -> Result<String, ParseError> {
+    let target = match read_part(archive, "_rels/.rels") {
+        Ok(rels) => relationship_target(&rels),
+        Err(_) => None,
+    };
+    let wanted = target.unwrap_or_else(|| DEFAULT_MODEL.to_string());
+    let names: Vec<&str> = archive.file_names().collect();
+    if names.contains(&wanted.as_str()) {
+        return Ok(wanted);
+    }
+    names
+        .iter()
+        .find(|n| n.eq_ignore_ascii_case(&wanted))
+        .map(|n| n.to_string())
+        .ok_or_else(|| ParseError::new(None, format!("the archive has no model part '{wanted}'")))
+}
+
+/// The target of the first relationship whose type ends in `/3dmodel`, without its
+/// leading `/`.
+fn relationship_target(rels: &[u8]) -> Option<String> {
+    let mut reader = quick_xml::Reader::from_reader(rels);
+    loop {
+        match reader.read_event().ok()? {
+            Event::Start(e) | Event::Empty(e) if e.local_name().as_ref() == b"Relationship" => {
+                let ty = attribute(&e, b"Type")?;
+                if ty.ends_with(b"/3dmodel") {
+                    let target = attribute(&e, b"Target")?;
+                    return Some(
+                        String::from_utf8_lossy(&target).trim_start_matches('/').to_string(),
+                    );
+                }
+            }
+            Event::Eof => return None,
+            _ => {}
+        }
+    }
+}
+
+/// The raw value of an unprefixed attribute (borrowed from the part: no allocation per
+/// vertex or triangle).
+fn attribute<'e>(e: &'e BytesStart<'_>, name: &[u8]) -> Option<Cow<'e, [u8]>> {
+    e.attributes().with_checks(false).flatten().find(|a| a.key.as_ref() == name).map(|a| a.value)
+}
+
+/// The decompressed bytes of an archive part.
+fn read_part(
+    archive: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>,
+    name: &str,
+) -> Result<Vec<u8>, ParseError> {
+    let error = |m: String| ParseError::new(None, format!("archive part '{name}': {m}"));
+    let file = archive.by_name(name).map_err(|e| error(e.to_string()))?;
+    let mut data = Vec::with_capacity(file.size().min(64 << 20) as usize);
+    file.take(MAX_PART + 1).read_to_end(&mut data).map_err(|e| error(e.to_string()))?;
+    if data.len() as u64 > MAX_PART {
+        return Err(error(format!("more than {MAX_PART} bytes")));
+    }
+    Ok(data)
+}
+
+/// What an object holds.
+enum Content {
+    Mesh { positions: Vec<Point>, triangles: Vec<[u32; 3]> },
+    Components(Vec<Component>),
+}
+
+struct Component {
+    object: u64,
+    transform: Affine,
+    /// Where it is in the part.
+    at: usize,
+}
+
+struct ModelObject {
+    name: Option<String>,
+    /// `model` or `solidsupport` (a solid), or another type (not measured).
+    solid: bool,
+    kind: String,
+    content: Content,
+}
+
+struct Item {
+    object: u64,
+    transform: Affine,
+    part_number: Option<String>,
+    /// Where it is in the part.
+    at: usize,
+}
+
+/// The parsed model part.
+struct Parsed {
+    unit: LengthUnit,
+    objects: HashMap<u64, ModelObject>,
+    items: Vec<Item>,
+}
+
+/// Where the parser is.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Tag {
+    Model,
+    Resources,
+    Object,
+    Mesh,
+    Vertices,
+    Triangles,
+    Components,
+    Build,
+    /// A core element not read, or another namespace's element.
+    Other,
+}
+
+/// An error at byte `at` of the part.
+type XmlError = (usize, String);
+
+/// An attribute as text, entities expanded.
+fn text_attribute(e: &BytesStart<'_>, name: &str) -> Option<String> {
+    let a = e.try_get_attribute(name).ok().flatten()?;
+    a.normalized_value(quick_xml::XmlVersion::Implicit1_0).ok().map(|v| v.into_owned())
+}
+
+fn number(e: &BytesStart<'_>, name: &[u8], at: usize) -> Result<f64, XmlError> {
+    let raw = attribute(e, name).ok_or_else(|| {
+        (at, format!("<{}> has no '{}' attribute", show(e), String::from_utf8_lossy(name)))
+    })?;
+    let value: f64 = fast_float2::parse(raw.trim_ascii()).map_err(|_| {
+        (
+            at,
+            format!(
+                "invalid number '{}' in '{}'",
+                crate::text::show(&raw),
+                String::from_utf8_lossy(name)
+            ),
+        )
+    })?;
+    if !value.is_finite() {
+        return Err((at, format!("non-finite coordinate '{}'", crate::text::show(&raw))));
+    }
+    Ok(value)
+}
+
+fn integer(e: &BytesStart<'_>, name: &[u8], at: usize) -> Result<u64, XmlError> {
+    let raw = attribute(e, name).ok_or_else(|| {
+        (at, format!("<{}> has no '{}' attribute", show(e), String::from_utf8_lossy(name)))
+    })?;
+    std::str::from_utf8(raw.trim_ascii()).ok().and_then(|s| s.parse().ok()).ok_or_else(|| {
+        (
+            at,
+            format!(
+                "invalid '{}' value '{}'",
+                String::from_utf8_lossy(name),
+                crate::text::show(&raw)
+            ),
+        )
+    })
+}
+
+fn show(e: &BytesStart<'_>) -> String {
+    String::from_utf8_lossy(e.name().as_ref()).into_owned()
+}
+
+/// A `transform` attribute, identity when absent.
+fn transform(e: &BytesStart<'_>, at: usize) -> Result<Affine, XmlError> {
+    let Some(raw) = attribute(e, b"transform") else { return Ok(Affine::IDENTITY) };
+    let values: Vec<f64> = raw
+        .split(|b| b.is_ascii_whitespace())
+        .filter(|w| !w.is_empty())
+        .map(|w| fast_float2::parse::<f64, _>(w).ok().filter(|v| v.is_finite()))
+        .collect::<Option<_>>()
+        .filter(|v: &Vec<f64>| v.len() == 12)
+        .ok_or_else(|| {
+            (
+                at,
+                format!(
+                    "invalid transform '{}': expected 12 finite numbers",
+                    crate::text::show(&raw)
+                ),
+            )
+        })?;
+    // Row-vector convention: x' = x·m00 + y·m10 + z·m20 + m30.
+    Ok(Affine([0, 1, 2].map(|r| [values[r], values[3 + r], values[6 + r], values[9 + r]])))
+}
+
+/// An error for a reference into another model part (production extension).
+fn no_path(e: &BytesStart<'_>, at: usize) -> Result<(), XmlError> {
+    let other_part = e
+        .attributes()
+        .with_checks(false)
+        .flatten()
+        .any(|a| a.key.local_name().as_ref() == b"path" && a.key.prefix().is_some());
+    if other_part {
+        return Err((
+            at,
+            "refers to an object in another model part (p:path), which is not read".into(),
+        ));
+    }
+    Ok(())
+}
+
+fn unit(raw: &[u8], at: usize) -> Result<LengthUnit, XmlError> {
+    Ok(match raw {
+        b"micron" => LengthUnit::Micrometre,
+        b"millimeter" => LengthUnit::Millimetre,
+        b"centimeter" => LengthUnit::Centimetre,
+        b"inch" => LengthUnit::Inch,
+        b"foot" => LengthUnit::Foot,
+        b"meter" => LengthUnit::Metre,
+        _ => return Err((at, format!("unknown unit '{}'", crate::text::show(raw)))),
+    })
+}
+
+/// Parses the model part.
+fn parse_model(xml: &[u8]) -> Result<Parsed, XmlError> {
+    let mut reader = NsReader::from_reader(xml);
+    let mut parsed =
+        Parsed { unit: LengthUnit::Millimetre, objects: HashMap::new(), items: Vec::new() };
+    let mut stack: Vec<Tag> = Vec::new();
+    // The object being read: its id and what it holds so far.
+    let mut object: Option<(u64, ModelObject)> = None;
+    loop {
+        let at = reader.buffer_position() as usize;
+        let (ns, event) = match reader.read_resolved_event() {
+            Ok(resolved) => resolved,
+            Err(e) => {
+                let message = format!("invalid XML: {e}");
+                return Err((reader.error_position() as usize, message));
+            }
+        };
+        let core = match ns {
+            ResolveResult::Bound(ns) => ns.as_ref() == CORE,
+            ResolveResult::Unbound => true,
+            ResolveResult::Unknown(_) => false,
+        };
+        let (e, empty) = match event {
+            Event::Start(e) => (e, false),
+            Event::Empty(e) => (e, true),
+            Event::End(_) => {
+                if stack.pop() == Some(Tag::Object) {
+                    if let Some((id, done)) = object.take() {
+                        if parsed.objects.insert(id, done).is_some() {
+                            return Err((at, format!("object id {id} is defined twice")));
+                        }
+                    }
+                }
+                continue;
+            }
+            Event::Eof => break,
+            _ => continue,
+        };
+        let parent = stack.last().copied();
+        let name = e.local_name();
+        let tag = match (core, parent, name.as_ref()) {
+            (true, None, b"model") => {
+                if let Some(raw) = attribute(&e, b"unit") {
+                    parsed.unit = unit(&raw, at)?;
+                }
+                Tag::Model
+            }
+            (true, Some(Tag::Model), b"resources") => Tag::Resources,
+            (true, Some(Tag::Model), b"build") => Tag::Build,
+            (true, Some(Tag::Resources), b"object") => {
+                let id = integer(&e, b"id", at)?;
+                let kind = attribute(&e, b"type")
+                    .map_or("model".to_string(), |t| String::from_utf8_lossy(&t).into_owned());
+                let name = text_attribute(&e, "name");
+                let solid = kind == "model" || kind == "solidsupport";
+                let content = Content::Components(Vec::new());
+                let done = ModelObject { name, solid, kind, content };
+                if empty {
+                    if parsed.objects.insert(id, done).is_some() {
+                        return Err((at, format!("object id {id} is defined twice")));
+                    }
+                    continue;
+                }
+                object = Some((id, done));
+                Tag::Object
+            }
+            (true, Some(Tag::Object), b"mesh") => {
+                if let Some((_, o)) = &mut object {
+                    o.content = Content::Mesh { positions: Vec::new(), triangles: Vec::new() };
+                }
+                Tag::Mesh
+            }
+            (true, Some(Tag::Object), b"components") => Tag::Components,
+            (true, Some(Tag::Mesh), b"vertices") => Tag::Vertices,
+            (true, Some(Tag::Mesh), b"triangles") => Tag::Triangles,
+            (true, Some(Tag::Vertices), b"vertex") => {
+                let p = [number(&e, b"x", at)?, number(&e, b"y", at)?, number(&e, b"z", at)?];
+                if let Some((_, ModelObject { content: Content::Mesh { positions, .. }, .. })) =
+                    &mut object
+                {
+                    positions.push(p);
+                }
+                Tag::Other
+            }
+            (true, Some(Tag::Triangles), b"triangle") => {
+                let v = [integer(&e, b"v1", at)?, integer(&e, b"v2", at)?, integer(&e, b"v3", at)?];
+                if let Some((
+                    _,
+                    ModelObject { content: Content::Mesh { positions, triangles }, .. },
+                )) = &mut object
+                {
+                    if let Some(&bad) = v.iter().find(|&&i| i >= positions.len() as u64) {
+                        return Err((
+                            at,
+                            format!(
+                                "triangle {} uses vertex {bad}, but the object has {} vertices \
+                                 before it",
+                                triangles.len(),
+                                positions.len()
+                            ),
+                        ));
+                    }
+                    triangles.push(v.map(|i| i as u32));
+                }
+                Tag::Other
+            }
+            (true, Some(Tag::Components), b"component") => {
+                no_path(&e, at)?;
+                let component = Component {
+                    object: integer(&e, b"objectid", at)?,
+                    transform: transform(&e, at)?,
+                    at,
+                };
+                if let Some((_, ModelObject { content: Content::Components(list), .. })) =
+                    &mut object
+                {
+                    list.push(component);
+                }
+                Tag::Other
+            }
+            (true, Some(Tag::Build), b"item") => {
+                no_path(&e, at)?;
+                parsed.items.push(Item {
+                    object: integer(&e, b"objectid", at)?,
+                    transform: transform(&e, at)?,
+                    part_number: text_attribute(&e, "partnumber"),
+                    at,
+                });
+                Tag::Other
+            }
+            (_, None, _) => {
+                return Err((at, format!("the root element is <{}>, not <model>", show(&e))))
+            }
+            _ => Tag::Other,
+        };
+        if !empty {
+            stack.push(tag);
+        }
+    }
+    if !stack.is_empty() {
+        return Err((xml.len(), "the XML ends inside an element".into()));
+    }
+    Ok(parsed)
+}
+
+/// What an object expands to: vertices, triangles and placements (itself included).
+#[derive(Clone, Copy, Default)]
+struct Size {
+    vertices: u64,
+    triangles: u64,
+    placements: u64,
+}
+
+/// The expanded size of object `root` (referenced at byte `at`) and of every object
+/// reachable from it, memoized in `sizes`; errors on undefined objects and cycles.
+/// Iterative: component chains may be as deep as the file is long.
+fn size(
+    parsed: &Parsed,
+    root: u64,
+    at: usize,
+    sizes: &mut HashMap<u64, Option<Size>>,
+) -> Result<Size, (usize, String)> {
+    // (object, where it is referenced, the next component to visit; None before the
+    // first visit). `sizes` holds None for the objects on the stack.
+    let mut stack: Vec<(u64, usize, Option<usize>)> = vec![(root, at, None)];
+    while let Some(top) = stack.last_mut() {
+        let (id, at) = (top.0, top.1);
+        let object =
+            parsed.objects.get(&id).ok_or_else(|| (at, format!("object {id} is not defined")))?;
+        let next = match top.2 {
+            Some(next) => next,
+            None => {
+                match sizes.get(&id) {
+                    Some(Some(_)) => {
+                        stack.pop();
+                        continue;
+                    }
+                    Some(None) => {
+                        return Err((
+                            at,
+                            format!("object {id} contains itself through its components"),
+                        ))
+                    }
+                    None => {}
+                }
+                if let Content::Mesh { positions, triangles } = &object.content {
+                    let size = Size {
+                        vertices: positions.len() as u64,
+                        triangles: triangles.len() as u64,
+                        placements: 1,
+                    };
+                    sizes.insert(id, Some(size));
+                    stack.pop();
+                    continue;
+                }
+                sizes.insert(id, None);
+                0
+            }
+        };
+        let Content::Components(list) = &object.content else { continue };
+        if let Some(c) = list.get(next) {
+            top.2 = Some(next + 1);
+            stack.push((c.object, c.at, None));
+            continue;
+        }
+        let mut sum = Size { placements: 1, ..Size::default() };
+        for c in list {
+            let s = sizes.get(&c.object).copied().flatten().unwrap_or_default();
+            sum.vertices = sum.vertices.saturating_add(s.vertices);
+            sum.triangles = sum.triangles.saturating_add(s.triangles);
+            sum.placements = sum.placements.saturating_add(s.placements);
+        }
+        sizes.insert(id, Some(sum));
+        stack.pop();
+    }
+    Ok(sizes.get(&root).copied().flatten().unwrap_or_default())
+}
+
+/// Places every build item's meshes.
+fn build(
+    parsed: &Parsed,
+    warnings: &mut Vec<String>,
+    in_part: &dyn Fn(usize, String) -> ParseError,
+) -> Result<Model, ParseError> {
+    // Sizes first, each object's once: nothing is reserved before the totals are known.
+    let mut sizes = HashMap::new();
+    let mut total = Size::default();
+    let mut measured = Vec::new();
+    let mut skipped = Vec::new();
+    for item in &parsed.items {
+        let s = size(parsed, item.object, item.at, &mut sizes).map_err(|(at, m)| in_part(at, m))?;
+        let object = &parsed.objects[&item.object];
+        if !object.solid {
+            skipped.push(format!("object {} ({})", item.object, object.kind));
+            continue;
+        }
+        total.vertices = total.vertices.saturating_add(s.vertices);
+        total.triangles = total.triangles.saturating_add(s.triangles);
+        total.placements = total.placements.saturating_add(s.placements);
+        measured.push(item);
+    }
+    if !skipped.is_empty() {
+        warnings.push(format!(
+            "skipped {} build items that are not solids: {}",
+            skipped.len(),
+            skipped.join(", ")
+        ));
+    }
+    if total.placements > MAX_PLACEMENTS {
+        return Err(ParseError::new(
+            None,
+            format!(
+                "the build expands to {} placed objects; more than {MAX_PLACEMENTS} are not read",
+                total.placements
+            ),
+        ));
+    }
+    let mut placed = Placed::with_capacity(total.vertices, total.triangles)
+        .map_err(|m| ParseError::new(None, m))?;
+    for item in measured {
+        let first = placed.triangle_count();
+        let mut stack = vec![(item.object, item.transform)];
+        while let Some((id, placement)) = stack.pop() {
+            // Defined: `size` checked every reachable object.
+            let Some(object) = parsed.objects.get(&id) else { continue };
+            match &object.content {
+                Content::Mesh { positions, triangles } => {
+                    placed.add(positions, triangles, &placement)
+                }
+                Content::Components(list) => {
+                    for c in list.iter().rev() {
+                        stack.push((c.object, c.transform.then(&placement)));
+                    }
+                }
+            }
+        }
+        let object = &parsed.objects[&item.object];
+        let name = object
+            .name
+            .clone()
+            .or_else(|| item.part_number.clone())
+            .unwrap_or_else(|| format!("object {}", item.object));
+        placed.close_object(name, first);
+    }
+    let (mesh, objects) = placed.finish().map_err(|e| ParseError::new(None, e.to_string()))?;
+    Ok(Model { mesh, objects, unit: parsed.unit })
+}

@@ -1,0 +1,165 @@
+//! 3MF: objects, components, transforms, units, errors.
+
+mod common;
+
+use common::*;
+use meshvol::FaceRange;
+use meshvol_io::{Format, LengthUnit, Location};
+
+fn model(unit: &str, resources: &str, build: &str) -> String {
+    format!(
+        r##"<?xml version="1.0" encoding="UTF-8"?>
+<model {unit} xml:lang="en-US" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02" xmlns:m="http://schemas.microsoft.com/3dmanufacturing/material/2015/02" xmlns:s="http://schemas.microsoft.com/3dmanufacturing/slice/2015/07">
+<resources>
+<m:colorgroup id="90"><m:color color="#F00F"/></m:colorgroup>
+<s:slicestack id="91" zbottom="0"><s:slice ztop="1"><s:vertices><s:vertex x="5" y="5"/></s:vertices></s:slice></s:slicestack>
+{resources}
+</resources>
+<build>{build}</build>
+</model>"##
+    )
+}
+
+fn volumes(loaded: &meshvol_io::Loaded) -> Vec<(String, f64)> {
+    loaded
+        .objects
+        .iter()
+        .map(|o| (o.name.clone(), volume(&FaceRange::new(&loaded.surface, o.faces.clone()))))
+        .collect()
+}
+
+#[test]
+fn items_components_transforms_and_units() {
+    let resources = format!(
+        r#"<object id="1" name="box &amp; co" type="model">{}</object>
+<object id="2"><components><component objectid="1"/><component objectid="1" transform="1 0 0 0 1 0 0 0 1 10 0 0"/></components></object>
+<object id="3" name="nested"><components><component objectid="2" transform="2 0 0 0 2 0 0 0 2 0 0 0"/></components></object>
+<object id="4" type="support">{}</object>"#,
+        three_mf_box_mesh([0.0; 3], [1.0, 2.0, 3.0]),
+        three_mf_box_mesh([0.0; 3], [1.0, 1.0, 1.0]),
+    );
+    // A plain item; an item placing the two-box object with a shift; the nested object
+    // scaled by 2 (volume ×8) and mirrored by the item (winding reversed back); a
+    // support item, skipped.
+    let build = r#"<item objectid="1"/>
+<item objectid="2" partnumber="pair" transform="1 0 0 0 1 0 0 0 1 0 0 100"/>
+<item objectid="3" transform="-1 0 0 0 1 0 0 0 1 0 0 0"/>
+<item objectid="4"/>"#;
+    let bytes = three_mf(&model(r#"unit="inch""#, &resources, build));
+    let loaded = read_as("part.3mf", bytes).unwrap();
+    assert_eq!(loaded.format, Format::ThreeMf);
+    assert_eq!(loaded.unit, Some(LengthUnit::Inch));
+    assert_eq!(
+        volumes(&loaded),
+        [("box & co".to_string(), 6.0), ("pair".to_string(), 12.0), ("nested".to_string(), 96.0)]
+    );
+    assert_eq!(loaded.warnings, ["skipped 1 build items that are not solids: object 4 (support)"]);
+    // The item's shift applies after the component's: the second box of "pair" starts
+    // at (10, 0, 100).
+    let pair = triangles(&FaceRange::new(&loaded.surface, loaded.objects[1].faces.clone()));
+    assert!(pair[12..].iter().flatten().all(|p| p[0] >= 10.0 && p[2] >= 100.0));
+    // Mirrored by the item: x ≤ 0.
+    let nested = triangles(&FaceRange::new(&loaded.surface, loaded.objects[2].faces.clone()));
+    assert!(nested.iter().flatten().all(|p| p[0] <= 0.0));
+}
+
+#[test]
+fn default_unit_and_one_object() {
+    let resources =
+        format!(r#"<object id="7">{}</object>"#, three_mf_box_mesh([1.0; 3], [2.0, 2.0, 2.0]));
+    let loaded =
+        read_as("m.3MF", three_mf(&model("", &resources, r#"<item objectid="7"/>"#))).unwrap();
+    assert_eq!(loaded.unit, Some(LengthUnit::Millimetre));
+    assert!(loaded.objects.is_empty(), "one object: no list");
+    assert_eq!(volume(&loaded.surface), 8.0);
+    for (name, unit) in [
+        ("micron", LengthUnit::Micrometre),
+        ("meter", LengthUnit::Metre),
+        ("foot", LengthUnit::Foot),
+        ("centimeter", LengthUnit::Centimetre),
+    ] {
+        let m = model(&format!(r#"unit="{name}""#), &resources, r#"<item objectid="7"/>"#);
+        assert_eq!(read_as("m.3mf", three_mf(&m)).unwrap().unit, Some(unit));
+    }
+}
+
+#[test]
+fn errors_name_the_part_and_line() {
+    let part = |line| Some(Location::PartLine { part: "3D/3dmodel.model".into(), line });
+    let mesh = three_mf_box_mesh([0.0; 3], [1.0; 3]);
+    let cases = [
+        (
+            format!(r#"<object id="1">{}</object>"#, mesh.replace(r#"v3="3""#, r#"v3="8""#)),
+            r#"<item objectid="1"/>"#,
+            6,
+            "uses vertex 8, but the object has 8 vertices",
+        ),
+        (
+            format!(r#"<object id="1">{mesh}</object>"#),
+            "\n\n<item objectid=\"2\"/>",
+            10,
+            "object 2 is not defined",
+        ),
+        (
+            r#"<object id="1"><components><component objectid="2"/></components></object>
+<object id="2"><components><component objectid="1"/></components></object>"#
+                .to_string(),
+            r#"<item objectid="1"/>"#,
+            7,
+            "contains itself",
+        ),
+        (
+            format!(r#"<object id="1">{}</object>"#, mesh.replace(r#"x="1""#, r#"x="nan""#)),
+            "",
+            6,
+            "non-finite",
+        ),
+        (
+            format!(r#"<object id="1">{mesh}</object>"#),
+            r#"<item objectid="1" transform="1 0 0"/>"#,
+            8,
+            "expected 12 finite numbers",
+        ),
+        (
+            format!(r#"<object id="1">{mesh}</object>"#),
+            r#"<item xmlns:p="http://schemas.microsoft.com/3dmanufacturing/production/2015/06" p:path="/3D/other.model" objectid="1"/>"#,
+            8,
+            "p:path",
+        ),
+        (
+            format!(r#"<object id="1">{mesh}</object><object id="1">{mesh}</object>"#),
+            "",
+            6,
+            "defined twice",
+        ),
+    ];
+    for (resources, build, line, message) in cases {
+        let e = read_err("e.3mf", three_mf(&model("", &resources, build)));
+        assert_eq!(e.location, part(line), "{message}: {e}");
+        assert!(e.message.contains(message), "{e}");
+    }
+    let e = read_err("e.3mf", three_mf("<model><resources>"));
+    assert!(e.message.contains("ends inside"), "{e}");
+    let e = read_err("e.3mf", three_mf(&model(r#"unit="furlong""#, "", "")));
+    assert!(e.message.contains("unknown unit 'furlong'"), "{e}");
+    let e = read_err("e.3mf", b"PK\x03\x04 not really".to_vec());
+    assert!(e.message.contains("zip"), "{e}");
+}
+
+#[test]
+fn build_expansion_is_bounded_before_allocating() {
+    // Each object holds its child ten times: 10^8 boxes.
+    let mut resources =
+        format!(r#"<object id="0">{}</object>"#, three_mf_box_mesh([0.0; 3], [1.0; 3]));
+    for level in 1..=8 {
+        resources += &format!(r#"<object id="{level}"><components>"#);
+        for _ in 0..10 {
+            resources += &format!(r#"<component objectid="{}"/>"#, level - 1);
+        }
+        resources += "</components></object>";
+    }
+    let start = std::time::Instant::now();
+    let e = read_err("big.3mf", three_mf(&model("", &resources, r#"<item objectid="8"/>"#)));
+    assert!(start.elapsed() < std::time::Duration::from_secs(2));
+    assert!(e.message.contains("placed objects"), "{e}");
+}

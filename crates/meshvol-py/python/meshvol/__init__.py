@@ -1,0 +1,65 @@
+"""meshvol: exact, fast volume, area, centroid and inertia of solids bounded by meshes.
+
+Build a Mesh from NumPy arrays (or anything with .vertices and .faces, such as a
+trimesh.Trimesh), or read one with load(); then measure it:
+
+>>> import numpy as np, meshvol
+>>> corners = np.array([[x, y, z] for z in (0, 1) for y in (0, 1) for x in (0, 1)], float)
+>>> hull = meshvol.convex_hull(corners)
+>>> hull.volume
+1.0
+>>> mesh = hull.mesh
+>>> mp = mesh.mass_properties()
+>>> float(mp.volume), mp.centroid.tolist()
+(1.0, [0.5, 0.5, 0.5])
+>>> mesh.check().verdict
+'closed, 1 shell: volume is exact'
+
+The answers and names are those of the meshvol command: Mesh.mass_properties() is
+`meshvol volume --no-check`, Mesh.check() is `meshvol check`, Check.mass_properties()
+is `meshvol volume`, Mesh.grid() is `meshvol grid`, Mesh.profile() is
+`meshvol profile`, union() is `meshvol union`, polygon_area() is `meshvol area` and
+convex_hull() is `meshvol hull`. Errors raise MeshError (a ValueError) or one of its
+subclasses, ReadError and InvalidMeshError, with the command's messages. Computations
+release the GIL, so threads measure in parallel.
+"""
+
+from ._meshvol import (
+    AreaProperties,
+    Check,
+    Hull,
+    InvalidMeshError,
+    MassProperties,
+    Mesh,
+    MeshError,
+    Profile,
+    ReadError,
+    Shell,
+    Union,
+    __version__,
+    convex_hull,
+    hull_volume,
+    load,
+    polygon_area,
+    union,
+)
+
+__all__ = [
+    "AreaProperties",
+    "Check",
+    "Hull",
+    "InvalidMeshError",
+    "MassProperties",
+    "Mesh",
+    "MeshError",
+    "Profile",
+    "ReadError",
+    "Shell",
+    "Union",
+    "__version__",
+    "convex_hull",
+    "hull_volume",
+    "load",
+    "polygon_area",
+    "union",
+]

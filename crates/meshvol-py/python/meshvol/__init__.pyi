@@ -1,0 +1,250 @@
+"""Type stubs for meshvol (the runtime objects carry the full docstrings)."""
+
+import os
+from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union as _Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+__all__: list[str]
+
+_ArrayLike = npt.ArrayLike
+_F64 = npt.NDArray[np.float64]
+_Faces = _Union[npt.ArrayLike, Sequence[Sequence[int]]]
+
+class MeshError(ValueError):
+    """Base class of meshvol's errors, with the meshvol command's messages."""
+
+class ReadError(MeshError):
+    """A file could not be read."""
+
+    path: str
+    """The file."""
+    location: Optional[str]
+    """Where in it: 'line 12', 'byte 84', 'face 3', an archive part's line, a JSON path."""
+    line: Optional[int]
+    """The line (from 1), when the location is a line of a text file."""
+    byte: Optional[int]
+    """The byte offset (from 0), when the location is one."""
+    face: Optional[int]
+    """The face (from 0), when the location is one."""
+    reason: str
+    """The message without path and location."""
+
+class InvalidMeshError(MeshError):
+    """Arrays that cannot be used as given: shape, dtype, non-finite value, index range."""
+
+class Mesh:
+    """A surface mesh: float64 vertices and faces (triangles or polygons) indexing them.
+
+    Mesh(vertices, faces) copies and checks the arrays; Mesh(obj) takes obj.vertices and
+    obj.faces (a trimesh.Trimesh, another Mesh). A Mesh never changes once built.
+    """
+
+    def __init__(self, vertices: Any, faces: Optional[_Faces] = None) -> None: ...
+    @property
+    def vertices(self) -> _F64:
+        """The (n, 3) float64 vertices: a read-only view of the mesh's memory."""
+    @property
+    def faces(self) -> _Union[npt.NDArray[np.uint32], list[list[int]]]:
+        """(m, 3) uint32 read-only view for triangles; else a list of index lists."""
+    @property
+    def vertex_count(self) -> int: ...
+    @property
+    def face_count(self) -> int: ...
+    @property
+    def triangle_count(self) -> int:
+        """Triangles in the faces' fans: a face of k vertices counts k - 2."""
+    @property
+    def is_triangle_mesh(self) -> bool: ...
+    @property
+    def format(self) -> Optional[str]:
+        """The format of the file read ('stl-binary', 'obj', ...); None for arrays."""
+    @property
+    def unit(self) -> Optional[str]:
+        """The length unit the file declares ('mm', 'm', ...), or None."""
+    @property
+    def warnings(self) -> list[str]:
+        """What the reader read but did not use, or had to guess."""
+    @property
+    def objects(self) -> list[Tuple[str, int, int]]:
+        """(name, first face, end face) of each named part, when there are two or more."""
+    def mass_properties(self, density: float = 1.0, exact: bool = False) -> MassProperties:
+        """Mass properties as wound (`meshvol volume --no-check`)."""
+    def check(
+        self, weld_tolerance: Optional[float] = None, intersections: bool = True
+    ) -> Check:
+        """Topology facts (`meshvol check`)."""
+    def grid(
+        self,
+        cells: Optional[Tuple[int, int, int]] = None,
+        bounds: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
+        fraction: bool = False,
+        pitch: _Union[float, Tuple[float, float, float], None] = None,
+    ) -> npt.NDArray[np.float64]:
+        """The solid's volume in each cell: an (nx, ny, nz) array (`meshvol grid`)."""
+    def profile(
+        self, axis: str = "z", levels: Optional[int] = None, step: Optional[float] = None
+    ) -> Profile:
+        """Volume below each level along an axis (`meshvol profile`)."""
+    def triangulated(self) -> Mesh:
+        """Every face replaced by its fan of triangles."""
+    def flipped(self) -> Mesh:
+        """Every face's winding reversed."""
+
+class MassProperties:
+    """Volume, area, centroid and inertia, named as `meshvol volume --json`'s keys."""
+
+    faces: int
+    triangles: int
+    volume: float
+    signed_volume: float
+    volume_error_bound: float
+    exact: bool
+    area: float
+    density: float
+    mass: float
+    @property
+    def centroid(self) -> Optional[_F64]:
+        """Shape (3,); None when the volume is zero."""
+    @property
+    def inertia(self) -> _F64:
+        """Shape (3, 3), about the centroid, scaled by density."""
+    @property
+    def principal_moments(self) -> _F64:
+        """Shape (3,), ascending, scaled by density."""
+    @property
+    def principal_axes(self) -> _F64:
+        """Shape (3, 3): row k is the axis of principal_moments[k]."""
+    @property
+    def bounds(self) -> Optional[Tuple[_F64, _F64]]:
+        """(min, max) corners of the vertices' bounding box."""
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol volume --json`."""
+
+class Shell:
+    """One connected component of a checked mesh."""
+
+    faces: int
+    closed: bool
+    orientable: bool
+    volume: float
+    cavity: bool
+    parent: Optional[int]
+    wound_outward: Optional[bool]
+    boundary_loops: int
+    euler_characteristic: int
+    genus: Optional[int]
+    def to_dict(self) -> dict[str, Any]: ...
+
+class Check:
+    """The facts of `meshvol check`, named as its JSON keys."""
+
+    bounds_a_volume: bool
+    verdict: str
+    closed: bool
+    weld_tolerance: Optional[float]
+    welded_vertices: int
+    edges: int
+    boundary_edges: int
+    boundary_loops: int
+    non_manifold_edges: int
+    non_manifold_vertices: int
+    degenerate_faces: int
+    duplicate_faces: int
+    consistently_oriented: bool
+    orientation: Optional[str]
+    winding: Optional[str]
+    shells: int
+    cavities: int
+    shell_details: list[Shell]
+    overlapping_shells: list[Tuple[int, int]]
+    self_intersections: Optional[int]
+    intersection_examples: list[Tuple[int, int]]
+    euler_characteristic: int
+    solid_volume: float
+    volume_uncertainty: float
+    repairs: Tuple[int, int, int]
+    def mass_properties(self, density: float = 1.0, exact: bool = False) -> MassProperties:
+        """Mass properties of the repaired solid (`meshvol volume`)."""
+    def solid_mesh(self, caps: bool = False) -> Mesh:
+        """The repaired solid as a welded mesh (`meshvol repair`)."""
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol check --json`."""
+
+class Profile:
+    """Volume below each level (`meshvol profile --json`'s keys)."""
+
+    axis: str
+    @property
+    def levels(self) -> _F64: ...
+    @property
+    def volume_below(self) -> _F64: ...
+    @property
+    def slab_volume(self) -> _F64: ...
+    @property
+    def section_area(self) -> _F64: ...
+
+class Union:
+    """The union's volume as a certified interval (`meshvol union --json`'s keys)."""
+
+    lower: float
+    upper: float
+    volume: float
+    bodies: int
+    sum_of_volumes: float
+    cells_refined: int
+    cells_resolved_exactly: int
+    columns_unresolved: int
+    flipped: list[int]
+
+class AreaProperties:
+    """Area, perimeter, centroid and second moments of plane polygons."""
+
+    area: float
+    perimeter: float
+    ix: float
+    iy: float
+    ixy: float
+    polar: float
+    principal_angle_degrees: float
+    issues: list[str]
+    @property
+    def centroid(self) -> Optional[_F64]:
+        """Shape (2,); None when the area is zero."""
+    @property
+    def principal_moments(self) -> _F64:
+        """Shape (2,), larger first."""
+
+class Hull:
+    """A convex hull (`meshvol hull --json`'s keys) and its mesh."""
+
+    points: int
+    hull_vertices: int
+    hull_faces: int
+    volume: float
+    volume_error_bound: float
+    area: float
+    degenerate: Optional[str]
+    mesh: Optional[Mesh]
+    @property
+    def centroid(self) -> Optional[_F64]: ...
+
+def load(path: _Union[str, "os.PathLike[str]"]) -> Mesh:
+    """Read a mesh file (STL, OBJ, OFF, PLY, 3MF, glTF/GLB)."""
+
+def union(meshes: _Union[Any, Iterable[Any]], tolerance: float = 1e-6) -> Union:
+    """Volume of the union of closed bodies, certified (`meshvol union`)."""
+
+def polygon_area(
+    exterior: _Union[_ArrayLike, Mapping[str, Any], Any],
+    holes: Optional[Iterable[_ArrayLike]] = None,
+) -> AreaProperties:
+    """Area properties of a polygon with holes, or of a GeoJSON (Multi)Polygon."""
+
+def convex_hull(points: _ArrayLike) -> Hull:
+    """The convex hull of an (n, 3) point array (`meshvol hull`)."""
+
+def hull_volume(points: _ArrayLike) -> float:
+    """The volume of the convex hull of an (n, 3) point array."""

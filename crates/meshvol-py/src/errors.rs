@@ -1,0 +1,77 @@
+//! The `meshvol.MeshError` family, and the conversions from the core library's errors.
+//!
+//! Messages are the core's `Display` texts, the same the `meshvol` command prints after
+//! `meshvol: error:`. Arguments that are out of range (a negative density, an axis
+//! named `w`) raise plain `ValueError`, and arguments of the wrong type `TypeError`, as
+//! Python functions do.
+
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use std::fmt::Display;
+
+create_exception!(
+    meshvol,
+    MeshError,
+    PyValueError,
+    "Base class of meshvol's errors (a ValueError): a file that cannot be read, arrays \
+     that do not form a mesh, or a measurement that cannot be made. The message is the \
+     one the meshvol command prints."
+);
+create_exception!(
+    meshvol,
+    ReadError,
+    MeshError,
+    "A file could not be read. Attributes: path (str), location (str or None: 'line 12', \
+     'byte 84', 'face 3', an archive part's line, a JSON path), line, byte and face (int \
+     or None, whichever the location is), and reason (the message without path and \
+     location)."
+);
+create_exception!(
+    meshvol,
+    InvalidMeshError,
+    MeshError,
+    "Arrays (vertices, faces, points, polygon rings) that cannot be used as given: a wrong \
+     shape or dtype, a non-finite coordinate, a vertex index out of range, a face with \
+     fewer than three vertices."
+);
+
+/// A [`MeshError`] with `message`.
+pub fn mesh_error(message: impl Display) -> PyErr {
+    MeshError::new_err(message.to_string())
+}
+
+/// An [`InvalidMeshError`] with `message`.
+pub fn invalid(message: impl Display) -> PyErr {
+    InvalidMeshError::new_err(message.to_string())
+}
+
+/// A `ValueError` for an argument out of range.
+pub fn bad_argument(message: impl Display) -> PyErr {
+    PyValueError::new_err(message.to_string())
+}
+
+/// A [`ReadError`] carrying the file's path and the place of the problem.
+pub fn read_error(py: Python<'_>, e: &meshvol_io::ReadError) -> PyErr {
+    use meshvol_io::Location;
+    let err = ReadError::new_err(e.to_string());
+    let value = err.value(py);
+    let (line, byte, face) = match &e.location {
+        Some(Location::Line(l)) => (Some(*l), None, None),
+        Some(Location::Byte(b)) => (None, Some(*b), None),
+        Some(Location::Face(f)) => (None, None, Some(*f as u64)),
+        _ => (None, None, None),
+    };
+    let attributes = [
+        value.setattr("path", e.path.as_os_str()),
+        value.setattr("location", e.location.as_ref().map(ToString::to_string)),
+        value.setattr("line", line),
+        value.setattr("byte", byte),
+        value.setattr("face", face),
+        value.setattr("reason", &e.message),
+    ];
+    match attributes.into_iter().find_map(Result::err) {
+        Some(failed) => failed,
+        None => err,
+    }
+}

@@ -1,0 +1,304 @@
+//! `meshvol.Mesh` and `meshvol.load`.
+
+use crate::check::{self, PyCheck};
+use crate::convert;
+use crate::errors::{invalid, mesh_error, read_error};
+use crate::grid::{self, PyProfile};
+use crate::properties::{self, PyMassProperties};
+use meshvol::{Faces, Mesh, MeshError};
+use numpy::ndarray::ArrayView2;
+use numpy::{Element, PyArray2, PyArray3};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::path::PathBuf;
+
+/// What a file said about the mesh read from it.
+#[derive(Clone, Debug, Default)]
+struct Source {
+    format: Option<&'static str>,
+    unit: Option<&'static str>,
+    warnings: Vec<String>,
+    /// (name, first face, end face).
+    objects: Vec<(String, usize, usize)>,
+}
+
+/// A surface mesh: float64 vertices and faces (triangles, or polygons of any size) that
+/// index them.
+///
+/// Mesh(vertices, faces) builds one from arrays: vertices an (n, 3) array (float64 used
+/// as is; float32 and integers widened to float64), faces an (m, 3) integer array of any
+/// integer dtype, an (m, k) one for faces of k vertices, or a list of polygons (lists of
+/// vertex indices, of any sizes). Mesh(obj) takes obj.vertices and obj.faces, so a
+/// trimesh.Trimesh (or another meshvol.Mesh) can be passed as it is.
+///
+/// The arrays are copied once and checked: every coordinate finite, every index in
+/// range, every face at least three vertices; anything else raises InvalidMeshError.
+/// A Mesh never changes after it is built.
+#[pyclass(module = "meshvol", name = "Mesh", frozen)]
+pub struct PyMesh {
+    pub(crate) mesh: Mesh,
+    source: Source,
+}
+
+impl From<Mesh> for PyMesh {
+    fn from(mesh: Mesh) -> Self {
+        PyMesh { mesh, source: Source::default() }
+    }
+}
+
+/// A mesh from a vertex array and a face array or polygon list.
+pub fn from_arrays(
+    py: Python<'_>,
+    vertices: &Bound<'_, PyAny>,
+    faces: &Bound<'_, PyAny>,
+) -> PyResult<Mesh> {
+    let positions = convert::coordinates::<3>(vertices, "vertices")?;
+    if u32::try_from(positions.len()).is_err() {
+        return Err(invalid(MeshError::TooManyVertices { vertices: positions.len() }));
+    }
+    let faces = convert::faces(faces, positions.len())?;
+    py.detach(|| Mesh::new(positions, faces)).map_err(invalid)
+}
+
+/// `obj` as a Mesh: itself when it is one, else built from its `.vertices` and `.faces`.
+pub fn mesh_of<'py>(obj: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyMesh>> {
+    if let Ok(mesh) = obj.cast::<PyMesh>() {
+        return Ok(mesh.clone());
+    }
+    match convert::mesh_like(obj)? {
+        Some((vertices, faces)) => {
+            let mesh = from_arrays(obj.py(), &vertices, &faces)?;
+            Bound::new(obj.py(), PyMesh::from(mesh))
+        }
+        None => Err(PyTypeError::new_err(format!(
+            "expected a mesh (a meshvol.Mesh, or an object with .vertices and .faces such as a \
+             trimesh.Trimesh); got {}",
+            obj.get_type().name()?
+        ))),
+    }
+}
+
+/// A read-only NumPy array over `values` (n rows of N), owned by `owner`.
+fn read_only_view<'py, T: Element, const N: usize>(
+    owner: &Bound<'py, PyMesh>,
+    values: &[[T; N]],
+) -> PyResult<Bound<'py, PyArray2<T>>> {
+    let view =
+        ArrayView2::from_shape((values.len(), N), values.as_flattened()).map_err(mesh_error)?;
+    // SAFETY: the array's base object is `owner`, which keeps the mesh alive; a Mesh is
+    // frozen (never mutated), so `values` is never reallocated or written while the
+    // array exists, and the array is made read-only before Python sees it.
+    let array = unsafe { PyArray2::borrow_from_array(&view, owner.clone().into_any()) };
+    let flags = PyDict::new(owner.py());
+    flags.set_item("write", false)?;
+    array.call_method("setflags", (), Some(&flags))?;
+    Ok(array)
+}
+
+#[pymethods]
+impl PyMesh {
+    #[new]
+    #[pyo3(signature = (vertices, faces = None))]
+    fn new(
+        py: Python<'_>,
+        vertices: &Bound<'_, PyAny>,
+        faces: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        if let Some(faces) = faces {
+            return Ok(PyMesh::from(from_arrays(py, vertices, faces)?));
+        }
+        if let Ok(other) = vertices.cast::<PyMesh>() {
+            return Ok(PyMesh {
+                mesh: other.get().mesh.clone(),
+                source: other.get().source.clone(),
+            });
+        }
+        match convert::mesh_like(vertices)? {
+            Some((v, f)) => Ok(PyMesh::from(from_arrays(py, &v, &f)?)),
+            None => Err(PyTypeError::new_err(
+                "Mesh(vertices, faces): give the faces too, or one object with .vertices and \
+                 .faces (such as a trimesh.Trimesh)",
+            )),
+        }
+    }
+
+    /// The (n, 3) float64 vertex array: a read-only view of the mesh's own memory (no
+    /// copy). Copy it (`numpy.array(mesh.vertices)`) to change it.
+    #[getter]
+    fn vertices<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        read_only_view(slf, slf.get().mesh.positions())
+    }
+
+    /// The faces: for a triangle mesh a read-only (m, 3) uint32 view of the mesh's own
+    /// memory (no copy); for a mesh with larger faces, a list of lists of vertex indices.
+    #[getter]
+    fn faces<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        match slf.get().mesh.faces() {
+            Faces::Triangles(triangles) => Ok(read_only_view(slf, triangles)?.into_any()),
+            Faces::Polygons { offsets, indices } => {
+                let list = PyList::empty(slf.py());
+                for w in offsets.windows(2) {
+                    list.append(PyList::new(slf.py(), &indices[w[0]..w[1]])?)?;
+                }
+                Ok(list.into_any())
+            }
+        }
+    }
+
+    /// The number of vertices.
+    #[getter]
+    fn vertex_count(&self) -> usize {
+        self.mesh.vertex_count()
+    }
+
+    /// The number of faces.
+    #[getter]
+    fn face_count(&self) -> usize {
+        self.mesh.face_count()
+    }
+
+    /// The number of triangles in the faces' fans (a face of k vertices counts k - 2).
+    #[getter]
+    fn triangle_count(&self) -> usize {
+        self.mesh.triangle_count()
+    }
+
+    /// Whether every face is a triangle.
+    #[getter]
+    fn is_triangle_mesh(&self) -> bool {
+        matches!(self.mesh.faces(), Faces::Triangles(_))
+    }
+
+    /// The file format the mesh was read from (`stl-binary`, `obj`, `3mf`, ...), or None
+    /// for a mesh built from arrays.
+    #[getter]
+    fn format(&self) -> Option<&'static str> {
+        self.source.format
+    }
+
+    /// The length unit the file declares (`mm`, `m`, ...: 3MF and glTF declare one), or
+    /// None. Measurements are always in the file's own coordinates.
+    #[getter]
+    fn unit(&self) -> Option<&'static str> {
+        self.source.unit
+    }
+
+    /// What the reader read but did not use, or had to guess (as the command warns).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.source.warnings.clone()
+    }
+
+    /// The file's named parts when it has two or more: (name, first face, end face)
+    /// tuples, faces [first, end) of this mesh. Empty otherwise.
+    #[getter]
+    fn objects(&self) -> Vec<(String, usize, usize)> {
+        self.source.objects.clone()
+    }
+
+    /// Volume, area, centroid and inertia of the solid the surface bounds, as wound (the
+    /// numbers of `meshvol volume --no-check`).
+    ///
+    /// density scales mass, inertia and principal moments. exact=True replaces the
+    /// signed volume by the correctly rounded exact one (a few times slower).
+    #[pyo3(signature = (density = 1.0, exact = false))]
+    fn mass_properties(
+        &self,
+        py: Python<'_>,
+        density: f64,
+        exact: bool,
+    ) -> PyResult<PyMassProperties> {
+        properties::require_faces(&self.mesh)?;
+        properties::measure(py, &self.mesh, density, exact)
+    }
+
+    /// The topology facts of `meshvol check`: closed? manifold? winding? shells,
+    /// cavities, overlaps, self-intersections; and the solid's volume.
+    ///
+    /// weld_tolerance: None welds exactly equal positions, and when that leaves holes,
+    /// again within 1e-9 of the bounding box diagonal; 0 welds exact positions only; a
+    /// positive number welds positions that close. intersections=False skips the search
+    /// for crossing triangles.
+    #[pyo3(signature = (weld_tolerance = None, intersections = true))]
+    fn check(
+        slf: &Bound<'_, Self>,
+        weld_tolerance: Option<f64>,
+        intersections: bool,
+    ) -> PyResult<PyCheck> {
+        check::check(slf, weld_tolerance, intersections)
+    }
+
+    /// The volume of the solid in each cell of a regular grid: an (nx, ny, nz) float64
+    /// array, exact up to rounding (negative where the surface is wound inward).
+    ///
+    /// cells=(nx, ny, nz) cells between bounds=((x0, y0, z0), (x1, y1, z1)) (default: the
+    /// mesh's bounding box); or pitch=h (or (hx, hy, hz)): cells of that size from the
+    /// lower bound, enough of them to cover the upper one. fraction=True divides each
+    /// cell's volume by the cell's.
+    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None))]
+    fn grid<'py>(
+        &self,
+        py: Python<'py>,
+        cells: Option<[i64; 3]>,
+        bounds: Option<([f64; 3], [f64; 3])>,
+        fraction: bool,
+        pitch: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        grid::cell_volumes(py, &self.mesh, cells, bounds, fraction, pitch)
+    }
+
+    /// The volume below each level along an axis (a strapping table): levels=N gives N
+    /// slabs between the mesh's extremes, step=h a level every h.
+    #[pyo3(signature = (axis = "z", levels = None, step = None))]
+    fn profile(
+        &self,
+        py: Python<'_>,
+        axis: &str,
+        levels: Option<i64>,
+        step: Option<f64>,
+    ) -> PyResult<PyProfile> {
+        grid::profile(py, &self.mesh, axis, levels, step)
+    }
+
+    /// The same surface with every face replaced by its fan of triangles.
+    fn triangulated(&self, py: Python<'_>) -> PyMesh {
+        PyMesh::from(py.detach(|| self.mesh.triangulated()))
+    }
+
+    /// The same mesh with every face's winding reversed (inward-wound files, such as
+    /// OpenSCAD's, turned outward).
+    fn flipped(&self, py: Python<'_>) -> PyMesh {
+        PyMesh::from(py.detach(|| self.mesh.flipped()))
+    }
+
+    fn __repr__(&self) -> String {
+        let format = self.source.format.map(|f| format!(", format='{f}'")).unwrap_or_default();
+        format!(
+            "Mesh(vertices={}, faces={}, triangles={}{format})",
+            self.mesh.vertex_count(),
+            self.mesh.face_count(),
+            self.mesh.triangle_count()
+        )
+    }
+}
+
+/// Reads a mesh file: STL (binary or ASCII), OBJ, OFF, PLY, 3MF, glTF/GLB, the format
+/// chosen by extension and content as the command does. Raises ReadError naming the
+/// file and the place of the problem.
+#[pyfunction]
+pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyMesh> {
+    let loaded = py.detach(|| meshvol_io::read(&path)).map_err(|e| read_error(py, &e))?;
+    let source = Source {
+        format: Some(loaded.format.name()),
+        unit: loaded.unit.map(|u| u.symbol()),
+        warnings: loaded.warnings,
+        objects: loaded.objects.into_iter().map(|o| (o.name, o.faces.start, o.faces.end)).collect(),
+    };
+    let surface = loaded.surface;
+    let mesh = py.detach(|| surface.into_mesh()).map_err(|e| {
+        let error = meshvol_io::ReadError { path, location: None, message: e.to_string() };
+        read_error(py, &error)
+    })?;
+    Ok(PyMesh { mesh, source })
+}

@@ -1,0 +1,55 @@
+"""The package: docstrings on every public object, type stubs that match, examples that
+run."""
+
+import ast
+import doctest
+import inspect
+from pathlib import Path
+
+import meshvol
+
+PACKAGE = Path(meshvol.__file__).parent
+
+
+def public_members(cls):
+    return [name for name, _ in inspect.getmembers(cls) if not name.startswith("_")]
+
+
+def test_everything_public_has_a_docstring():
+    missing = []
+    for name in meshvol.__all__:
+        obj = getattr(meshvol, name)
+        if name == "__version__":
+            continue
+        if not (obj.__doc__ or "").strip():
+            missing.append(name)
+        if inspect.isclass(obj) and not issubclass(obj, Exception):
+            for member in public_members(obj):
+                doc = getattr(obj, member).__doc__
+                if not (doc or "").strip():
+                    missing.append(f"{name}.{member}")
+    assert missing == []
+
+
+def test_stubs_describe_the_runtime_api():
+    stub = ast.parse((PACKAGE / "__init__.pyi").read_text())
+    declared = {
+        node.name: node
+        for node in stub.body
+        if isinstance(node, (ast.ClassDef, ast.FunctionDef))
+    }
+    assert set(declared) == set(meshvol.__all__) - {"__version__"}
+    for name, node in declared.items():
+        if isinstance(node, ast.ClassDef) and not issubclass(getattr(meshvol, name), Exception):
+            in_stub = {
+                item.name if isinstance(item, ast.FunctionDef) else item.target.id
+                for item in node.body
+                if isinstance(item, (ast.FunctionDef, ast.AnnAssign))
+            }
+            assert set(public_members(getattr(meshvol, name))) == in_stub - {"__init__"}, name
+    assert (PACKAGE / "py.typed").exists()
+
+
+def test_module_docstring_examples_run():
+    failures, tried = doctest.testmod(meshvol)
+    assert tried > 0 and failures == 0

@@ -1,0 +1,55 @@
+"""Computations release the GIL: other Python threads run meanwhile, and threads measure
+in parallel with the answers they would get alone."""
+
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+import meshvol
+from solids import uv_sphere
+
+
+def test_other_threads_run_while_meshvol_computes():
+    # A mesh whose check takes at least 0.1 s (fewer triangles in a debug build).
+    for rings in (16, 32, 64, 128, 256, 512):
+        mesh = meshvol.Mesh(*uv_sphere(rings=rings, segments=2 * rings))
+        started = time.perf_counter()
+        mesh.check()
+        if time.perf_counter() - started > 0.1:
+            break
+
+    done = threading.Event()
+    gaps = []
+
+    def ticker():
+        last = time.perf_counter()
+        while not done.is_set():
+            time.sleep(0.001)
+            now = time.perf_counter()
+            gaps.append(now - last)
+            last = now
+
+    thread = threading.Thread(target=ticker)
+    thread.start()
+    time.sleep(0.02)
+    started = time.perf_counter()
+    mesh.check()
+    took = time.perf_counter() - started
+    done.set()
+    thread.join()
+    # Holding the GIL would stall the ticker for the whole call.
+    assert max(gaps) < took / 2, (max(gaps), took)
+
+
+def test_threads_measure_in_parallel_with_the_same_answers():
+    meshes = [meshvol.Mesh(*uv_sphere(radius=r, rings=16, segments=32)) for r in (1.0, 2.0, 3.0, 4.0)]
+    alone = [m.mass_properties().to_dict() for m in meshes]
+    checks = [m.check().to_dict() for m in meshes]
+    with ThreadPoolExecutor(max_workers=8) as pool:
+        together = list(pool.map(lambda m: m.mass_properties().to_dict(), meshes * 4))
+        checked = list(pool.map(lambda m: m.check().to_dict(), meshes * 2))
+    assert together == alone * 4
+    assert checked == checks * 2
+    assert np.allclose([d["volume"] for d in alone], [4 / 3 * np.pi * r**3 for r in (1, 2, 3, 4)], rtol=3e-2)

@@ -1,0 +1,502 @@
+//! The column–clamp kernel: per-cell volumes of the solid a surface bounds.
+//!
+//! See the [module docs](super) for the math. This file holds the three sweeps that cut
+//! a triangle into the parts the integral needs, the sinks that add those parts up,
+//! and the parallel driver over column tiles.
+//!
+//! # Coordinates
+//! Every vertex is mapped once to grid units, `u = (p − origin) / cell` per axis, so
+//! that column `(i, j)` is `[i, i+1] × [j, j+1]` and layer `k` is `[k, k+1]`; a cell's
+//! volume is 1 there and results are scaled by `dx·dy·dz` at the end. Sums are taken in
+//! these local coordinates (differences within a piece, heights within a layer), never
+//! about the world origin.
+//!
+//! # Sweeps
+//! A triangle is cut into x-strips, each strip into columns, each column piece into
+//! layers, by successive splits of what is left ([`Polygon::split_axis`]). The first
+//! strip of a triangle, and the first column of a strip, depend only on the triangle,
+//! so a piece is the same bits whichever tile asks for it.
+//!
+//! # Tiles
+//! Columns are numbered `c = i·ny + j`; cell `(i, j, k)` is entry `c·nz + k` of the
+//! output (C order), so a run of columns is a contiguous slice. A tile is such a run.
+//! Faces are binned by the tiles their bounding box meets (in fixed chunks of faces, in
+//! face order), and each tile adds up its pieces in face order into its own slice and a
+//! scratch array of `(columns)·(nz + 1)` areas. Every cell therefore receives the same
+//! terms in the same order for any tile size and any number of threads: the result is
+//! the same bits.
+
+use super::clip::Polygon;
+use super::{Grid, GridError};
+use crate::accumulate::two_sum;
+use crate::properties::CHUNK_FACES;
+use crate::{Point, Surface};
+use rayon::prelude::*;
+use std::ops::Range;
+
+/// Triangles cut by at most six planes have at most nine vertices.
+pub(crate) type Piece = Polygon<9>;
+
+/// Receives the parts of column pieces, layer by layer.
+pub(crate) trait LayerSink {
+    /// The part of a piece in layer `layer` (`layer ≤ z ≤ layer + 1`).
+    fn slab<const N: usize>(&mut self, layer: usize, part: &Polygon<N>);
+    /// The part above the top plane (`z ≥ nz`).
+    fn above<const N: usize>(&mut self, part: &Polygon<N>);
+}
+
+/// Cuts a column piece at the layer planes and hands each part to `sink`.
+///
+/// `(z0, z1)` is the piece's z range. Parts below z = 0 contribute to no layer and are
+/// dropped; a horizontal piece exactly on plane `m` counts as layer `m`'s (it adds its
+/// area to the layers below and nothing to layer `m` itself; on plane 0, to nothing).
+#[inline(always)]
+pub(crate) fn sweep_layers<const N: usize>(
+    piece: &Polygon<N>,
+    (z0, z1): (f64, f64),
+    nz: usize,
+    sink: &mut impl LayerSink,
+) {
+    if z1 < 0.0 || (z1 == 0.0 && z0 < 0.0) {
+        return;
+    }
+    let top = nz as f64;
+    if z0 >= top {
+        sink.above(piece);
+        return;
+    }
+    let lo = floor(z0).max(0.0);
+    if z0 >= lo && z1 <= lo + 1.0 {
+        // Within one layer: the common case for meshes finer than the grid.
+        sink.slab(lo as usize, piece);
+        return;
+    }
+    let mut bufs = [Polygon::EMPTY; 3];
+    let [part, rest, spare] = &mut bufs;
+    if z0 < lo {
+        piece.split_axis_into(2, lo, part, rest);
+    } else {
+        *rest = *piece;
+    }
+    let mut k = lo as usize;
+    loop {
+        let next = (k + 1) as f64;
+        if z1 <= next {
+            sink.slab(k, rest);
+            return;
+        }
+        rest.split_axis_into(2, next, part, spare);
+        std::mem::swap(rest, spare);
+        sink.slab(k, part);
+        if k + 1 == nz {
+            sink.above(rest);
+            return;
+        }
+        k += 1;
+    }
+}
+
+/// ⌊x⌋ for |x| < 2⁶³ without a library call (targets without SSE4.1 call `floor`).
+#[inline(always)]
+fn floor(x: f64) -> f64 {
+    let t = x as i64 as f64;
+    if t > x {
+        t - 1.0
+    } else {
+        t
+    }
+}
+
+/// ⌈x⌉ for |x| < 2⁶³.
+#[inline(always)]
+fn ceil(x: f64) -> f64 {
+    -floor(-x)
+}
+
+/// The cells `[start, end)` along an axis with `n` cells that the interval `[lo, hi]`
+/// (grid units) meets: with `closed`, every cell whose closed interval it touches;
+/// otherwise the cells it overlaps with positive length (one cell when `lo = hi`).
+#[inline(always)]
+pub(crate) fn cover(lo: f64, hi: f64, n: usize, closed: bool) -> (usize, usize) {
+    // Clamping first keeps the casts in range; it changes no answer.
+    let limit = n as f64 + 2.0;
+    let (lo, hi) = (lo.max(-2.0).min(limit), hi.max(-2.0).min(limit));
+    let (start, end) = if closed {
+        (ceil(lo) - 1.0, floor(hi) + 1.0)
+    } else {
+        let start = floor(lo);
+        (start, ceil(hi).max(start + 1.0))
+    };
+    let clamp = |x: f64| x.max(0.0).min(n as f64) as usize;
+    (clamp(start), clamp(end))
+}
+
+/// Cuts `poly` at the planes `axis = i + 1` into the slices `i` in `cells` (from
+/// [`cover`] of its range `(lo, hi)` with the same `closed`), calling `slice(i, part)`
+/// in order until it returns false. Parts beyond the grid are dropped.
+#[inline(always)]
+pub(crate) fn sweep_axis<const N: usize>(
+    poly: &Polygon<N>,
+    axis: usize,
+    (lo, hi): (f64, f64),
+    (start, end): (usize, usize),
+    closed: bool,
+    mut slice: impl FnMut(usize, &Polygon<N>) -> bool,
+) {
+    if start >= end {
+        return;
+    }
+    let last = |i: usize| {
+        let next = (i + 1) as f64;
+        (closed && hi < next) || (!closed && hi <= next)
+    };
+    if lo >= start as f64 && last(start) {
+        slice(start, poly);
+        return;
+    }
+    let mut bufs = [Polygon::EMPTY; 3];
+    let [part, rest, spare] = &mut bufs;
+    if lo < start as f64 {
+        poly.split_axis_into(axis, start as f64, part, rest);
+    } else {
+        *rest = *poly;
+    }
+    for i in start..end {
+        if last(i) {
+            slice(i, rest);
+            return;
+        }
+        rest.split_axis_into(axis, (i + 1) as f64, part, spare);
+        std::mem::swap(rest, spare);
+        if !slice(i, part) {
+            return;
+        }
+    }
+}
+
+/// Maps world points to grid units.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Units {
+    origin: Point,
+    cell: [f64; 3],
+}
+
+impl Units {
+    pub(crate) fn new(grid: &Grid) -> Units {
+        Units { origin: grid.origin, cell: grid.cell }
+    }
+
+    #[inline(always)]
+    pub(crate) fn map(&self, p: Point) -> Point {
+        [
+            (p[0] - self.origin[0]) / self.cell[0],
+            (p[1] - self.origin[1]) / self.cell[1],
+            (p[2] - self.origin[2]) / self.cell[2],
+        ]
+    }
+}
+
+/// Adds a column's parts: `direct[k] += ∫ (z − k) dA` of parts in layer k, and
+/// `area[k] += A` of those parts (and `area[nz]` of parts above the grid), for the
+/// suffix sum that credits every layer below a part with its area.
+pub(crate) struct ColumnSink<'a> {
+    pub(crate) direct: &'a mut [f64],
+    pub(crate) area: &'a mut [f64],
+}
+
+impl LayerSink for ColumnSink<'_> {
+    #[inline(always)]
+    fn slab<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) {
+        let (area, moment) = part.area_and_moment(layer as f64);
+        self.direct[layer] += moment;
+        self.area[layer] += area;
+    }
+
+    #[inline(always)]
+    fn above<const N: usize>(&mut self, part: &Polygon<N>) {
+        let top = self.area.len() - 1;
+        self.area[top] += part.area();
+    }
+}
+
+/// Finishes a column: `cell[k] = (direct[k] + Σ_{m > k} area[m]) · scale`, the running
+/// sum compensated (TwoSum).
+pub(crate) fn finish_column(direct: &mut [f64], area: &[f64], scale: f64) {
+    let (mut sum, mut compensation) = (0.0, 0.0);
+    for k in (0..direct.len()).rev() {
+        let (s, e) = two_sum(sum, area[k + 1]);
+        sum = s;
+        compensation += e;
+        direct[k] = (direct[k] + (sum + compensation)) * scale;
+    }
+}
+
+/// Column pieces of one triangle (grid units) within a run of columns: calls
+/// `piece(column − first column, piece)` for each column of `columns` the triangle
+/// overlaps.
+#[inline(always)]
+pub(crate) fn for_each_piece(
+    triangle: &Piece,
+    [nx, ny]: [usize; 2],
+    columns: &Range<usize>,
+    closed: bool,
+    mut piece: impl FnMut(usize, &Piece),
+) {
+    let (first_row, last_row) = (columns.start / ny, (columns.end - 1) / ny);
+    let x = triangle.range(0);
+    sweep_axis(triangle, 0, x, cover(x.0, x.1, nx, closed), closed, |i, strip| {
+        if i < first_row {
+            return true;
+        }
+        if i > last_row {
+            return false;
+        }
+        let j_lo = if i == first_row { columns.start % ny } else { 0 };
+        let j_hi = if i == last_row { (columns.end - 1) % ny + 1 } else { ny };
+        let y = strip.range(1);
+        sweep_axis(strip, 1, y, cover(y.0, y.1, ny, closed), closed, |j, part| {
+            if j < j_lo {
+                return true;
+            }
+            if j >= j_hi {
+                return false;
+            }
+            piece(i * ny + j - columns.start, part);
+            true
+        });
+        true
+    });
+}
+
+/// How the columns are cut into tiles.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tiling {
+    pub(crate) columns: usize,
+    pub(crate) per_tile: usize,
+}
+
+impl Tiling {
+    /// At least eight tiles per thread where the grid allows, and at most 2²⁰ scratch
+    /// areas (8 MiB) per tile. The result does not depend on the choice.
+    pub(crate) fn new(grid: &Grid) -> Tiling {
+        let [nx, ny, nz] = grid.counts;
+        let columns = nx * ny;
+        let threads = rayon::current_num_threads().max(1);
+        let by_threads = columns.div_ceil(8 * threads);
+        let by_memory = ((1usize << 20) / (nz + 1)).max(1);
+        Tiling { columns, per_tile: by_threads.min(by_memory).max(1) }
+    }
+
+    pub(crate) fn tiles(&self) -> usize {
+        self.columns.div_ceil(self.per_tile)
+    }
+
+    pub(crate) fn range(&self, tile: usize) -> Range<usize> {
+        tile * self.per_tile..((tile + 1) * self.per_tile).min(self.columns)
+    }
+}
+
+/// One chunk of faces binned by tile: the faces of tile `t` are
+/// `start + faces[offsets[t]..offsets[t + 1]]`, in face order.
+struct ChunkBins {
+    start: usize,
+    offsets: Vec<u32>,
+    faces: Vec<u32>,
+}
+
+/// Faces binned by the tiles their xy bounding box meets.
+pub(crate) struct Bins {
+    chunks: Vec<ChunkBins>,
+}
+
+impl Bins {
+    pub(crate) fn new<S: Surface + ?Sized>(
+        surface: &S,
+        grid: &Grid,
+        tiling: &Tiling,
+        closed: bool,
+    ) -> Bins {
+        let units = Units::new(grid);
+        let [nx, ny, _] = grid.counts;
+        let faces = surface.face_count();
+        let tiles = tiling.tiles();
+        let per_tile = tiling.per_tile;
+        // The rows and columns face `f`'s bounding box meets.
+        let cover_of = |f: usize| {
+            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            surface.fan(f, |a, b, c| {
+                for p in [a, b, c] {
+                    let u = units.map(p);
+                    for k in 0..2 {
+                        lo[k] = if u[k] < lo[k] { u[k] } else { lo[k] };
+                        hi[k] = if u[k] > hi[k] { u[k] } else { hi[k] };
+                    }
+                }
+            });
+            let (i0, i1) = cover(lo[0], hi[0], nx, closed);
+            let (j0, j1) = cover(lo[1], hi[1], ny, closed);
+            if j0 >= j1 {
+                (0, 0, 0, 0)
+            } else {
+                (i0, i1, j0, j1)
+            }
+        };
+        // Calls `add(tile)` once for each tile that rows i0..i1 × columns j0..j1 meet, in
+        // increasing order.
+        let tiles_of = |(i0, i1, j0, j1): (usize, usize, usize, usize),
+                        add: &mut dyn FnMut(usize)| {
+            let mut next = 0;
+            for i in i0..i1 {
+                let first = ((i * ny + j0) / per_tile).max(next);
+                let last = (i * ny + j1 - 1) / per_tile;
+                for t in first..=last {
+                    add(t);
+                }
+                next = next.max(last + 1);
+            }
+        };
+        let chunks = (0..faces.div_ceil(CHUNK_FACES))
+            .into_par_iter()
+            .map(|chunk| {
+                let range = chunk * CHUNK_FACES..((chunk + 1) * CHUNK_FACES).min(faces);
+                let covers: Vec<_> = range.clone().map(cover_of).collect();
+                let mut counts = vec![0u32; tiles + 1];
+                for &c in &covers {
+                    tiles_of(c, &mut |t| counts[t + 1] += 1);
+                }
+                for t in 0..tiles {
+                    counts[t + 1] += counts[t];
+                }
+                let mut fill = counts.clone();
+                let mut binned = vec![0u32; counts[tiles] as usize];
+                for (f, &c) in covers.iter().enumerate() {
+                    tiles_of(c, &mut |t| {
+                        binned[fill[t] as usize] = f as u32;
+                        fill[t] += 1;
+                    });
+                }
+                ChunkBins { start: range.start, offsets: counts, faces: binned }
+            })
+            .collect();
+        Bins { chunks }
+    }
+
+    /// The faces binned to `tile`, in face order.
+    pub(crate) fn faces(&self, tile: usize) -> impl Iterator<Item = usize> + '_ {
+        self.chunks.iter().flat_map(move |c| {
+            let (a, b) = (c.offsets[tile] as usize, c.offsets[tile + 1] as usize);
+            c.faces[a..b].iter().map(move |&f| c.start + f as usize)
+        })
+    }
+}
+
+/// A zeroed f64 array of `len` entries, or the error naming the memory it needed.
+///
+/// The reservation is only a probe that fails cleanly where the memory cannot be had;
+/// `vec!` then takes zeroed pages from the system, which the tiles touch in parallel.
+pub(crate) fn zeroed(len: usize) -> Result<Vec<f64>, GridError> {
+    let mut probe: Vec<f64> = Vec::new();
+    probe.try_reserve_exact(len).map_err(|_| GridError::OutOfMemory { bytes: len as u128 * 8 })?;
+    drop(probe);
+    Ok(vec![0.0; len])
+}
+
+/// Adds the column pieces of `faces` that fall in `columns` (a run of columns of
+/// `grid`) to `cells` (the run's cells) and `area` (`nz + 1` per column), in face
+/// order; call [`finish_column`] after the last face. With `CLOSED`, also marks in
+/// `touched` every cell whose closed box a triangle meets (degenerate pieces on cell
+/// faces included); `touched` is not used otherwise.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn add_faces<S: Surface + ?Sized, const CLOSED: bool>(
+    surface: &S,
+    faces: impl Iterator<Item = usize>,
+    units: &Units,
+    [nx, ny, nz]: [usize; 3],
+    columns: &Range<usize>,
+    cells: &mut [f64],
+    area: &mut [f64],
+    touched: &mut [u8],
+) {
+    for face in faces {
+        surface.fan(face, |a, b, c| {
+            let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
+            let flat = t.area() == 0.0;
+            if flat && !CLOSED {
+                return; // edge-on: no projected area, nothing to add
+            }
+            for_each_piece(&t, [nx, ny], columns, CLOSED, |column, piece| {
+                let z = piece.range(2);
+                if CLOSED {
+                    let (k0, k1) = cover(z.0, z.1, nz, true);
+                    touched[column * nz + k0..column * nz + k1].fill(1);
+                }
+                if !flat {
+                    let mut sink = ColumnSink {
+                        direct: &mut cells[column * nz..(column + 1) * nz],
+                        area: &mut area[column * (nz + 1)..(column + 1) * (nz + 1)],
+                    };
+                    sweep_layers(piece, z, nz, &mut sink);
+                }
+            });
+        });
+    }
+}
+
+/// Per-cell volumes (the [module docs](super)) of a validated `grid`; with `touched`
+/// (one entry per cell), also marks the cells the surface meets (closed boxes).
+pub(crate) fn cell_volumes<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    touched: Option<&mut [u8]>,
+) -> Result<Vec<f64>, GridError> {
+    let nz = grid.counts[2];
+    let mut out = zeroed(grid.cell_count())?;
+    let tiling = Tiling::new(grid);
+    let bins = Bins::new(surface, grid, &tiling, touched.is_some());
+    let units = Units::new(grid);
+    let scale = grid.cell_volume();
+    let tile_cells = tiling.per_tile * nz;
+    let run = |tile: usize, cells: &mut [f64], touched: &mut [u8], closed: bool| {
+        let columns = tiling.range(tile);
+        let mut area = vec![0.0; columns.len() * (nz + 1)];
+        let faces = bins.faces(tile);
+        if closed {
+            add_faces::<S, true>(
+                surface,
+                faces,
+                &units,
+                grid.counts,
+                &columns,
+                cells,
+                &mut area,
+                touched,
+            );
+        } else {
+            add_faces::<S, false>(
+                surface,
+                faces,
+                &units,
+                grid.counts,
+                &columns,
+                cells,
+                &mut area,
+                touched,
+            );
+        }
+        for (direct, area) in cells.chunks_mut(nz).zip(area.chunks(nz + 1)) {
+            finish_column(direct, area, scale);
+        }
+    };
+    match touched {
+        Some(touched) => out
+            .par_chunks_mut(tile_cells)
+            .zip(touched.par_chunks_mut(tile_cells))
+            .enumerate()
+            .for_each(|(tile, (cells, touched))| run(tile, cells, touched, true)),
+        None => out
+            .par_chunks_mut(tile_cells)
+            .enumerate()
+            .for_each(|(tile, cells)| run(tile, cells, &mut [], false)),
+    }
+    Ok(out)
+}
