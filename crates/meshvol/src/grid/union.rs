@@ -20,7 +20,7 @@
 //! while the total gap Σ(upper − lower) exceeds the tolerance and refining shrinks it:
 //! a cell whose children's gaps add up to more than [`STALL`] of its own (two surfaces
 //! that touch or lie on each other, where every child still holds both) is not refined
-//! further.
+//! further, and there are at most [`MAX_DEPTH`] levels of at most 2¹⁸ open cells each.
 //!
 //! # Exact resolution
 //! What refinement leaves open is resolved exactly, one column of the base grid at a
