@@ -250,8 +250,7 @@ fn run_check(args: CheckArgs) -> ExitCode {
     let mut stdout = std::io::stdout().lock();
     for path in &args.files {
         let name = path.display().to_string();
-        let checked = meshvol_io::read(path)
-            .map_err(|e| e.to_string())
+        let checked = input::load(path)
             .and_then(|loaded| Ok((check::check(&loaded.surface, &options)?.1, loaded)));
         match checked {
             Ok((report, loaded)) => {

@@ -16,7 +16,7 @@ pub fn run(
     options: &CheckOptions,
 ) -> Result<(), String> {
     let name = file.display().to_string();
-    let loaded = meshvol_io::read(file).map_err(|e| e.to_string())?;
+    let loaded = crate::input::load(file)?;
     let (checked, report) = crate::check::check(&loaded.surface, options)?;
     let mesh = checked.solid_mesh(cap);
     let extension = out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);

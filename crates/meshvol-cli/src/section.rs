@@ -238,7 +238,7 @@ pub fn run(args: SectionArgs, quiet: bool) -> ExitCode {
 
 fn run_inner(args: &SectionArgs, quiet: bool) -> Result<(), String> {
     let out_geojson = args.out.as_deref().map(out_is_geojson).transpose()?;
-    let loaded = meshvol_io::read(&args.file).map_err(|e| e.to_string())?;
+    let loaded = crate::input::load(&args.file)?;
     let name = args.file.display().to_string();
     let (report, polygons) = measure(&name, &loaded, &args.plane);
     if !quiet {
