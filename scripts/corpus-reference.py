@@ -4,16 +4,17 @@
 Writes crates/meshvol-io/tests/data/corpus-trimesh.json: for every mesh file under the
 corpus (STL, OBJ, OFF, PLY, 3MF, glTF, GLB; zip archives are not read), trimesh's
 signed volume, whether trimesh finds the mesh watertight and consistently wound, its
-face count, or the error
-trimesh gave; and trimesh's version. crates/meshvol-io/tests/corpus.rs compares
-meshvol's volume with it for the closed meshes (watertight and consistently wound).
+face count, or the error trimesh gave; and trimesh's version.
+crates/meshvol-io/tests/corpus.rs compares meshvol's volume with it for the closed
+meshes (watertight and consistently wound).
 
     scripts/corpus-reference.py [--python PYTHON] [--corpus DIR] [--out FILE]
 
-Without --python, a virtual environment is made under target/corpus-reference-venv
-and trimesh, numpy, networkx and lxml (trimesh's 3MF reader needs the last two) are
-installed into it with pip (with pillow and scipy, without which trimesh fails on some files). With --python, that interpreter (which must have them) is
-used as it is.
+Without --python, a virtual environment is made under target/corpus-reference-venv and
+trimesh, numpy, networkx, lxml, pillow and scipy are installed into it with pip
+(trimesh's 3MF reader needs networkx and lxml; without pillow and scipy it fails on
+textured files and some PLYs). With --python, that interpreter (which must have them)
+is used as it is.
 """
 
 import argparse

@@ -603,11 +603,25 @@ fn packed_triangles(
     let Some(data) = strided(data, accessor.byte_offset, count, size, size) else {
         return Ok(None);
     };
-    let tris: Vec<[u32; 3]> = (0..count / 3)
-        .into_par_iter()
-        .with_min_len(4096)
-        .map(|t| [0, 1, 2].map(|k| component.index(data, (3 * t + k) * size)))
-        .collect();
+    // One loop per index type, each reading whole triangles.
+    let data = &data[..count / 3 * 3 * size];
+    let tris: Vec<[u32; 3]> = match component {
+        Component::U8 => data
+            .par_chunks_exact(3)
+            .with_min_len(4096)
+            .map(|t| [t[0], t[1], t[2]].map(u32::from))
+            .collect(),
+        Component::U16 => data
+            .par_chunks_exact(6)
+            .with_min_len(4096)
+            .map(|t| [0, 2, 4].map(|k| u32::from(u16::from_le_bytes([t[k], t[k + 1]]))))
+            .collect(),
+        _ => data
+            .par_chunks_exact(12)
+            .with_min_len(4096)
+            .map(|t| [0, 4, 8].map(|k| u32::from_le_bytes([t[k], t[k + 1], t[k + 2], t[k + 3]])))
+            .collect(),
+    };
     let bad = tris.par_iter().position_first(|t| t.iter().any(|&i| i as usize >= n));
     if let Some(t) = bad {
         let (k, v) = (0..3)
@@ -845,7 +859,19 @@ fn place(
                 .ok_or_else(|| at(item.clone(), "no POSITION attribute"))?;
             let positions: Vec<Point> =
                 read_accessor(&mut buffers, position, "VEC3", 3, |data, at, c, normalized| {
-                    [0, 1, 2].map(|k| c.read(data, at + k * c.size(), normalized))
+                    match c {
+                        // The common case, without a type dispatch per coordinate.
+                        Component::F32 => [0, 4, 8].map(|k| {
+                            let b = [
+                                data[at + k],
+                                data[at + k + 1],
+                                data[at + k + 2],
+                                data[at + k + 3],
+                            ];
+                            f64::from(f32::from_le_bytes(b))
+                        }),
+                        _ => [0, 1, 2].map(|k| c.read(data, at + k * c.size(), normalized)),
+                    }
                 })?;
             let bad = positions.par_iter().position_first(|p| p.iter().any(|c| !c.is_finite()));
             if let Some(bad) = bad {
