@@ -601,7 +601,7 @@ mod tests {
     /// Any chunking gives what one sequential pass gives.
     #[test]
     fn chunking_does_not_change_the_result() {
-        use crate::text::mutate::{mutate, Rng};
+        use crate::text::mutate::assert_chunking_invisible;
         let mut file = String::from("# test\nv 0 0 0\nv 1 0 0\n");
         for i in 0..12 {
             file += &format!("v {i} 1 0 1 0 0\nf -1 -2 -3\nvt 0 0\nf 1/1 2//1 {} 3\n", i + 3);
@@ -639,29 +639,8 @@ mod tests {
                 .map_err(|e| (e.location, e.message));
             (result, warnings)
         };
-        let mut rng = Rng(11);
-        let (mut ok, mut err) = (0, 0);
-        for round in 0..3000 {
-            let input = if round == 0 {
-                file.as_bytes().to_vec()
-            } else {
-                mutate(&mut rng, file.as_bytes(), pieces)
-            };
-            let whole = run(&input, usize::MAX / 2);
-            if whole.0.is_ok() {
-                ok += 1
-            } else {
-                err += 1
-            }
-            for chunk in [1, 20, 100] {
-                assert_eq!(
-                    run(&input, chunk),
-                    whole,
-                    "chunk {chunk}: {}",
-                    String::from_utf8_lossy(&input)
-                );
-            }
-        }
+        let (ok, err) =
+            assert_chunking_invisible(file.as_bytes(), pieces, 11, 3000, &[1, 20, 100], run);
         assert!(ok > 100 && err > 100, "{ok} {err}");
     }
 }

@@ -1234,7 +1234,7 @@ mod tests {
     /// Any chunking of an ASCII body gives what one pass gives.
     #[test]
     fn ascii_chunking_does_not_change_the_result() {
-        use crate::text::mutate::{mutate, Rng};
+        use crate::text::mutate::assert_chunking_invisible;
         let mut file = String::from(
             "ply\nformat ascii 1.0\nelement vertex 8\nproperty float y\nproperty list uchar \
              float uv\nproperty float x\nproperty double z\nelement face 6\nproperty list \
@@ -1263,29 +1263,8 @@ mod tests {
                 .map_err(|e| (e.location, e.message));
             (result, warnings)
         };
-        let mut rng = Rng(5);
-        let (mut ok, mut err) = (0, 0);
-        for round in 0..2000 {
-            let input = if round == 0 {
-                file.as_bytes().to_vec()
-            } else {
-                mutate(&mut rng, file.as_bytes(), pieces)
-            };
-            let whole = run(&input, usize::MAX / 2);
-            if whole.0.is_ok() {
-                ok += 1
-            } else {
-                err += 1
-            }
-            for chunk in [1, 20, 60] {
-                assert_eq!(
-                    run(&input, chunk),
-                    whole,
-                    "chunk {chunk}: {}",
-                    String::from_utf8_lossy(&input)
-                );
-            }
-        }
+        let (ok, err) =
+            assert_chunking_invisible(file.as_bytes(), pieces, 5, 2000, &[1, 20, 60], run);
         // Most mutations break a PLY line's value count: fewer inputs read.
         assert!(ok > 40 && err > 100, "{ok} {err}");
     }

@@ -666,7 +666,7 @@ mod tests {
     /// error at the same place, and the same warnings.
     #[test]
     fn chunking_does_not_change_the_result() {
-        use crate::text::mutate::{mutate, Rng};
+        use crate::text::mutate::assert_chunking_invisible;
         let facet = |x: f64| {
             format!(
                 "  facet normal 0 0 1\n    outer loop\n      vertex {x} 0 0\n      vertex 1 {x} 0\n      vertex 0 1 {x}\n    endloop\n  endfacet\n"
@@ -703,29 +703,8 @@ mod tests {
                 .map_err(|e| (e.location, e.message));
             (result, warnings)
         };
-        let mut rng = Rng(7);
-        let (mut ok, mut err) = (0, 0);
-        for round in 0..3000 {
-            let input = if round == 0 {
-                file.as_bytes().to_vec()
-            } else {
-                mutate(&mut rng, file.as_bytes(), pieces)
-            };
-            let whole = run(&input, usize::MAX / 2);
-            if whole.0.is_ok() {
-                ok += 1
-            } else {
-                err += 1
-            }
-            for chunk in [1, 30, 150] {
-                assert_eq!(
-                    run(&input, chunk),
-                    whole,
-                    "chunk {chunk}: {}",
-                    String::from_utf8_lossy(&input)
-                );
-            }
-        }
+        let (ok, err) =
+            assert_chunking_invisible(file.as_bytes(), pieces, 7, 3000, &[1, 30, 150], run);
         assert!(ok > 100 && err > 100, "{ok} {err}");
     }
 }

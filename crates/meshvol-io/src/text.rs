@@ -174,4 +174,37 @@ pub(crate) mod mutate {
         }
         out
     }
+
+    /// Reads `file` and `rounds − 1` mutants of it whole and in chunks of each size in
+    /// `chunks`, and asserts every chunked read equals the whole one: parallel chunking
+    /// must be invisible. Returns how many inputs were (read, refused), so callers can
+    /// check that both paths ran.
+    pub fn assert_chunking_invisible<T, E, W>(
+        file: &[u8],
+        pieces: &[&[u8]],
+        seed: u64,
+        rounds: usize,
+        chunks: &[usize],
+        run: impl Fn(&[u8], usize) -> (Result<T, E>, W),
+    ) -> (usize, usize)
+    where
+        (Result<T, E>, W): PartialEq + std::fmt::Debug,
+    {
+        let mut rng = Rng(seed);
+        let (mut ok, mut err) = (0, 0);
+        for round in 0..rounds {
+            let input = if round == 0 { file.to_vec() } else { mutate(&mut rng, file, pieces) };
+            let whole = run(&input, usize::MAX / 2);
+            if whole.0.is_ok() {
+                ok += 1
+            } else {
+                err += 1
+            }
+            for &chunk in chunks {
+                let chunked = run(&input, chunk);
+                assert_eq!(chunked, whole, "chunk {chunk}: {}", String::from_utf8_lossy(&input));
+            }
+        }
+        (ok, err)
+    }
 }
