@@ -63,16 +63,6 @@ pub fn check<S: Surface + ?Sized>(
     options: &CheckOptions,
 ) -> Result<(Check, CheckReport), String> {
     let c = topology::check(surface, options).map_err(|e| e.to_string())?;
-    let orientation = c.orientation.map(|o| match o {
-        Orientation::Outward => "outward",
-        Orientation::Inward => "inward",
-        Orientation::Mixed => "mixed",
-    });
-    let winding = match c.orientation {
-        Some(Orientation::Outward) => Some("ccw"),
-        Some(Orientation::Inward) => Some("cw"),
-        _ => None,
-    };
     let report = CheckReport {
         bounds_a_volume: c.bounds_a_volume(),
         verdict: c.verdict(),
@@ -87,8 +77,8 @@ pub fn check<S: Surface + ?Sized>(
         degenerate_faces: c.degenerate_faces,
         duplicate_faces: c.duplicate_faces,
         consistently_oriented: c.consistently_oriented,
-        orientation,
-        winding,
+        orientation: c.orientation.map(Orientation::name),
+        winding: c.orientation.and_then(Orientation::winding),
         shells: c.shells.len(),
         cavities: c.cavities,
         shell_details: c

@@ -166,12 +166,8 @@ pub fn check(
     let options = CheckOptions { weld, intersections, ..CheckOptions::default() };
     let surface = &mesh.get().mesh;
     let c = mesh.py().detach(|| topology::check(surface, &options)).map_err(mesh_error)?;
-    let (orientation, winding) = match c.orientation {
-        Some(Orientation::Outward) => (Some("outward"), Some("ccw")),
-        Some(Orientation::Inward) => (Some("inward"), Some("cw")),
-        Some(Orientation::Mixed) => (Some("mixed"), None),
-        None => (None, None),
-    };
+    let orientation = c.orientation.map(Orientation::name);
+    let winding = c.orientation.and_then(Orientation::winding);
     let shell_details = c
         .shells
         .iter()

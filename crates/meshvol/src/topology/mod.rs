@@ -99,6 +99,27 @@ pub enum Orientation {
     Mixed,
 }
 
+impl Orientation {
+    /// `outward`, `inward` or `mixed`: the names reports use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Orientation::Outward => "outward",
+            Orientation::Inward => "inward",
+            Orientation::Mixed => "mixed",
+        }
+    }
+
+    /// The winding seen from outside: `ccw` for outward normals, `cw` for OpenSCAD's
+    /// convention; `None` when shells disagree.
+    pub fn winding(self) -> Option<&'static str> {
+        match self {
+            Orientation::Outward => Some("ccw"),
+            Orientation::Inward => Some("cw"),
+            Orientation::Mixed => None,
+        }
+    }
+}
+
 /// One connected component of faces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Shell {
