@@ -1,10 +1,12 @@
 //! A bounding-volume hierarchy over axis-aligned boxes, for "which boxes overlap this
 //! one?" queries (self-intersections, overlapping shells, ray casting).
 //!
-//! Built as a linear BVH: items sorted (in parallel) by the Morton code of their box
-//! centres, so items close in space are close in the order; then ranges of that order
-//! are halved until a node holds at most [`LEAF_SIZE`] items, and node boxes are
-//! computed bottom-up. Queries walk the tree with an explicit stack. Written here because the general crates (parry's Qbvh, `bvh`) bring their own
+//! Built as a linear BVH: the caller puts its items in [`Bvh::spatial_order`] (sorted
+//! by the Morton code of their box centres, so items close in space are close in the
+//! order, and so is the caller's data about them); ranges of that order are halved
+//! until a node holds at most [`LEAF_SIZE`] items, and node boxes are computed
+//! bottom-up. Queries walk the tree with an explicit stack; pair searches walk two.
+//! Written here because the general crates (parry's Qbvh, `bvh`) bring their own
 //! vector types and far more than these two queries need.
 
 use crate::properties::Bounds;
@@ -23,17 +25,20 @@ fn morton(x: u64, y: u64, z: u64) -> u64 {
     spread(x) | spread(y) << 1 | spread(z) << 2
 }
 
+/// Nodes with more items than this split their pair searches across threads.
+const PARALLEL_ITEMS: u32 = 4096;
+
 /// Items per leaf.
 const LEAF_SIZE: usize = 4;
 
 #[derive(Clone, Debug)]
 struct Node {
     bounds: Bounds,
-    /// Leaf: items `start..start + count` of `order`; inner: `count == 0` and the children
-    /// are nodes `start` and `start + 1`.
+    /// Leaf: items `start..start + count`; inner: `count == 0` and the children are
+    /// nodes `start` and `start + 1`.
     start: u32,
     count: u32,
-    /// The positions (in `order`) of the items under this node: `begin..end`.
+    /// The items under this node: `begin..end`.
     begin: u32,
     end: u32,
 }
@@ -45,16 +50,7 @@ const STACK: usize = 64;
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
-    order: Vec<u32>,
-    /// `boxes[order[i]]`, stored in leaf order so a leaf's boxes are contiguous.
-    leaf_boxes: Vec<Bounds>,
-}
-
-fn union(a: &Bounds, b: &Bounds) -> Bounds {
-    Bounds {
-        min: [0, 1, 2].map(|k| a.min[k].min(b.min[k])),
-        max: [0, 1, 2].map(|k| a.max[k].max(b.max[k])),
-    }
+    boxes: Vec<Bounds>,
 }
 
 fn overlaps(a: &Bounds, b: &Bounds) -> bool {
@@ -62,17 +58,15 @@ fn overlaps(a: &Bounds, b: &Bounds) -> bool {
 }
 
 impl Bvh {
-    /// Builds the hierarchy over `boxes` (item i has box `boxes[i]`).
-    pub fn new(boxes: &[Bounds]) -> Bvh {
-        if boxes.is_empty() {
-            return Bvh::default();
-        }
+    /// The order of `boxes` that puts boxes close in space close together: by the
+    /// Morton code of their centres. Items given to [`Bvh::new`] in this order make a
+    /// tight tree (and data stored in this order is read nearly sequentially).
+    pub fn spatial_order(boxes: &[Bounds]) -> Vec<u32> {
         let centre = |b: &Bounds| [0, 1, 2].map(|k| 0.5 * (b.min[k] + b.max[k]));
-        let all =
-            boxes.iter().fold(Bounds { min: centre(&boxes[0]), max: centre(&boxes[0]) }, |a, b| {
-                let c = centre(b);
-                union(&a, &Bounds { min: c, max: c })
-            });
+        let all = boxes.iter().fold(Bounds::EMPTY, |mut all, b| {
+            all.include(centre(b));
+            all
+        });
         let size = all.size();
         let mut keyed: Vec<(u64, u32)> = boxes
             .par_iter()
@@ -87,53 +81,53 @@ impl Bvh {
             })
             .collect();
         keyed.par_sort_unstable();
-        let order: Vec<u32> = keyed.into_iter().map(|(_, i)| i).collect();
+        keyed.into_iter().map(|(_, i)| i).collect()
+    }
 
+    /// Builds the hierarchy over `boxes` (item i has box `boxes[i]`), grouping
+    /// consecutive items: pass them in [`Bvh::spatial_order`].
+    pub fn new(boxes: Vec<Bounds>) -> Bvh {
+        if boxes.is_empty() {
+            return Bvh::default();
+        }
         // Top-down: halve ranges; children always come after their parent.
-        let empty = Bounds { min: [f64::INFINITY; 3], max: [f64::NEG_INFINITY; 3] };
-        let mut nodes =
-            vec![Node { bounds: empty, start: 0, count: 0, begin: 0, end: order.len() as u32 }];
-        let mut ranges = vec![(0usize, order.len())];
+        let node = |begin: usize, end: usize| Node {
+            bounds: Bounds::EMPTY,
+            start: 0,
+            count: 0,
+            begin: begin as u32,
+            end: end as u32,
+        };
+        let mut nodes = Vec::with_capacity(2 * boxes.len().div_ceil(LEAF_SIZE));
+        nodes.push(node(0, boxes.len()));
         let mut next = 0;
         while next < nodes.len() {
-            let (start, end) = ranges[next];
+            let (start, end) = (nodes[next].begin as usize, nodes[next].end as usize);
             if end - start <= LEAF_SIZE {
                 nodes[next].start = start as u32;
                 nodes[next].count = (end - start) as u32;
             } else {
                 let mid = start + (end - start) / 2;
                 nodes[next].start = nodes.len() as u32;
-                nodes.push(Node {
-                    bounds: empty,
-                    start: 0,
-                    count: 0,
-                    begin: start as u32,
-                    end: mid as u32,
-                });
-                nodes.push(Node {
-                    bounds: empty,
-                    start: 0,
-                    count: 0,
-                    begin: mid as u32,
-                    end: end as u32,
-                });
-                ranges.push((start, mid));
-                ranges.push((mid, end));
+                nodes.push(node(start, mid));
+                nodes.push(node(mid, end));
             }
             next += 1;
         }
         // Bottom-up boxes.
-        let leaf_boxes: Vec<Bounds> = order.iter().map(|&i| boxes[i as usize]).collect();
         for n in (0..nodes.len()).rev() {
             let node = &nodes[n];
-            nodes[n].bounds = if node.count > 0 {
-                let items = &leaf_boxes[node.start as usize..(node.start + node.count) as usize];
-                items.iter().fold(empty, |a, b| union(&a, b))
+            let mut bounds = Bounds::EMPTY;
+            if node.count > 0 {
+                let items = &boxes[node.start as usize..(node.start + node.count) as usize];
+                items.iter().for_each(|b| bounds.merge(b));
             } else {
-                union(&nodes[node.start as usize].bounds, &nodes[node.start as usize + 1].bounds)
-            };
+                bounds = nodes[node.start as usize].bounds;
+                bounds.merge(&nodes[node.start as usize + 1].bounds);
+            }
+            nodes[n].bounds = bounds;
         }
-        Bvh { nodes, order, leaf_boxes }
+        Bvh { nodes, boxes }
     }
 
     /// Calls `visit(item)` for every item whose box overlaps `query` (closed boxes:
@@ -151,10 +145,9 @@ impl Bvh {
                 continue;
             }
             if node.count > 0 {
-                let range = node.start as usize..(node.start + node.count) as usize;
-                for (&i, b) in self.order[range.clone()].iter().zip(&self.leaf_boxes[range]) {
-                    if overlaps(b, query) {
-                        visit(i as usize);
+                for i in node.start as usize..(node.start + node.count) as usize {
+                    if overlaps(&self.boxes[i], query) {
+                        visit(i);
                     }
                 }
             } else {
@@ -175,70 +168,103 @@ impl Bvh {
         &self,
         test: impl Fn(usize, usize) -> Option<T> + Sync,
     ) -> Vec<T> {
-        let mut found =
-            if self.nodes.is_empty() { Vec::new() } else { self.pairs_under(0, 0, &test) };
+        let mut found = Vec::new();
+        if !self.nodes.is_empty() {
+            self.pairs_under(0, 0, &test, &mut found);
+        }
         found.par_sort_unstable();
         found
     }
 
+    /// Adds to `found` what `test` keeps of the overlapping pairs with one item under
+    /// node `a` and the other under node `b` (each pair once when `a == b`).
     fn pairs_under<T: Send>(
         &self,
         a: usize,
         b: usize,
         test: &(impl Fn(usize, usize) -> Option<T> + Sync),
-    ) -> Vec<T> {
+        found: &mut Vec<T>,
+    ) {
         let (na, nb) = (&self.nodes[a], &self.nodes[b]);
         if !overlaps(&na.bounds, &nb.bounds) {
-            return Vec::new();
+            return;
         }
-        let items = |n: &Node| n.start as usize..(n.start + n.count) as usize;
         let size = |n: &Node| n.end - n.begin;
         match (na.count > 0, nb.count > 0) {
             (true, true) => {
-                let mut found = Vec::new();
-                for p in items(na) {
-                    let from = if a == b { p + 1 } else { nb.start as usize };
-                    for q in from..nb.start as usize + nb.count as usize {
-                        if overlaps(&self.leaf_boxes[p], &self.leaf_boxes[q]) {
-                            found.extend(test(self.order[p] as usize, self.order[q] as usize));
+                // Only items that reach the other leaf's box can be in a pair.
+                let reaching = |n: &Node, other: &Bounds| {
+                    let mut items = [0usize; LEAF_SIZE];
+                    let mut len = 0;
+                    for p in n.start as usize..(n.start + n.count) as usize {
+                        if overlaps(&self.boxes[p], other) {
+                            items[len] = p;
+                            len += 1;
+                        }
+                    }
+                    (items, len)
+                };
+                let (pa, la) = reaching(na, &nb.bounds);
+                let (pb, lb) = if a == b { (pa, la) } else { reaching(nb, &na.bounds) };
+                for (i, &p) in pa[..la].iter().enumerate() {
+                    let from = if a == b { i + 1 } else { 0 };
+                    for &q in &pb[from..lb] {
+                        if overlaps(&self.boxes[p], &self.boxes[q]) {
+                            found.extend(test(p, q));
                         }
                     }
                 }
-                found
             }
             _ if a == b => {
                 let (l, r) = (na.start as usize, na.start as usize + 1);
-                let big = size(na) > 4096;
-                let (mut x, (y, z)) = if big {
-                    rayon::join(
-                        || self.pairs_under(l, l, test),
+                if size(na) > PARALLEL_ITEMS {
+                    let (mut x, (y, z)) = rayon::join(
+                        || self.collect_pairs(l, l, test),
                         || {
                             rayon::join(
-                                || self.pairs_under(r, r, test),
-                                || self.pairs_under(l, r, test),
+                                || self.collect_pairs(r, r, test),
+                                || self.collect_pairs(l, r, test),
                             )
                         },
-                    )
+                    );
+                    x.extend(y);
+                    x.extend(z);
+                    found.extend(x);
                 } else {
-                    (
-                        self.pairs_under(l, l, test),
-                        (self.pairs_under(r, r, test), self.pairs_under(l, r, test)),
-                    )
-                };
-                x.extend(y);
-                x.extend(z);
-                x
+                    self.pairs_under(l, l, test, found);
+                    self.pairs_under(r, r, test, found);
+                    self.pairs_under(l, r, test, found);
+                }
             }
             (leaf_a, _) => {
                 // Split the inner node (the larger one when both are inner).
                 let split_a = !leaf_a && (nb.count > 0 || size(na) >= size(nb));
                 let (keep, split) = if split_a { (b, a) } else { (a, b) };
                 let first = self.nodes[split].start as usize;
-                let mut x = self.pairs_under(keep, first, test);
-                x.extend(self.pairs_under(keep, first + 1, test));
-                x
+                if size(&self.nodes[split]) > PARALLEL_ITEMS {
+                    let (x, y) = rayon::join(
+                        || self.collect_pairs(keep, first, test),
+                        || self.collect_pairs(keep, first + 1, test),
+                    );
+                    found.extend(x);
+                    found.extend(y);
+                } else {
+                    self.pairs_under(keep, first, test, found);
+                    self.pairs_under(keep, first + 1, test, found);
+                }
             }
         }
+    }
+
+    fn collect_pairs<T: Send>(
+        &self,
+        a: usize,
+        b: usize,
+        test: &(impl Fn(usize, usize) -> Option<T> + Sync),
+    ) -> Vec<T> {
+        let mut found = Vec::new();
+        self.pairs_under(a, b, test, &mut found);
+        found
     }
 }
 
@@ -264,7 +290,12 @@ mod tests {
                 Bounds { min: [x, y, 0.0], max: [x + 1.0, y + 1.0, 1.0] }
             })
             .collect();
-        let bvh = Bvh::new(&boxes);
+        // In the given (row) order and in spatial order: the same answers.
+        let order = Bvh::spatial_order(&boxes);
+        assert_eq!(order.len(), boxes.len());
+        let spatial: Vec<Bounds> = order.iter().map(|&i| boxes[i as usize]).collect();
+        let bvh = Bvh::new(boxes.clone());
+        let spatial_bvh = Bvh::new(spatial.clone());
         for q in [
             Bounds { min: [0.5, 0.5, 0.5], max: [3.2, 2.0, 0.6] },
             Bounds { min: [-5.0; 3], max: [-4.0; 3] },
@@ -275,9 +306,13 @@ mod tests {
             found.sort();
             let brute: Vec<usize> = (0..boxes.len()).filter(|&i| overlaps(&boxes[i], &q)).collect();
             assert_eq!(found, brute);
+            let mut found: Vec<usize> = vec![];
+            spatial_bvh.overlapping(&q, |i| found.push(order[i] as usize));
+            found.sort();
+            assert_eq!(found, brute);
         }
         let mut none = 0;
-        Bvh::new(&[]).overlapping(&boxes[0], |_| none += 1);
+        Bvh::new(vec![]).overlapping(&boxes[0], |_| none += 1);
         assert_eq!(none, 0);
         // Every overlapping pair exactly once.
         let pairs = bvh.overlapping_pairs(|a, b| Some((a.min(b), a.max(b))));
@@ -285,6 +320,12 @@ mod tests {
             .flat_map(|a| (a + 1..boxes.len()).map(move |b| (a, b)))
             .filter(|&(a, b)| overlaps(&boxes[a], &boxes[b]))
             .collect();
+        assert_eq!(pairs, brute);
+        let mut pairs = spatial_bvh.overlapping_pairs(|a, b| {
+            let (a, b) = (order[a] as usize, order[b] as usize);
+            Some((a.min(b), a.max(b)))
+        });
+        pairs.sort();
         assert_eq!(pairs, brute);
     }
 }

@@ -46,12 +46,16 @@ pub struct Bounds {
 }
 
 impl Bounds {
-    fn of(p: Point) -> Bounds {
+    /// Contains nothing: the identity of [`Bounds::merge`].
+    pub(crate) const EMPTY: Bounds =
+        Bounds { min: [f64::INFINITY; 3], max: [f64::NEG_INFINITY; 3] };
+
+    pub(crate) fn of(p: Point) -> Bounds {
         Bounds { min: p, max: p }
     }
 
     #[inline(always)]
-    fn include(&mut self, p: Point) {
+    pub(crate) fn include(&mut self, p: Point) {
         // Plain comparisons, not f64::min/max: coordinates are finite, and the NaN
         // handling of min/max costs several instructions each in the hot loop.
         for ((lo, hi), x) in self.min.iter_mut().zip(&mut self.max).zip(p) {
@@ -60,7 +64,7 @@ impl Bounds {
         }
     }
 
-    fn merge(&mut self, other: &Bounds) {
+    pub(crate) fn merge(&mut self, other: &Bounds) {
         self.include(other.min);
         self.include(other.max);
     }
@@ -139,7 +143,7 @@ struct Partial {
 }
 
 impl Partial {
-    fn merge(&mut self, o: Partial) {
+    pub(crate) fn merge(&mut self, o: Partial) {
         self.six_volume.merge(&o.six_volume);
         for (a, b) in self.first.iter_mut().zip(&o.first) {
             a.merge(b);

@@ -36,11 +36,14 @@
 //! inward), degenerate and duplicate faces dropped, holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
+mod buckets;
 mod predicates;
 mod solid;
 mod weld;
 
 pub use solid::Solid;
+
+use buckets::{for_each_range_mut, Buckets};
 
 use crate::accumulate::CompensatedSum;
 use crate::bvh::Bvh;
@@ -435,50 +438,58 @@ fn analyse<S: Surface + ?Sized>(
             repeated || area == [0.0; 3]
         })
         .collect();
-    // Duplicates: same sorted vertex list as an earlier face.
-    let mut sorted_ids: Vec<u32> = (0..loops.corners.len()).map(vid).collect();
-    for f in 0..faces {
-        sorted_ids[loops.face(f)].sort_unstable();
-    }
-    let mut by_vertices: Vec<u32> =
-        (0..faces as u32).filter(|&f| !degenerate[f as usize]).collect();
-    by_vertices.par_sort_unstable_by(|&a, &b| {
-        sorted_ids[loops.face(a as usize)].cmp(&sorted_ids[loops.face(b as usize)]).then(a.cmp(&b))
+    // Duplicates: the same vertex set as an earlier face. Faces grouped by their
+    // smallest vertex, each group sorted by (sorted vertex list, face): a duplicate
+    // follows its twin.
+    let mut sorted_ids: Vec<u32> = welded.corner_vertex.clone();
+    for_each_range_mut(&mut sorted_ids, faces, &|f| loops.face(f), &|ids| ids.sort_unstable());
+    let ids_of = |f: u32| &sorted_ids[loops.face(f as usize)];
+    let mut by_vertices = Buckets::new(welded.positions.len(), || {
+        (0..faces as u32).filter(|&f| !degenerate[f as usize]).map(|f| (ids_of(f)[0], f))
+    });
+    by_vertices.for_each_mut(|group| {
+        if group.len() > 1 {
+            group.sort_unstable_by(|&a, &b| ids_of(a).cmp(ids_of(b)).then(a.cmp(&b)))
+        }
     });
     let mut duplicate = vec![false; faces];
-    for w in by_vertices.windows(2) {
-        if sorted_ids[loops.face(w[0] as usize)] == sorted_ids[loops.face(w[1] as usize)] {
+    for w in by_vertices.items.windows(2) {
+        if ids_of(w[0]) == ids_of(w[1]) {
             duplicate[w[1] as usize] = true;
         }
     }
-    drop(sorted_ids);
+    drop((sorted_ids, by_vertices));
     let kept: Vec<bool> = (0..faces).map(|f| !degenerate[f] && !duplicate[f]).collect();
 
-    // Edge uses, sorted by edge, packed as (edge, face, corner) in one u128 so the sort
-    // compares plain integers.
-    let mut packed: Vec<u128> = Vec::with_capacity(loops.corners.len());
-    for f in (0..faces).filter(|&f| kept[f]) {
-        for c in loops.face(f) {
-            let (u, v) = (vid(c), vid(loops.next(f, c)));
-            let edge = (u64::from(u.min(v)) << 32) | u64::from(u.max(v));
-            packed.push((u128::from(edge) << 64) | ((f as u128) << 32) | c as u128);
-        }
-    }
-    packed.par_sort_unstable();
-    let uses: Vec<EdgeUse> = packed
+    // Edge uses, grouped by smaller vertex, then sorted by (larger vertex, corner)
+    // packed in one u64; corners number faces in order, so uses of an edge come in face
+    // order.
+    let ends = |c: usize| {
+        let (u, v) = (vid(c), vid(loops.next(loops.face_of[c] as usize, c)));
+        (u.min(v), u.max(v))
+    };
+    let mut by_vertex = Buckets::new(welded.positions.len(), || {
+        (0..faces).filter(|&f| kept[f]).flat_map(|f| loops.face(f)).map(|c| {
+            let (low, high) = ends(c);
+            (low, (u64::from(high) << 32) | c as u64)
+        })
+    });
+    by_vertex.for_each_mut(|group| group.sort_unstable());
+    let uses: Vec<EdgeUse> = by_vertex
+        .items
         .par_iter()
-        .map(|&p| {
-            let (face, corner) = ((p >> 32) as u32, p as u32);
-            let next = loops.next(face as usize, corner as usize);
+        .map(|&packed| {
+            let corner = packed as u32;
+            let (low, high) = ends(corner as usize);
             EdgeUse {
-                key: (p >> 64) as u64,
-                face,
+                key: (u64::from(low) << 32) | u64::from(high),
+                face: loops.face_of[corner as usize],
                 corner,
-                forward: vid(corner as usize) < vid(next),
+                forward: vid(corner as usize) == low,
             }
         })
         .collect();
-    drop(packed);
+    drop(by_vertex);
     let groups: Vec<&[EdgeUse]> = uses.chunk_by(|a, b| a.key == b.key).collect();
 
     let mut shells_of = Components::new(faces);
@@ -542,9 +553,8 @@ fn analyse<S: Surface + ?Sized>(
     let mut used_vertices = 0;
     let mut roots = Vec::new();
     for v in 0..welded.positions.len() {
-        let range = welded.vertex_start[v] as usize..welded.vertex_start[v + 1] as usize;
         roots.clear();
-        for &c in &welded.order[range] {
+        for &c in welded.corners_of.get(v) {
             if kept[loops.face_of[c as usize] as usize] {
                 roots.push(corner_fans.find(c));
             }
@@ -672,28 +682,7 @@ fn analyse<S: Surface + ?Sized>(
     }
     let shell_signed: Vec<f64> = shell_six.iter().map(|s| s.value() / 6.0).collect();
 
-    // Triangles (fans of kept faces) with their boxes, for nesting and crossings.
-    let mut triangles: Vec<([u32; 3], u32)> = Vec::with_capacity(loops.corners.len());
-    for f in (0..faces).filter(|&f| kept[f]) {
-        let r = loops.face(f);
-        for c in r.start + 1..r.end - 1 {
-            triangles.push(([vid(r.start), vid(c), vid(c + 1)], f as u32));
-        }
-    }
-    let corner_points = |t: &[u32; 3]| t.map(|v| welded.positions[v as usize]);
-    let boxes: Vec<Bounds> = triangles
-        .par_iter()
-        .map(|(t, _)| {
-            let p = corner_points(t);
-            Bounds {
-                min: [0, 1, 2].map(|k| p[0][k].min(p[1][k]).min(p[2][k])),
-                max: [0, 1, 2].map(|k| p[0][k].max(p[1][k]).max(p[2][k])),
-            }
-        })
-        .collect();
-    let bvh = Bvh::new(&boxes);
-
-    // Nesting: which closed, orientable shells contain which.
+    // Nesting and overlap concern closed, orientable shells.
     let mut shell_open = vec![false; shell_count];
     for g in groups.iter().filter(|g| g.len() != 2) {
         shell_open[shell_of_face[g[0].face as usize] as usize] = true;
@@ -701,82 +690,96 @@ fn analyse<S: Surface + ?Sized>(
     let solid_shell: Vec<bool> =
         (0..shell_count).map(|s| orientable[s] && !shell_open[s]).collect();
     let mut shell_bounds: Vec<Option<Bounds>> = vec![None; shell_count];
-    for (i, (_, f)) in triangles.iter().enumerate() {
-        let s = shell_of_face[*f as usize] as usize;
-        shell_bounds[s] = Some(match shell_bounds[s] {
-            None => boxes[i],
-            Some(b) => Bounds {
-                min: [0, 1, 2].map(|k| b.min[k].min(boxes[i].min[k])),
-                max: [0, 1, 2].map(|k| b.max[k].max(boxes[i].max[k])),
-            },
-        });
+    for f in (0..faces).filter(|&f| kept[f]) {
+        let bounds = &mut shell_bounds[shell_of_face[f] as usize];
+        for c in loops.face(f) {
+            let p = welded.positions[vid(c) as usize];
+            bounds.get_or_insert(Bounds::of(p)).include(p);
+        }
     }
-    // Sample up to NESTING_SAMPLES vertices spread over each shell.
+    // For each shell, the closed shells whose boxes overlap its own (found through a
+    // hierarchy over the shells' boxes: files with 100 000 parts are common).
+    let shell_tree = Bvh::new(shell_bounds.iter().map(|b| b.unwrap_or(Bounds::EMPTY)).collect());
+    let candidates: Vec<Vec<usize>> = (0..shell_count)
+        .into_par_iter()
+        .map(|a| {
+            let mut near = Vec::new();
+            if let Some(ba) = shell_bounds[a] {
+                shell_tree.overlapping(&ba, |b| {
+                    if b != a && solid_shell[b] {
+                        near.push(b);
+                    }
+                });
+            }
+            near.sort_unstable();
+            near
+        })
+        .collect();
+
+    // Triangles (fans of kept faces) in spatial order, with their corners inline, and
+    // a hierarchy over their boxes: only when something asks for them.
+    let nesting = candidates.iter().any(|c| !c.is_empty());
+    let (triangles, bvh) = if nesting || options.intersections {
+        triangles_in_space(loops, &kept, &welded)
+    } else {
+        (Vec::new(), Bvh::default())
+    };
+
+    // Sample up to NESTING_SAMPLES triangles' corners spread over each shell.
     let mut shell_triangles = vec![0usize; shell_count];
-    for (_, f) in &triangles {
-        shell_triangles[shell_of_face[*f as usize] as usize] += 1;
+    for t in &triangles {
+        shell_triangles[shell_of_face[t.face as usize] as usize] += 1;
     }
-    let mut samples: Vec<Vec<u32>> = vec![Vec::new(); shell_count];
+    let mut samples: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
     let mut seen_in_shell = vec![0usize; shell_count];
-    for (t, f) in &triangles {
-        let s = shell_of_face[*f as usize] as usize;
+    for t in &triangles {
+        let s = shell_of_face[t.face as usize] as usize;
         let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
-        if seen_in_shell[s] % stride == 0 {
-            samples[s].extend_from_slice(t);
+        if seen_in_shell[s] % stride == 0 && !candidates[s].is_empty() {
+            samples[s].extend_from_slice(&t.points);
         }
         seen_in_shell[s] += 1;
     }
     // Far enough that an oblique segment from any vertex leaves every shell's box.
     let reach = {
         let all = shell_bounds.iter().flatten().fold(None, |acc: Option<Bounds>, b| {
-            Some(acc.map_or(*b, |a| Bounds {
-                min: [0, 1, 2].map(|k| a.min[k].min(b.min[k])),
-                max: [0, 1, 2].map(|k| a.max[k].max(b.max[k])),
-            }))
+            let mut all = acc.unwrap_or(*b);
+            all.merge(b);
+            Some(all)
         });
         all.map_or(1.0, |b| 4.0 * norm(b.size()) + 1.0)
     };
-    // For each shell, how many of its samples lie inside / outside each other closed
-    // shell whose box overlaps its own.
+    // For each shell, how many of its samples lie inside / outside each candidate.
     let classify = |a: usize| -> Vec<(usize, usize, usize)> {
-        let Some(ba) = shell_bounds[a] else { return vec![] };
-        let candidates: Vec<usize> = (0..shell_count)
-            .filter(|&b| {
-                b != a
-                    && solid_shell[b]
-                    && shell_bounds[b].is_some_and(|bb| {
-                        (0..3).all(|k| bb.min[k] <= ba.max[k] && ba.min[k] <= bb.max[k])
-                    })
-            })
-            .collect();
+        let candidates = &candidates[a];
         let mut counts: Vec<(usize, usize, usize)> =
             candidates.iter().map(|&b| (b, 0, 0)).collect();
-        if candidates.is_empty() {
-            return counts;
-        }
-        let mut winding = vec![0i64; shell_count];
-        for &v in &samples[a] {
-            let p = welded.positions[v as usize];
+        let mut winding = vec![0i64; candidates.len()];
+        for &p in &samples[a] {
             // Rays along each axis direction in turn, until one crosses cleanly; then
             // an oblique segment to beyond the mesh (it meets many boxes, so it is the
             // last resort, for symmetric meshes where every axis ray hits an edge).
             let clean = (0..=predicates::RAY_FRAMES.len()).any(|frame| {
                 let oblique = frame == predicates::RAY_FRAMES.len();
                 let q = add(p, scale(predicates::OBLIQUE, reach));
-                let (min, max) = if oblique {
-                    ([0, 1, 2].map(|k| p[k].min(q[k])), [0, 1, 2].map(|k| p[k].max(q[k])))
+                let ray = if oblique {
+                    let mut b = Bounds::of(p);
+                    b.include(q);
+                    b
                 } else {
-                    predicates::ray_box(p, frame)
+                    let (min, max) = predicates::ray_box(p, frame);
+                    Bounds { min, max }
                 };
-                candidates.iter().for_each(|&b| winding[b] = 0);
+                winding.fill(0);
                 let mut grazed = false;
-                bvh.overlapping(&Bounds { min, max }, |i| {
-                    let (t, f) = &triangles[i];
-                    let s = shell_of_face[*f as usize] as usize;
-                    if grazed || s == a || candidates.binary_search(&s).is_err() {
+                bvh.overlapping(&ray, |i| {
+                    let t = &triangles[i];
+                    let s = shell_of_face[t.face as usize] as usize;
+                    if grazed || s == a {
                         return;
                     }
-                    let v = corner_points(t);
+                    let Ok(k) = candidates.binary_search(&s) else { return };
+                    let v = t.points;
                     let crossing = if oblique {
                         predicates::segment_crossing(p, q, v[0], v[1], v[2])
                     } else {
@@ -785,7 +788,7 @@ fn analyse<S: Surface + ?Sized>(
                         predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
                     };
                     match crossing {
-                        Some(w) => winding[s] += if flip[*f as usize] { -w } else { w } as i64,
+                        Some(w) => winding[k] += if flip[t.face as usize] { -w } else { w } as i64,
                         None => grazed = true,
                     }
                 });
@@ -794,8 +797,8 @@ fn analyse<S: Surface + ?Sized>(
             if !clean {
                 continue; // on another surface: this sample cannot tell
             }
-            for c in counts.iter_mut() {
-                if winding[c.0] != 0 {
+            for (c, &w) in counts.iter_mut().zip(&winding) {
+                if w != 0 {
                     c.1 += 1;
                 } else {
                     c.2 += 1;
@@ -822,31 +825,29 @@ fn analyse<S: Surface + ?Sized>(
         })
         .collect();
 
-    // Crossing triangles.
+    // Crossing triangles, as face pairs.
     let mut self_intersections = None;
     let mut intersection_examples = Vec::new();
     if options.intersections {
-        let pairs: Vec<[u32; 2]> = bvh.overlapping_pairs(|i, j| {
-            let (t, u) = (&triangles[i].0, &triangles[j].0);
-            if t.iter().any(|v| u.contains(v)) {
+        let mut pairs: Vec<[usize; 2]> = bvh.overlapping_pairs(|i, j| {
+            let (t, u) = (&triangles[i], &triangles[j]);
+            if t.ids.iter().any(|v| u.ids.contains(v)) {
                 return None; // neighbours meet at shared vertices by design
             }
-            predicates::triangles_cross(corner_points(t), corner_points(u))
-                .then_some([i.min(j) as u32, i.max(j) as u32])
+            let (f, g) = (t.face as usize, u.face as usize);
+            predicates::triangles_cross(t.points, u.points).then_some([f.min(g), f.max(g)])
         });
+        pairs.sort_unstable();
         let mut within = 0;
-        for &[i, j] in &pairs {
-            let (fi, fj) = (triangles[i as usize].1 as usize, triangles[j as usize].1 as usize);
-            let (si, sj) = (shell_of_face[fi] as usize, shell_of_face[fj] as usize);
-            if si == sj {
+        for &[f, g] in &pairs {
+            let (sf, sg) = (shell_of_face[f] as usize, shell_of_face[g] as usize);
+            if sf == sg {
                 within += 1;
             } else {
-                overlapping_shells.insert([si.min(sj), si.max(sj)]);
-            }
-            if intersection_examples.len() < options.examples {
-                intersection_examples.push([fi.min(fj), fi.max(fj)]);
+                overlapping_shells.insert([sf, sg]);
             }
         }
+        intersection_examples = pairs.iter().take(options.examples).copied().collect();
         self_intersections = Some(within);
     }
 
@@ -963,6 +964,44 @@ fn analyse<S: Surface + ?Sized>(
         volume_uncertainty,
         solid,
     }
+}
+
+/// A triangle of a kept face's fan, with its welded corners.
+struct Triangle {
+    ids: [u32; 3],
+    points: [Point; 3],
+    face: u32,
+}
+
+/// The kept faces' triangles in spatial order (neighbours in space are neighbours in
+/// memory, which the hierarchy's searches then read), and the hierarchy over them.
+fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (Vec<Triangle>, Bvh) {
+    let vid = |c: usize| welded.corner_vertex[c];
+    let fans: Vec<([u32; 3], u32)> = (0..kept.len())
+        .filter(|&f| kept[f])
+        .flat_map(|f| {
+            let r = loops.face(f);
+            (r.start + 1..r.end - 1).map(move |c| ([vid(r.start), vid(c), vid(c + 1)], f as u32))
+        })
+        .collect();
+    let bounds = |ids: &[u32; 3]| {
+        let p = ids.map(|v| welded.positions[v as usize]);
+        let mut b = Bounds::of(p[0]);
+        b.include(p[1]);
+        b.include(p[2]);
+        b
+    };
+    let boxes: Vec<Bounds> = fans.par_iter().map(|(ids, _)| bounds(ids)).collect();
+    let order = Bvh::spatial_order(&boxes);
+    let triangles = order
+        .par_iter()
+        .map(|&i| {
+            let (ids, face) = fans[i as usize];
+            Triangle { ids, points: ids.map(|v| welded.positions[v as usize]), face }
+        })
+        .collect();
+    let boxes = order.par_iter().map(|&i| boxes[i as usize]).collect();
+    (triangles, Bvh::new(boxes))
 }
 
 /// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's
