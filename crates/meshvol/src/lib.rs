@@ -18,6 +18,7 @@
 //! Threads come from the caller's rayon pool (`ThreadPool::install`).
 
 pub mod accumulate;
+mod buckets;
 mod bvh;
 mod eigen;
 pub mod exact;

@@ -36,14 +36,13 @@
 //! inward), degenerate and duplicate faces dropped, holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
-mod buckets;
 mod predicates;
 mod solid;
 mod weld;
 
 pub use solid::Solid;
 
-use buckets::{for_each_range_mut, Buckets};
+use crate::buckets::{for_each_range_mut, Buckets};
 
 use crate::accumulate::CompensatedSum;
 use crate::bvh::Bvh;
@@ -444,8 +443,8 @@ fn analyse<S: Surface + ?Sized>(
     let mut sorted_ids: Vec<u32> = welded.corner_vertex.clone();
     for_each_range_mut(&mut sorted_ids, faces, &|f| loops.face(f), &|ids| ids.sort_unstable());
     let ids_of = |f: u32| &sorted_ids[loops.face(f as usize)];
-    let mut by_vertices = Buckets::new(welded.positions.len(), || {
-        (0..faces as u32).filter(|&f| !degenerate[f as usize]).map(|f| (ids_of(f)[0], f))
+    let mut by_vertices = Buckets::new(welded.positions.len(), faces, |range| {
+        range.filter(|&f| !degenerate[f]).map(|f| (ids_of(f as u32)[0], f as u32))
     });
     by_vertices.for_each_mut(|group| {
         if group.len() > 1 {
@@ -468,8 +467,8 @@ fn analyse<S: Surface + ?Sized>(
         let (u, v) = (vid(c), vid(loops.next(loops.face_of[c] as usize, c)));
         (u.min(v), u.max(v))
     };
-    let mut by_vertex = Buckets::new(welded.positions.len(), || {
-        (0..faces).filter(|&f| kept[f]).flat_map(|f| loops.face(f)).map(|c| {
+    let mut by_vertex = Buckets::new(welded.positions.len(), faces, |range| {
+        range.filter(|&f| kept[f]).flat_map(|f| loops.face(f)).map(|c| {
             let (low, high) = ends(c);
             (low, (u64::from(high) << 32) | c as u64)
         })
@@ -496,8 +495,6 @@ fn analyse<S: Surface + ?Sized>(
     let mut corner_fans = Components::new(loops.corners.len());
     let (mut boundary_edges, mut non_manifold_edges) = (0, 0);
     let mut consistently_oriented = true;
-    // Manifold neighbours for orientation propagation: (face, other face, same direction).
-    let mut neighbours: Vec<(u32, u32, bool)> = Vec::new();
     let mut face_inconsistent = vec![false; faces];
     for g in &groups {
         for e in &g[1..] {
@@ -512,8 +509,6 @@ fn analyse<S: Surface + ?Sized>(
                     face_inconsistent[g[0].face as usize] = true;
                     face_inconsistent[g[1].face as usize] = true;
                 }
-                neighbours.push((g[0].face, g[1].face, same));
-                neighbours.push((g[1].face, g[0].face, same));
             }
             _ => non_manifold_edges += 1,
         }
@@ -532,21 +527,14 @@ fn analyse<S: Surface + ?Sized>(
             corner_fans.join(a.1 as u32, b.1 as u32);
         }
     }
-    // Neighbours of each face, contiguous (compressed rows).
-    let mut neighbour_start = vec![0u32; faces + 1];
-    for n in &neighbours {
-        neighbour_start[n.0 as usize + 1] += 1;
-    }
-    for f in 0..faces {
-        neighbour_start[f + 1] += neighbour_start[f];
-    }
-    let mut fill = neighbour_start.clone();
-    let mut adjacent = vec![(0u32, false); neighbours.len()];
-    for &(f, g, same) in &neighbours {
-        adjacent[fill[f as usize] as usize] = (g, same);
-        fill[f as usize] += 1;
-    }
-    drop((neighbours, fill));
+    // Each face's neighbours across manifold edges, and whether the two traverse the
+    // edge the same way, for orientation propagation.
+    let neighbours = Buckets::new(faces, groups.len(), |range| {
+        groups[range].iter().filter(|g| g.len() == 2).flat_map(|g| {
+            let same = g[0].forward == g[1].forward;
+            [(g[0].face, (g[1].face, same)), (g[1].face, (g[0].face, same))]
+        })
+    });
 
     // Non-manifold vertices: corners of one vertex in more than one fan.
     let mut non_manifold_vertices = 0;
@@ -595,9 +583,7 @@ fn analyse<S: Surface + ?Sized>(
         seen[f] = true;
         queue.push_back(f as u32);
         while let Some(g) = queue.pop_front() {
-            let row =
-                neighbour_start[g as usize] as usize..neighbour_start[g as usize + 1] as usize;
-            for &(h, same) in &adjacent[row] {
+            for &(h, same) in neighbours.get(g as usize) {
                 let want = flip[g as usize] ^ same;
                 if !seen[h as usize] {
                     seen[h as usize] = true;
@@ -829,14 +815,15 @@ fn analyse<S: Surface + ?Sized>(
     let mut self_intersections = None;
     let mut intersection_examples = Vec::new();
     if options.intersections {
-        let mut pairs: Vec<[usize; 2]> = bvh.overlapping_pairs(|i, j| {
+        let test = |i: usize, j: usize| {
             let (t, u) = (&triangles[i], &triangles[j]);
             if t.ids.iter().any(|v| u.ids.contains(v)) {
                 return None; // neighbours meet at shared vertices by design
             }
             let (f, g) = (t.face as usize, u.face as usize);
             predicates::triangles_cross(t.points, u.points).then_some([f.min(g), f.max(g)])
-        });
+        };
+        let mut pairs: Vec<[usize; 2]> = bvh.overlapping_pairs(test);
         pairs.sort_unstable();
         let mut within = 0;
         for &[f, g] in &pairs {
@@ -978,30 +965,36 @@ struct Triangle {
 fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (Vec<Triangle>, Bvh) {
     let vid = |c: usize| welded.corner_vertex[c];
     let fans: Vec<([u32; 3], u32)> = (0..kept.len())
+        .into_par_iter()
         .filter(|&f| kept[f])
-        .flat_map(|f| {
+        .flat_map_iter(|f| {
             let r = loops.face(f);
             (r.start + 1..r.end - 1).map(move |c| ([vid(r.start), vid(c), vid(c + 1)], f as u32))
         })
         .collect();
-    let bounds = |ids: &[u32; 3]| {
-        let p = ids.map(|v| welded.positions[v as usize]);
-        let mut b = Bounds::of(p[0]);
-        b.include(p[1]);
-        b.include(p[2]);
-        b
-    };
-    let boxes: Vec<Bounds> = fans.par_iter().map(|(ids, _)| bounds(ids)).collect();
-    let order = Bvh::spatial_order(&boxes);
-    let triangles = order
+    let point = |v: u32| welded.positions[v as usize];
+    let centres: Vec<Point> = fans
+        .par_iter()
+        .map(|(ids, _)| {
+            let p = ids.map(point);
+            [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
+        })
+        .collect();
+    let order = Bvh::spatial_order(&centres);
+    drop(centres);
+    let (triangles, boxes): (Vec<Triangle>, Vec<Bounds>) = order
         .par_iter()
         .map(|&i| {
             let (ids, face) = fans[i as usize];
-            Triangle { ids, points: ids.map(|v| welded.positions[v as usize]), face }
+            let points = ids.map(point);
+            let mut bounds = Bounds::of(points[0]);
+            bounds.include(points[1]);
+            bounds.include(points[2]);
+            (Triangle { ids, points, face }, bounds)
         })
-        .collect();
-    let boxes = order.par_iter().map(|&i| boxes[i as usize]).collect();
-    (triangles, Bvh::new(boxes))
+        .unzip();
+    let b = Bvh::new(boxes);
+    (triangles, b)
 }
 
 /// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's

@@ -23,6 +23,19 @@ fn c3(p: Point) -> Coord3D<f64> {
 /// Sign of det[a − d; b − d; c − d]: positive when d lies behind the triangle (a, b, c),
 /// i.e. on the side its normal (b − a) × (c − a) points away from.
 pub(crate) fn orient(a: Point, b: Point, c: Point, d: Point) -> f64 {
+    // a, b, c in a plane x_k = h (faces of CAD parts often are): expanding the
+    // determinant along column k leaves (−1)^k (h − d_k) times the 2D orientation of
+    // a, b, c without axis k, each factor's sign exact. This skips orient3d's slow
+    // exact path, which every touching pair of such faces would otherwise take.
+    for k in 0..3 {
+        if a[k] == b[k] && b[k] == c[k] {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let (i, j) = (i.min(j), i.max(j));
+            let flat = |p: Point| Coord { x: p[i], y: p[j] };
+            let parity = if k == 1 { -1.0 } else { 1.0 };
+            return parity * sign(a[k] - d[k]) * sign(orient2d(flat(a), flat(b), flat(c)));
+        }
+    }
     sign(orient3d(c3(a), c3(b), c3(c), c3(d)))
 }
 
@@ -140,6 +153,27 @@ pub(crate) fn ray_crossing(p: Point, a: Point, b: Point, c: Point) -> Option<i32
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn axis_plane_shortcut_agrees_with_orient3d() {
+        // Small integer coordinates: many triples share a coordinate, many quadruples
+        // are coplanar.
+        let mut state = 0x9e3779b97f4a7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % 4) as f64 - 1.5
+        };
+        for _ in 0..20000 {
+            let mut p = [[0.0; 3]; 4];
+            p.iter_mut().for_each(|q| q.iter_mut().for_each(|x| *x = next()));
+            let k = (next() + 1.5) as usize % 3;
+            (p[1][k], p[2][k]) = (p[0][k], p[0][k]);
+            let exact = sign(orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3])));
+            assert_eq!(orient(p[0], p[1], p[2], p[3]), exact, "{p:?}");
+        }
+    }
 
     #[test]
     fn crossing_and_touching_triangles() {

@@ -12,7 +12,7 @@
 //! one vertex). Candidates come from a hashed grid of cells of size 2t: the points
 //! within t of a point lie in the 2 × 2 × 2 cells its box of half-width t touches.
 
-use super::buckets::Buckets;
+use crate::buckets::Buckets;
 use crate::Point;
 use hashbrown::HashTable;
 use rayon::prelude::*;
@@ -44,9 +44,9 @@ fn exact_representatives(corners: &[Point]) -> Vec<u32> {
     // for positions, which must still vary within a slice.
     let slice = |key: &[u64; 3]| ((state.hash_one(key) >> 32) as usize % SLICES) as u32;
     // Each slice's corners with their keys inline, so welding a slice reads only it.
-    let mut slices = Buckets::new(SLICES, || {
-        corners.iter().enumerate().map(|(c, &p)| {
-            let key = bits(p);
+    let mut slices = Buckets::new(SLICES, corners.len(), |range| {
+        range.map(|c| {
+            let key = bits(corners[c]);
             (slice(&key), (key, c as u32, 0u32))
         })
     });
@@ -78,8 +78,8 @@ fn number(corners: &[Point], representative: &[u32]) -> Welded {
             corner_vertex[r]
         };
     }
-    let corners_of = Buckets::new(positions.len(), || {
-        corner_vertex.iter().enumerate().map(|(c, &v)| (v, c as u32))
+    let corners_of = Buckets::new(positions.len(), corners.len(), |range| {
+        range.map(|c| (corner_vertex[c], c as u32))
     });
     Welded { corner_vertex, positions, corners_of }
 }
