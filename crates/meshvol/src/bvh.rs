@@ -182,7 +182,8 @@ impl Bvh {
     }
 
     /// Adds to `found` what `test` keeps of the overlapping pairs with one item under
-    /// node `a` and the other under node `b` (each pair once when `a == b`).
+    /// node `a` and the other under node `b` (each pair once when `a == b`). Splits
+    /// big nodes across threads, then walks small ones with [`Bvh::pairs_in_thread`].
     fn pairs_under<T: Send>(
         &self,
         a: usize,
@@ -194,68 +195,95 @@ impl Bvh {
         if !overlaps(&na.bounds, &nb.bounds) {
             return;
         }
-        let size = |n: &Node| n.end - n.begin;
-        match (na.count > 0, nb.count > 0) {
-            (true, true) => {
-                // Only items that reach the other leaf's box can be in a pair.
-                let reaching = |n: &Node, other: &Bounds| {
-                    let mut items = [0usize; LEAF_SIZE];
-                    let mut len = 0;
-                    for p in n.start as usize..(n.start + n.count) as usize {
-                        if overlaps(&self.boxes[p], other) {
-                            items[len] = p;
-                            len += 1;
-                        }
-                    }
-                    (items, len)
-                };
-                let (pa, la) = reaching(na, &nb.bounds);
-                let (pb, lb) = if a == b { (pa, la) } else { reaching(nb, &na.bounds) };
-                for (i, &p) in pa[..la].iter().enumerate() {
-                    let from = if a == b { i + 1 } else { 0 };
-                    for &q in &pb[from..lb] {
-                        if overlaps(&self.boxes[p], &self.boxes[q]) {
-                            found.extend(test(p, q));
-                        }
-                    }
-                }
+        if (na.end - na.begin).max(nb.end - nb.begin) <= PARALLEL_ITEMS {
+            return self.pairs_in_thread(a, b, test, found);
+        }
+        let (x, y) = if a == b {
+            let (l, r) = (na.start as usize, na.start as usize + 1);
+            let (mut x, y) =
+                rayon::join(|| self.collect_pairs(l, l, test), || self.collect_pairs(r, r, test));
+            x.extend(self.collect_pairs(l, r, test));
+            (x, y)
+        } else {
+            let (keep, split) = self.split(a, b);
+            let first = self.nodes[split].start as usize;
+            rayon::join(
+                || self.collect_pairs(keep, first, test),
+                || self.collect_pairs(keep, first + 1, test),
+            )
+        };
+        found.extend(x);
+        found.extend(y);
+    }
+
+    /// Of two distinct nodes, not both leaves: (the one kept, the one whose children
+    /// are paired with it): the inner one, the larger when both are inner.
+    fn split(&self, a: usize, b: usize) -> (usize, usize) {
+        let (na, nb) = (&self.nodes[a], &self.nodes[b]);
+        let split_a = na.count == 0 && (nb.count > 0 || na.end - na.begin >= nb.end - nb.begin);
+        if split_a {
+            (b, a)
+        } else {
+            (a, b)
+        }
+    }
+
+    /// [`Bvh::pairs_under`] in this thread, with an explicit stack of node pairs.
+    fn pairs_in_thread<T>(
+        &self,
+        a: usize,
+        b: usize,
+        test: &impl Fn(usize, usize) -> Option<T>,
+        found: &mut Vec<T>,
+    ) {
+        // Each step pushes at most 3 pairs and descends a level: a few times the depth.
+        let mut stack: Vec<(u32, u32)> = Vec::with_capacity(4 * STACK);
+        stack.push((a as u32, b as u32));
+        while let Some((a, b)) = stack.pop() {
+            let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
+            if !overlaps(&na.bounds, &nb.bounds) {
+                continue;
             }
-            _ if a == b => {
-                let (l, r) = (na.start as usize, na.start as usize + 1);
-                if size(na) > PARALLEL_ITEMS {
-                    let (mut x, (y, z)) = rayon::join(
-                        || self.collect_pairs(l, l, test),
-                        || {
-                            rayon::join(
-                                || self.collect_pairs(r, r, test),
-                                || self.collect_pairs(l, r, test),
-                            )
-                        },
-                    );
-                    x.extend(y);
-                    x.extend(z);
-                    found.extend(x);
-                } else {
-                    self.pairs_under(l, l, test, found);
-                    self.pairs_under(r, r, test, found);
-                    self.pairs_under(l, r, test, found);
-                }
+            if na.count > 0 && nb.count > 0 {
+                self.leaf_pairs(na, nb, a == b, test, found);
+            } else if a == b {
+                let (l, r) = (na.start, na.start + 1);
+                stack.extend([(l, r), (r, r), (l, l)]);
+            } else {
+                let (keep, split) = self.split(a as usize, b as usize);
+                let first = self.nodes[split].start;
+                stack.extend([(keep as u32, first + 1), (keep as u32, first)]);
             }
-            (leaf_a, _) => {
-                // Split the inner node (the larger one when both are inner).
-                let split_a = !leaf_a && (nb.count > 0 || size(na) >= size(nb));
-                let (keep, split) = if split_a { (b, a) } else { (a, b) };
-                let first = self.nodes[split].start as usize;
-                if size(&self.nodes[split]) > PARALLEL_ITEMS {
-                    let (x, y) = rayon::join(
-                        || self.collect_pairs(keep, first, test),
-                        || self.collect_pairs(keep, first + 1, test),
-                    );
-                    found.extend(x);
-                    found.extend(y);
-                } else {
-                    self.pairs_under(keep, first, test, found);
-                    self.pairs_under(keep, first + 1, test, found);
+        }
+    }
+
+    /// The pairs of two leaves (of one leaf with itself, when `same`).
+    #[inline]
+    fn leaf_pairs<T>(
+        &self,
+        na: &Node,
+        nb: &Node,
+        same: bool,
+        test: &impl Fn(usize, usize) -> Option<T>,
+        found: &mut Vec<T>,
+    ) {
+        // Only items that reach the other leaf's box can be in a pair.
+        let reaching = |n: &Node, other: &Bounds| {
+            let mut items = [0u32; LEAF_SIZE];
+            let mut len = 0;
+            for p in n.start..n.start + n.count {
+                items[len] = p;
+                len += overlaps(&self.boxes[p as usize], other) as usize;
+            }
+            (items, len)
+        };
+        let (pa, la) = reaching(na, &nb.bounds);
+        let (pb, lb) = if same { (pa, la) } else { reaching(nb, &na.bounds) };
+        for (i, &p) in pa[..la].iter().enumerate() {
+            let from = if same { i + 1 } else { 0 };
+            for &q in &pb[from..lb] {
+                if overlaps(&self.boxes[p as usize], &self.boxes[q as usize]) {
+                    found.extend(test(p as usize, q as usize));
                 }
             }
         }

@@ -492,7 +492,6 @@ fn analyse<S: Surface + ?Sized>(
     let groups: Vec<&[EdgeUse]> = uses.chunk_by(|a, b| a.key == b.key).collect();
 
     let mut shells_of = Components::new(faces);
-    let mut corner_fans = Components::new(loops.corners.len());
     let (mut boundary_edges, mut non_manifold_edges) = (0, 0);
     let mut consistently_oriented = true;
     let mut face_inconsistent = vec![false; faces];
@@ -512,20 +511,6 @@ fn analyse<S: Surface + ?Sized>(
             }
             _ => non_manifold_edges += 1,
         }
-        // Corners at the same end of one edge are in the same fan around that vertex.
-        for pair in g.windows(2) {
-            let ends = |e: &EdgeUse| {
-                let (c, n) = (e.corner as usize, loops.next(e.face as usize, e.corner as usize));
-                if e.forward {
-                    (c, n)
-                } else {
-                    (n, c)
-                }
-            };
-            let (a, b) = (ends(&pair[0]), ends(&pair[1]));
-            corner_fans.join(a.0 as u32, b.0 as u32);
-            corner_fans.join(a.1 as u32, b.1 as u32);
-        }
     }
     // Each face's neighbours across manifold edges, and whether the two traverse the
     // edge the same way, for orientation propagation.
@@ -536,26 +521,43 @@ fn analyse<S: Surface + ?Sized>(
         })
     });
 
-    // Non-manifold vertices: corners of one vertex in more than one fan.
-    let mut non_manifold_vertices = 0;
-    let mut used_vertices = 0;
-    let mut roots = Vec::new();
-    for v in 0..welded.positions.len() {
-        roots.clear();
-        for &c in welded.corners_of.get(v) {
-            if kept[loops.face_of[c as usize] as usize] {
-                roots.push(corner_fans.find(c));
+    // Non-manifold vertices: corners of one vertex in more than one fan, two corners
+    // being in one fan when their faces share an edge there (have the same vertex
+    // before or after it). Each vertex on its own, in parallel.
+    let fans_per_vertex = |(ends, parent): &mut (Vec<(u32, u32)>, Vec<u32>), v: usize| {
+        ends.clear();
+        let corners = welded.corners_of.get(v).iter().map(|&c| c as usize);
+        for (i, c) in corners.filter(|&c| kept[loops.face_of[c] as usize]).enumerate() {
+            let f = loops.face_of[c] as usize;
+            let before = if c == loops.start[f] { loops.start[f + 1] - 1 } else { c - 1 };
+            ends.extend([(vid(before), i as u32), (vid(loops.next(f, c)), i as u32)]);
+        }
+        let corners = ends.len() / 2;
+        ends.sort_unstable();
+        parent.clear();
+        parent.extend(0..corners as u32);
+        let mut fans = corners;
+        for w in ends.windows(2).filter(|w| w[0].0 == w[1].0) {
+            let root = |parent: &mut Vec<u32>, mut x: u32| {
+                while parent[x as usize] != x {
+                    parent[x as usize] = parent[parent[x as usize] as usize];
+                    x = parent[x as usize];
+                }
+                x
+            };
+            let (a, b) = (root(parent, w[0].1), root(parent, w[1].1));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+                fans -= 1;
             }
         }
-        if !roots.is_empty() {
-            used_vertices += 1;
-        }
-        roots.sort_unstable();
-        roots.dedup();
-        if roots.len() > 1 {
-            non_manifold_vertices += 1;
-        }
-    }
+        fans
+    };
+    let (used_vertices, non_manifold_vertices) = (0..welded.positions.len())
+        .into_par_iter()
+        .map_init(|| (Vec::new(), Vec::new()), fans_per_vertex)
+        .map(|fans| ((fans > 0) as usize, (fans > 1) as usize))
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
 
     // Shells, numbered by their first face.
     let mut shell_of_face = vec![u32::MAX; faces];
@@ -817,7 +819,7 @@ fn analyse<S: Surface + ?Sized>(
     if options.intersections {
         let test = |i: usize, j: usize| {
             let (t, u) = (&triangles[i], &triangles[j]);
-            if t.ids.iter().any(|v| u.ids.contains(v)) {
+            if shares_a_vertex(&t.ids, &u.ids) {
                 return None; // neighbours meet at shared vertices by design
             }
             let (f, g) = (t.face as usize, u.face as usize);
@@ -958,6 +960,13 @@ struct Triangle {
     ids: [u32; 3],
     points: [Point; 3],
     face: u32,
+}
+
+/// Whether two triangles share a vertex: nine comparisons without short-circuiting
+/// (most pairs tested are neighbours, in no predictable pattern).
+#[inline(always)]
+fn shares_a_vertex(t: &[u32; 3], u: &[u32; 3]) -> bool {
+    t.iter().fold(false, |shared, v| shared | (*v == u[0]) | (*v == u[1]) | (*v == u[2]))
 }
 
 /// The kept faces' triangles in spatial order (neighbours in space are neighbours in

@@ -1,6 +1,7 @@
 //! Exact geometric predicates on triangles, from Shewchuk's adaptive orientation tests
 //! (the `robust` crate): signs are exact, so the answers do not depend on rounding.
 
+use crate::vector::{cross, dot, sub};
 use crate::Point;
 use robust::{orient2d, orient3d, Coord, Coord3D};
 
@@ -39,15 +40,60 @@ pub(crate) fn orient(a: Point, b: Point, c: Point, d: Point) -> f64 {
     sign(orient3d(c3(a), c3(b), c3(c), c3(d)))
 }
 
-/// Whether segment pq crosses triangle abc properly: p and q strictly on opposite sides
-/// of its plane, and the segment's line strictly inside the triangle.
-fn segment_crosses(p: Point, q: Point, a: Point, b: Point, c: Point) -> bool {
-    let (sp, sq) = (orient(a, b, c, p), orient(a, b, c, q));
-    if sp * sq >= 0.0 {
-        return false;
+/// A triangle with its plane, for many exact orientation tests against it.
+///
+/// [`orient`] against a fixed triangle recomputes its edge vectors' cross product each
+/// time; here it is computed once, with the magnitudes Shewchuk's static error bound
+/// needs (the same expression shape as his orient3d: a coordinate times a difference
+/// of two products, three times, on differences of input coordinates), so most tests
+/// are a dot product and a comparison, and the rest fall back to [`orient`].
+struct Plane {
+    t: [Point; 3],
+    normal: Point,
+    magnitude: Point,
+}
+
+/// Shewchuk's orient3d error bound coefficient, (7 + 56ε)ε with ε = 2⁻⁵³.
+const ORIENT3D_BOUND: f64 = (7.0 + 56.0 * HALF_ULP) * HALF_ULP;
+const HALF_ULP: f64 = f64::EPSILON / 2.0;
+
+impl Plane {
+    fn of(t: [Point; 3]) -> Plane {
+        let (v, w) = (sub(t[1], t[0]), sub(t[2], t[0]));
+        let m = |i: usize, j: usize| (v[i] * w[j]).abs() + (v[j] * w[i]).abs();
+        Plane { t, normal: cross(v, w), magnitude: [m(1, 2), m(2, 0), m(0, 1)] }
     }
-    let (s1, s2, s3) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
-    s1 != 0.0 && s1 == s2 && s2 == s3
+
+    /// `orient(t[0], t[1], t[2], p)`, exactly.
+    #[inline]
+    fn orient(&self, p: Point) -> f64 {
+        let u = sub(p, self.t[0]);
+        // orient is the sign of det[a − p; b − p; c − p] = −(p − a)·((b − a) × (c − a)).
+        let det = -dot(u, self.normal);
+        let permanent = dot(u.map(f64::abs), self.magnitude);
+        if det.abs() > ORIENT3D_BOUND * permanent {
+            sign(det)
+        } else {
+            orient(self.t[0], self.t[1], self.t[2], p)
+        }
+    }
+
+    /// Whether segment pq crosses this triangle properly: p and q strictly on opposite
+    /// sides of its plane, and the segment's line strictly inside the triangle.
+    fn crossed_by(&self, p: Point, q: Point) -> bool {
+        if self.orient(p) * self.orient(q) >= 0.0 {
+            return false;
+        }
+        let [a, b, c] = self.t;
+        let (s1, s2, s3) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
+        s1 != 0.0 && s1 == s2 && s2 == s3
+    }
+
+    /// Whether all of `u` lies strictly on one side of the plane.
+    fn separates(&self, u: &[Point; 3]) -> bool {
+        let s = u.map(|p| self.orient(p));
+        s[0] != 0.0 && s[0] == s[1] && s[1] == s[2]
+    }
 }
 
 /// Whether two triangles cross properly: an edge of one passes strictly through the
@@ -56,16 +102,17 @@ fn segment_crosses(p: Point, q: Point, a: Point, b: Point, c: Point) -> bool {
 pub(crate) fn triangles_cross(t: [Point; 3], u: [Point; 3]) -> bool {
     // One triangle strictly on one side of the other's plane: they cannot meet. (Three
     // orientation tests settle most pairs before the thirty of the edge tests.)
-    let side = |t: [Point; 3], u: [Point; 3]| {
-        let s = u.map(|p| orient(t[0], t[1], t[2], p));
-        s[0] != 0.0 && s[0] == s[1] && s[1] == s[2]
-    };
-    if side(t, u) || side(u, t) {
+    let plane_t = Plane::of(t);
+    if plane_t.separates(&u) {
+        return false;
+    }
+    let plane_u = Plane::of(u);
+    if plane_u.separates(&t) {
         return false;
     }
     let edges = |t: [Point; 3]| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])];
-    edges(t).iter().any(|&(p, q)| segment_crosses(p, q, u[0], u[1], u[2]))
-        || edges(u).iter().any(|&(p, q)| segment_crosses(p, q, t[0], t[1], t[2]))
+    edges(t).iter().any(|&(p, q)| plane_u.crossed_by(p, q))
+        || edges(u).iter().any(|&(p, q)| plane_t.crossed_by(p, q))
 }
 
 /// The six axis directions a ray can take, as rotations of coordinates that carry the
@@ -172,6 +219,33 @@ mod tests {
             (p[1][k], p[2][k]) = (p[0][k], p[0][k]);
             let exact = sign(orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3])));
             assert_eq!(orient(p[0], p[1], p[2], p[3]), exact, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn plane_filter_agrees_with_orient() {
+        // Random triangles and points, some exactly or nearly on the plane (a point of
+        // the triangle nudged by an ulp or so), some far: the filter may only answer
+        // when it is right.
+        let mut state = 0x2545f4914f6cdd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for i in 0..20000 {
+            let t = [[next(), next(), next()], [next(), next(), next()], [next(), next(), next()]];
+            let (w, z) = (next() + 0.5, next() + 0.5);
+            let on = [0, 1, 2].map(|k| t[0][k] + w * (t[1][k] - t[0][k]) + z * (t[2][k] - t[0][k]));
+            let p = match i % 3 {
+                0 => [next(), next(), next()],
+                1 => on,
+                _ => on.map(|x| x + next() * 1e-15),
+            };
+            let scale = [1.0, 1e-8, 1e8][i % 3];
+            let (t, p) = (t.map(|q| q.map(|x| x * scale)), p.map(|x| x * scale));
+            assert_eq!(Plane::of(t).orient(p), orient(t[0], t[1], t[2], p));
         }
     }
 
