@@ -69,7 +69,8 @@ impl<T: Copy + Default + Send + Sync> Buckets<T> {
     /// Runs `f` on every group, in parallel.
     pub fn for_each_mut(&mut self, f: impl Fn(&mut [T]) + Sync) {
         let start = &self.start;
-        for_each_range_mut(&mut self.items, start.len() - 1, &|k| start[k]..start[k + 1], &f);
+        let range = |k: usize| start[k]..start[k + 1];
+        for_each_range_mut(&mut self.items, start.len() - 1, &range, &|_, group| f(group));
     }
 }
 
@@ -87,25 +88,25 @@ impl<T> SharedItems<T> {
     }
 }
 
-/// Runs `f(&mut items[range(k)])` for every k below `count`, in parallel, where the
+/// Runs `f(k, &mut items[range(k)])` for every k below `count`, in parallel, where the
 /// ranges are consecutive and cover `items` (faces' corners, buckets' items).
 pub(crate) fn for_each_range_mut<T: Send>(
     items: &mut [T],
     count: usize,
     range: &(impl Fn(usize) -> Range<usize> + Sync),
-    f: &(impl Fn(&mut [T]) + Sync),
+    f: &(impl Fn(usize, &mut [T]) + Sync),
 ) {
     fn split<T: Send>(
         items: &mut [T],
         keys: Range<usize>,
         range: &(impl Fn(usize) -> Range<usize> + Sync),
-        f: &(impl Fn(&mut [T]) + Sync),
+        f: &(impl Fn(usize, &mut [T]) + Sync),
     ) {
         let offset = if keys.is_empty() { 0 } else { range(keys.start).start };
         if items.len() < 1 << 15 || keys.len() < 2 {
             for k in keys {
                 let r = range(k);
-                f(&mut items[r.start - offset..r.end - offset]);
+                f(k, &mut items[r.start - offset..r.end - offset]);
             }
         } else {
             let mid = keys.start + keys.len() / 2;

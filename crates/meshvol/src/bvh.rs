@@ -30,7 +30,7 @@ fn morton(x: u64, y: u64, z: u64) -> u64 {
 const PARALLEL_ITEMS: u32 = 4096;
 
 /// Items per leaf.
-const LEAF_SIZE: usize = 4;
+const LEAF_SIZE: usize = 8;
 
 #[derive(Clone, Debug)]
 struct Node {

@@ -314,30 +314,43 @@ struct Loops {
 }
 
 impl Loops {
+    /// The faces' corners, gathered in parallel: sizes first, then each face's fan
+    /// written into its place.
     fn of<S: Surface + ?Sized>(surface: &S) -> Loops {
-        let mut corners = Vec::new();
-        let mut start = Vec::with_capacity(surface.face_count() + 1);
-        for f in 0..surface.face_count() {
-            start.push(corners.len());
-            let mut first = true;
-            let mut last = [0.0; 3];
-            surface.fan(f, |a, b, c| {
-                if first {
-                    corners.push(a);
-                    first = false;
+        let faces = surface.face_count();
+        let sizes: Vec<usize> = (0..faces)
+            .into_par_iter()
+            .map(|f| {
+                let mut triangles = 0;
+                surface.fan(f, |_, _, _| triangles += 1);
+                if triangles == 0 {
+                    0
+                } else {
+                    triangles + 2
                 }
-                corners.push(b);
-                last = c;
+            })
+            .collect();
+        let mut start = Vec::with_capacity(faces + 1);
+        start.push(0);
+        for size in sizes {
+            start.push(start.last().unwrap_or(&0) + size);
+        }
+        let range = |f: usize| start[f]..start[f + 1];
+        let mut corners = vec![[0.0; 3]; start[faces]];
+        for_each_range_mut(&mut corners, faces, &range, &|f, corners| {
+            let mut next = 0;
+            surface.fan(f, |a, b, c| {
+                if next == 0 {
+                    corners[0] = a;
+                    next = 1;
+                }
+                corners[next] = b;
+                corners[next + 1] = c;
+                next += 1;
             });
-            if !first {
-                corners.push(last);
-            }
-        }
-        start.push(corners.len());
-        let mut face_of = vec![0u32; corners.len()];
-        for (f, w) in start.windows(2).enumerate() {
-            face_of[w[0]..w[1]].fill(f as u32);
-        }
+        });
+        let mut face_of = vec![0u32; start[faces]];
+        for_each_range_mut(&mut face_of, faces, &range, &|f, of| of.fill(f as u32));
         Loops { corners, start, face_of }
     }
 
@@ -441,7 +454,7 @@ fn analyse<S: Surface + ?Sized>(
     // smallest vertex, each group sorted by (sorted vertex list, face): a duplicate
     // follows its twin.
     let mut sorted_ids: Vec<u32> = welded.corner_vertex.clone();
-    for_each_range_mut(&mut sorted_ids, faces, &|f| loops.face(f), &|ids| ids.sort_unstable());
+    for_each_range_mut(&mut sorted_ids, faces, &|f| loops.face(f), &|_, ids| ids.sort_unstable());
     let ids_of = |f: u32| &sorted_ids[loops.face(f as usize)];
     let mut by_vertices = Buckets::new(welded.positions.len(), faces, |range| {
         range.filter(|&f| !degenerate[f]).map(|f| (ids_of(f as u32)[0], f as u32))
