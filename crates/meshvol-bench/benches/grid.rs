@@ -1,6 +1,6 @@
 //! Grid kernels: per-cell volumes of a 1M-triangle sphere on 256³ and 512³ grids, a
 //! profile, and the union of 20 overlapping spheres of 20k triangles at tolerance 1e-6.
-//! Peers (trimesh voxelize, manifold3d booleans) are timed by `bench/grid_peers.py`.
+//! Peers (trimesh voxelize, manifold3d booleans) are timed in `bench/compare/run`.
 //!
 //! Run: `cargo bench -p meshvol-bench --bench grid`
 

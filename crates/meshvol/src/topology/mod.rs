@@ -723,21 +723,21 @@ fn analyse<S: Surface + ?Sized>(
     let (triangles, bvh) = if nesting || options.intersections {
         triangles_in_space(loops, &kept, &welded)
     } else {
-        (Vec::new(), Bvh::default())
+        (Triangles::default(), Bvh::default())
     };
 
     // Sample up to NESTING_SAMPLES triangles' corners spread over each shell.
     let mut shell_triangles = vec![0usize; shell_count];
-    for t in &triangles {
-        shell_triangles[shell_of_face[t.face as usize] as usize] += 1;
+    for &f in &triangles.face {
+        shell_triangles[shell_of_face[f as usize] as usize] += 1;
     }
     let mut samples: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
     let mut seen_in_shell = vec![0usize; shell_count];
-    for t in &triangles {
-        let s = shell_of_face[t.face as usize] as usize;
+    for (&f, points) in triangles.face.iter().zip(&triangles.points) {
+        let s = shell_of_face[f as usize] as usize;
         let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
         if seen_in_shell[s] % stride == 0 && !candidates[s].is_empty() {
-            samples[s].extend_from_slice(&t.points);
+            samples[s].extend_from_slice(points);
         }
         seen_in_shell[s] += 1;
     }
@@ -774,13 +774,13 @@ fn analyse<S: Surface + ?Sized>(
                 winding.fill(0);
                 let mut grazed = false;
                 bvh.overlapping(&ray, |i| {
-                    let t = &triangles[i];
-                    let s = shell_of_face[t.face as usize] as usize;
+                    let face = triangles.face[i] as usize;
+                    let s = shell_of_face[face] as usize;
                     if grazed || s == a {
                         return;
                     }
                     let Ok(k) = candidates.binary_search(&s) else { return };
-                    let v = t.points;
+                    let v = triangles.points[i];
                     let crossing = if oblique {
                         predicates::segment_crossing(p, q, v[0], v[1], v[2])
                     } else {
@@ -789,7 +789,7 @@ fn analyse<S: Surface + ?Sized>(
                         predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
                     };
                     match crossing {
-                        Some(w) => winding[k] += if flip[t.face as usize] { -w } else { w } as i64,
+                        Some(w) => winding[k] += if flip[face] { -w } else { w } as i64,
                         None => grazed = true,
                     }
                 });
@@ -831,12 +831,12 @@ fn analyse<S: Surface + ?Sized>(
     let mut intersection_examples = Vec::new();
     if options.intersections {
         let test = |i: usize, j: usize| {
-            let (t, u) = (&triangles[i], &triangles[j]);
-            if shares_a_vertex(&t.ids, &u.ids) {
+            if shares_a_vertex(&triangles.ids[i], &triangles.ids[j]) {
                 return None; // neighbours meet at shared vertices by design
             }
-            let (f, g) = (t.face as usize, u.face as usize);
-            predicates::triangles_cross(t.points, u.points).then_some([f.min(g), f.max(g)])
+            let (f, g) = (triangles.face[i] as usize, triangles.face[j] as usize);
+            predicates::triangles_cross(triangles.points[i], triangles.points[j])
+                .then_some([f.min(g), f.max(g)])
         };
         let mut pairs: Vec<[usize; 2]> = bvh.overlapping_pairs(test);
         pairs.sort_unstable();
@@ -968,11 +968,14 @@ fn analyse<S: Surface + ?Sized>(
     }
 }
 
-/// A triangle of a kept face's fan, with its welded corners.
-struct Triangle {
-    ids: [u32; 3],
-    points: [Point; 3],
-    face: u32,
+/// The triangles of the kept faces' fans, as parallel arrays: the crossing search
+/// reads `ids` for every nearby pair and `points` only for pairs sharing no vertex.
+#[derive(Default)]
+struct Triangles {
+    /// Welded vertices.
+    ids: Vec<[u32; 3]>,
+    points: Vec<[Point; 3]>,
+    face: Vec<u32>,
 }
 
 /// Whether two triangles share a vertex: nine comparisons without short-circuiting
@@ -984,39 +987,40 @@ fn shares_a_vertex(t: &[u32; 3], u: &[u32; 3]) -> bool {
 
 /// The kept faces' triangles in spatial order (neighbours in space are neighbours in
 /// memory, which the hierarchy's searches then read), and the hierarchy over them.
-fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (Vec<Triangle>, Bvh) {
-    let vid = |c: usize| welded.corner_vertex[c];
-    let fans: Vec<([u32; 3], u32)> = (0..kept.len())
+fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (Triangles, Bvh) {
+    // Each fan triangle as (face, corner of its second vertex).
+    let fans: Vec<(u32, u32)> = (0..kept.len())
         .into_par_iter()
         .filter(|&f| kept[f])
         .flat_map_iter(|f| {
             let r = loops.face(f);
-            (r.start + 1..r.end - 1).map(move |c| ([vid(r.start), vid(c), vid(c + 1)], f as u32))
+            (r.start + 1..r.end - 1).map(move |c| (f as u32, c as u32))
         })
         .collect();
-    let point = |v: u32| welded.positions[v as usize];
+    let corners = |(f, c): (u32, u32)| [loops.start[f as usize], c as usize, c as usize + 1];
+    // Ordered by the face's own corners (read in sequence), not the welded vertices.
     let centres: Vec<Point> = fans
         .par_iter()
-        .map(|(ids, _)| {
-            let p = ids.map(point);
+        .map(|&fan| {
+            let p = corners(fan).map(|c| loops.corners[c]);
             [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
         })
         .collect();
     let order = Bvh::spatial_order(&centres);
     drop(centres);
-    let (triangles, boxes): (Vec<Triangle>, Vec<Bounds>) = order
+    let ((ids, points), (face, boxes)): ((Vec<_>, Vec<_>), (Vec<_>, Vec<Bounds>)) = order
         .par_iter()
         .map(|&i| {
-            let (ids, face) = fans[i as usize];
-            let points = ids.map(point);
+            let fan = fans[i as usize];
+            let ids = corners(fan).map(|c| welded.corner_vertex[c]);
+            let points = ids.map(|v| welded.positions[v as usize]);
             let mut bounds = Bounds::of(points[0]);
             bounds.include(points[1]);
             bounds.include(points[2]);
-            (Triangle { ids, points, face }, bounds)
+            ((ids, points), (fan.0, bounds))
         })
         .unzip();
-    let b = Bvh::new(boxes);
-    (triangles, b)
+    (Triangles { ids, points, face }, Bvh::new(boxes))
 }
 
 /// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's

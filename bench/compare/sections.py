@@ -1,0 +1,701 @@
+"""The sections of bench/compare beyond mesh volume: topology check, grid, union, convex hull
+and 2D area. Each has run_X(ctx, ...) -> list of rows and report_X(rows, ...) -> Markdown.
+
+Every timed command is a fresh process (meshvol, or a worker script in tools/), measured by
+harness.Runner: a warm-up with peak memory, then timed runs; a peer is cut off at
+--peer-timeout and reported as "> N s". See README.md for what each section compares.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import subprocess
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+
+import meshgen
+import pointgen
+from harness import (DATA, HERE, PY, TOOLS_DIR, ahead_cell, fmt_err, fmt_mb, fmt_ratio, fmt_s,
+                     is_behind, load_json, md_cell, ratio_cell, runs_cell, seconds_of,
+                     time_cell)
+
+
+def size_label(n: int) -> str:
+    if n >= 1_000_000 and n % 1_000_000 == 0:
+        return f"{n // 1_000_000}m"
+    if n >= 1_000 and n % 1_000 == 0:
+        return f"{n // 1_000}k"
+    return str(n)
+
+
+def params(args) -> dict:
+    """Section sizes: --quick's small ones, the defaults, or the options given."""
+    q = args.quick
+    p = {
+        "check_size": 100_000 if q else 1_000_000,
+        "grid_cells": [64, 128] if q else [256, 512],
+        "grid_sample": 10 if q else 30,
+        "union": (6, 5_000) if q else (20, 20_000),
+        "hull_points": 10_000 if q else 100_000,
+        "area_vertices": 100_000 if q else 1_000_000,
+        "area_polygons": 10_000 if q else 100_000,
+    }
+    if args.check_size:
+        p["check_size"] = args.check_size
+    if args.grid_cells:
+        p["grid_cells"] = [int(x) for x in args.grid_cells.split(",")]
+    if args.grid_sample is not None:
+        p["grid_sample"] = args.grid_sample
+    if args.union_bodies:
+        n, t = args.union_bodies.split(",")
+        p["union"] = (int(n), int(float(t)))
+    if args.hull_points:
+        p["hull_points"] = args.hull_points
+    if args.area_vertices:
+        p["area_vertices"] = args.area_vertices
+    if args.area_polygons:
+        p["area_polygons"] = args.area_polygons
+    return p
+
+
+def gen_stamp() -> str:
+    h = hashlib.sha256()
+    for f in ("meshgen.py", "pointgen.py"):
+        h.update((HERE / f).read_bytes())
+    return h.hexdigest()[:16]
+
+
+class Cache:
+    """Files made once per generator version, recorded in DATA/<sub>/stamp.json."""
+
+    def __init__(self, sub: str):
+        self.dir = DATA / sub
+        self.dir.mkdir(parents=True, exist_ok=True)
+        self.stamp_path = self.dir / "stamp.json"
+        d = load_json(self.stamp_path, {})
+        self.stamp = gen_stamp()
+        self.d = d.get("files", {}) if d.get("gen") == self.stamp else {}
+
+    def fresh(self, name: str) -> bool:
+        p = self.dir / name
+        return p.exists() and name in self.d and self.d[name].get("bytes") == p.stat().st_size
+
+    def done(self, name: str, **meta):
+        self.d[name] = {"bytes": (self.dir / name).stat().st_size, **meta}
+        self.stamp_path.write_text(json.dumps({"gen": self.stamp, "files": self.d}, indent=1))
+
+    def meta(self, name: str) -> dict:
+        return self.d.get(name, {})
+
+
+def mv_row(rows, item, tool="meshvol"):
+    return next((r for r in rows if r["item"] == item and r["tool"] == tool and "median_s" in r), None)
+
+
+def kernel_of(r):
+    out = r.get("output") or {}
+    if r["tool"].startswith("meshvol"):
+        return out.get("seconds")
+    return out.get("kernel_s")
+
+
+def base_row(section, item, tool, **kw):
+    return {"category": section, "section": section, "item": item, "tool": tool, **kw}
+
+
+def kernel_check(r, mv) -> str | None:
+    """When meshvol reports no kernel time but the peer does: the peer's kernel alone (after
+    reading) took no longer than meshvol's whole process. Returns a description or None."""
+    if mv is None or kernel_of(mv) is not None or r.get("refused") or "output" not in r:
+        return None
+    k = kernel_of(r)
+    if k is None or k > mv["median_s"]:
+        return None
+    return (f"{r['tool']} on {r['item']}: its kernel {fmt_s(k)} s vs meshvol's whole process "
+            f"{fmt_s(mv['median_s'])} s")
+
+
+def kernel_sentence(notes: list[str]) -> list[str]:
+    if not notes:
+        return []
+    return ["**Kernel alone, meshvol not shown ahead:** the peer's call after reading and parsing "
+            "took no longer than meshvol's whole process (start, read, compute, print) on: "
+            + "; ".join(notes) + ". meshvol reports no kernel time for this command, so which "
+            "kernel is faster is not measured here; for data already in memory in Python, the "
+            "peer may well be the faster choice.\n"]
+
+
+def ahead_sentence(section_title, behind: list[str], compared: int) -> str:
+    if behind:
+        return (f"**Where meshvol is not ahead ({section_title}):** " + "; ".join(behind) + ".\n")
+    if compared:
+        return f"meshvol is ahead of every peer that gave a result in this section ({compared} comparisons).\n"
+    return "No peer gave a timed result in this section, so there is nothing to compare.\n"
+
+
+# --------------------------------------------------------------------------- check
+
+
+CHECK_PEERS = [  # (tool, mode, meshvol row compared with, what it answers)
+    ("trimesh", "trimesh", "meshvol check --no-intersections",
+     "load (merges vertices) + is_watertight + is_winding_consistent + body_count"),
+    ("open3d", "open3d", "meshvol check --no-intersections",
+     "read + remove_duplicated_vertices + is_edge_manifold + is_vertex_manifold + is_orientable "
+     "+ cluster_connected_triangles"),
+    ("open3d-watertight", "open3d-watertight", "meshvol check",
+     "read + remove_duplicated_vertices + is_watertight() (includes an all-pairs self-intersection test)"),
+    ("pymeshlab", "pymeshlab", "meshvol check --no-intersections",
+     "load_new_mesh + get_topological_measures (two-manifold, boundary edges, components)"),
+]
+
+
+def run_check(ctx, files: list[dict]) -> list[dict]:
+    rows = []
+    for f in files:
+        path, item = str(f["path"]), f["name"]
+        for tool, extra in (("meshvol check", []), ("meshvol check --no-intersections", ["--no-intersections"])):
+            r = base_row("check", item, tool, triangles=f["triangles"])
+            # exit 1 is a verdict ("does not bound a volume"), not a failure
+            rows.append(ctx.run(r, ctx.meshvol + ["check", path, "--json"] + extra, meshvol=True,
+                                parse_keys=("closed",), ok_codes=(0, 1)))
+        for tool, mode, cmp, _ in CHECK_PEERS:
+            if not ctx.wants(tool):
+                continue
+            r = base_row("check", item, tool, triangles=f["triangles"], compare_to=cmp)
+            rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "check_peer.py"), mode, path],
+                                key=("check", tool), size=f["triangles"], parse_keys=("mode",)))
+    return rows
+
+
+def _check_verdict(r):
+    out = r.get("output") or {}
+    if r["tool"].startswith("meshvol"):
+        si = out.get("self_intersections")
+        return (out.get("closed"), out.get("consistently_oriented"), out.get("shells"),
+                None if si is None else si)
+    return (out.get("watertight"), out.get("winding_consistent"), out.get("bodies"),
+            out.get("self_intersecting"))
+
+
+def _yn(x):
+    return "" if x is None else ("yes" if x is True else "no" if x is False else str(x))
+
+
+def report_check(rows, files) -> tuple[list[str], list[str]]:
+    L = ["## Topology check: does the file bound a volume?\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    L.append("Fresh process per run, load included. `meshvol check FILE --json` welds vertices, "
+             "finds boundary and non-manifold edges, winding, shells, cavities, overlapping shells "
+             "and (unless `--no-intersections`) crossing triangles. Peers: "
+             + "; ".join(f"**{t}**: {d}" for t, _, _, d in CHECK_PEERS)
+             + ". Each peer is compared with the meshvol row that answers at least as much: "
+               "peers without a self-intersection test against `meshvol check --no-intersections`, "
+               "Open3D's `is_watertight()` against the full `meshvol check`. Self-intersections: "
+               "meshvol gives a count, Open3D only inside `is_watertight()`.\n")
+    L.append("| file | tool | median s | runs | kernel s | ratio to meshvol | peak MB | closed | "
+             "consistent winding | bodies | self-intersections | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|---|---|--:|--:|---|")
+    behind, compared, knotes = [], 0, []
+    for f in files:
+        group = [r for r in rows if r["item"] == f["name"]]
+        for r in group:
+            cmp = mv_row(group, f["name"], r.get("compare_to", r["tool"]))
+            mv_s = cmp["median_s"] if cmp else None
+            closed, wind, bodies, si = _check_verdict(r)
+            if r["tool"] == "open3d-watertight":
+                closed = (r.get("output") or {}).get("watertight")
+                si = None
+            note = ""
+            if r.get("refused"):
+                note = f"refused: {r['refused']}"
+            elif r.get("error") and "median_s" not in r and "over" not in r:
+                note = r["error"]
+            elif r.get("skipped"):
+                note = r["skipped"]
+            is_mv = r["tool"].startswith("meshvol")
+            ahead = "" if is_mv else ahead_cell(r, mv_s)
+            if not is_mv and seconds_of(r) and mv_s:
+                compared += 1
+                if is_behind(r, mv_s):
+                    behind.append(f"{r['tool']} on `{f['name']}` ({fmt_s(r['median_s'])} s vs "
+                                  f"`{r['compare_to']}` {fmt_s(mv_s)} s)")
+            kn = None if is_mv else kernel_check(r, cmp)
+            if kn:
+                knotes.append(f"{kn} (`{r['compare_to']}`)")
+                ahead += "; kernel: **no**"
+            k = kernel_of(r) if not is_mv and "output" in r else None
+            L.append(f"| {f['name']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | {fmt_s(k)} | "
+                     f"{'' if is_mv else ratio_cell(r, mv_s)} | {fmt_mb(r.get('peak_mb'))} | "
+                     f"{_yn(closed) or md_cell(note)} | {_yn(wind)} | {_yn(bodies)} | {_yn(si)} | {ahead} |")
+    L.append("")
+    L.append(ahead_sentence("topology check", behind, compared))
+    L.extend(kernel_sentence(knotes))
+    behind = behind + [f"kernel only: {k}" for k in knotes]
+    # do the verdicts agree?
+    disagree = []
+    for f in files:
+        group = [r for r in rows if r["item"] == f["name"] and "output" in r and not r.get("refused")]
+        mv = next((r for r in group if r["tool"] == "meshvol check"), None)
+        if not mv:
+            continue
+        mclosed, _, mbodies, _ = _check_verdict(mv)
+        for r in group:
+            if r["tool"].startswith("meshvol"):
+                continue
+            closed, _, bodies, _ = _check_verdict(r)
+            if closed is not None and closed != mclosed:
+                disagree.append(f"{r['tool']} on `{f['name']}` says closed={closed}")
+            if bodies is not None and mbodies is not None and bodies != mbodies:
+                disagree.append(f"{r['tool']} on `{f['name']}` counts {bodies} bodies, meshvol {mbodies}")
+    if disagree:
+        L.append("Verdicts that differ from meshvol's: " + "; ".join(disagree) + ".\n")
+    else:
+        L.append("Every verdict given agrees with meshvol's (closed, body count).\n")
+    return L, behind
+
+
+# --------------------------------------------------------------------------- grid
+
+
+def run_grid(ctx, f: dict, p: dict) -> list[dict]:
+    rows = []
+    path, lo, hi = str(f["path"]), -100.0, 100.0
+    bounds = f"{lo},{lo},{lo},{hi},{hi},{hi}"
+    cache = DATA / "grid"
+    cache.mkdir(parents=True, exist_ok=True)
+    first = p["grid_cells"][0]
+    for n in p["grid_cells"]:
+        item = f"{f['name']} @ {n}³"
+        r = base_row("grid", item, "meshvol", cells=n, triangles=f["triangles"])
+        rows.append(ctx.run(r, ctx.meshvol + ["grid", path, "--cells", f"{n},{n},{n}", "--bounds",
+                                               bounds, "--json"], meshvol=True, parse_keys=("total",)))
+    n = first
+    item = f"{f['name']} @ {n}³"
+    pitch = (hi - lo) / n
+    npy = cache / f"cells_{f['name']}_{n}.npy"
+    need_npy = ctx.wants("manifold3d")
+    if need_npy:  # meshvol's cell volumes, for the per-cell comparison (not timed)
+        npy.unlink(missing_ok=True)
+        subprocess.run(ctx.meshvol + ["grid", path, "--cells", f"{n},{n},{n}", "--bounds", bounds,
+                                      "--out", str(npy), "--json"], capture_output=True, timeout=600)
+    if ctx.wants("trimesh"):
+        r = base_row("grid", item, "trimesh", cells=n, triangles=f["triangles"])
+        rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "grid_peer.py"), "trimesh", path, repr(pitch)],
+                            key=("grid", "trimesh"), size=n**3, parse_keys=("filled",)))
+    if ctx.wants("manifold3d") and npy.exists():
+        r = base_row("grid", item, "manifold3d", cells=n, triangles=f["triangles"])
+        rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "grid_peer.py"), "manifold", path, str(npy),
+                                repr(lo), repr(lo), repr(lo), repr(pitch), str(p["grid_sample"])],
+                            key=("grid", "manifold3d"), size=1, parse_keys=("per_cell_s", "refused")))
+    return rows
+
+
+def report_grid(rows, f, p) -> tuple[list[str], list[str]]:
+    L = ["## Grid: volume of the solid in each cell\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    ref = f["ref"]
+    L.append(f"The sphere `{f['name']}` ({f['triangles']:,} triangles, radius 100) on an n³ grid over "
+             "[-100, 100]³. `meshvol grid --cells n,n,n --bounds ... --json` computes the exact "
+             "volume of the solid in every cell; its kernel time is the `seconds` it reports. "
+             "Peers: **trimesh** `voxelized(pitch).fill()` (occupancy of voxels, not volumes; its "
+             "kernel is that call after loading); **manifold3d** mesh ∩ box, one boolean per "
+             "partial cell: timed on a random sample of the partial cells (`--grid-sample`), "
+             "after the `Manifold` build, and extrapolated to all partial cells (a lower bound: a "
+             "user would also have to find those cells). Relative error: meshvol's total and "
+             "trimesh's voxel count × cell volume against the exact volume of the mesh; for "
+             "manifold3d, the largest difference from meshvol's cell volumes, as a fraction of a "
+             "cell. **meshvol ahead?** compares kernel times.\n")
+    L.append("| grid | tool | whole process s | runs | kernel s | ratio to meshvol (kernel) | peak MB | result | relative error | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|---|--:|---|")
+    behind, compared = [], 0
+    for r in rows:
+        out = r.get("output") or {}
+        mv = mv_row(rows, r["item"])
+        mv_k = kernel_of(mv) if mv else None
+        k = kernel_of(r) if "output" in r and not r.get("refused") else None
+        result, err = "", ""
+        if r["tool"] == "meshvol" and out:
+            result = f"total {out.get('total'):.10g}; {out.get('cells_partial', 0):,} partial cells"
+            err = fmt_err(meshgen.rel_error(out.get("total"), ref))
+        elif r["tool"] == "trimesh" and out:
+            result = f"{out['filled']:,} filled voxels"
+            err = fmt_err(meshgen.rel_error(out["volume"], ref))
+        elif r["tool"] == "manifold3d" and "per_cell_s" in out:
+            result = (f"{fmt_s(out['per_cell_s'])} s per cell × {out['partial']:,} partial cells "
+                      f"({out['sampled']} timed) + {fmt_s(out['build_s'])} s build")
+            err = f"{out['max_diff_of_cell']:.1e} of a cell vs meshvol"
+        if r.get("refused"):
+            result = f"refused: {r['refused']}"
+        elif r.get("skipped"):
+            result = r["skipped"]
+        elif r.get("error") and "over" not in r and "median_s" not in r:
+            result = r["error"]
+        ahead, ratio = "", ""
+        if r["tool"] != "meshvol":
+            if k is not None and mv_k:
+                ratio = fmt_ratio(k / mv_k)
+                compared += 1
+                ahead = "yes" if k > mv_k else "**no**"
+                if k <= mv_k:
+                    behind.append(f"{r['tool']} on {r['item']} (kernel {fmt_s(k)} s vs {fmt_s(mv_k)} s)")
+            else:
+                ahead = ahead_cell(r, mv["median_s"] if mv else None)
+                ratio = ratio_cell(r, mv["median_s"] if mv else None)
+        L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | {fmt_s(k)} | {ratio} | "
+                 f"{fmt_mb(r.get('peak_mb'))} | {md_cell(result)} | {err} | {ahead} |")
+    L.append("")
+    L.append(ahead_sentence("grid", behind, compared))
+    return L, behind
+
+
+# --------------------------------------------------------------------------- union
+
+
+def prepare_union(p) -> list[Path]:
+    count, tris = p["union"]
+    cache = Cache("union")
+    paths = []
+    bodies = None
+    for k in range(count):
+        name = f"sphere{k:02d}_{size_label(tris)}.stl"
+        if not cache.fresh(name):
+            if bodies is None:
+                bodies = pointgen.union_bodies(count, tris)
+            v, f = bodies[k]
+            meshgen.write_stl_binary(cache.dir / name, v, f)
+            cache.done(name, triangles=int(len(f)))
+        paths.append(cache.dir / name)
+    return paths
+
+
+def run_union(ctx, p) -> list[dict]:
+    paths = prepare_union(p)
+    count, tris = p["union"]
+    item = f"{count} spheres × {size_label(tris)} triangles"
+    rows = []
+    r = base_row("union", item, "meshvol")
+    rows.append(ctx.run(r, ctx.meshvol + ["union"] + [str(x) for x in paths] +
+                        ["--tolerance", "1e-6", "--json"], meshvol=True, parse_keys=("lower",)))
+    if ctx.wants("manifold3d"):
+        r = base_row("union", item, "manifold3d")
+        rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "union_peer.py")] + [str(x) for x in paths],
+                            key=("union", "manifold3d"), size=1))
+    return rows
+
+
+def report_union(rows) -> tuple[list[str], list[str]]:
+    L = ["## Union of overlapping bodies\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    L.append("Overlapping UV spheres (radius 100, centres 120 apart on a 5-wide grid, alternately "
+             "lifted by 30), one binary STL each; fresh process per run, reading included. "
+             "`meshvol union FILES --tolerance 1e-6 --json` gives a certified interval [lower, "
+             "upper] for the volume of the union without building a boolean mesh; **manifold3d** "
+             "builds each `Manifold`, `batch_boolean(..., OpType.Add)` and `volume()` (kernel s: "
+             "those calls after reading). No exact reference exists; the check is whether "
+             "manifold3d's volume lies inside meshvol's certified interval.\n")
+    L.append("| bodies | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume | check | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|--:|---|---|")
+    behind, compared, knotes = [], 0, []
+    mv = next((r for r in rows if r["tool"] == "meshvol" and "median_s" in r), None)
+    mvo = (mv or {}).get("output") or {}
+    for r in rows:
+        out = r.get("output") or {}
+        vol, check = "", ""
+        if r["tool"] == "meshvol" and out:
+            vol = f"[{out['lower']:.12g}, {out['upper']:.12g}]"
+            check = f"width {(out['upper'] - out['lower']) / out['lower']:.1e} relative"
+        elif "volume" in out:
+            vol = f"{out['volume']:.12g}"
+            if mvo:
+                check = ("inside meshvol's interval" if mvo["lower"] <= out["volume"] <= mvo["upper"]
+                         else "**outside** meshvol's interval")
+        if r.get("refused"):
+            check = f"refused: {r['refused']}"
+        elif r.get("error") and "median_s" not in r and "over" not in r:
+            check = r["error"]
+        elif r.get("skipped"):
+            check = r["skipped"]
+        is_mv = r["tool"] == "meshvol"
+        mv_s = mv["median_s"] if mv else None
+        if not is_mv and seconds_of(r) and mv_s:
+            compared += 1
+            if is_behind(r, mv_s):
+                behind.append(f"{r['tool']} ({fmt_s(r['median_s'])} s vs {fmt_s(mv_s)} s)")
+        ahead = "" if is_mv else ahead_cell(r, mv_s)
+        kn = None if is_mv else kernel_check(r, mv)
+        if kn:
+            knotes.append(kn)
+            ahead += "; kernel: **no**"
+        L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | "
+                 f"{fmt_s(kernel_of(r)) if not is_mv else ''} | {'' if is_mv else ratio_cell(r, mv_s)} | "
+                 f"{fmt_mb(r.get('peak_mb'))} | {vol} | {md_cell(check)} | {ahead} |")
+    L.append("")
+    L.append(ahead_sentence("union", behind, compared))
+    L.extend(kernel_sentence(knotes))
+    return L, behind + [f"kernel only: {k}" for k in knotes]
+
+
+# --------------------------------------------------------------------------- hull
+
+
+def prepare_hull(p) -> list[dict]:
+    n = p["hull_points"]
+    cache = Cache("hull")
+    made = None
+    out = []
+    names = [f"{k}@{o:g}" for k in ("ball", "sphere", "lattice") for o in (0.0, 1e5, 1e7)]
+    refs_path = cache.dir / f"refs_{n}.json"
+    refs = load_json(refs_path, {}) if all(cache.fresh(f"{nm}_{n}.xyz") for nm in names) else {}
+    for i, name in enumerate(names):
+        fname = f"{name}_{n}.xyz"
+        if not cache.fresh(fname) or name not in refs:
+            if made is None:
+                made = pointgen.clouds(n)
+            _, at_origin, pts = made[i]
+            np.savetxt(cache.dir / fname, pts, fmt="%.17g")
+            cache.done(fname, points=int(len(pts)))
+            refs[name] = hull_reference(name, at_origin)
+            refs_path.write_text(json.dumps(refs, indent=1))
+        out.append({"name": name, "path": cache.dir / fname, "points": cache.meta(fname).get("points"),
+                    "ref": refs[name]})
+    return out
+
+
+def hull_reference(name, at_origin) -> dict:
+    """Exact for the lattice; otherwise qhull on the same cloud at the origin (if scipy is here)."""
+    if name.startswith("lattice"):
+        k = round(len(at_origin) ** (1 / 3))
+        v, a = pointgen.lattice_exact(k)
+        return {"volume": v, "area": a, "how": "exact"}
+    try:
+        from scipy.spatial import ConvexHull
+    except ImportError:
+        return {"volume": None, "area": None, "how": "none (scipy missing)"}
+    h = ConvexHull(at_origin)
+    return {"volume": float(h.volume), "area": float(h.area), "how": "qhull at the origin"}
+
+
+def run_hull(ctx, p) -> tuple[list[dict], list[dict]]:
+    clouds = prepare_hull(p)
+    rows = []
+    for c in clouds:
+        r = base_row("hull", c["name"], "meshvol", points=c["points"])
+        rows.append(ctx.run(r, ctx.meshvol + ["hull", str(c["path"]), "--json"], meshvol=True))
+        if ctx.wants("scipy"):
+            r = base_row("hull", c["name"], "scipy (qhull)", points=c["points"])
+            rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "hull_peer.py"), str(c["path"])],
+                                key=("hull", "scipy", c["name"].split("@")[0]), size=c["points"]))
+    return rows, clouds
+
+
+def hull_worst(rows, clouds, tool="meshvol"):
+    """The tool's largest relative volume or area difference from the references (None: no result)."""
+    by = {c["name"]: c["ref"] for c in clouds}
+    worst = None
+    for r in rows:
+        out = r.get("output") or {}
+        ref = by.get(r["item"], {})
+        if r["tool"] == tool and "volume" in out and ref.get("volume"):
+            e = max(abs(out["volume"] - ref["volume"]) / ref["volume"],
+                    abs(out["area"] - ref["area"]) / ref["area"])
+            worst = e if worst is None else max(worst, e)
+    return worst
+
+
+def report_hull(rows, clouds) -> tuple[list[str], list[str]]:
+    L = ["## Convex hull of a point cloud\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    n = clouds[0]["points"] if clouds else 0
+    L.append(f"Clouds of {n:,} points (`.xyz`, `%.17g`): in a ball and on a sphere of radius 10 "
+             "(coordinates on a 2⁻²⁰ grid) and a k³ lattice (many coplanar points on every face), "
+             "each at offsets 0, 1e5 and 1e7, exact translates of one another. Fresh process per "
+             "run, reading included: `meshvol hull FILE --json` against **scipy** "
+             "`np.loadtxt` + `scipy.spatial.ConvexHull` (qhull; kernel s: ConvexHull alone). "
+             "Reference: the exact hull for the lattice, otherwise qhull on the same cloud at the "
+             "origin (qhull works in the input coordinates, so far from the origin its own "
+             "result loses digits). Relative differences above 1e-12 are in bold.\n")
+    L.append("| cloud | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume rel. diff | area rel. diff | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|--:|--:|---|")
+    behind, compared, worst, knotes = [], 0, {}, []
+    by = {c["name"]: c for c in clouds}
+    for r in rows:
+        out = r.get("output") or {}
+        ref = by[r["item"]]["ref"]
+        dv = da = ""
+        if "volume" in out and ref.get("volume"):
+            ev = abs(out["volume"] - ref["volume"]) / ref["volume"]
+            ea = abs(out["area"] - ref["area"]) / ref["area"]
+            worst[r["tool"]] = max(worst.get(r["tool"], 0.0), ev, ea)
+            dv = fmt_err(ev) if ev <= 1e-12 else f"**{fmt_err(ev)}**"
+            da = fmt_err(ea) if ea <= 1e-12 else f"**{fmt_err(ea)}**"
+        elif r.get("error") and "median_s" not in r and "over" not in r:
+            dv = md_cell(r["error"])
+        elif r.get("skipped"):
+            dv = md_cell(r["skipped"])
+        is_mv = r["tool"] == "meshvol"
+        mv = mv_row(rows, r["item"])
+        mv_s = mv["median_s"] if mv else None
+        if not is_mv and seconds_of(r) and mv_s:
+            compared += 1
+            if is_behind(r, mv_s):
+                behind.append(f"{r['tool']} on {r['item']} ({fmt_s(r['median_s'])} s vs {fmt_s(mv_s)} s)")
+        ahead = "" if is_mv else ahead_cell(r, mv_s)
+        kn = None if is_mv else kernel_check(r, mv)
+        if kn:
+            knotes.append(kn)
+            ahead += "; kernel: **no**"
+        L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | "
+                 f"{'' if is_mv else fmt_s(kernel_of(r))} | {'' if is_mv else ratio_cell(r, mv_s)} | "
+                 f"{fmt_mb(r.get('peak_mb'))} | {dv} | {da} | {ahead} |")
+    L.append("")
+    L.append(ahead_sentence("convex hull", behind, compared))
+    L.extend(kernel_sentence(knotes))
+    behind = behind + [f"kernel only: {k}" for k in knotes]
+    if worst:
+        L.append("Largest relative difference from the reference: " +
+                 "; ".join(f"{t} {e:.1e}" for t, e in worst.items()) + ".\n")
+    return L, behind
+
+
+# --------------------------------------------------------------------------- area
+
+
+def prepare_area(p) -> list[dict]:
+    nv, npoly = p["area_vertices"], p["area_polygons"]
+    cache = Cache("area")
+    out = []
+    for kind, n in (("big", nv), ("small", npoly)):
+        data = None
+        for ext in ("wkt", "geojson"):
+            name = f"{kind}_{size_label(n)}.{ext}"
+            if not cache.fresh(name):
+                if data is None:
+                    data = pointgen.big_polygon(n) if kind == "big" else pointgen.small_polygons(n)
+                    ref = pointgen.exact_area_big(data) if kind == "big" else pointgen.exact_area_small(data)
+                if kind == "big":
+                    (pointgen.write_polygon_wkt if ext == "wkt" else pointgen.write_polygon_geojson)(
+                        cache.dir / name, data)
+                    verts = sum(len(r) - 1 for rings in data for r in rings)
+                    polys = 1
+                else:
+                    (pointgen.write_small_wkt if ext == "wkt" else pointgen.write_small_geojson)(
+                        cache.dir / name, data)
+                    verts = int(data.shape[0] * (data.shape[1] - 1))
+                    polys = int(data.shape[0])
+                cache.done(name, num=str(ref.numerator), den=str(ref.denominator),
+                           vertices=verts, polygons=polys)
+            m = cache.meta(name)
+            out.append({"name": name, "path": cache.dir / name, "kind": kind,
+                        "ref": Fraction(int(m["num"]), int(m["den"])), "vertices": m["vertices"],
+                        "polygons": m["polygons"], "mb": (cache.dir / name).stat().st_size / 1e6})
+    return out
+
+
+def run_area(ctx, p) -> tuple[list[dict], list[dict]]:
+    files = prepare_area(p)
+    rows = []
+    for f in files:
+        r = base_row("area", f["name"], "meshvol", vertices=f["vertices"])
+        rows.append(ctx.run(r, ctx.meshvol + ["area", str(f["path"]), "--json"], meshvol=True,
+                            parse_keys=("area",)))
+        for tool in ("shapely", "shapely-valid"):
+            if ctx.wants(tool):
+                r = base_row("area", f["name"], tool, vertices=f["vertices"])
+                rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "area_peer.py"), tool, str(f["path"])],
+                                    key=("area", tool, f["kind"]), size=f["vertices"],
+                                    parse_keys=("area",)))
+    return rows, files
+
+
+def report_area(rows, files) -> tuple[list[str], list[str]]:
+    L = ["## 2D polygon area\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    L.append("Polygons at a UTM-like offset (500 km, 4 200 km), coordinates multiples of 2⁻⁸ written "
+             "exactly: `big` is one star-shaped polygon with a hole, `small` many octagons (one "
+             "feature each; in WKT one `POLYGON` per line, in GeoJSON a FeatureCollection). Fresh "
+             "process per run, parsing included. `meshvol area FILE --json` gives area, perimeter, "
+             "centroid and second moments per feature and in total, and checks rings for "
+             "self-intersections and crossings. **shapely**: the file read and parsed with "
+             "`shapely.from_wkt` (one per line) or `shapely.from_geojson`, then vectorised "
+             "`area`, `length` and `centroid`; **shapely-valid** adds `is_valid`, GEOS's own "
+             "ring check, the like-for-like row. Relative area error against the exact area of "
+             "the numbers in the file.\n")
+    L.append("| file | tool | size MB | median s | runs | kernel s | ratio to meshvol | peak MB | relative area error | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|--:|--:|---|")
+    behind, compared, knotes = [], 0, []
+    acc = []
+    by = {f["name"]: f for f in files}
+    for r in rows:
+        f = by[r["item"]]
+        out = r.get("output") or {}
+        err = ""
+        if "area" in out:
+            r["rel_err"] = meshgen.rel_error(out["area"], f["ref"])
+            err = fmt_err(r["rel_err"])
+            if out.get("valid") is False:
+                err += " (says invalid)"
+        elif r.get("error") and "median_s" not in r and "over" not in r:
+            err = md_cell(r["error"])
+        elif r.get("skipped"):
+            err = md_cell(r["skipped"])
+        is_mv = r["tool"] == "meshvol"
+        mv = mv_row(rows, r["item"])
+        mv_s = mv["median_s"] if mv else None
+        if not is_mv and seconds_of(r) and mv_s:
+            compared += 1
+            if is_behind(r, mv_s):
+                behind.append(f"{r['tool']} on `{r['item']}` ({fmt_s(r['median_s'])} s vs {fmt_s(mv_s)} s)")
+            if mv and "rel_err" in mv and "rel_err" in r and r["rel_err"] < mv["rel_err"]:
+                acc.append(f"{r['tool']} on `{r['item']}` ({fmt_err(r['rel_err'])} vs meshvol "
+                           f"{fmt_err(mv['rel_err'])})")
+        ahead = "" if is_mv else ahead_cell(r, mv_s)
+        kn = None if is_mv else kernel_check(r, mv)
+        if kn:
+            knotes.append(kn)
+            ahead += "; kernel: **no**"
+        L.append(f"| {r['item']} ({f['vertices']:,} vertices) | {r['tool']} | {f['mb']:.1f} | {time_cell(r)} | "
+                 f"{runs_cell(r)} | {'' if is_mv else fmt_s(kernel_of(r))} | "
+                 f"{'' if is_mv else ratio_cell(r, mv_s)} | {fmt_mb(r.get('peak_mb'))} | {err} | {ahead} |")
+    L.append("")
+    L.append(ahead_sentence("2D area", behind, compared))
+    L.extend(kernel_sentence(knotes))
+    behind = behind + [f"kernel only: {k}" for k in knotes]
+    if acc:
+        L.append("**More accurate than meshvol:** " + "; ".join(acc) + ".\n")
+        behind = behind + [f"accuracy: {a}" for a in acc]
+    return L, behind
+
+
+# --------------------------------------------------------------------------- chart data
+
+
+def chart_items(section, rows) -> tuple[str, list[tuple[str, float, bool]]] | None:
+    """(title, [(label, seconds, is_meshvol)]) for one panel of RESULTS.png, or None."""
+    if not rows:
+        return None
+    item = rows[0]["item"]
+    pts = []
+    for r in rows:
+        if r["item"] != item:
+            continue
+        s = seconds_of(r)
+        if s is None:
+            continue
+        label = r["tool"] + (" (>)" if s[1] else "")
+        pts.append((label, s[0], r["tool"].startswith("meshvol")))
+    titles = {"check": "topology check", "grid": "grid", "union": "union", "hull": "convex hull",
+              "area": "2D area"}
+    if section == "grid":  # kernel times: manifold3d's is extrapolated to all partial cells
+        pts = [(r["tool"] + (" (extrapolated)" if r["tool"] == "manifold3d" else ""), kernel_of(r),
+                r["tool"] == "meshvol") for r in rows
+               if r["item"] == item and r.get("output") and kernel_of(r) is not None]
+        return (f"grid: {item}", pts, "kernel seconds (log; lower is better)") if pts else None
+    return (f"{titles.get(section, section)}: {item}", pts) if pts else None
