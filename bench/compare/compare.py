@@ -1,9 +1,15 @@
 #!/usr/bin/env python3
-"""Peer comparison of meshvol with trimesh, numpy-stl and manifold3d.
+"""Side-by-side benchmark of meshvol against its peers, in one run.
+
+Sections: mesh volume end-to-end (fresh process: load a file + volume) and in-process;
+topology check; per-cell grid volumes; union of overlapping bodies; convex hull; 2D polygon
+area. Peers: trimesh, numpy-stl, manifold3d, Open3D, PyMeshLab, VTK, scipy (qhull),
+shapely, each where it is installed. Every section runs under a share of one time budget
+(--time-budget) and every peer run is cut off at --peer-timeout ("> N s").
 
 Normally started by bench/compare/run, which makes the virtualenv and builds meshvol.
-Writes test meshes to bench/out/data/, raw numbers to bench/out/results.json, and the
-report to bench/RESULTS.md and bench/RESULTS.png. See bench/compare/README.md.
+Writes test data to bench/out/data/, raw numbers to bench/out/results.json, and the report
+to bench/RESULTS.md and bench/RESULTS.png. See bench/compare/README.md.
 """
 
 from __future__ import annotations
@@ -11,48 +17,71 @@ from __future__ import annotations
 import argparse
 import datetime as _dt
 import hashlib
-import importlib.metadata
-import importlib.util
 import json
-import math
 import os
 import platform
+import queue
 import re
 import shlex
 import shutil
 import statistics
 import subprocess
 import sys
-import tempfile
+import threading
 import time
 from fractions import Fraction
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-ROOT = HERE.parents[1]
 sys.path.insert(0, str(HERE))
 
 import meshgen  # noqa: E402
+import sections  # noqa: E402
+from harness import (DATA, OUT, PY, ROOT, TOOLS_DIR, Clock, Ctx, Runner, ahead_cell,  # noqa: E402
+                     fmt_err, fmt_mb, fmt_ratio, fmt_s, is_behind, kill_group, last_line,
+                     load_json, log, md_cell, parse_json_lines, plan_cell, ratio_cell, runs_cell,
+                     seconds_of, time_cell)
 
-PY = sys.executable
-OUT = ROOT / "bench" / "out"
-DATA = OUT / "data"
-TOOLS_DIR = HERE / "tools"
 CRITERION_NOTE = (
     "meshvol's own in-memory numbers come from its criterion benchmarks: "
     "`cargo bench -p meshvol-bench` ([crates/meshvol-bench](../crates/meshvol-bench/)); "
     "reports land in `target/criterion/`."
 )
-FORMAT_LABEL = {"stl": "binary STL", "stl-ascii": "ASCII STL", "obj": "OBJ"}
-PY_TOOLS = {  # tool name -> (python module to import, distribution name)
-    "trimesh": ("trimesh", "trimesh"),
-    "numpy-stl": ("stl", "numpy-stl"),
-    "manifold3d": ("manifold3d", "manifold3d"),
+FORMAT_LABEL = {"stl": "binary STL", "stl-ascii": "ASCII STL", "obj": "OBJ", "ply": "binary PLY"}
+FORMAT_EXT = {"stl": ".stl", "stl-ascii": "_ascii.stl", "obj": ".obj", "ply": ".ply"}
+
+# peer -> (module to import, distribution on PyPI, what it is used for here)
+PEERS = {
+    "trimesh": ("trimesh", "trimesh", "volume (end-to-end, in-process), check, grid"),
+    "numpy-stl": ("stl", "numpy-stl", "volume (end-to-end on STL, in-process)"),
+    "manifold3d": ("manifold3d", "manifold3d", "volume (in-process), grid, union"),
+    "open3d": ("open3d", "open3d", "volume (end-to-end, in-process), check"),
+    "pymeshlab": ("pymeshlab", "pymeshlab", "volume (end-to-end, in-process), check"),
+    "vtk": ("vtkmodules.vtkFiltersCore", "vtk", "volume (end-to-end, in-process)"),
+    "scipy": ("scipy.spatial", "scipy", "convex hull (qhull)"),
+    "shapely": ("shapely", "shapely", "2D area"),
+    # not a peer: meshvol's own Python binding, for a measured meshvol row in-process
+    "meshvol-py": ("meshvol", "meshvol", "meshvol's in-process row (optional: "
+                   "`pip install ./crates/meshvol-py`, which builds it with maturin)"),
 }
-
-
-def log(*a):
-    print("[compare]", *a, flush=True)
+# volume tools: end-to-end worker script (None: in-process only), formats it reads
+E2E_TOOLS = {
+    "trimesh": ("trimesh_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "numpy-stl": ("numpystl_file.py", ("stl", "stl-ascii")),
+    "open3d": ("open3d_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "pymeshlab": ("pymeshlab_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "vtk": ("vtk_file.py", ("stl", "stl-ascii", "obj", "ply")),
+}
+IMPORT_ONLY = {"trimesh": "trimesh", "numpy-stl": "stl.mesh", "open3d": "open3d",
+               "pymeshlab": "pymeshlab", "vtk": "vtkmodules.vtkFiltersCore"}
+INPROCESS_TOOLS = ("meshvol-py", "trimesh", "manifold3d", "numpy-stl", "open3d", "pymeshlab", "vtk")
+NO_VERDICT = "(no verdict)"
+SECTIONS = ["volume", "inprocess", "check", "grid", "union", "hull", "area"]
+WEIGHTS = {"volume": 0.38, "inprocess": 0.09, "check": 0.17, "grid": 0.11, "union": 0.04,
+           "hull": 0.11, "area": 0.10}
+SECTION_TITLE = {"volume": "mesh volume, end-to-end", "inprocess": "mesh volume, in-process",
+                 "check": "topology check", "grid": "grid", "union": "union",
+                 "hull": "convex hull", "area": "2D area"}
 
 
 # --------------------------------------------------------------------------- planning
@@ -64,33 +93,35 @@ def parse_size(s: str) -> int:
     return int(float(s[:-1] if mult > 1 else s) * mult)
 
 
-def size_label(n: int) -> str:
-    if n >= 1_000_000 and n % 1_000_000 == 0:
-        return f"{n // 1_000_000}m"
-    if n >= 1_000 and n % 1_000 == 0:
-        return f"{n // 1_000}k"
-    return str(n)
+size_label = sections.size_label
 
 
-def plan_files(sizes: list[int]) -> tuple[list[dict], str]:
-    """The end-to-end files and the name of the main one (chart, numpy-stl always runs)."""
-    files = []
+def mesh_file(kind, n, fmt) -> dict:
+    name = f"{kind}_{size_label(n)}{FORMAT_EXT[fmt]}"
+    return {"name": name, "kind": kind, "target": n, "fmt": fmt, "path": DATA / name}
 
-    def add(kind, n, fmt):
-        ext = {"stl": ".stl", "stl-ascii": "_ascii.stl", "obj": ".obj"}[fmt]
-        name = f"{kind}_{size_label(n)}{ext}"
-        files.append({"name": name, "kind": kind, "target": n, "fmt": fmt, "path": DATA / name})
 
+def plan_files(sizes: list[int], quick: bool) -> tuple[list[dict], str]:
+    """The end-to-end files and the name of the main one (chart; every tool runs on it).
+
+    Binary STL: spheres (and, unless --quick, tori) of every size, the far sphere and the
+    cubes at the middle size. Binary PLY: spheres up to 1M. ASCII STL and OBJ: the sphere
+    of the largest size up to 1M (text files of 5M are GBs).
+    """
     mid = 1_000_000 if 1_000_000 in sizes else min(sizes)
+    files = []
     for n in sorted(sizes):
-        add("sphere", n, "stl")
-        add("torus", n, "stl")
-        if n == mid:
-            add("sphere_far", n, "stl")
-            add("cubes", n, "stl")
-    for n in sorted(s for s in sizes if s <= 1_000_000):  # text files of 5M+ are GBs
-        add("sphere", n, "stl-ascii")
-        add("sphere", n, "obj")
+        files.append(mesh_file("sphere", n, "stl"))
+        if not quick:
+            files.append(mesh_file("torus", n, "stl"))
+    files.append(mesh_file("sphere_far", mid, "stl"))
+    files.append(mesh_file("cubes", mid, "stl"))
+    for n in sorted(s for s in sizes if s <= 1_000_000):
+        files.append(mesh_file("sphere", n, "ply"))
+    text_n = max((s for s in sizes if s <= 1_000_000), default=None)
+    if text_n:
+        files.append(mesh_file("sphere", text_n, "stl-ascii"))
+        files.append(mesh_file("sphere", text_n, "obj"))
     return files, f"sphere_{size_label(mid)}.stl"
 
 
@@ -99,13 +130,6 @@ def plan_files(sizes: list[int]) -> tuple[list[dict], str]:
 
 def gen_version() -> str:
     return hashlib.sha256((HERE / "meshgen.py").read_bytes()).hexdigest()[:16]
-
-
-def load_json(path: Path, default):
-    try:
-        return json.loads(path.read_text())
-    except (OSError, ValueError):
-        return default
 
 
 class Refs:
@@ -141,6 +165,9 @@ def generate(files: list[dict], refs: Refs):
     groups: dict[tuple, list[dict]] = {}
     for f in files:
         groups.setdefault((f["kind"], f["target"]), []).append(f)
+    writers = {"stl": lambda p, v, f, q: meshgen.write_stl_binary(p, v, f),
+               "stl-ascii": meshgen.write_stl_ascii, "obj": meshgen.write_obj,
+               "ply": lambda p, v, f, q: meshgen.write_ply_binary(p, v, f)}
     for (kind, n), group in groups.items():
         todo = [f for f in group
                 if not (f["path"].exists() and manifest.get(f["name"], {}).get("gen") == ver
@@ -151,12 +178,7 @@ def generate(files: list[dict], refs: Refs):
         for f in todo:
             v, faces, q = arrays
             t0 = time.perf_counter()
-            if f["fmt"] == "stl":
-                meshgen.write_stl_binary(f["path"], v, faces)
-            elif f["fmt"] == "stl-ascii":
-                meshgen.write_stl_ascii(f["path"], v, faces, q)
-            else:
-                meshgen.write_obj(f["path"], v, faces, q)
+            writers[f["fmt"]](f["path"], v, faces, q)
             manifest[f["name"]] = {"gen": ver, "bytes": f["path"].stat().st_size,
                                    "triangles": int(len(faces))}
             manifest_path.write_text(json.dumps(manifest, indent=1))
@@ -170,263 +192,226 @@ def generate(files: list[dict], refs: Refs):
         del arrays
 
 
-# --------------------------------------------------------------------------- running
+# --------------------------------------------------------------------------- peers
 
 
-class Runner:
-    def __init__(self, args):
-        self.hyperfine = shutil.which("hyperfine") if not args.no_hyperfine else None
-        gnu_time = Path("/usr/bin/time")
-        self.gnu_time = None
-        if gnu_time.exists() and not args.no_gnu_time:
-            probe = subprocess.run([str(gnu_time), "-v", "true"], capture_output=True, text=True)
-            if "Maximum resident set size" in probe.stderr:
-                self.gnu_time = str(gnu_time)
-        self.runs = args.runs
-        self.cell_seconds = args.cell_seconds
-
-    def once(self, argv, timeout, keep_stdout=True):
-        """One run with peak RSS: (seconds, returncode, stdout, stderr, peak MB)."""
-        with tempfile.TemporaryDirectory() as td:
-            tfile = os.path.join(td, "time.txt")
-            full = [self.gnu_time, "-v", "-o", tfile] + argv if self.gnu_time else argv
-            t0 = time.perf_counter()
-            try:
-                p = subprocess.run(full, stdout=subprocess.PIPE if keep_stdout else subprocess.DEVNULL,
-                                   stderr=subprocess.PIPE, timeout=timeout)
-            except subprocess.TimeoutExpired:
-                return time.perf_counter() - t0, "timeout", "", "", None
-            dt = time.perf_counter() - t0
-            out = (p.stdout or b"").decode("utf-8", "replace")
-            err = p.stderr.decode("utf-8", "replace")
-            peak = None
-            if self.gnu_time:
-                m = re.search(r"Maximum resident set size \(kbytes\): (\d+)",
-                              Path(tfile).read_text() if os.path.exists(tfile) else "")
-                peak = int(m.group(1)) / 1024.0 if m else None
-            return dt, p.returncode, out, err, peak
-
-    def once_rusage(self, argv, timeout, keep_stdout=True):
-        """Like once() without /usr/bin/time: tools/rss_launch.py reports the child's rusage."""
-        with tempfile.TemporaryDirectory() as td:
-            rfile = os.path.join(td, "rss.txt")
-            full = [PY, str(TOOLS_DIR / "rss_launch.py"), rfile] + argv
-            t0 = time.perf_counter()
-            try:
-                p = subprocess.run(full, stdout=subprocess.PIPE if keep_stdout else subprocess.DEVNULL,
-                                   stderr=subprocess.PIPE, timeout=timeout)
-            except subprocess.TimeoutExpired:
-                return time.perf_counter() - t0, "timeout", "", "", None
-            dt = time.perf_counter() - t0
-            try:
-                peak = int(Path(rfile).read_text()) / 1024.0
-            except (OSError, ValueError):
-                peak = None
-            return (dt, p.returncode, (p.stdout or b"").decode("utf-8", "replace"),
-                    p.stderr.decode("utf-8", "replace"), peak)
-
-    def measure(self, argv, timeout, keep_stdout=True, budget=None):
-        """Warm-up (with output and peak memory), then the timed runs."""
-        budget = self.cell_seconds if budget is None else budget
-        first = (self.once if self.gnu_time else self.once_rusage)(argv, timeout, keep_stdout)
-        warm, rc, out, err, peak = first
-        res = {"warmup_s": warm, "peak_mb": peak, "stdout": out, "cmd": shlex.join(argv)}
-        if rc != 0:
-            res["error"] = ("timed out after %.0f s" % timeout) if rc == "timeout" else \
-                f"exit {rc}: " + (err.strip().splitlines() or ["?"])[-1][:200]
-            return res
-        n = min(self.runs, int(budget // warm)) if warm > 0 else self.runs
-        if n <= 0:
-            res.update(times=[warm], warmup_is_sample=True, timer="warm-up run")
-        elif self.hyperfine:
-            with tempfile.TemporaryDirectory() as td:
-                j = os.path.join(td, "h.json")
-                cmd = [self.hyperfine, "-N", "--style", "none", "--runs", str(n),
-                       "--export-json", j, "--", shlex.join(argv)]
-                p = subprocess.run(cmd, capture_output=True, text=True)
-                if p.returncode == 0:
-                    res.update(times=json.loads(Path(j).read_text())["results"][0]["times"],
-                               timer="hyperfine")
-                else:
-                    log("hyperfine failed, timing with perf_counter:", p.stderr.strip()[-300:])
-        if n > 0 and "times" not in res:
-            times = []
-            for _ in range(n):
-                t0 = time.perf_counter()
-                try:
-                    subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                   timeout=timeout)
-                except subprocess.TimeoutExpired:
-                    pass
-                times.append(time.perf_counter() - t0)
-            res.update(times=times, timer="perf_counter")
-        res["median_s"] = statistics.median(res["times"])
-        return res
+PROBE = r"""
+import importlib, importlib.metadata, json, sys
+out = {}
+for name, mod, dist in json.loads(sys.argv[1]):
+    try:
+        importlib.import_module(mod)
+        try:
+            ver = importlib.metadata.version(dist)
+        except Exception:
+            ver = "installed"
+        out[name] = {"ok": True, "version": ver}
+    except BaseException as e:
+        out[name] = {"ok": False, "reason": f"{type(e).__name__}: {e}".splitlines()[0][:200]}
+print(json.dumps(out))
+"""
 
 
-def parse_json_lines(text: str) -> dict | None:
-    for line in text.splitlines():
-        line = line.strip()
-        if line.startswith("{"):
-            try:
-                d = json.loads(line)
-            except ValueError:
-                continue
-            if isinstance(d, dict) and "volume" in d:
-                return d
-    return None
+def probe_peers() -> dict:
+    """Which peers import, in a child process (an import can fail on a missing system library,
+    as Open3D does without libusb); with the reason from `run`'s pip log when pip failed."""
+    spec = json.dumps([[n, m, d] for n, (m, d, _) in PEERS.items()])
+    try:
+        p = subprocess.run([PY, "-c", PROBE, spec], capture_output=True, text=True, timeout=300)
+        res = json.loads(p.stdout.strip().splitlines()[-1])
+    except (subprocess.SubprocessError, ValueError, IndexError) as e:
+        res = {n: {"ok": False, "reason": f"import probe failed: {e}"} for n in PEERS}
+    installs = load_json(OUT / "install.json", {})
+    for name, (_, dist, _) in PEERS.items():
+        r = res.setdefault(name, {"ok": False, "reason": "not probed"})
+        if not r["ok"] and dist in installs and installs[dist].get("error"):
+            r["reason"] = f"pip install failed: {installs[dist]['error']}"
+        elif not r["ok"] and "No module named" in r.get("reason", ""):
+            r["reason"] = "not installed in the venv (" + r["reason"] + ")"
+    return res
+
+
+# --------------------------------------------------------------------------- end-to-end
 
 
 def tool_volume(out: dict | None):
-    if not out:
+    if not out or "refused" in out:
         return None
     v = out.get("signed_volume", out.get("volume"))
     return float(v) if v is not None else None
 
 
-class Projector:
-    """Skips a run whose projected warm-up (from the tool's last, smaller run) is too long."""
-
-    def __init__(self, cap):
-        self.cap = cap
-        self.seen: dict[tuple, tuple[int, float]] = {}
-
-    def basis(self, key):
-        """The run to project from: same tool and format, else the same tool on any format."""
-        if key in self.seen:
-            return self.seen[key]
-        return self.seen.get(key[:1]) if isinstance(key, tuple) else None
-
-    def check(self, key, tris):
-        b = self.basis(key)
-        if b is None:
-            return None
-        proj = b[1] * tris / b[0]
-        return proj if proj > self.cap else None
-
-    def record(self, key, tris, seconds):
-        for k in ([key, key[:1]] if isinstance(key, tuple) else [key]):
-            if k not in self.seen or tris >= self.seen[k][0]:
-                self.seen[k] = (tris, seconds)
-
-
-def run_end_to_end(files, main_name, args, runner, available):
+def run_end_to_end(ctx: Ctx, files, main_name):
+    args = ctx.args
     rows = []
-    proj = Projector(args.max_cell_seconds)
-    meshvol = shlex.split(args.meshvol)
+    meshvol = ctx.meshvol
     helptext = ""
     try:
         helptext = subprocess.run(meshvol + ["volume", "--help"], capture_output=True, text=True,
                                   timeout=30).stdout
     except (OSError, subprocess.SubprocessError):
         pass
-    variants = []  # meshvol's own options, timed as extra rows where the binary has them
+    variants = []  # meshvol's own options, timed on binary STL where the binary has them
     if "--threads" in helptext:
-        variants.append(("meshvol --threads 1", ["--threads", "1"]))
+        variants.append(("meshvol --threads 1", ["--threads", "1"], True))
     if "--exact" in helptext:
-        variants.append(("meshvol --exact", ["--exact"]))
-    # the main file first: every tool runs on it, and it is the basis for skipping others
-    order = sorted(files, key=lambda f: (f["name"] != main_name, f["triangles"], f["name"]))
+        variants.append(("meshvol --exact", ["--exact"], False))
+    if "--no-check" in helptext:
+        # Read and measure only, as wound, like the peers: the topology check skipped.
+        variants.append(("meshvol --no-check", ["--no-check"], False))
+    # smallest first, so that a peer's time on a small file decides whether it is started on a
+    # bigger one (Projector); of equal sizes the main file first, then binary before text
+    fmts = ["stl", "ply", "stl-ascii", "obj"]
+    order = sorted(files, key=lambda f: (f["target"], f["name"] != main_name,
+                                         fmts.index(f["fmt"]), f["name"]))
     for f in order:
         path = str(f["path"])
+        main = f["name"] == main_name
         tools = [("cat", ["cat", path]), ("meshvol", meshvol + ["volume", path, "--json"])]
-        for name, extra in variants:
-            if name == "meshvol --threads 1":
-                tools.append((name, meshvol + extra + ["volume", path, "--json"]))
-            else:
-                tools.append((name, meshvol + ["volume", path, "--json"] + extra))
-        if "trimesh" in available:
-            tools.append(("trimesh", [PY, str(TOOLS_DIR / "trimesh_file.py"), path]))
-        if "numpy-stl" in available and f["fmt"] in ("stl", "stl-ascii"):
-            tools.append(("numpy-stl", [PY, str(TOOLS_DIR / "numpystl_file.py"), path]))
-        if f["name"] == main_name:  # how much of a Python tool's time is start-up alone
-            for t, mod in (("trimesh", "trimesh"), ("numpy-stl", "stl.mesh")):
-                if t in available:
-                    tools.append((f"{t} (import only)", [PY, "-c", f"import {mod}"]))
+        for name, extra, before in variants:
+            # Every variant on binary STL; on the other formats, the unchecked path only.
+            if f["fmt"] == "stl" or extra == ["--no-check"]:
+                tools.append((name, meshvol + extra + ["volume", path, "--json"] if before
+                              else meshvol + ["volume", path, "--json"] + extra))
+        for tool, (script, fmts) in E2E_TOOLS.items():
+            if f["fmt"] in fmts and ctx.wants(tool):
+                tools.append((tool, [PY, str(TOOLS_DIR / script), path]))
+        if main and not args.quick:  # how much of a Python tool's time is start-up alone
+            for tool, mod in IMPORT_ONLY.items():
+                if ctx.wants(tool):
+                    tools.append((f"{tool} (import only)", [PY, "-c", f"import {mod}"]))
         for tool, argv in tools:
-            if args.tools and tool.split()[0] not in args.tools and tool != "cat":
-                continue
-            row = {"category": "end-to-end", "tool": tool, "file": f["name"], "fmt": f["fmt"],
-                   "triangles": f["triangles"], "mb": f["mb"], "main": f["name"] == main_name}
-            key = (tool, f["fmt"])
-            skip = None if row["main"] or tool.startswith(("cat", "meshvol")) else proj.check(key, f["triangles"])
-            if skip:
-                row["skipped"] = (f"projected ~{skip:.0f} s per run from its {proj.basis(key)[0]:,}"
-                                  f"-triangle run (over --max-cell-seconds {args.max_cell_seconds:.0f})")
-                log(f"{f['name']:<22} {tool:<24} skipped: {row['skipped']}")
+            row = {"category": "end-to-end", "section": "volume", "item": f["name"], "tool": tool,
+                   "file": f["name"], "fmt": f["fmt"], "triangles": f["triangles"], "mb": f["mb"],
+                   "main": main}
+            is_mv = tool == "cat" or tool.startswith("meshvol")
+            if tool.endswith("(import only)"):
+                ctx.run(row, argv, key=("volume", tool), size=1, keep_stdout=False, budget=1.0)
                 rows.append(row)
                 continue
-            timeout = args.timeout * (3 if row["main"] else 1)
-            budget = args.main_cell_seconds if row["main"] else args.cell_seconds
-            res = runner.measure(argv, timeout, keep_stdout=tool != "cat", budget=budget)
-            row.update({k: v for k, v in res.items() if k != "stdout"})
-            if "error" not in res:
-                proj.record(key, f["triangles"], res["warmup_s"])
-                if tool != "cat" and not tool.endswith("(import only)"):
-                    out = parse_json_lines(res["stdout"])
-                    row["output"] = out
-                    vol = tool_volume(out)
-                    if vol is None:
-                        row["error"] = "no JSON object with a volume in its output"
-                    else:
-                        row["volume"] = vol
-                        row["rel_err"] = meshgen.rel_error(vol, f["ref"])
-                        row["correctly_rounded"] = vol == float(f["ref"])
-                        bound = out.get("volume_error_bound")
-                        if isinstance(bound, (int, float)) and \
-                                abs(Fraction(vol) - f["ref"]) > Fraction(bound):
-                            row["note"] = f"error exceeds its own volume_error_bound {bound:.3g}"
-                        if out.get("triangles") not in (None, f["triangles"]):
-                            row["note"] = (row.get("note", "") + f"; reports {out.get('triangles')} "
-                                           "triangles").lstrip("; ")
-            else:
-                # a tool that failed or timed out on a file is not tried on bigger ones
-                proj.record(key, f["triangles"], max(res["warmup_s"], args.max_cell_seconds + 1))
-            msg = row.get("error") or f"{row['median_s']:.3f} s (n={len(row['times'])})"
-            log(f"{f['name']:<22} {tool:<24} {msg}")
+            ctx.run(row, argv, meshvol=is_mv, key=None if is_mv else ("volume", tool, f["fmt"]),
+                    size=f["triangles"], main=main, keep_stdout=tool != "cat")
             rows.append(row)
+            if tool == "cat" or "median_s" not in row and "output" not in row:
+                continue
+            out = row.get("output")
+            vol = tool_volume(out)
+            if row.get("refused"):
+                continue
+            if vol is None:
+                row.setdefault("error", "no JSON object with a volume in its output")
+                continue
+            row["volume"] = vol
+            row["rel_err"] = meshgen.rel_error(vol, f["ref"])
+            row["correctly_rounded"] = vol == float(f["ref"])
+            bound = out.get("volume_error_bound")
+            if isinstance(bound, (int, float)) and abs(Fraction(vol) - f["ref"]) > Fraction(bound):
+                row["note"] = f"error exceeds its own volume_error_bound {bound:.3g}"
+            if out.get("triangles") not in (None, f["triangles"]):
+                row["note"] = (row.get("note", "") + f"; reports {out.get('triangles')} "
+                               "triangles").lstrip("; ")
     return rows
 
 
-def run_in_process(sizes, args, refs, available):
+# --------------------------------------------------------------------------- in-process
+
+
+def _staged(argv, setup_timeout, cap, rest_timeout):
+    """Run an inprocess.py worker: wait up to setup_timeout for its 'ready' line, up to cap
+    for the warm-up line, then up to rest_timeout for the result. (result dict | None, error)."""
+    p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    q: queue.Queue = queue.Queue()
+    err_lines: list[str] = []
+
+    def pump():
+        for line in p.stdout:
+            q.put(line)
+        q.put(None)
+
+    def pump_err():
+        for line in p.stderr:
+            err_lines.append(line)
+
+    threading.Thread(target=pump, daemon=True).start()
+    threading.Thread(target=pump_err, daemon=True).start()
+    stage, limits = 0, [setup_timeout, cap, rest_timeout]
+    deadline = time.perf_counter() + limits[0]
+    result, over = None, None
+    while True:
+        try:
+            line = q.get(timeout=max(0.01, deadline - time.perf_counter()))
+        except queue.Empty:
+            over = ("setup", setup_timeout) if stage == 0 else ("warm-up", cap) if stage == 1 \
+                else ("runs", rest_timeout)
+            kill_group(p)
+            break
+        if line is None:
+            break
+        d = parse_json_lines(line, keys=None)
+        if not d:
+            continue
+        if "ready" in d and stage == 0:
+            stage, deadline = 1, time.perf_counter() + limits[1]
+        elif "warmup_s" in d and "times" not in d and stage == 1:
+            stage, deadline = 2, time.perf_counter() + limits[2]
+        elif "refused" in d or "times" in d:
+            result = d
+    p.wait()
+    if over:
+        return None, over
+    if result is None:
+        return None, f"exit {p.returncode}: " + last_line("".join(err_lines))
+    return result, None
+
+
+def run_in_process(ctx: Ctx, sizes, refs):
+    args = ctx.args
     rows = []
-    proj = Projector(args.max_cell_seconds)
-    for tool in ("trimesh", "manifold3d", "numpy-stl"):
-        if tool not in available or (args.tools and tool not in args.tools):
+    for tool in INPROCESS_TOOLS:
+        if not ctx.wants(tool):
             continue
         for n in sizes:
-            row = {"category": "in-process", "tool": tool, "file": f"sphere {size_label(n)} (arrays)",
+            row = {"category": "in-process", "section": "inprocess",
+                   "tool": "meshvol (Python)" if tool == "meshvol-py" else tool,
+                   "item": f"sphere {size_label(n)} (arrays)", "file": f"sphere {size_label(n)} (arrays)",
                    "kind": "sphere", "target": n}
-            skip = proj.check(tool, n)
+            key = ("inprocess", tool)
+            cap, skip = plan_cell(ctx.clock, ctx.proj, key, n, args.peer_timeout)
             if skip:
-                row["skipped"] = (f"projected ~{skip:.0f} s per run from its {proj.basis(tool)[0]:,}"
-                                  f"-triangle run (over --max-cell-seconds {args.max_cell_seconds:.0f})")
-                log(f"in-process {tool:<10} {size_label(n):<5} skipped: {row['skipped']}")
+                row["skipped"] = skip
+                log(f"in-process {tool:<10} {size_label(n):<5} {skip}")
                 rows.append(row)
                 continue
             ref, ntri, _ = refs.get("sphere", n)
             row["triangles"] = ntri
+            budget = max(0.0, min(args.cell_seconds, ctx.clock.left() - cap))
             argv = [PY, str(TOOLS_DIR / "inprocess.py"), tool, "sphere", str(n),
-                    str(args.runs), str(args.cell_seconds)]
-            try:
-                p = subprocess.run(argv, capture_output=True, text=True, timeout=args.timeout * 3)
-            except subprocess.TimeoutExpired:
-                row["error"] = f"timed out after {args.timeout * 3:.0f} s"
-                rows.append(row)
-                proj.record(tool, n, args.max_cell_seconds + 1)
-                continue
-            out = parse_json_lines(p.stdout) if p.returncode == 0 else None
-            if out is None:
-                row["error"] = f"exit {p.returncode}: " + (p.stderr.strip().splitlines() or ["?"])[-1][:200]
-                proj.record(tool, n, args.max_cell_seconds + 1)
+                    str(args.runs), str(budget)]
+            out, err = _staged(argv, setup_timeout=max(60.0, 20 * n / 1e6), cap=cap,
+                               rest_timeout=2 * budget + cap + 10)
+            if isinstance(err, tuple):
+                stage, secs = err
+                if stage == "warm-up":
+                    row["over"] = cap
+                    row["error"] = f"> {cap:.0f} s (cut off)"
+                else:
+                    row["error"] = f"{stage} took over {secs:.0f} s"
+                ctx.proj.record(key, n, cap, over=True)
+            elif err:
+                row["error"] = err
+                ctx.proj.record(key, n, args.peer_timeout + 1, over=True)
+            elif "refused" in out:
+                row["refused"] = out["refused"]
             else:
                 row.update(times=out["times"], median_s=statistics.median(out["times"]),
                            peak_mb=out["peak_rss_mb"], setup_mb=out["rss_before_timing_mb"],
                            volume=out["volume"], rel_err=meshgen.rel_error(out["volume"], ref),
                            correctly_rounded=out["volume"] == float(ref),
                            warmup_is_sample=out["warmup_is_sample"], method=out["note"])
-                proj.record(tool, n, out["warmup_s"])
-            msg = row.get("error") or f"{row['median_s']:.3f} s (n={len(row['times'])})"
+                ctx.proj.record(key, n, out["warmup_s"])
+            msg = row.get("error") or (f"refused: {row['refused']}" if "refused" in row
+                                       else f"{row['median_s']:.3f} s (n={len(row['times'])})")
             log(f"in-process {tool:<10} {size_label(n):<5} {msg}")
             rows.append(row)
     return rows
@@ -467,7 +452,7 @@ def machine_info() -> dict:
             "python": platform.python_version()}
 
 
-def versions(args, available) -> dict:
+def versions(args) -> dict:
     v = {}
     mv = shlex.split(args.meshvol)
     ver = sh(mv + ["--version"])
@@ -475,13 +460,12 @@ def versions(args, available) -> dict:
     dirty = sh(["git", "status", "--porcelain", "--untracked-files=no"])
     v["meshvol"] = (ver or "(no --version)") + (f", git {rev}" if rev else "") + \
         (" + uncommitted changes" if dirty else "") + f"; command: `{args.meshvol}`"
-    for tool in ("trimesh", "numpy-stl", "manifold3d"):
-        dist = PY_TOOLS[tool][1]
-        v[tool] = importlib.metadata.version(dist) if tool in available else "not installed (skipped)"
-    for dist in ("numpy", "scipy", "matplotlib"):
+    for dist in ("numpy", "matplotlib"):
         try:
+            import importlib.metadata
+
             v[dist] = importlib.metadata.version(dist)
-        except importlib.metadata.PackageNotFoundError:
+        except Exception:
             v[dist] = "not installed"
     v["rustc"] = sh(["rustc", "--version"]) or "unknown"
     v["hyperfine"] = sh(["hyperfine", "--version"]) if shutil.which("hyperfine") else \
@@ -507,43 +491,232 @@ def criterion_estimates() -> list[tuple[str, float, str]]:
 # --------------------------------------------------------------------------- report
 
 
-def fmt_s(s):
-    if s is None:
-        return ""
-    return f"{s:.4f}" if s < 0.1 else f"{s:.3f}" if s < 10 else f"{s:.1f}"
+def report_volume(e2e, main_name) -> tuple[list[str], list[str]]:
+    L = ["## Mesh volume, end-to-end, by file\n"]
+    if not e2e:
+        return L + ["Not run.\n"], []
+    L.append("Fresh process per run: read the file, print volume (and, where the tool gives them, "
+             "centroid and inertia). `cat` is the I/O floor; `(import only)` rows time "
+             "`python -c 'import MODULE'`, the start-up part of a Python tool's time. The ratio and "
+             "**meshvol ahead?** compare each row with the plain `meshvol` row of the same file; "
+             "a refusal is not a result, so it is neither ahead nor behind.\n")
+    L.append("| tool | file | size MB | median s | runs | ratio to meshvol | peak MB | relative volume error | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|--:|---|")
+    behind, acc, compared = [], [], 0
+    by_file: dict[str, list[dict]] = {}
+    for r in e2e:
+        by_file.setdefault(r["file"], []).append(r)
+    kinds = ["sphere", "torus", "sphere_far", "cubes"]
+    fmts = ["stl", "ply", "stl-ascii", "obj"]
+    file_order = sorted(by_file, key=lambda n: (
+        n != main_name, fmts.index(by_file[n][0]["fmt"]),
+        kinds.index(n.rsplit("_", 1)[0]) if n.rsplit("_", 1)[0] in kinds else 9,
+        by_file[n][0]["triangles"], n))
+    for name in file_order:
+        group = by_file[name]
+        mv = next((r for r in group if r["tool"] == "meshvol" and "median_s" in r), None)
+        mv_s = mv["median_s"] if mv else None
+        timed = [r for r in group if "median_s" in r
+                 and r["tool"] != "cat" and not r["tool"].endswith("(import only)")]
+        fastest = min(timed, key=lambda r: r["median_s"]) if timed else None
+        if not mv:
+            behind.append(f"`{name}` (meshvol has no time: "
+                          f"{next((r.get('error') for r in group if r['tool'] == 'meshvol'), 'not run')})")
+        for r in group:
+            tool = r["tool"] + (" (I/O floor)" if r["tool"] == "cat" else "")
+            label = f"{r['file']} ({FORMAT_LABEL[r['fmt']]}, {r['triangles']:,} tri)"
+            peer = not (r["tool"] == "cat" or r["tool"].startswith("meshvol")
+                        or r["tool"].endswith("(import only)"))
+            if peer and seconds_of(r) and mv_s and not r.get("refused"):
+                compared += 1
+                if is_behind(r, mv_s):
+                    behind.append(f"{r['tool']} on `{name}` ({fmt_s(r['median_s'])} s vs meshvol "
+                                  f"{fmt_s(mv_s)} s)")
+                if mv and "rel_err" in mv and "rel_err" in r and r["rel_err"] < mv["rel_err"]:
+                    acc.append(f"{r['tool']} on `{name}` ({fmt_err(r['rel_err'])} vs meshvol "
+                               f"{fmt_err(mv['rel_err'])})")
+            if r.get("skipped") and not r["skipped"].startswith(">"):
+                L.append(f"| {tool} | {label} | {r['mb']:.1f} | not run | | | | {md_cell(r['skipped'])} | |")
+                continue
+            err = fmt_err(r.get("rel_err")) if "rel_err" in r else ""
+            if r.get("correctly_rounded"):
+                err += " ✓"
+            if r.get("refused"):
+                err = f"refused: {r['refused']}"
+            elif "over" in r:
+                err = r["error"].replace(f"> {r['over']:.0f} s (cut off)", "cut off")
+            elif r.get("error"):
+                err = r["error"]
+            elif r.get("skipped"):
+                err = "not started: " + r["skipped"].split("(", 1)[-1].rstrip(")")
+            if r.get("note"):
+                err += f" ({r['note']})"
+            ratio = ratio_cell(r, mv_s) if r["tool"] != "meshvol" else ("1.00" if mv else "")
+            ahead = ahead_cell(r, mv_s) if peer else ""
+            L.append(f"| {tool} | {label} | {r['mb']:.1f} | {time_cell(r, bold=r is fastest)} | "
+                     f"{runs_cell(r)} | {ratio} | {fmt_mb(r.get('peak_mb'))} | {md_cell(err)} | {ahead} |")
+    L.append("")
+    if behind:
+        L.append("**Where meshvol is not ahead (end-to-end volume):** " + "; ".join(behind) + ".\n")
+    elif compared:
+        L.append(f"meshvol is ahead of every peer that gave a volume, on every file "
+                 f"({compared} comparisons; `cat` aside).\n")
+    if acc:
+        L.append("**More accurate than meshvol:** " + "; ".join(acc) + ".\n")
+    return L, behind + [f"accuracy: {a}" for a in acc]
 
 
-def fmt_ratio(x):
-    return f"{x:.2f}" if 0.1 <= x < 100 else f"{x:.2g}" if x < 0.1 else f"{x:.0f}"
+def report_inprocess(inp) -> tuple[list[str], list[str]]:
+    L = ["## Mesh volume, in-process, on arrays already in memory\n"]
+    if not inp:
+        return L + ["Not run.\n"], []
+    measured = any(r["tool"] == "meshvol (Python)" and "median_s" in r for r in inp)
+    L.append("Each run builds the tool's mesh object from (vertices, faces) outside the timer, "
+             "so no cached result carries over; the timer covers the mass-property call only (for "
+             "manifold3d, which has no other way in, the `Manifold` build plus `volume()` and "
+             "`surface_area()`; for Open3D, `get_volume()`, which first runs `is_watertight()` "
+             "with its all-pairs self-intersection test). Peak MB is the whole Python process. "
+             "meshvol's row is its Python binding (`meshvol.Mesh(v, f).mass_properties()`, "
+             "crates/meshvol-py) when that is installed in the venv; the ratio and **meshvol "
+             "ahead?** then compare with it. Otherwise they compare with meshvol's criterion "
+             "estimate (†) of a mesh within 10% of the row's size, where there is one: "
+             + CRITERION_NOTE + " A † verdict is indicative only (a different mesh, measured "
+             "by `cargo bench`, not by this run).\n")
+    if not measured:
+        L.append("meshvol's Python binding is not installed in the venv, so meshvol has no "
+                 "measured row here (`bench/out/venv/bin/pip install ./crates/meshvol-py` adds "
+                 "one; it builds the binding with maturin).\n")
+    crit = criterion_estimates()
+    crit_mv = {}
+    for name, secs, _ in crit:
+        m = re.fullmatch(r"mass_properties/meshvol/(\d+)", name)
+        if m:
+            crit_mv[int(m.group(1))] = (name, secs)
+    mv_rows = {r["target"]: r for r in inp if r["tool"] == "meshvol (Python)" and "median_s" in r}
+    L.append("| tool | mesh | triangles | median s | runs | ratio to meshvol | peak MB | relative volume error | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|--:|---|")
+    behind, compared = [], 0
+    for r in inp:
+        tri = f"{r['triangles']:,}" if "triangles" in r else f"~{size_label(r['target'])}"
+        is_mv = r["tool"] == "meshvol (Python)"
+        mv_s, dagger = None, ""
+        if r["target"] in mv_rows:
+            mv_s = mv_rows[r["target"]]["median_s"]
+        elif "triangles" in r:
+            near = [v for n, v in crit_mv.items() if abs(n - r["triangles"]) <= 0.1 * n]
+            if near:
+                mv_s, dagger = near[0][1], " †"
+        ahead = "" if is_mv else (ahead_cell(r, mv_s) + dagger if mv_s else "n/a")
+        if not is_mv and mv_s and seconds_of(r) and not r.get("refused"):
+            compared += 1
+        if not is_mv and is_behind(r, mv_s):
+            behind.append(f"{r['tool']} on {r['file']} ({fmt_s(r['median_s'])} s vs meshvol "
+                          f"{fmt_s(mv_s)} s{' (criterion, indicative)' if dagger else ''})")
+        note = ""
+        if r.get("refused"):
+            note = f"refused: {r['refused']}"
+        elif r.get("skipped"):
+            note = r["skipped"]
+        elif "median_s" not in r:
+            note = r.get("error", "")
+        if "median_s" not in r:
+            L.append(f"| {r['tool']} | {r['file']} | {tri} | {time_cell(r)} | | "
+                     f"{'' if is_mv else ratio_cell(r, mv_s) + (dagger if mv_s else '')} | | "
+                     f"{md_cell(note)} | {ahead} |")
+            continue
+        ratio = "1.00" if is_mv else (ratio_cell(r, mv_s) + dagger if mv_s else "")
+        cr = " ✓" if r.get("correctly_rounded") else ""
+        L.append(f"| {r['tool']} | {r['file']} | {tri} | {fmt_s(r['median_s'])} | {runs_cell(r)} | "
+                 f"{ratio} | {fmt_mb(r['peak_mb'])} | {fmt_err(r['rel_err'])}{cr} | {ahead} |")
+    L.append("")
+    if behind:
+        L.append("**Where meshvol is not ahead (in-process volume):** " + "; ".join(behind) + ".\n")
+    elif compared:
+        L.append(f"meshvol is ahead of every peer with a time and a meshvol figure to compare with "
+                 f"({compared} comparisons{'; † ones indicative' if not measured else ''}).\n")
+    else:
+        L.append("No peer row has a meshvol figure of its size to compare with, so this table "
+                 "gives no verdict.\n")
+        behind = [NO_VERDICT]
+    if crit and not measured:
+        L.append("meshvol criterion estimates found in `target/criterion/` (mean per iteration; from "
+                 "the last `cargo bench -p meshvol-bench`, not from this run):\n")
+        L.append("| benchmark | mean s | measured (UTC) |")
+        L.append("|---|--:|---|")
+        for name, secs, when in crit:
+            L.append(f"| {name} | {secs:.6f} | {when} |")
+        L.append("")
+    return L, behind
 
 
-def fmt_err(e):
-    if e is None:
-        return ""
-    if isinstance(e, float) and math.isnan(e):
-        return "n/a"
-    return "0 (exact)" if e == 0 else f"{e:.1e}"
-
-
-def fmt_mb(m):
-    return "" if m is None else f"{m:.0f}"
-
-
-def write_report(path: Path, rows, files, info, vers, args, started, main_name, chart_ok,
-                 available, duration):
-    e2e = [r for r in rows if r["category"] == "end-to-end"]
-    inp = [r for r in rows if r["category"] == "in-process"]
+def write_report(path: Path, res: dict, files, info, vers, peers, args, started, main_name,
+                 chart_ok, duration, clock: Clock):
     L = []
     L.append("# meshvol compared with its peers\n")
-    L.append(f"Generated by `bench/compare/run{' --quick' if args.quick else ''}"
-             f"{' --sizes ' + args.sizes if args.sizes else ''}` on "
-             f"{started:%Y-%m-%d %H:%M} UTC in {duration / 60:.1f} min. "
-             "Not part of CI; see [bench/compare/README.md](compare/README.md) for the method.\n")
+    cmdline = "bench/compare/run" + ("" if not args.argv else " " + shlex.join(args.argv))
+    L.append(f"Generated by `{cmdline}` on {started:%Y-%m-%d %H:%M} UTC in {duration / 60:.1f} min "
+             f"(time budget {args.time_budget:g} min). Not part of CI; see "
+             "[bench/compare/README.md](compare/README.md) for the method.\n")
     if args.quick:
-        L.append("**Quick run: 100k-triangle meshes only. Not the numbers to quote.**\n")
-    if args.meshvol != default_meshvol():
+        L.append("**Quick run: small sizes, short budgets. For checking the harness, not the numbers "
+                 "to quote.**\n")
+    if not is_release_build(args.meshvol):
         L.append(f"**meshvol was run as `{args.meshvol}`, not the release build "
                  "`target/release/meshvol`: its times are not meshvol's.**\n")
+    reports = {}
+    reports["volume"] = report_volume(res.get("volume", []), main_name)
+    reports["inprocess"] = report_inprocess(res.get("inprocess", []))
+    reports["check"] = sections.report_check(res.get("check", []), res.get("check_files", []))
+    if res.get("grid_file"):
+        reports["grid"] = sections.report_grid(res.get("grid", []), res["grid_file"], res["params"])
+    reports["union"] = sections.report_union(res.get("union", []))
+    reports["hull"] = sections.report_hull(res.get("hull", []), res.get("hull_clouds", []))
+    reports["area"] = sections.report_area(res.get("area", []), res.get("area_files", []))
+
+    L.append("## Summary: where meshvol is not ahead\n")
+    L.append("Computed from the tables below: a peer is \"ahead\" where its time is at most "
+             "meshvol's (or its error smaller), in the comparison each section defines. A peer "
+             "that was cut off (`> N s`) or refused the input is not ahead.\n")
+    for s in SECTIONS:
+        if s not in args.sections:
+            L.append(f"- {SECTION_TITLE[s]}: not run (not selected).")
+            continue
+        lines, behind = reports.get(s, ([], []))
+        if NO_VERDICT in behind:
+            L.append(f"- {SECTION_TITLE[s]}: no verdict (no meshvol figure of a matching size in "
+                     "this run or in target/criterion/).")
+            continue
+        proc = [b for b in behind if not b.startswith("kernel only: ")]
+        kern: dict[str, int] = {}
+        for b in behind:
+            if b.startswith("kernel only: "):
+                tool = b[len("kernel only: "):].split(" on ")[0]
+                kern[tool] = kern.get(tool, 0) + 1
+        text = (f"**not ahead** on " + "; ".join(proc) + "." if proc else
+                "ahead of every peer with a result" + (" (whole process)." if kern else "."))
+        if kern:
+            text += (" **Kernel alone**, the peer's computation after reading and parsing took no "
+                     "longer than meshvol's whole process for " +
+                     ", ".join(f"{t} on {n} input{'s' if n > 1 else ''}" for t, n in kern.items()) +
+                     " (meshvol reports no kernel time there; see the section).")
+        L.append(f"- {SECTION_TITLE[s]}: {text}")
+    L.append("")
+
+    L.append("## Peers\n")
+    L.append("| peer | version | used for | status |")
+    L.append("|---|---|---|---|")
+    for name, (_, dist, use) in PEERS.items():
+        p = peers.get(name, {})
+        shown = "meshvol (Python binding)" if name == "meshvol-py" else name
+        if p.get("ok"):
+            sel = "" if not args.tools or name in args.tools or name == "meshvol-py" \
+                else " (left out by --tools)"
+            L.append(f"| {shown} | {p.get('version', '')} | {use} | installed{sel} |")
+        elif name == "meshvol-py":
+            L.append(f"| {shown} | | {use} | not installed (optional) |")
+        else:
+            L.append(f"| {shown} | | {use} | **skipped**: {md_cell(p.get('reason', 'unknown'))} |")
+    L.append("")
     L.append("## Machine and versions\n")
     L.append(f"- CPU: {info['cpu']}, {info['nproc']} logical CPUs (`nproc`); RAM {info['ram']}; "
              f"{info['os']}; Python {info['python']}")
@@ -555,158 +728,54 @@ def write_report(path: Path, rows, files, info, vers, args, started, main_name, 
     L.append("")
     L.append("## Method\n")
     L.append(
-        "- **End-to-end**: each tool is a fresh process per run, reading the file and printing "
-        "volume, centroid and inertia: `meshvol volume FILE --json`; a Python script doing "
-        "`trimesh.load(FILE)` + `mesh.mass_properties`; a Python script doing numpy-stl "
-        "`Mesh.from_file(FILE)` + `get_mass_properties()` (STL only). `cat FILE` (to /dev/null) "
-        "is the I/O floor. Python start-up and imports are part of the Python tools' time, as a "
-        "user of them pays it.")
+        f"- Timing: every command is a fresh process. One warm-up run (page cache warm, output "
+        f"kept, peak memory from `/usr/bin/time -v` or tools/rss_launch.py), then up to {args.runs} "
+        f"timed runs (hyperfine `-N` where installed) within {args.cell_seconds:g} s "
+        f"({args.main_cell_seconds:g} s on the main file `{main_name}`); the table gives the "
+        "median. `1*`: the warm-up itself is the only sample.")
     L.append(
-        f"- Timing: one warm-up run (page cache warm, output kept, peak memory measured with "
-        f"`/usr/bin/time -v` or, without it, tools/rss_launch.py), then up to {args.runs} timed runs "
-        f"(hyperfine `-N` where installed); the table gives the median. A tool whose run takes "
-        f"long gets fewer runs (at most {args.cell_seconds:.0f} s of timed runs per cell, "
-        f"{args.main_cell_seconds:.0f} s on the main file); "
-        "`1*` means the warm-up itself is the only sample. On the main file, `(import only)` rows "
-        "time `python -c 'import MODULE'`: the start-up part of that tool's time. `meshvol --threads 1` and "
-        "`meshvol --exact` rows are the same binary with those options. A run projected, from the same tool on "
-        f"a smaller file, to take over {args.max_cell_seconds:.0f} s is skipped, except on the "
-        f"main file `{main_name}`, which every tool runs.")
+        f"- Cut-offs: a peer's run is stopped after {args.peer_timeout:g} s (`--peer-timeout`) and "
+        "shown as `> N s`; a peer whose time, projected linearly from its last run in the section, "
+        "is over that (or that was cut off on an input at most 25% larger) is not started and is "
+        "shown as `> N s (projected ...)`. The whole "
+        f"run has a budget of {args.time_budget:g} min (`--time-budget`), shared among the "
+        "sections as they start (" + ", ".join(
+            f"{s} {clock.allowance.get(s, 0):.0f} s (used {clock.used.get(s, 0):.0f} s)"
+            for s in SECTIONS if s in args.sections) +
+        "); a peer cell with no time left is `not run`. meshvol itself always runs.")
     L.append(
-        "- **Ratio** = tool time / meshvol time on the same file: above 1 means slower than "
-        "meshvol, below 1 faster. The fastest tool of each file (ignoring `cat`) is in bold.")
+        "- **Ratio** = tool time / meshvol time on the same input (above 1: slower than meshvol). "
+        "The fastest tool of each file (ignoring `cat`) is in bold in the volume table.")
     L.append(
-        "- **Relative volume error** = |tool volume - exact| / |exact|, where exact is the exact "
-        "rational volume of the numbers in the file (all formats of a mesh hold the same numbers; "
-        "see the README for how it is computed). ✓ marks a result equal to the exact volume "
-        "correctly rounded to float64, the best a float64 answer can be. A meshvol result "
-        "farther from the exact volume than its own `volume_error_bound` is flagged.")
+        "- **Relative error** = |tool − exact| / |exact|, exact being the exact rational value "
+        "for the numbers in the file (all formats of a mesh hold the same numbers). ✓ marks a "
+        "result equal to the exact volume correctly rounded to float64.")
     L.append(
-        "- Meshes: UV spheres (radius 100) and tori (100, 40) with coordinates on a 2^-10 grid; "
-        "`sphere_far` is a sphere of radius 100 centred at (1e6, 1e6, 1e6), where float32 "
-        "spacing is 1/16; `cubes` is a grid of disjoint boxes of random sizes. Binary STL is "
-        "float32; ASCII STL and OBJ print the same values exactly.")
+        "- Meshes: UV spheres (radius 100) and tori (100, 40), coordinates on a 2^-10 grid; "
+        "`sphere_far` is centred at (1e6, 1e6, 1e6), where float32 spacing is 1/16; `cubes` is a "
+        "grid of disjoint boxes of random sizes. Binary STL and PLY are float32; ASCII STL and OBJ "
+        "print the same values exactly.")
     L.append("")
-    L.append("## End-to-end, by file\n")
-    L.append("| tool | file | size MB | median s | runs | ratio to meshvol | peak MB | relative volume error |")
-    L.append("|---|---|--:|--:|--:|--:|--:|--:|")
-    not_fastest = []
-    by_file: dict[str, list[dict]] = {}
-    for r in e2e:
-        by_file.setdefault(r["file"], []).append(r)
-    kinds = ["sphere", "torus", "sphere_far", "cubes"]
-    file_order = sorted(by_file, key=lambda n: (
-        n != main_name, ["stl", "stl-ascii", "obj"].index(by_file[n][0]["fmt"]),
-        kinds.index(n.rsplit("_", 1)[0]) if n.rsplit("_", 1)[0] in kinds else 9,
-        by_file[n][0]["triangles"], n))
-    for name in file_order:
-        group = by_file[name]
-        mv = next((r for r in group if r["tool"] == "meshvol" and "median_s" in r), None)
-        timed = [r for r in group if "median_s" in r
-                 and r["tool"] != "cat" and not r["tool"].endswith("(import only)")]
-        fastest = min(timed, key=lambda r: r["median_s"]) if timed else None
-        peers = [r for r in timed if not r["tool"].startswith("meshvol")]
-        fastest_peer = min(peers, key=lambda r: r["median_s"]) if peers else None
-        if mv and fastest_peer and fastest_peer["median_s"] <= mv["median_s"]:
-            fastest = fastest_peer  # for the sentence below
-            not_fastest.append(f"`{name}` ({fastest['tool']}: {fmt_s(fastest['median_s'])} s vs "
-                               f"meshvol {fmt_s(mv['median_s'])} s)")
-        if not mv:
-            not_fastest.append(f"`{name}` (meshvol has no time: "
-                               f"{next((r.get('error') for r in group if r['tool'] == 'meshvol'), 'not run')})")
-        for r in group:
-            tool = r["tool"] + (" (I/O floor)" if r["tool"] == "cat" else "")
-            label = f"{r['file']} ({FORMAT_LABEL[r['fmt']]}, {r['triangles']:,} tri)"
-            if "skipped" in r:
-                L.append(f"| {tool} | {label} | {r['mb']:.1f} | skipped | | | | {r['skipped']} |")
-                continue
-            if "error" in r and "median_s" not in r:
-                L.append(f"| {tool} | {label} | {r['mb']:.1f} | failed | | | {fmt_mb(r.get('peak_mb'))} | {r['error']} |")
-                continue
-            t = fmt_s(r["median_s"])
-            if timed and r is min(timed, key=lambda x: x["median_s"]):
-                t = f"**{t}**"
-            runs = "1*" if r.get("warmup_is_sample") else str(len(r["times"]))
-            ratio = fmt_ratio(r["median_s"] / mv["median_s"]) if mv else "n/a"
-            err = fmt_err(r.get("rel_err")) if "rel_err" in r else ""
-            if r.get("correctly_rounded"):
-                err += " ✓"
-            if r.get("error"):
-                err = r["error"]
-            if r.get("note"):
-                err += f" ({r['note']})"
-            L.append(f"| {tool} | {label} | {r['mb']:.1f} | {t} | {runs} | {ratio} | "
-                     f"{fmt_mb(r.get('peak_mb'))} | {err} |")
-    L.append("")
-    if not_fastest:
-        L.append("meshvol is **not** the fastest tool on: " + "; ".join(not_fastest) + ".\n")
-    elif e2e:
-        L.append("meshvol is the fastest tool on every file (`cat` aside).\n")
-    if inp:
-        L.append("## In-process, on arrays already in memory\n")
-        L.append("Each run builds the tool's mesh object from (vertices, faces) outside the timer, "
-                 "so no cached result carries over; the timer covers the mass-property call only "
-                 "(for manifold3d, which has no other way in, the `Manifold` build plus `volume()` "
-                 "and `surface_area()`; it gives no centroid or inertia). Peak MB is the whole "
-                 "Python process. " + CRITERION_NOTE + "\n")
-        crit = criterion_estimates()
-        crit_mv = {}  # triangle count -> (name, seconds) for criterion's default meshvol kernel
-        for name, secs, _ in crit:
-            m = re.fullmatch(r"mass_properties/meshvol/(\d+)", name)
-            if m:
-                crit_mv[int(m.group(1))] = (name, secs)
-        used_crit = False
-        L.append("| tool | mesh | triangles | median s | runs | ratio to meshvol | peak MB | relative volume error |")
-        L.append("|---|---|--:|--:|--:|--:|--:|--:|")
-        for r in inp:
-            tri = f"{r['triangles']:,}" if "triangles" in r else f"~{size_label(r['target'])}"
-            if "skipped" in r:
-                L.append(f"| {r['tool']} | {r['file']} | {tri} | skipped | | | | {r['skipped']} |")
-                continue
-            if "median_s" not in r:
-                L.append(f"| {r['tool']} | {r['file']} | {tri} | failed | | | | {r.get('error')} |")
-                continue
-            runs = "1*" if r.get("warmup_is_sample") else str(len(r["times"]))
-            near = [(n, v) for n, v in crit_mv.items() if abs(n - r["triangles"]) <= 0.1 * n]
-            ratio = "see criterion"
-            if near:
-                ratio = f"{fmt_ratio(r['median_s'] / near[0][1][1])} †"
-                used_crit = True
-            cr = " ✓" if r.get("correctly_rounded") else ""
-            L.append(f"| {r['tool']} | {r['file']} | {tri} | {fmt_s(r['median_s'])} | {runs} | "
-                     f"{ratio} | {fmt_mb(r['peak_mb'])} | {fmt_err(r['rel_err'])}{cr} |")
+    for s in SECTIONS:
+        if s in args.sections and s in reports:
+            L.extend(reports[s][0])
+    if files:
+        L.append("## Reference volumes\n")
+        L.append("| mesh | triangles | exact volume (rounded) |")
+        L.append("|---|--:|--:|")
+        seen = set()
+        for f in files:
+            k = (f["kind"], f["target"])
+            if k not in seen and "ref" in f:
+                seen.add(k)
+                L.append(f"| {f['kind']} {size_label(f['target'])} | {f['triangles']:,} | {float(f['ref']):.17g} |")
         L.append("")
-        if used_crit:
-            L.append("† against the criterion estimate `mass_properties/meshvol/N` below with N "
-                     "within 10% of the row's triangle count: a different mesh of about the same "
-                     "size, measured by `cargo bench`, not by this run; indicative only.\n")
-        if crit:
-            L.append("meshvol criterion estimates found in `target/criterion/` (mean per iteration; "
-                     "from the last `cargo bench -p meshvol-bench`, not from this run):\n")
-            L.append("| benchmark | mean s | measured (UTC) |")
-            L.append("|---|--:|---|")
-            for name, secs, when in crit:
-                L.append(f"| {name} | {secs:.6f} | {when} |")
-            L.append("")
-    missing = [t for t in PY_TOOLS if t not in available]
-    if missing:
-        L.append("Skipped tools (not installed in the venv): " + ", ".join(missing) + ".\n")
-    L.append("## Reference volumes\n")
-    L.append("| mesh | triangles | exact volume (rounded) |")
-    L.append("|---|--:|--:|")
-    seen = set()
-    for f in files:
-        k = (f["kind"], f["target"])
-        if k not in seen:
-            seen.add(k)
-            L.append(f"| {f['kind']} {size_label(f['target'])} | {f['triangles']:,} | {float(f['ref']):.17g} |")
-    L.append("")
     if chart_ok:
-        L.append(f"## Chart\n\n![End-to-end seconds on {main_name}](RESULTS.png)\n")
+        L.append("## Chart\n\n![Seconds per tool in each section](RESULTS.png)\n")
     path.write_text("\n".join(L))
 
 
-def write_chart(path: Path, rows, main_name) -> bool:
+def write_chart(path: Path, res: dict, main_name) -> bool:
     try:
         import matplotlib
 
@@ -715,28 +784,49 @@ def write_chart(path: Path, rows, main_name) -> bool:
     except ImportError:
         log("matplotlib missing: no chart")
         return False
-    pts = [(r["tool"], r["median_s"]) for r in rows
-           if r["category"] == "end-to-end" and r["file"] == main_name and "median_s" in r
-           and not r["tool"].endswith("(import only)")]
-    if not pts:
+    panels = []
+    pts = []
+    for r in res.get("volume", []):
+        if r["file"] == main_name and not r["tool"].endswith("(import only)"):
+            s = seconds_of(r)
+            if s:
+                pts.append(("cat (I/O floor)" if r["tool"] == "cat" else r["tool"] + (" (>)" if s[1] else ""),
+                            s[0], r["tool"].startswith("meshvol") or r["tool"] == "cat"))
+    if pts:
+        panels.append((f"volume, end-to-end: {main_name}", pts))
+    for s in ("check", "grid", "union", "hull", "area"):
+        c = sections.chart_items(s, res.get(s, []))
+        if c:
+            panels.append(c)
+    if not panels:
         return False
-    fig, ax = plt.subplots(figsize=(7, 0.6 * len(pts) + 1.4))
-    names = [("cat (I/O floor)" if t == "cat" else t) for t, _ in pts]
-    vals = [s for _, s in pts]
-    colors = ["#999999" if t == "cat" else "#d62728" if t.startswith("meshvol") else "#1f77b4"
-              for t, _ in pts]
-    bars = ax.barh(names, vals, color=colors)
-    ax.set_xscale("log")
-    ax.invert_yaxis()
-    for b, s in zip(bars, vals):
-        ax.text(b.get_width() * 1.05, b.get_y() + b.get_height() / 2, f"{s:.3g} s", va="center")
-    ax.set_xlim(min(vals) / 2, max(vals) * 6)
-    r0 = next(r for r in rows if r.get("file") == main_name)
-    ax.set_xlabel("seconds, whole process, median (log scale; lower is better)")
-    ax.set_title(f"Volume + centroid + inertia of {main_name}\n"
-                 f"(binary STL, {r0['triangles']:,} triangles, {r0['mb']:.0f} MB)")
+    ncol = 2 if len(panels) > 1 else 1
+    nrow = (len(panels) + ncol - 1) // ncol
+    heights = [max(len(p[1]) for p in panels[i * ncol:(i + 1) * ncol]) for i in range(nrow)]
+    fig, axes = plt.subplots(nrow, ncol, figsize=(7 * ncol, sum(0.42 * h + 1.3 for h in heights)),
+                             gridspec_kw={"height_ratios": [0.42 * h + 1.3 for h in heights]},
+                             squeeze=False)
+    for ax in axes.ravel()[len(panels):]:
+        ax.axis("off")
+    for ax, (title, items, *rest) in zip(axes.ravel(), panels):
+        xlabel = rest[0] if rest else "seconds, whole process, median (log; lower is better)"
+        names = [n for n, _, _ in items]
+        vals = [v for _, v, _ in items]
+        colors = ["#999999" if n.startswith("cat") else "#d62728" if mv else "#1f77b4"
+                  for n, _, mv in items]
+        bars = ax.barh(names, vals, color=colors)
+        ax.set_xscale("log")
+        ax.invert_yaxis()
+        for b, v in zip(bars, vals):
+            ax.text(b.get_width() * 1.05, b.get_y() + b.get_height() / 2, f"{v:.3g} s", va="center",
+                    fontsize=8)
+        ax.set_xlim(min(vals) / 2, max(vals) * 8)
+        ax.set_title(title, fontsize=10)
+        ax.tick_params(axis="y", labelsize=8)
+        ax.set_xlabel(xlabel, fontsize=8)
+    fig.suptitle("meshvol (red) and its peers (blue); (>) = cut off, at least that long", fontsize=11)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
     return True
 
@@ -748,52 +838,109 @@ def default_meshvol() -> str:
     return str(ROOT / "target" / "release" / "meshvol")
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true", help="100k-triangle meshes only (< 3 min)")
-    ap.add_argument("--sizes", help="comma-separated triangle counts, e.g. 100k,1m,5m (default)")
-    ap.add_argument("--inprocess-sizes", help="in-process sphere sizes (default 100k,1m,5m,10m; with --sizes or --quick: those sizes)")
-    ap.add_argument("--meshvol", default=default_meshvol(),
-                    help="meshvol command (default: target/release/meshvol)")
-    ap.add_argument("--tools", help="comma-separated subset of meshvol,trimesh,numpy-stl,manifold3d")
-    ap.add_argument("--runs", type=int, default=5, help="timed runs after the warm-up (default 5)")
-    ap.add_argument("--cell-seconds", type=float, help="timed-run budget per cell (20; quick 8; main file at least 60)")
-    ap.add_argument("--max-cell-seconds", type=float,
-                    help="skip runs projected to take longer (60; quick 5)")
-    ap.add_argument("--timeout", type=float, default=200, help="hard limit for one run, s")
-    ap.add_argument("--no-inprocess", action="store_true")
-    ap.add_argument("--no-end-to-end", action="store_true")
-    ap.add_argument("--no-hyperfine", action="store_true", help="time with perf_counter")
-    ap.add_argument("--no-gnu-time", action="store_true",
-                    help="peak memory from tools/rss_launch.py instead of /usr/bin/time -v")
-    ap.add_argument("--results", type=Path, default=ROOT / "bench" / "RESULTS.md")
-    ap.add_argument("--chart", type=Path, default=ROOT / "bench" / "RESULTS.png")
-    args = ap.parse_args(argv)
+def is_release_build(cmd: str) -> bool:
+    parts = shlex.split(cmd)
+    return len(parts) == 1 and Path(parts[0]).resolve() == Path(default_meshvol()).resolve()
 
+
+def build_parser():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    g = ap.add_argument_group("what to run")
+    g.add_argument("--quick", action="store_true",
+                   help="small sizes and short budgets (< 3 min): for checking the harness")
+    g.add_argument("--only", help="comma-separated sections to run: " + ",".join(SECTIONS))
+    g.add_argument("--skip", help="comma-separated sections to leave out")
+    g.add_argument("--tools", help="comma-separated peers to run (default: all installed): " +
+                   ",".join(PEERS))
+    g.add_argument("--meshvol", default=default_meshvol(),
+                   help="meshvol command (default: target/release/meshvol)")
+    g.add_argument("--no-build", action="store_true",
+                   help="(for `run`) use target/release/meshvol as it is, without cargo build")
+    g.add_argument("--no-inprocess", action="store_true", help="same as --skip inprocess")
+    g.add_argument("--no-end-to-end", action="store_true", help="same as --skip volume")
+    s = ap.add_argument_group("sizes")
+    s.add_argument("--sizes", help="mesh sizes in triangles for the volume section, e.g. 100k,1m,5m "
+                   "(default; --quick: 100k)")
+    s.add_argument("--inprocess-sizes", help="in-process sphere sizes (default 100k,1m; --quick 100k)")
+    s.add_argument("--check-size", type=parse_size,
+                   help="triangles of the check and grid meshes (default 1m; --quick 100k)")
+    s.add_argument("--grid-cells", help="grid sizes n (n³ cells); peers run on the first "
+                   "(default 256,512; --quick 64,128)")
+    s.add_argument("--grid-sample", type=int, help="partial cells timed with manifold3d (30; quick 10)")
+    s.add_argument("--union-bodies", help="COUNT,TRIANGLES of the union spheres (20,20k; quick 6,5k)")
+    s.add_argument("--hull-points", type=parse_size, help="points per hull cloud (100k; quick 10k)")
+    s.add_argument("--area-vertices", type=parse_size,
+                   help="vertices of the big polygon (1m; quick 100k)")
+    s.add_argument("--area-polygons", type=parse_size,
+                   help="number of small polygons (100k; quick 10k)")
+    t = ap.add_argument_group("time")
+    t.add_argument("--time-budget", type=float,
+                   help="minutes for the whole run, shared among the sections (13.5; quick 2.25)")
+    t.add_argument("--peer-timeout", type=float,
+                   help="a peer's run is cut off after this many seconds and reported as '> N s' "
+                        "(30; quick 3)")
+    t.add_argument("--timeout", type=float, default=300, help="hard limit for one meshvol run, s")
+    t.add_argument("--runs", type=int, help="timed runs after the warm-up (5; quick 3)")
+    t.add_argument("--cell-seconds", type=float,
+                   help="timed-run budget per cell after the warm-up (2.5; quick 1)")
+    t.add_argument("--main-cell-seconds", type=float,
+                   help="the same on the main file (10; quick 2)")
+    t.add_argument("--no-hyperfine", action="store_true", help="time with perf_counter")
+    t.add_argument("--no-gnu-time", action="store_true",
+                   help="peak memory from tools/rss_launch.py instead of /usr/bin/time -v")
+    g.add_argument("--strict-hull", action="store_true",
+                   help="exit 1 when meshvol's hull volume or area differs from the reference by "
+                        "more than 1e-12 (relative), after writing the report")
+    o = ap.add_argument_group("output")
+    o.add_argument("--results", type=Path, default=ROOT / "bench" / "RESULTS.md")
+    o.add_argument("--chart", type=Path, default=ROOT / "bench" / "RESULTS.png")
+    return ap
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    args = build_parser().parse_args(argv)
+    args.argv = argv
+    q = args.quick
     started = _dt.datetime.now(_dt.timezone.utc)
     info = machine_info()
-    t_start = time.perf_counter()
     if args.sizes:
         sizes = sorted({parse_size(s) for s in args.sizes.split(",") if s.strip()})
     else:
-        sizes = [100_000] if args.quick else [100_000, 1_000_000, 5_000_000]
+        sizes = [100_000] if q else [100_000, 1_000_000, 5_000_000]
     if args.inprocess_sizes:
         inproc = sorted({parse_size(s) for s in args.inprocess_sizes.split(",") if s.strip()})
     else:
-        inproc = sorted(set(sizes) | ({10_000_000} if not args.quick and not args.sizes else set()))
-    if args.cell_seconds is None:
-        args.cell_seconds = 8.0 if args.quick else 20.0
-    args.main_cell_seconds = max(args.cell_seconds, 8.0 if args.quick else 60.0)
-    if args.max_cell_seconds is None:
-        args.max_cell_seconds = 5.0 if args.quick else 60.0
+        inproc = [100_000] if q else [100_000, 1_000_000]
+    defaults = dict(time_budget=2.25 if q else 13.5, peer_timeout=3.0 if q else 30.0,
+                    runs=3 if q else 5, cell_seconds=1.0 if q else 2.5,
+                    main_cell_seconds=2.0 if q else 10.0)
+    for k, v in defaults.items():
+        if getattr(args, k) is None:
+            setattr(args, k, v)
     args.tools = set(args.tools.split(",")) if args.tools else None
+    chosen = [s.strip() for s in args.only.split(",")] if args.only else list(SECTIONS)
+    skip = {s.strip() for s in (args.skip or "").split(",") if s.strip()}
+    if args.no_inprocess:
+        skip.add("inprocess")
+    if args.no_end_to_end:
+        skip.add("volume")
+    bad = [s for s in chosen + list(skip) if s not in SECTIONS]
+    if bad:
+        sys.exit(f"unknown section(s) {bad}; sections: {','.join(SECTIONS)}")
+    args.sections = [s for s in SECTIONS if s in chosen and s not in skip]
+    clock = Clock(args.time_budget * 60.0, {s: WEIGHTS[s] for s in args.sections})
+    p = sections.params(args)
 
-    available = []
-    for tool, (mod, _) in PY_TOOLS.items():
-        if importlib.util.find_spec(mod) is not None:
-            available.append(tool)
-        else:
-            log(f"{tool} is not installed: skipped")
+    peers = probe_peers()
+    available = {n for n, r in peers.items() if r.get("ok")}
+    for n, r in peers.items():
+        if not r.get("ok"):
+            log(f"{n} skipped: {r.get('reason')}")
+    if args.tools:
+        unknown = args.tools - set(PEERS) - {"meshvol"}
+        if unknown:
+            sys.exit(f"unknown tool(s) {sorted(unknown)}; peers: {','.join(PEERS)}")
 
     meshgen.selftest(verbose=False)
     mv = shlex.split(args.meshvol)
@@ -801,36 +948,81 @@ def main(argv=None):
         sys.exit(f"meshvol not found at {mv[0]}: build it (cargo build --release -p meshvol-cli) "
                  "or pass --meshvol")
 
-    files, main_name = plan_files(sizes)
+    files, main_name = plan_files(sizes, q) if "volume" in args.sections else ([], None)
+    if main_name is None:
+        main_name = f"sphere_{size_label(p['check_size'])}.stl"
+    extra = []
+    if "check" in args.sections or "grid" in args.sections:
+        have = {f["name"] for f in files}
+        for kind in ("sphere", "torus", "cubes"):
+            f = mesh_file(kind, p["check_size"], "stl")
+            if f["name"] not in have:
+                extra.append(f)
     refs = Refs()
     t0 = time.perf_counter()
-    generate(files, refs)
-    log(f"data ready in {time.perf_counter() - t0:.1f} s: {len(files)} files in {DATA}")
+    generate(files + extra, refs)
+    log(f"meshes ready in {time.perf_counter() - t0:.1f} s: {len(files) + len(extra)} files in {DATA}")
+    byname = {f["name"]: f for f in files + extra}
 
     runner = Runner(args)
     log("timing with", "hyperfine" if runner.hyperfine else "perf_counter",
         "; peak memory from", "/usr/bin/time -v" if runner.gnu_time else "tools/rss_launch.py")
-    rows = []
-    if not args.no_end_to_end:
-        rows += run_end_to_end(files, main_name, args, runner, available)
-    if not args.no_inprocess:
-        rows += run_in_process(inproc, args, refs, available)
+    ctx = Ctx(args, runner, clock, available, mv)
+    res: dict = {"params": p}
+    for s in args.sections:
+        clock.start(s)
+        if s == "volume":
+            res["volume"] = run_end_to_end(ctx, files, main_name)
+        elif s == "inprocess":
+            res["inprocess"] = run_in_process(ctx, inproc, refs)
+        elif s == "check":
+            cf = [byname[f"{k}_{size_label(p['check_size'])}.stl"] for k in ("sphere", "torus", "cubes")]
+            res["check_files"] = cf
+            res["check"] = sections.run_check(ctx, cf)
+        elif s == "grid":
+            res["grid_file"] = byname[f"sphere_{size_label(p['check_size'])}.stl"]
+            res["grid"] = sections.run_grid(ctx, res["grid_file"], p)
+        elif s == "union":
+            res["union"] = sections.run_union(ctx, p)
+        elif s == "hull":
+            res["hull"], res["hull_clouds"] = sections.run_hull(ctx, p)
+        elif s == "area":
+            res["area"], res["area_files"] = sections.run_area(ctx, p)
+    clock.finish()
 
     info["load_end"] = machine_info()["load"]
-    vers = versions(args, available)
+    vers = versions(args)
     OUT.mkdir(parents=True, exist_ok=True)
-    raw = {"started": started.isoformat(), "machine": info, "versions": vers,
-           "args": {k: (sorted(v) if isinstance(v, set) else str(v) if isinstance(v, Path) else v)
-                    for k, v in vars(args).items()},
-           "rows": [{k: (str(v) if isinstance(v, (Path, Fraction)) else v) for k, v in r.items()}
-                    for r in rows]}
+
+    def clean(x):
+        if isinstance(x, dict):
+            return {k: clean(v) for k, v in x.items()}
+        if isinstance(x, (list, tuple)):
+            if len(x) > 100 and not all(isinstance(v, (int, float)) for v in x):
+                return f"[{len(x)} items, left out]"
+            return [clean(v) for v in x]
+        if isinstance(x, (Path, Fraction)):
+            return str(x)
+        if isinstance(x, set):
+            return sorted(x)
+        return x
+
+    raw = {"started": started.isoformat(), "machine": info, "versions": vers, "peers": peers,
+           "args": clean({k: v for k, v in vars(args).items()}),
+           "budget": {"allowance_s": clock.allowance, "used_s": clock.used},
+           "results": clean(res)}
     (OUT / "results.json").write_text(json.dumps(raw, indent=1, default=str))
-    chart_ok = write_chart(args.chart, rows, main_name)
-    duration = time.perf_counter() - t_start
-    write_report(args.results, rows, files, info, vers, args, started, main_name, chart_ok,
-                 available, duration)
+    chart_ok = write_chart(args.chart, res, main_name)
+    duration = clock.elapsed()
+    write_report(args.results, res, files + extra, info, vers, peers, args, started, main_name,
+                 chart_ok, duration, clock)
     log(f"wrote {args.results}" + (f" and {args.chart}" if chart_ok else "") +
         f" in {duration / 60:.1f} min; raw numbers in {OUT / 'results.json'}")
+    if args.strict_hull and "hull" in args.sections:
+        worst = sections.hull_worst(res.get("hull", []), res.get("hull_clouds", []), "meshvol")
+        if worst is None or worst > 1e-12:
+            sys.exit(f"--strict-hull: meshvol's largest relative hull difference is {worst}")
+        log(f"--strict-hull: meshvol's largest relative hull difference {worst:.1e} <= 1e-12")
 
 
 if __name__ == "__main__":

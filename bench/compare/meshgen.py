@@ -6,7 +6,8 @@ Coordinates are snapped to a dyadic grid (a multiple of 2**-q) chosen so that ev
 coordinate has at most 24 significant bits. Such a number is exactly a float32, exactly a
 float64, and exactly the short decimal that "%.{q}f" prints. So the binary STL, the ASCII
 STL and the OBJ of one mesh hold the very same numbers, whichever precision a reader
-parses them into, and one exact reference volume serves all three files.
+parses them into, and one exact reference volume serves all of them (binary PLY, float32,
+included).
 """
 
 from __future__ import annotations
@@ -183,6 +184,48 @@ def write_obj(path, verts, faces, q, chunk=200_000):
         _write_formatted(fh, "f %d %d %d\n", faces + 1, chunk)
 
 
+PLY_FACE_DTYPE = np.dtype([("n", "u1"), ("v", "<i4", (3,))])
+assert PLY_FACE_DTYPE.itemsize == 13
+
+
+def write_ply_binary(path, verts, faces, chunk=1 << 20):
+    """Little-endian binary PLY: float32 x y z, `property list uchar int vertex_indices`.
+
+    The coordinates are snapped to at most 24 significant bits, so float32 holds them
+    exactly: the PLY holds the very same numbers as the STL, ASCII STL and OBJ files.
+    """
+    header = (
+        "ply\nformat binary_little_endian 1.0\ncomment meshvol bench/compare test mesh\n"
+        f"element vertex {len(verts)}\nproperty float x\nproperty float y\nproperty float z\n"
+        f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n"
+    )
+    if len(verts) >= 2**31:
+        raise ValueError("too many vertices for int indices")
+    with open(path, "wb") as fh:
+        fh.write(header.encode("ascii"))
+        for s in range(0, len(verts), chunk):
+            fh.write(np.ascontiguousarray(verts[s : s + chunk], dtype="<f4").tobytes())
+        for s in range(0, len(faces), chunk):
+            rec = np.empty(len(faces[s : s + chunk]), dtype=PLY_FACE_DTYPE)
+            rec["n"] = 3
+            rec["v"] = faces[s : s + chunk]
+            fh.write(rec.tobytes())
+
+
+def read_ply_binary(path):
+    """Read back what write_ply_binary writes (vertices float64, faces int64); for the self-test."""
+    with open(path, "rb") as fh:
+        data = fh.read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    head = data[:end].decode("ascii").split("\n")
+    nv = int(next(ln for ln in head if ln.startswith("element vertex")).split()[2])
+    nf = int(next(ln for ln in head if ln.startswith("element face")).split()[2])
+    v = np.frombuffer(data, "<f4", nv * 3, end).reshape(nv, 3).astype(np.float64)
+    rec = np.frombuffer(data, PLY_FACE_DTYPE, nf, end + 12 * nv)
+    assert (rec["n"] == 3).all()
+    return v, rec["v"].astype(np.int64)
+
+
 # --------------------------------------------------------------------------- exact volume
 #
 # Method. Every coordinate c has at most 26 significant bits (float32 has 24), so the
@@ -296,6 +339,15 @@ def selftest(verbose=True):
     for kind in ("sphere", "torus", "cubes"):
         v, f, _ = make(kind, 2000)
         assert exact_signed_volume(v, f) > 0, f"{kind} is not outward-facing"
+    import os
+    import tempfile
+
+    v, f, _ = make("torus", 2000)
+    with tempfile.TemporaryDirectory() as td:
+        path = os.path.join(td, "t.ply")
+        write_ply_binary(path, v, f, chunk=333)
+        v2, f2 = read_ply_binary(path)
+        assert np.array_equal(v, v2) and np.array_equal(f, f2), "PLY round trip"
     if verbose:
         print(f"meshgen selftest: {len(cases)} exact-volume cases agree with Fractions")
 

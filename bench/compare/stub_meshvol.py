@@ -1,7 +1,8 @@
 """A stand-in for `meshvol volume FILE --json`, to test the harness before the binary exists.
 
 NOT meshvol: plain float64 numpy, no exactness, no speed. Usage:
-  bench/compare/run --quick --meshvol "bench/out/venv/bin/python bench/compare/stub_meshvol.py"
+  bench/compare/run --quick --only volume,inprocess \
+      --meshvol "bench/out/venv/bin/python bench/compare/stub_meshvol.py"
 The report then says in bold that meshvol's numbers are not meshvol's.
 """
 
@@ -12,6 +13,12 @@ import numpy as np
 
 
 def read_triangles(path):
+    if path.endswith(".ply"):  # the binary PLY that meshgen.write_ply_binary writes
+        sys.path.insert(0, __file__.rsplit("/", 1)[0])
+        import meshgen
+
+        v, f = meshgen.read_ply_binary(path)
+        return v[f], "ply-binary-le"
     with open(path, "rb") as fh:
         head = fh.read(80)
         if path.endswith(".obj"):
@@ -32,6 +39,8 @@ def read_triangles(path):
 
 
 def main():
+    if len(sys.argv) < 3 or sys.argv[1] != "volume":
+        sys.exit("stub_meshvol.py stands in for `meshvol volume` only (use --only volume,inprocess)")
     path = sys.argv[2]
     tri, fmt = read_triangles(path)
     a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]

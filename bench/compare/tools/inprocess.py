@@ -1,17 +1,23 @@
 """In-process timing of one peer tool's mass properties on arrays already in memory.
 
 Usage: inprocess.py TOOL KIND TRIANGLES RUNS BUDGET_S
-  TOOL: trimesh | numpy-stl | manifold3d;  KIND: sphere | torus | ...  (see meshgen.make)
+  TOOL: meshvol-py | trimesh | numpy-stl | manifold3d | open3d | pymeshlab | vtk
+  KIND: sphere | torus | ...  (see meshgen.make)
 
 Builds the mesh with meshgen (the same arrays as the files), then times one warm-up and
 up to RUNS measured calls: min(RUNS, BUDGET_S // warm-up time) of them; when not even
 one fits the budget, the warm-up is reported as the single sample. Whatever the tool must build before it can be asked (a Trimesh, a
 numpy-stl Mesh, a manifold3d Mesh) is built outside the timer, fresh for every run, so
-no cached result carries over from one run to the next. Prints one JSON object.
+no cached result carries over from one run to the next.
+
+Prints one JSON line when the mesh is built ({"ready": ...}), one after the warm-up
+({"warmup_s": ...}), so that the harness can cut off a slow warm-up, then the result (or
+{"refused": reason} when the tool declines the mesh).
 """
 
 import json
 import os
+import re
 import resource
 import sys
 import time
@@ -79,7 +85,102 @@ def manifold_case(v, f):
     )
 
 
-CASES = {"trimesh": trimesh_case, "numpy-stl": numpystl_case, "manifold3d": manifold_case}
+def open3d_case(v, f):
+    import open3d as o3d
+
+    o3d.utility.set_verbosity_level(o3d.utility.VerbosityLevel.Error)
+    vv = o3d.utility.Vector3dVector(np.ascontiguousarray(v, dtype=np.float64))
+    ff = o3d.utility.Vector3iVector(np.ascontiguousarray(f, dtype=np.int32))
+
+    def setup():
+        return o3d.geometry.TriangleMesh(vv, ff)
+
+    def measure(mesh):
+        return float(mesh.get_volume()), None, None
+
+    return setup, measure, (
+        "open3d.geometry.TriangleMesh(v, f) outside the timer; timed: get_volume(), which first "
+        "checks is_watertight() (edge and vertex manifold, and an all-pairs self-intersection test)"
+    )
+
+
+def pymeshlab_case(v, f):
+    import pymeshlab
+
+    vf = np.ascontiguousarray(v, dtype=np.float64)
+    ff = np.ascontiguousarray(f, dtype=np.int32)
+
+    def setup():
+        ms = pymeshlab.MeshSet()
+        ms.add_mesh(pymeshlab.Mesh(vertex_matrix=vf, face_matrix=ff))
+        return ms
+
+    def measure(ms):
+        g = ms.get_geometric_measures()
+        if "mesh_volume" not in g:
+            raise RuntimeError("no mesh_volume from get_geometric_measures (not closed two-manifold)")
+        return float(g["mesh_volume"]), g["center_of_mass"], g["inertia_tensor"]
+
+    return setup, measure, (
+        "pymeshlab.MeshSet + add_mesh(Mesh(v, f)) outside the timer; timed: get_geometric_measures() "
+        "(volume, area, centre of mass, inertia and more)"
+    )
+
+
+def vtk_case(v, f):
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.vtkFiltersCore import vtkMassProperties
+
+    vf = np.ascontiguousarray(v, dtype=np.float64)
+    conn = np.ascontiguousarray(f, dtype=np.int64).ravel()
+    offsets = np.arange(0, len(conn) + 1, 3, dtype=np.int64)
+
+    def setup():
+        pts = vtkPoints()
+        pts.SetData(numpy_to_vtk(vf, deep=True))
+        cells = vtkCellArray()
+        cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True),
+                      numpy_to_vtkIdTypeArray(conn, deep=True))
+        poly = vtkPolyData()
+        poly.SetPoints(pts)
+        poly.SetPolys(cells)
+        return poly
+
+    def measure(poly):
+        mp = vtkMassProperties()
+        mp.SetInputData(poly)
+        mp.Update()
+        return float(mp.GetVolume()), None, None
+
+    return setup, measure, (
+        "vtkPolyData from the numpy arrays outside the timer; timed: vtkMassProperties "
+        "(volume and area; no centroid or inertia)"
+    )
+
+
+def meshvol_case(v, f):
+    import meshvol
+
+    vf = np.ascontiguousarray(v, dtype=np.float64)
+    ff = np.ascontiguousarray(f, dtype=np.int64)
+
+    def setup():
+        return meshvol.Mesh(vf, ff)
+
+    def measure(mesh):
+        mp = mesh.mass_properties()
+        return float(mp.signed_volume), mp.centroid, mp.inertia
+
+    return setup, measure, (
+        "meshvol.Mesh(v, f) (the Python binding, crates/meshvol-py) outside the timer; timed: "
+        "mass_properties() (as `meshvol volume --no-check`)"
+    )
+
+
+CASES = {"meshvol-py": meshvol_case, "trimesh": trimesh_case, "numpy-stl": numpystl_case, "manifold3d": manifold_case,
+         "open3d": open3d_case, "pymeshlab": pymeshlab_case, "vtk": vtk_case}
 
 
 def peak_rss_mb():
@@ -101,6 +202,7 @@ def main():
     v, f, _ = meshgen.make(kind, tris)
     setup, measure, note = CASES[tool](v, f)
     rss_setup = peak_rss_mb()
+    print(json.dumps({"ready": True, "triangles": int(len(f))}), flush=True)
 
     def once():
         obj = setup()
@@ -110,7 +212,14 @@ def main():
         del obj
         return t1 - t0, result[0]
 
-    warm, volume = once()
+    try:
+        warm, volume = once()
+    except RuntimeError as e:
+        reason = re.sub(r"\x1b\[[0-9;]*m", "", str(e)).strip()
+        reason = re.sub(r"^\[Open3D Error\] \(.*?\) \S+:\d+: ", "", reason)
+        print(json.dumps({"refused": reason}), flush=True)
+        return
+    print(json.dumps({"warmup_s": warm}), flush=True)
     runs = min(runs_max, int(budget // warm)) if warm > 0 else runs_max
     times = [once()[0] for _ in range(runs)] if runs > 0 else [warm]
     print(json.dumps({
