@@ -38,7 +38,7 @@ sys.path.insert(0, str(HERE))
 import meshgen  # noqa: E402
 import sections  # noqa: E402
 from harness import (DATA, OUT, PY, ROOT, TOOLS_DIR, Clock, Ctx, Runner, ahead_cell,  # noqa: E402
-                     fmt_err, fmt_mb, fmt_ratio, fmt_s, is_behind, kill_group, last_line,
+                     fmt_err, fmt_mb, fmt_s, is_behind, kill_group, last_line,
                      load_json, log, md_cell, parse_json_lines, plan_cell, ratio_cell, runs_cell,
                      seconds_of, time_cell)
 
@@ -692,7 +692,7 @@ def write_report(path: Path, res: dict, files, info, vers, peers, args, started,
             if b.startswith("kernel only: "):
                 tool = b[len("kernel only: "):].split(" on ")[0]
                 kern[tool] = kern.get(tool, 0) + 1
-        text = (f"**not ahead** on " + "; ".join(proc) + "." if proc else
+        text = ("**not ahead** on " + "; ".join(proc) + "." if proc else
                 "ahead of every peer with a result" + (" (whole process)." if kern else "."))
         if kern:
             text += (" **Kernel alone**, the peer's computation after reading and parsing took no "

@@ -136,6 +136,38 @@ def ahead_sentence(section_title, behind: list[str], compared: int) -> str:
     return "No peer gave a timed result in this section, so there is nothing to compare.\n"
 
 
+class Verdicts:
+    """One section's tally of peer rows against meshvol's: the "meshvol ahead?" cells, the
+    peers ahead of meshvol, and the peers whose kernel alone beat meshvol's whole process."""
+
+    def __init__(self, title: str):
+        self.title, self.compared, self.behind, self.kernel_notes = title, 0, [], []
+
+    def cell(self, r, mv, label: str, mv_label: str = "", kernel_mv=None, kernel_suffix="") -> str:
+        """The "meshvol ahead?" cell of peer row `r` against meshvol's row `mv` (or None);
+        `label` names the peer row and `mv_label` meshvol's in the not-ahead list. The kernel
+        comparison uses `kernel_mv` when given (a different meshvol row), else `mv`."""
+        mv_s = mv["median_s"] if mv else None
+        if seconds_of(r) and mv_s:
+            self.compared += 1
+            if is_behind(r, mv_s):
+                self.behind.append(f"{label} ({fmt_s(r['median_s'])} s vs {mv_label}{fmt_s(mv_s)} s)")
+        ahead = ahead_cell(r, mv_s)
+        kn = kernel_check(r, mv if kernel_mv is None else kernel_mv)
+        if kn:
+            self.kernel_notes.append(kn + kernel_suffix)
+            ahead += "; kernel: **no**"
+        return ahead
+
+    def sentences(self) -> list[str]:
+        """The lines closing the section's table."""
+        return ["", ahead_sentence(self.title, self.behind, self.compared),
+                *kernel_sentence(self.kernel_notes)]
+
+    def not_ahead(self) -> list[str]:
+        return self.behind + [f"kernel only: {k}" for k in self.kernel_notes]
+
+
 # --------------------------------------------------------------------------- check
 
 
@@ -199,7 +231,7 @@ def report_check(rows, files) -> tuple[list[str], list[str]]:
     L.append("| file | tool | median s | runs | kernel s | ratio to meshvol | peak MB | closed | "
              "consistent winding | bodies | self-intersections | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|---|---|--:|--:|---|")
-    behind, compared, knotes = [], 0, []
+    verdicts = Verdicts("topology check")
     for f in files:
         group = [r for r in rows if r["item"] == f["name"]]
         for r in group:
@@ -217,24 +249,15 @@ def report_check(rows, files) -> tuple[list[str], list[str]]:
             elif r.get("skipped"):
                 note = r["skipped"]
             is_mv = r["tool"].startswith("meshvol")
-            ahead = "" if is_mv else ahead_cell(r, mv_s)
-            if not is_mv and seconds_of(r) and mv_s:
-                compared += 1
-                if is_behind(r, mv_s):
-                    behind.append(f"{r['tool']} on `{f['name']}` ({fmt_s(r['median_s'])} s vs "
-                                  f"`{r['compare_to']}` {fmt_s(mv_s)} s)")
-            kn = None if is_mv else kernel_check(r, cmp)
-            if kn:
-                knotes.append(f"{kn} (`{r['compare_to']}`)")
-                ahead += "; kernel: **no**"
+            ahead = "" if is_mv else verdicts.cell(
+                r, {"median_s": mv_s} if mv_s else None, f"{r['tool']} on `{f['name']}`",
+                f"`{r['compare_to']}` ", kernel_mv=cmp, kernel_suffix=f" (`{r['compare_to']}`)")
             k = kernel_of(r) if not is_mv and "output" in r else None
             L.append(f"| {f['name']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | {fmt_s(k)} | "
                      f"{'' if is_mv else ratio_cell(r, mv_s)} | {fmt_mb(r.get('peak_mb'))} | "
                      f"{_yn(closed) or md_cell(note)} | {_yn(wind)} | {_yn(bodies)} | {_yn(si)} | {ahead} |")
-    L.append("")
-    L.append(ahead_sentence("topology check", behind, compared))
-    L.extend(kernel_sentence(knotes))
-    behind = behind + [f"kernel only: {k}" for k in knotes]
+    L.extend(verdicts.sentences())
+    behind = verdicts.not_ahead()
     # do the verdicts agree?
     disagree = []
     for f in files:
@@ -401,7 +424,7 @@ def report_union(rows) -> tuple[list[str], list[str]]:
              "manifold3d's volume lies inside meshvol's certified interval.\n")
     L.append("| bodies | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume | check | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|--:|---|---|")
-    behind, compared, knotes = [], 0, []
+    verdicts = Verdicts("union")
     mv = next((r for r in rows if r["tool"] == "meshvol" and "median_s" in r), None)
     mvo = (mv or {}).get("output") or {}
     for r in rows:
@@ -423,22 +446,12 @@ def report_union(rows) -> tuple[list[str], list[str]]:
             check = r["skipped"]
         is_mv = r["tool"] == "meshvol"
         mv_s = mv["median_s"] if mv else None
-        if not is_mv and seconds_of(r) and mv_s:
-            compared += 1
-            if is_behind(r, mv_s):
-                behind.append(f"{r['tool']} ({fmt_s(r['median_s'])} s vs {fmt_s(mv_s)} s)")
-        ahead = "" if is_mv else ahead_cell(r, mv_s)
-        kn = None if is_mv else kernel_check(r, mv)
-        if kn:
-            knotes.append(kn)
-            ahead += "; kernel: **no**"
+        ahead = "" if is_mv else verdicts.cell(r, mv, r["tool"])
         L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | "
                  f"{fmt_s(kernel_of(r)) if not is_mv else ''} | {'' if is_mv else ratio_cell(r, mv_s)} | "
                  f"{fmt_mb(r.get('peak_mb'))} | {vol} | {md_cell(check)} | {ahead} |")
-    L.append("")
-    L.append(ahead_sentence("union", behind, compared))
-    L.extend(kernel_sentence(knotes))
-    return L, behind + [f"kernel only: {k}" for k in knotes]
+    L.extend(verdicts.sentences())
+    return L, verdicts.not_ahead()
 
 
 # --------------------------------------------------------------------------- hull
@@ -523,7 +536,7 @@ def report_hull(rows, clouds) -> tuple[list[str], list[str]]:
              "result loses digits). Relative differences above 1e-12 are in bold.\n")
     L.append("| cloud | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume rel. diff | area rel. diff | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|--:|--:|---|")
-    behind, compared, worst, knotes = [], 0, {}, []
+    verdicts, worst = Verdicts("convex hull"), {}
     by = {c["name"]: c for c in clouds}
     for r in rows:
         out = r.get("output") or {}
@@ -542,22 +555,12 @@ def report_hull(rows, clouds) -> tuple[list[str], list[str]]:
         is_mv = r["tool"] == "meshvol"
         mv = mv_row(rows, r["item"])
         mv_s = mv["median_s"] if mv else None
-        if not is_mv and seconds_of(r) and mv_s:
-            compared += 1
-            if is_behind(r, mv_s):
-                behind.append(f"{r['tool']} on {r['item']} ({fmt_s(r['median_s'])} s vs {fmt_s(mv_s)} s)")
-        ahead = "" if is_mv else ahead_cell(r, mv_s)
-        kn = None if is_mv else kernel_check(r, mv)
-        if kn:
-            knotes.append(kn)
-            ahead += "; kernel: **no**"
+        ahead = "" if is_mv else verdicts.cell(r, mv, f"{r['tool']} on {r['item']}")
         L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | "
                  f"{'' if is_mv else fmt_s(kernel_of(r))} | {'' if is_mv else ratio_cell(r, mv_s)} | "
                  f"{fmt_mb(r.get('peak_mb'))} | {dv} | {da} | {ahead} |")
-    L.append("")
-    L.append(ahead_sentence("convex hull", behind, compared))
-    L.extend(kernel_sentence(knotes))
-    behind = behind + [f"kernel only: {k}" for k in knotes]
+    L.extend(verdicts.sentences())
+    behind = verdicts.not_ahead()
     if worst:
         L.append("Largest relative difference from the reference: " +
                  "; ".join(f"{t} {e:.1e}" for t, e in worst.items()) + ".\n")
@@ -630,8 +633,7 @@ def report_area(rows, files) -> tuple[list[str], list[str]]:
              "the numbers in the file.\n")
     L.append("| file | tool | size MB | median s | runs | kernel s | ratio to meshvol | peak MB | relative area error | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|--:|--:|---|")
-    behind, compared, knotes = [], 0, []
-    acc = []
+    verdicts, acc = Verdicts("2D area"), []
     by = {f["name"]: f for f in files}
     for r in rows:
         f = by[r["item"]]
@@ -649,25 +651,16 @@ def report_area(rows, files) -> tuple[list[str], list[str]]:
         is_mv = r["tool"] == "meshvol"
         mv = mv_row(rows, r["item"])
         mv_s = mv["median_s"] if mv else None
-        if not is_mv and seconds_of(r) and mv_s:
-            compared += 1
-            if is_behind(r, mv_s):
-                behind.append(f"{r['tool']} on `{r['item']}` ({fmt_s(r['median_s'])} s vs {fmt_s(mv_s)} s)")
-            if mv and "rel_err" in mv and "rel_err" in r and r["rel_err"] < mv["rel_err"]:
-                acc.append(f"{r['tool']} on `{r['item']}` ({fmt_err(r['rel_err'])} vs meshvol "
-                           f"{fmt_err(mv['rel_err'])})")
-        ahead = "" if is_mv else ahead_cell(r, mv_s)
-        kn = None if is_mv else kernel_check(r, mv)
-        if kn:
-            knotes.append(kn)
-            ahead += "; kernel: **no**"
+        if not is_mv and seconds_of(r) and mv_s and "rel_err" in mv and "rel_err" in r \
+                and r["rel_err"] < mv["rel_err"]:
+            acc.append(f"{r['tool']} on `{r['item']}` ({fmt_err(r['rel_err'])} vs meshvol "
+                       f"{fmt_err(mv['rel_err'])})")
+        ahead = "" if is_mv else verdicts.cell(r, mv, f"{r['tool']} on `{r['item']}`")
         L.append(f"| {r['item']} ({f['vertices']:,} vertices) | {r['tool']} | {f['mb']:.1f} | {time_cell(r)} | "
                  f"{runs_cell(r)} | {'' if is_mv else fmt_s(kernel_of(r))} | "
                  f"{'' if is_mv else ratio_cell(r, mv_s)} | {fmt_mb(r.get('peak_mb'))} | {err} | {ahead} |")
-    L.append("")
-    L.append(ahead_sentence("2D area", behind, compared))
-    L.extend(kernel_sentence(knotes))
-    behind = behind + [f"kernel only: {k}" for k in knotes]
+    L.extend(verdicts.sentences())
+    behind = verdicts.not_ahead()
     if acc:
         L.append("**More accurate than meshvol:** " + "; ".join(acc) + ".\n")
         behind = behind + [f"accuracy: {a}" for a in acc]
