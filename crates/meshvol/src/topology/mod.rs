@@ -36,6 +36,7 @@
 //! inward), degenerate and duplicate faces dropped, holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
+mod components;
 mod predicates;
 mod solid;
 mod weld;
@@ -43,6 +44,7 @@ mod weld;
 pub use solid::Solid;
 
 use crate::buckets::{for_each_range_mut, Buckets};
+use components::Components;
 
 use crate::accumulate::CompensatedSum;
 use crate::bvh::Bvh;
@@ -269,32 +271,6 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// Union–find with path halving.
-struct Components(Vec<u32>);
-
-impl Components {
-    fn new(n: usize) -> Self {
-        Components((0..n as u32).collect())
-    }
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.0[x as usize] != x {
-            let up = self.0[self.0[x as usize] as usize];
-            self.0[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-    fn join(&mut self, a: u32, b: u32) {
-        let (a, b) = (self.find(a), self.find(b));
-        // The smaller root wins, so component roots do not depend on join order.
-        if a < b {
-            self.0[b as usize] = a;
-        } else {
-            self.0[a as usize] = b;
-        }
-    }
-}
-
 /// One use of an undirected edge: by face `face`, from corner `corner` to the next.
 #[derive(Clone, Copy)]
 struct EdgeUse {
@@ -364,6 +340,15 @@ impl Loops {
             self.start[f]
         } else {
             c + 1
+        }
+    }
+
+    /// The corner before `c` in its face.
+    fn previous(&self, f: usize, c: usize) -> usize {
+        if c == self.start[f] {
+            self.start[f + 1] - 1
+        } else {
+            c - 1
         }
     }
 }
@@ -537,38 +522,27 @@ fn analyse<S: Surface + ?Sized>(
     // Non-manifold vertices: corners of one vertex in more than one fan, two corners
     // being in one fan when their faces share an edge there (have the same vertex
     // before or after it). Each vertex on its own, in parallel.
-    let fans_per_vertex = |(ends, parent): &mut (Vec<(u32, u32)>, Vec<u32>), v: usize| {
+    let fans_per_vertex = |(ends, fans): &mut (Vec<(u32, u32)>, Components), v: usize| {
         ends.clear();
         let corners = welded.corners_of.get(v).iter().map(|&c| c as usize);
         for (i, c) in corners.filter(|&c| kept[loops.face_of[c] as usize]).enumerate() {
             let f = loops.face_of[c] as usize;
-            let before = if c == loops.start[f] { loops.start[f + 1] - 1 } else { c - 1 };
-            ends.extend([(vid(before), i as u32), (vid(loops.next(f, c)), i as u32)]);
+            ends.extend([(vid(loops.previous(f, c)), i as u32), (vid(loops.next(f, c)), i as u32)]);
         }
         let corners = ends.len() / 2;
         ends.sort_unstable();
-        parent.clear();
-        parent.extend(0..corners as u32);
-        let mut fans = corners;
-        for w in ends.windows(2).filter(|w| w[0].0 == w[1].0) {
-            let root = |parent: &mut Vec<u32>, mut x: u32| {
-                while parent[x as usize] != x {
-                    parent[x as usize] = parent[parent[x as usize] as usize];
-                    x = parent[x as usize];
-                }
-                x
-            };
-            let (a, b) = (root(parent, w[0].1), root(parent, w[1].1));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-                fans -= 1;
+        fans.reset(corners);
+        let mut count = corners;
+        for w in ends.windows(2) {
+            if w[0].0 == w[1].0 && fans.join(w[0].1, w[1].1) {
+                count -= 1;
             }
         }
-        fans
+        count
     };
     let (used_vertices, non_manifold_vertices) = (0..welded.positions.len())
         .into_par_iter()
-        .map_init(|| (Vec::new(), Vec::new()), fans_per_vertex)
+        .map_init(|| (Vec::new(), Components::new(0)), fans_per_vertex)
         .map(|fans| ((fans > 0) as usize, (fans > 1) as usize))
         .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
 

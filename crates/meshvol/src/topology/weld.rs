@@ -12,6 +12,7 @@
 //! one vertex). Candidates come from a hashed grid of cells of size 2t: the points
 //! within t of a point lie in the 2 × 2 × 2 cells its box of half-width t touches.
 
+use super::components::Components;
 use crate::buckets::Buckets;
 use crate::Point;
 use hashbrown::HashTable;
@@ -104,14 +105,7 @@ pub(crate) fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
         let entry = runs.entry(hash, |r| r.0 == c, |r| state.hash_one(r.0));
         entry.or_insert((c, i as u32, i as u32)).into_mut().2 = i as u32 + 1;
     }
-    let mut parent: Vec<u32> = (0..points.len() as u32).collect();
-    fn root(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
+    let mut clusters = Components::new(points.len());
     for (i, &p) in points.iter().enumerate() {
         // Every q within t of p lies in a cell between those of p − t and p + t
         // (rounding is monotone, so this holds in floating point too): 2 per axis.
@@ -125,9 +119,7 @@ pub(crate) fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
             for &(_, j) in &by_cell[begin as usize..end as usize] {
                 let q = points[j as usize];
                 if (j as usize) < i && (0..3).all(|k| (p[k] - q[k]).abs() <= t) {
-                    let (a, b) = (root(&mut parent, i as u32), root(&mut parent, j));
-                    // The smaller index is the root: the result does not depend on order.
-                    parent[a.max(b) as usize] = a.min(b);
+                    clusters.join(i as u32, j);
                 }
             }
         }
@@ -136,7 +128,7 @@ pub(crate) fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
     // first corner.
     let first_corner: Vec<u32> = (0..points.len()).map(|v| exact.corners_of.get(v)[0]).collect();
     let representative: Vec<u32> =
-        exact.corner_vertex.iter().map(|&v| first_corner[root(&mut parent, v) as usize]).collect();
+        exact.corner_vertex.iter().map(|&v| first_corner[clusters.find(v) as usize]).collect();
     number(corners, &representative)
 }
 

@@ -1,0 +1,34 @@
+//! Union–find: connected components under joins, with path halving. The smaller root
+//! wins every join, so the components' roots do not depend on the order of joins.
+
+pub(crate) struct Components(Vec<u32>);
+
+impl Components {
+    /// `n` singletons.
+    pub fn new(n: usize) -> Self {
+        Components((0..n as u32).collect())
+    }
+
+    /// Back to `n` singletons, keeping the allocation.
+    pub fn reset(&mut self, n: usize) {
+        self.0.clear();
+        self.0.extend(0..n as u32);
+    }
+
+    /// The root of `x`'s component: its smallest member.
+    pub fn find(&mut self, mut x: u32) -> u32 {
+        while self.0[x as usize] != x {
+            let up = self.0[self.0[x as usize] as usize];
+            self.0[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+
+    /// Joins the components of `a` and `b`; whether they were apart.
+    pub fn join(&mut self, a: u32, b: u32) -> bool {
+        let (a, b) = (self.find(a), self.find(b));
+        self.0[a.max(b) as usize] = a.min(b);
+        a != b
+    }
+}
