@@ -329,6 +329,15 @@ def ratio_cell(r, mv_s) -> str:
     return ("> " if s[1] else "") + fmt_ratio(s[0] / mv_s)
 
 
+def failure_note(r) -> str:
+    """Why row `r` has no result (refused, failed, not started), or "" when it has one."""
+    if r.get("refused"):
+        return f"refused: {r['refused']}"
+    if r.get("error") and "median_s" not in r and "over" not in r:
+        return r["error"]
+    return r.get("skipped") or ""
+
+
 def ahead_cell(r, mv_s) -> str:
     """'yes' when the peer took longer than meshvol, '**no**' when it did not."""
     if r.get("refused"):

@@ -18,7 +18,7 @@ import numpy as np
 
 import meshgen
 import pointgen
-from harness import (DATA, HERE, PY, TOOLS_DIR, ahead_cell, fmt_err, fmt_mb, fmt_ratio, fmt_s,
+from harness import (DATA, HERE, PY, TOOLS_DIR, ahead_cell, failure_note, fmt_err, fmt_mb, fmt_ratio, fmt_s,
                      is_behind, load_json, md_cell, ratio_cell, runs_cell, seconds_of,
                      time_cell)
 
@@ -241,13 +241,7 @@ def report_check(rows, files) -> tuple[list[str], list[str]]:
             if r["tool"] == "open3d-watertight":
                 closed = (r.get("output") or {}).get("watertight")
                 si = None
-            note = ""
-            if r.get("refused"):
-                note = f"refused: {r['refused']}"
-            elif r.get("error") and "median_s" not in r and "over" not in r:
-                note = r["error"]
-            elif r.get("skipped"):
-                note = r["skipped"]
+            note = failure_note(r)
             is_mv = r["tool"].startswith("meshvol")
             ahead = "" if is_mv else verdicts.cell(
                 r, {"median_s": mv_s} if mv_s else None, f"{r['tool']} on `{f['name']}`",
@@ -352,12 +346,7 @@ def report_grid(rows, f, p) -> tuple[list[str], list[str]]:
             result = (f"{fmt_s(out['per_cell_s'])} s per cell × {out['partial']:,} partial cells "
                       f"({out['sampled']} timed) + {fmt_s(out['build_s'])} s build")
             err = f"{out['max_diff_of_cell']:.1e} of a cell vs meshvol"
-        if r.get("refused"):
-            result = f"refused: {r['refused']}"
-        elif r.get("skipped"):
-            result = r["skipped"]
-        elif r.get("error") and "over" not in r and "median_s" not in r:
-            result = r["error"]
+        result = failure_note(r) or result
         ahead, ratio = "", ""
         if r["tool"] != "meshvol":
             if k is not None and mv_k:
@@ -438,12 +427,7 @@ def report_union(rows) -> tuple[list[str], list[str]]:
             if mvo:
                 check = ("inside meshvol's interval" if mvo["lower"] <= out["volume"] <= mvo["upper"]
                          else "**outside** meshvol's interval")
-        if r.get("refused"):
-            check = f"refused: {r['refused']}"
-        elif r.get("error") and "median_s" not in r and "over" not in r:
-            check = r["error"]
-        elif r.get("skipped"):
-            check = r["skipped"]
+        check = failure_note(r) or check
         is_mv = r["tool"] == "meshvol"
         mv_s = mv["median_s"] if mv else None
         ahead = "" if is_mv else verdicts.cell(r, mv, r["tool"])
@@ -548,10 +532,8 @@ def report_hull(rows, clouds) -> tuple[list[str], list[str]]:
             worst[r["tool"]] = max(worst.get(r["tool"], 0.0), ev, ea)
             dv = fmt_err(ev) if ev <= 1e-12 else f"**{fmt_err(ev)}**"
             da = fmt_err(ea) if ea <= 1e-12 else f"**{fmt_err(ea)}**"
-        elif r.get("error") and "median_s" not in r and "over" not in r:
-            dv = md_cell(r["error"])
-        elif r.get("skipped"):
-            dv = md_cell(r["skipped"])
+        else:
+            dv = md_cell(failure_note(r))
         is_mv = r["tool"] == "meshvol"
         mv = mv_row(rows, r["item"])
         mv_s = mv["median_s"] if mv else None
@@ -644,10 +626,8 @@ def report_area(rows, files) -> tuple[list[str], list[str]]:
             err = fmt_err(r["rel_err"])
             if out.get("valid") is False:
                 err += " (says invalid)"
-        elif r.get("error") and "median_s" not in r and "over" not in r:
-            err = md_cell(r["error"])
-        elif r.get("skipped"):
-            err = md_cell(r["skipped"])
+        else:
+            err = md_cell(failure_note(r))
         is_mv = r["tool"] == "meshvol"
         mv = mv_row(rows, r["item"])
         mv_s = mv["median_s"] if mv else None
