@@ -4,7 +4,7 @@
 //! vertex count". A counting sort does that in two linear passes (count, then place)
 //! without a comparison, and leaves each group tiny (a vertex's few edges), so sorting
 //! within groups is cheap. At a million triangles this replaced comparison sorts of
-//! three million 128-bit keys: 0.28 s → 0.05 s single-threaded for the edge table.
+//! three million 128-bit keys: 0.28 s → about 0.08 s single-threaded for the edge table.
 
 use rayon::prelude::*;
 use std::ops::Range;
