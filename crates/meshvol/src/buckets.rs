@@ -49,7 +49,7 @@ impl<T: Copy + Default + Send + Sync> Buckets<T> {
         }
         start[keys] = total;
         let mut items = vec![T::default(); total];
-        let out = SharedItems(items.as_mut_ptr());
+        let out = SharedItems::new(&mut items);
         cursors.into_par_iter().enumerate().for_each(|(j, mut cursor)| {
             for (k, item) in pairs(part(j)) {
                 let at = &mut cursor[k as usize];
@@ -74,17 +74,37 @@ impl<T: Copy + Default + Send + Sync> Buckets<T> {
     }
 }
 
-/// A pointer through which threads write disjoint positions of one buffer.
-struct SharedItems<T>(*mut T);
+/// A buffer that threads write at disjoint positions (each position by one thread).
+pub(crate) struct SharedItems<'a, T> {
+    items: *mut T,
+    len: usize,
+    _borrow: std::marker::PhantomData<&'a mut [T]>,
+}
 
-// SAFETY: used only to write disjoint positions (see Buckets::new).
-unsafe impl<T: Send> Sync for SharedItems<T> {}
+// SAFETY: used only to write disjoint positions, and to read positions no thread
+// writes at the time (see the callers' SAFETY notes).
+unsafe impl<T: Send> Sync for SharedItems<'_, T> {}
 
-impl<T> SharedItems<T> {
+impl<'a, T> SharedItems<'a, T> {
+    pub fn new(items: &'a mut [T]) -> Self {
+        SharedItems { items: items.as_mut_ptr(), len: items.len(), _borrow: Default::default() }
+    }
+
     /// # Safety
-    /// `at` is in bounds and written by no other thread.
-    unsafe fn write(&self, at: usize, item: T) {
-        unsafe { self.0.add(at).write(item) }
+    /// No other thread writes or reads position `at` while this runs.
+    pub unsafe fn write(&self, at: usize, item: T) {
+        assert!(at < self.len);
+        unsafe { self.items.add(at).write(item) }
+    }
+
+    /// # Safety
+    /// No thread writes position `at` while this runs.
+    pub unsafe fn read(&self, at: usize) -> T
+    where
+        T: Copy,
+    {
+        assert!(at < self.len);
+        unsafe { self.items.add(at).read() }
     }
 }
 

@@ -14,7 +14,7 @@
 //! within t of a point lie in the 2 × 2 × 2 cells its box of half-width t touches.
 
 use super::components::Components;
-use crate::buckets::Buckets;
+use crate::buckets::{Buckets, SharedItems};
 use crate::Point;
 use hashbrown::HashTable;
 use rayon::prelude::*;
@@ -42,44 +42,69 @@ const SLICES: usize = 256;
 /// For each corner, the first corner at exactly its position.
 fn exact_representatives(corners: &[Point]) -> Vec<u32> {
     let state = foldhash::fast::FixedState::with_seed(0);
+    let hash: Vec<u64> = corners.par_iter().map(|&p| state.hash_one(bits(p))).collect();
     // Middle bits pick the slice: hashbrown uses the top bits as tags and the low bits
     // for positions, which must still vary within a slice.
-    let slice = |key: &[u64; 3]| ((state.hash_one(key) >> 32) as usize % SLICES) as u32;
-    // Each slice's corners with their keys inline, so welding a slice reads only it.
-    let mut slices = Buckets::new(SLICES, corners.len(), |range| {
-        range.map(|c| {
-            let key = bits(corners[c]);
-            (slice(&key), (key, c as u32, 0u32))
-        })
-    });
-    slices.for_each_mut(|items| {
-        let mut table: HashTable<([u64; 3], u32)> = HashTable::with_capacity(items.len() / 4);
-        for (key, c, representative) in items {
-            let entry = table.entry(state.hash_one(*key), |e| e.0 == *key, |e| state.hash_one(e.0));
-            *representative = entry.or_insert((*key, *c)).get().1;
+    let slice = |c: usize| ((hash[c] >> 32) as usize % SLICES) as u32;
+    let slices = Buckets::new(SLICES, corners.len(), |range| range.map(|c| (slice(c), c as u32)));
+    let mut representative = vec![0u32; corners.len()];
+    let out = SharedItems::new(&mut representative);
+    (0..SLICES).into_par_iter().for_each(|k| {
+        let items = slices.get(k);
+        // Keys inline: comparing them reads the table only (small enough for the cache).
+        let mut table: HashTable<([u64; 3], u32)> = HashTable::with_capacity(items.len());
+        for &c in items {
+            let key = bits(corners[c as usize]);
+            let entry = table.entry(hash[c as usize], |e| e.0 == key, |e| state.hash_one(e.0));
+            // SAFETY: every corner is in exactly one slice, so each is written once.
+            unsafe { out.write(c as usize, entry.or_insert((key, c)).get().1) };
         }
     });
-    let mut representative = vec![0u32; corners.len()];
-    for &(_, c, r) in &slices.items {
-        representative[c as usize] = r;
-    }
     representative
 }
 
 /// Numbers the vertices given each corner's representative (the first corner of its
-/// vertex, so `representative[c] <= c`).
+/// vertex, so `representative[c] <= c`): vertex numbers count the representatives
+/// before, a prefix sum taken in parallel blocks.
 fn number(corners: &[Point], representative: &[u32]) -> Welded {
-    let mut corner_vertex = vec![0u32; corners.len()];
-    let mut positions = Vec::new();
-    for c in 0..corners.len() {
-        let r = representative[c] as usize;
-        corner_vertex[c] = if r == c {
-            positions.push(corners[c]);
-            positions.len() as u32 - 1
-        } else {
-            corner_vertex[r]
-        };
+    const BLOCK: usize = 1 << 16;
+    let firsts = |range: std::ops::Range<usize>| {
+        range.filter(|&c| representative[c] as usize == c).count() as u32
+    };
+    let blocks = corners.len().div_ceil(BLOCK);
+    let block_range = |b: usize| b * BLOCK..((b + 1) * BLOCK).min(corners.len());
+    let mut before: Vec<u32> =
+        (0..blocks).into_par_iter().map(|b| firsts(block_range(b))).collect();
+    let mut total = 0;
+    for count in &mut before {
+        (*count, total) = (total, total + *count);
     }
+    // The vertex number of each representative, then of every corner through it.
+    let mut corner_vertex = vec![0u32; corners.len()];
+    corner_vertex.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
+        let mut next = before[b];
+        for (c, v) in block_range(b).zip(out) {
+            if representative[c] as usize == c {
+                (*v, next) = (next, next + 1);
+            }
+        }
+    });
+    let shared = SharedItems::new(&mut corner_vertex);
+    (0..corners.len()).into_par_iter().for_each(|c| {
+        let r = representative[c] as usize;
+        if r != c {
+            // SAFETY: corner c is written by this iteration only, and what it reads, its
+            // representative's number, was written in the pass before and is not
+            // written in this one.
+            unsafe { shared.write(c, shared.read(r)) };
+        }
+    });
+    // Representatives in corner order are the vertices in number order.
+    let positions: Vec<Point> = (0..corners.len())
+        .into_par_iter()
+        .filter(|&c| representative[c] as usize == c)
+        .map(|c| corners[c])
+        .collect();
     let corners_of = Buckets::new(positions.len(), corners.len(), |range| {
         range.map(|c| (corner_vertex[c], c as u32))
     });
@@ -154,6 +179,50 @@ mod tests {
         // Farther than the tolerance: separate.
         let apart = weld(&[[0.0; 3], [2e-6, 0.0, 0.0]], Some(t));
         assert_eq!(apart.positions.len(), 2);
+    }
+
+    #[test]
+    fn exact_weld_numbers_by_first_use_at_any_thread_count() {
+        // 200 000 corners drawn from 5 000 positions (with −0.0 for some zeros): the
+        // vertex numbers must be those a map from position to first corner gives.
+        let mut state = 0x9e3779b97f4a7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let pool: Vec<Point> = (0..5000)
+            .map(|i| [(i % 17) as f64 * 0.5, (i / 17) as f64, if i % 3 == 0 { 0.0 } else { 1.0 }])
+            .collect();
+        let corners: Vec<Point> = (0..200_000)
+            .map(|_| {
+                let p = pool[(next() % 5000) as usize];
+                if next() % 2 == 0 {
+                    p.map(|x| if x == 0.0 { -0.0 } else { x })
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let mut first = std::collections::HashMap::new();
+        let expected: Vec<u32> = corners
+            .iter()
+            .map(|&p| {
+                let n = first.len() as u32;
+                *first.entry(bits(p)).or_insert(n)
+            })
+            .collect();
+        for threads in [1, 2, 5] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let w = pool.install(|| weld(&corners, None));
+            assert_eq!(w.corner_vertex, expected);
+            assert_eq!(w.positions.len(), first.len());
+            for (c, &v) in expected.iter().enumerate() {
+                assert_eq!(bits(w.positions[v as usize]), bits(corners[c]));
+                assert!(w.corners_of.get(v as usize).contains(&(c as u32)));
+            }
+        }
     }
 
     #[test]
