@@ -47,7 +47,7 @@ use crate::buckets::{for_each_range_mut, Buckets};
 use components::Components;
 
 use crate::accumulate::CompensatedSum;
-use crate::bvh::Bvh;
+use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
 use crate::vector::{add, cross, dot, norm, scale, sub};
 use crate::{Point, Surface};
@@ -674,7 +674,8 @@ fn analyse<S: Surface + ?Sized>(
     }
     // For each shell, the closed shells whose boxes overlap its own (found through a
     // hierarchy over the shells' boxes: files with 100 000 parts are common).
-    let shell_tree = Bvh::new(shell_bounds.iter().map(|b| b.unwrap_or(Bounds::EMPTY)).collect());
+    let shell_tree =
+        Bvh::new(shell_bounds.iter().map(|b| Box32::around(&b.unwrap_or(Bounds::EMPTY))).collect());
     let candidates: Vec<Vec<usize>> = (0..shell_count)
         .into_par_iter()
         .map(|a| {
@@ -982,7 +983,7 @@ fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (T
         .collect();
     let order = Bvh::spatial_order(&centres);
     drop(centres);
-    let ((ids, points), (face, boxes)): ((Vec<_>, Vec<_>), (Vec<_>, Vec<Bounds>)) = order
+    let ((ids, points), (face, boxes)): ((Vec<_>, Vec<_>), (Vec<_>, Vec<Box32>)) = order
         .par_iter()
         .map(|&i| {
             let fan = fans[i as usize];
@@ -991,7 +992,7 @@ fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (T
             let mut bounds = Bounds::of(points[0]);
             bounds.include(points[1]);
             bounds.include(points[2]);
-            ((ids, points), (fan.0, bounds))
+            ((ids, points), (fan.0, Box32::around(&bounds)))
         })
         .unzip();
     (Triangles { ids, points, face }, Bvh::new(boxes))
