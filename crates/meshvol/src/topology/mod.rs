@@ -281,12 +281,20 @@ struct EdgeUse {
     forward: bool,
 }
 
+/// A kept corner, seen from its vertex.
+#[derive(Clone, Copy, Default)]
+struct Around {
+    corner: u32,
+    face: u32,
+    /// The vertices before and after it in its face.
+    previous: u32,
+    next: u32,
+}
+
 /// Faces as loops of corners.
 struct Loops {
     corners: Vec<Point>,
     start: Vec<usize>,
-    /// The face of each corner.
-    face_of: Vec<u32>,
 }
 
 impl Loops {
@@ -325,9 +333,7 @@ impl Loops {
                 next += 1;
             });
         });
-        let mut face_of = vec![0u32; start[faces]];
-        for_each_range_mut(&mut face_of, faces, &range, &|f, of| of.fill(f as u32));
-        Loops { corners, start, face_of }
+        Loops { corners, start }
     }
 
     fn face(&self, f: usize) -> std::ops::Range<usize> {
@@ -458,35 +464,74 @@ fn analyse<S: Surface + ?Sized>(
     drop((sorted_ids, by_vertices));
     let kept: Vec<bool> = (0..faces).map(|f| !degenerate[f] && !duplicate[f]).collect();
 
-    // Edge uses, grouped by smaller vertex, then sorted by (larger vertex, corner)
-    // packed in one u64; corners number faces in order, so uses of an edge come in face
-    // order.
-    let ends = |c: usize| {
-        let (u, v) = (vid(c), vid(loops.next(loops.face_of[c] as usize, c)));
-        (u.min(v), u.max(v))
-    };
-    let mut by_vertex = Buckets::new(welded.positions.len(), faces, |range| {
-        range.filter(|&f| kept[f]).flat_map(|f| loops.face(f)).map(|c| {
-            let (low, high) = ends(c);
-            (low, (u64::from(high) << 32) | c as u64)
+    // Each kept corner by its vertex, with its face and the vertices before and after
+    // it: the edges and the fans around a vertex are then read from one place.
+    let vertex_count = welded.positions.len();
+    let around = Buckets::new(vertex_count, faces, |range| {
+        range.filter(|&f| kept[f]).flat_map(|f| {
+            loops.face(f).map(move |c| {
+                let (previous, next) = (vid(loops.previous(f, c)), vid(loops.next(f, c)));
+                (vid(c), Around { corner: c as u32, face: f as u32, previous, next })
+            })
         })
     });
-    by_vertex.for_each_mut(|group| group.sort_unstable());
-    let uses: Vec<EdgeUse> = by_vertex
-        .items
-        .par_iter()
-        .map(|&packed| {
-            let corner = packed as u32;
-            let (low, high) = ends(corner as usize);
-            EdgeUse {
-                key: (u64::from(low) << 32) | u64::from(high),
-                face: loops.face_of[corner as usize],
-                corner,
-                forward: vid(corner as usize) == low,
+    // Per vertex: the edge uses whose smaller vertex it is, and the fans of corners
+    // around it, two corners being in one fan when their faces share an edge there. A
+    // vertex in more than one fan (a bowtie) is non-manifold.
+    let fans_and_uses = |(ends, fans): &mut (Vec<(u32, u32)>, Components), v: usize| {
+        let corners = around.get(v);
+        let low = |w: u32| (w as usize > v) as u32;
+        let uses = corners.iter().map(|k| low(k.previous) + low(k.next)).sum::<u32>();
+        ends.clear();
+        for (i, k) in corners.iter().enumerate() {
+            ends.extend([(k.previous, i as u32), (k.next, i as u32)]);
+        }
+        ends.sort_unstable();
+        fans.reset(corners.len());
+        let mut count = corners.len() as u32;
+        for w in ends.windows(2) {
+            if w[0].0 == w[1].0 && fans.join(w[0].1, w[1].1) {
+                count -= 1;
             }
-        })
+        }
+        (uses, count)
+    };
+    let per_vertex: Vec<(u32, u32)> = (0..vertex_count)
+        .into_par_iter()
+        .map_init(|| (Vec::new(), Components::new(0)), fans_and_uses)
         .collect();
-    drop(by_vertex);
+    let used_vertices = per_vertex.iter().filter(|p| p.1 > 0).count();
+    let non_manifold_vertices = per_vertex.iter().filter(|p| p.1 > 1).count();
+    // Edge uses grouped by smaller vertex, then sorted by (larger vertex, corner):
+    // corners number faces in order, so the uses of an edge come in face order.
+    let mut use_start = Vec::with_capacity(vertex_count + 1);
+    use_start.push(0);
+    for &(uses, _) in &per_vertex {
+        use_start.push(use_start[use_start.len() - 1] + uses as usize);
+    }
+    drop(per_vertex);
+    let unused = EdgeUse { key: 0, face: 0, corner: 0, forward: false };
+    let mut uses = vec![unused; use_start[vertex_count]];
+    let vertex_uses = |v: usize| use_start[v]..use_start[v + 1];
+    for_each_range_mut(&mut uses, vertex_count, &vertex_uses, &|v, out| {
+        let mut next = 0;
+        for k in around.get(v) {
+            let (f, c) = (k.face, k.corner);
+            if k.next as usize > v {
+                let key = ((v as u64) << 32) | u64::from(k.next);
+                out[next] = EdgeUse { key, face: f, corner: c, forward: true };
+                next += 1;
+            }
+            if k.previous as usize > v {
+                let key = ((v as u64) << 32) | u64::from(k.previous);
+                let corner = loops.previous(f as usize, c as usize) as u32;
+                out[next] = EdgeUse { key, face: f, corner, forward: false };
+                next += 1;
+            }
+        }
+        out.sort_unstable_by_key(|e| (e.key, e.corner));
+    });
+    drop(around);
     let groups: Vec<&[EdgeUse]> = uses.chunk_by(|a, b| a.key == b.key).collect();
 
     let mut shells_of = Components::new(faces);
@@ -518,33 +563,6 @@ fn analyse<S: Surface + ?Sized>(
             [(g[0].face, (g[1].face, same)), (g[1].face, (g[0].face, same))]
         })
     });
-
-    // Non-manifold vertices: corners of one vertex in more than one fan, two corners
-    // being in one fan when their faces share an edge there (have the same vertex
-    // before or after it). Each vertex on its own, in parallel.
-    let fans_per_vertex = |(ends, fans): &mut (Vec<(u32, u32)>, Components), v: usize| {
-        ends.clear();
-        let corners = welded.corners_of.get(v).iter().map(|&c| c as usize);
-        for (i, c) in corners.filter(|&c| kept[loops.face_of[c] as usize]).enumerate() {
-            let f = loops.face_of[c] as usize;
-            ends.extend([(vid(loops.previous(f, c)), i as u32), (vid(loops.next(f, c)), i as u32)]);
-        }
-        let corners = ends.len() / 2;
-        ends.sort_unstable();
-        fans.reset(corners);
-        let mut count = corners;
-        for w in ends.windows(2) {
-            if w[0].0 == w[1].0 && fans.join(w[0].1, w[1].1) {
-                count -= 1;
-            }
-        }
-        count
-    };
-    let (used_vertices, non_manifold_vertices) = (0..welded.positions.len())
-        .into_par_iter()
-        .map_init(|| (Vec::new(), Components::new(0)), fans_per_vertex)
-        .map(|fans| ((fans > 0) as usize, (fans > 1) as usize))
-        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
 
     // Shells, numbered by their first face.
     let mut shell_of_face = vec![u32::MAX; faces];

@@ -27,8 +27,8 @@ pub(crate) struct Welded {
     /// Position of each vertex: that of its first corner. Vertices are numbered in
     /// order of their first corner.
     pub positions: Vec<Point>,
-    /// Corners grouped by vertex, in corner order within a vertex.
-    pub corners_of: Buckets<u32>,
+    /// The first corner of each vertex.
+    pub first_corner: Vec<u32>,
 }
 
 /// The bits of a position, with −0.0 and +0.0 the same.
@@ -100,15 +100,12 @@ fn number(corners: &[Point], representative: &[u32]) -> Welded {
         }
     });
     // Representatives in corner order are the vertices in number order.
-    let positions: Vec<Point> = (0..corners.len())
+    let first_corner: Vec<u32> = (0..corners.len() as u32)
         .into_par_iter()
-        .filter(|&c| representative[c] as usize == c)
-        .map(|c| corners[c])
+        .filter(|&c| representative[c as usize] == c)
         .collect();
-    let corners_of = Buckets::new(positions.len(), corners.len(), |range| {
-        range.map(|c| (corner_vertex[c], c as u32))
-    });
-    Welded { corner_vertex, positions, corners_of }
+    let positions = first_corner.par_iter().map(|&c| corners[c as usize]).collect();
+    Welded { corner_vertex, positions, first_corner }
 }
 
 /// Welds corners at exactly equal positions, or (with `tolerance`) at positions whose
@@ -152,9 +149,11 @@ pub(crate) fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
     }
     // Vertices are numbered by first corner, so a cluster's smallest vertex holds its
     // first corner.
-    let first_corner: Vec<u32> = (0..points.len()).map(|v| exact.corners_of.get(v)[0]).collect();
-    let representative: Vec<u32> =
-        exact.corner_vertex.iter().map(|&v| first_corner[clusters.find(v) as usize]).collect();
+    let representative: Vec<u32> = exact
+        .corner_vertex
+        .iter()
+        .map(|&v| exact.first_corner[clusters.find(v) as usize])
+        .collect();
     number(corners, &representative)
 }
 
@@ -175,7 +174,7 @@ mod tests {
         assert_eq!(w.positions.len(), 2);
         assert_eq!(w.corner_vertex, [0, 0, 1, 1]);
         assert_eq!(w.positions[1], corners[2]);
-        assert_eq!(w.corners_of.get(1), [2, 3]);
+        assert_eq!(w.first_corner, [0, 2]);
         // Farther than the tolerance: separate.
         let apart = weld(&[[0.0; 3], [2e-6, 0.0, 0.0]], Some(t));
         assert_eq!(apart.positions.len(), 2);
@@ -220,7 +219,8 @@ mod tests {
             assert_eq!(w.positions.len(), first.len());
             for (c, &v) in expected.iter().enumerate() {
                 assert_eq!(bits(w.positions[v as usize]), bits(corners[c]));
-                assert!(w.corners_of.get(v as usize).contains(&(c as u32)));
+                assert!(w.first_corner[v as usize] as usize <= c);
+                assert_eq!(w.corner_vertex[w.first_corner[v as usize] as usize], v);
             }
         }
     }
