@@ -43,7 +43,7 @@ mod weld;
 
 pub use solid::Solid;
 
-use crate::buckets::{for_each_range_mut, Buckets};
+use crate::buckets::{for_each_range_mut, Buckets, SharedItems};
 use components::Components;
 
 use crate::accumulate::CompensatedSum;
@@ -532,7 +532,14 @@ fn analyse<S: Surface + ?Sized>(
         out.sort_unstable_by_key(|e| (e.key, e.corner));
     });
     drop(around);
-    let groups: Vec<&[EdgeUse]> = uses.chunk_by(|a, b| a.key == b.key).collect();
+    // The uses of each edge (a run of equal keys), found in parallel.
+    let group_start: Vec<usize> = (0..uses.len())
+        .into_par_iter()
+        .filter(|&i| i == 0 || uses[i].key != uses[i - 1].key)
+        .chain(rayon::iter::once(uses.len()))
+        .collect();
+    let groups: Vec<&[EdgeUse]> = group_start.par_windows(2).map(|w| &uses[w[0]..w[1]]).collect();
+    drop(group_start);
 
     let mut shells_of = Components::new(faces);
     let (mut boundary_edges, mut non_manifold_edges) = (0, 0);
@@ -556,12 +563,18 @@ fn analyse<S: Surface + ?Sized>(
         }
     }
     // Each face's neighbours across manifold edges, and whether the two traverse the
-    // edge the same way, for orientation propagation.
-    let neighbours = Buckets::new(faces, groups.len(), |range| {
-        groups[range].iter().filter(|g| g.len() == 2).flat_map(|g| {
-            let same = g[0].forward == g[1].forward;
-            [(g[0].face, (g[1].face, same)), (g[1].face, (g[0].face, same))]
-        })
+    // edge the same way, for orientation propagation: at the corner that starts the
+    // edge in the face (so laid out like the corners, and found without sorting).
+    const NO_NEIGHBOUR: (u32, bool) = (u32::MAX, false);
+    let mut neighbour = vec![NO_NEIGHBOUR; loops.corners.len()];
+    let shared = SharedItems::new(&mut neighbour);
+    groups.par_iter().filter(|g| g.len() == 2).for_each(|g| {
+        let same = g[0].forward == g[1].forward;
+        // SAFETY: every corner starts one edge use, which is in one group.
+        unsafe {
+            shared.write(g[0].corner as usize, (g[1].face, same));
+            shared.write(g[1].corner as usize, (g[0].face, same));
+        }
     });
 
     // Shells, numbered by their first face.
@@ -590,7 +603,8 @@ fn analyse<S: Surface + ?Sized>(
         seen[f] = true;
         queue.push_back(f as u32);
         while let Some(g) = queue.pop_front() {
-            for &(h, same) in neighbours.get(g as usize) {
+            let across = neighbour[loops.face(g as usize)].iter();
+            for &(h, same) in across.filter(|n| **n != NO_NEIGHBOUR) {
                 let want = flip[g as usize] ^ same;
                 if !seen[h as usize] {
                     seen[h as usize] = true;
