@@ -931,17 +931,19 @@ fn analyse<S: Surface + ?Sized>(
         Some(Orientation::Mixed)
     };
 
-    let face_flip: Vec<bool> =
-        (0..faces).map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize])).collect();
+    let face_flip: Vec<bool> = (0..faces)
+        .into_par_iter()
+        .map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize]))
+        .collect();
     let cap_flip: Vec<bool> = cap_shell.iter().map(|&s| flip_shell[s as usize]).collect();
-    let mut vertices = welded.positions.clone();
+    let weld::Welded { corner_vertex, positions: mut vertices, .. } = welded;
     vertices.extend(centres);
     let solid = Solid::new(
         solid::Faces {
             kept: &kept,
             flip: &face_flip,
-            corners: &welded.corner_vertex,
-            start: &loops.start,
+            corners: corner_vertex,
+            start: loops.start.clone(),
         },
         vertices,
         solid::Caps { points: caps, ids: cap_ids, flip: &cap_flip },

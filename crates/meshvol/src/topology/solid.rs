@@ -3,14 +3,15 @@
 //! welded [`Mesh`] to write out.
 
 use crate::{Mesh, Point, Surface};
+use rayon::prelude::*;
 
 /// The checked surface's faces: which are kept and reversed, and their welded corners.
 pub(crate) struct Faces<'a> {
     pub kept: &'a [bool],
     pub flip: &'a [bool],
     /// Welded vertex of each corner; face f's corners are `start[f]..start[f + 1]`.
-    pub corners: &'a [u32],
-    pub start: &'a [usize],
+    pub corners: Vec<u32>,
+    pub start: Vec<usize>,
 }
 
 /// Cap triangles over holes, as points and as vertex ids, wound as their shell was
@@ -38,11 +39,12 @@ pub struct Solid {
     caps: Vec<[Point; 3]>,
     flipped: usize,
     dropped: usize,
-    /// Welded vertices (cap centres last), kept faces' vertex loops (reversed where
-    /// flipped), and the caps, for [`Solid::mesh`].
+    /// Welded vertices (cap centres last), the welded vertex of each corner of the
+    /// checked surface (face f's are `start[f]..start[f + 1]`), and the caps, for
+    /// [`Solid::mesh`].
     vertices: Vec<Point>,
-    loops: Vec<u32>,
-    loop_start: Vec<usize>,
+    corners: Vec<u32>,
+    start: Vec<usize>,
     cap_ids: Vec<[u32; 3]>,
 }
 
@@ -50,26 +52,15 @@ impl Solid {
     pub(crate) fn new(faces: Faces, vertices: Vec<Point>, caps: Caps) -> Solid {
         let Faces { kept, flip, corners, start } = faces;
         let kept_faces: Vec<(usize, bool)> =
-            (0..kept.len()).filter(|&f| kept[f]).map(|f| (f, flip[f])).collect();
-        let mut loops = Vec::new();
-        let mut loop_start = vec![0];
-        for &(f, reversed) in &kept_faces {
-            let ids = &corners[start[f]..start[f + 1]];
-            if reversed {
-                loops.extend(ids.iter().rev());
-            } else {
-                loops.extend(ids);
-            }
-            loop_start.push(loops.len());
-        }
+            (0..kept.len()).into_par_iter().filter(|&f| kept[f]).map(|f| (f, flip[f])).collect();
         Solid {
             dropped: kept.len() - kept_faces.len(),
             flipped: flip.iter().filter(|&&x| x).count(),
             faces: kept_faces,
             caps: caps.points.into_iter().zip(caps.flip).map(|(c, &f)| turn(c, f)).collect(),
             vertices,
-            loops,
-            loop_start,
+            corners,
+            start,
             cap_ids: caps.ids.into_iter().zip(caps.flip).map(|(c, &f)| turn(c, f)).collect(),
         }
     }
@@ -86,10 +77,21 @@ impl Solid {
             }
             new_id[v as usize]
         };
-        let indices: Vec<u32> =
-            self.loops.iter().chain(cap_ids.iter().flatten()).map(|&v| renumber(v)).collect();
-        let mut offsets = self.loop_start.clone();
-        offsets.extend((1..=cap_ids.len()).map(|k| self.loops.len() + 3 * k));
+        let mut indices = Vec::new();
+        let mut offsets = vec![0];
+        for &(f, reversed) in &self.faces {
+            let ids = &self.corners[self.start[f]..self.start[f + 1]];
+            if reversed {
+                indices.extend(ids.iter().rev().map(|&v| renumber(v)));
+            } else {
+                indices.extend(ids.iter().map(|&v| renumber(v)));
+            }
+            offsets.push(indices.len());
+        }
+        for cap in cap_ids {
+            indices.extend(cap.map(&mut renumber));
+            offsets.push(indices.len());
+        }
         Mesh::new(positions, crate::Faces::Polygons { offsets, indices })
             .expect("kept faces and caps index welded vertices")
     }
