@@ -2,8 +2,9 @@
 //! one?" queries (self-intersections, overlapping shells, ray casting).
 //!
 //! Built as a linear BVH: the caller puts its items in [`Bvh::spatial_order`] (sorted
-//! by the Morton code of their box centres, so items close in space are close in the
-//! order, and so is the caller's data about them); ranges of that order are halved
+//! by the Morton code of their box centres, by a counting sort on the codes' top bits,
+//! so items close in space are close in the order, and so is the caller's data about
+//! them); ranges of that order are halved
 //! until a node holds at most [`LEAF_SIZE`] items, and node boxes are computed
 //! bottom-up. Queries walk the tree with an explicit stack; pair searches walk two.
 //!
@@ -11,6 +12,7 @@
 //! comparisons on 32 bytes instead of six on 48, which is most of a pair search's time.
 //! Rounding outward only adds candidates (boxes that miss by less than an f32 rounding),
 //! and every caller tests its candidates exactly.
+//!
 //! Written here because the general crates (parry's Qbvh, `bvh`) bring their own
 //! vector types and far more than these two queries need.
 

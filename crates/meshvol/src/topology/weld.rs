@@ -1,12 +1,13 @@
 //! Welding: one vertex per position.
 //!
-//! Exact welding hashes each corner's coordinate bits and looks them up in hash tables,
-//! one per slice of the hash range so the slices are welded in parallel and each table
-//! stays small enough for the cache. A corner's *representative* is the first corner
-//! at its position; vertices are then numbered in order of first use, the same at any
-//! thread count. (A comparison sort of the three million 32-byte keys of a
-//! million-triangle soup took 0.54 s on one core; this takes about 0.2 s, most of it
-//! moving the keys into their slices.)
+//! Exact welding hashes each corner's coordinate bits once, groups the corner ids into
+//! slices of the hash range (a counting sort of 4-byte ids, not of the 24-byte keys),
+//! and welds each slice in parallel through its own hash table, which holds its keys
+//! inline and is small enough for the cache. A corner's *representative* is the first
+//! corner at its position; vertices are numbered in order of first use by a prefix
+//! sum, the same at any thread count. (On the three million corners of a
+//! million-triangle soup, 2 cores: a comparison sort of the keys took 0.54 s on one
+//! core; slices carrying the keys, 0.19–0.25 s; this, 0.11–0.15 s.)
 //!
 //! Welding with a tolerance t first welds exactly, then joins distinct positions whose
 //! coordinates all differ by at most t (transitively: a chain of close points becomes
