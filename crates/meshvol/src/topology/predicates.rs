@@ -24,6 +24,12 @@ fn c3(p: Point) -> Coord3D<f64> {
 /// Sign of det[a − d; b − d; c − d]: positive when d lies behind the triangle (a, b, c),
 /// i.e. on the side its normal (b − a) × (c − a) points away from.
 pub(crate) fn orient(a: Point, b: Point, c: Point, d: Point) -> f64 {
+    Plane::of([a, b, c]).orient(d)
+}
+
+/// [`orient`] where the floating-point filter cannot decide: nearly or exactly coplanar
+/// points, which touching faces make common.
+fn orient_exactly([a, b, c]: [Point; 3], d: Point) -> f64 {
     // a, b, c in a plane x_k = h (faces of CAD parts often are): expanding the
     // determinant along column k leaves (−1)^k (h − d_k) times the 2D orientation of
     // a, b, c without axis k, each factor's sign exact. This skips orient3d's slow
@@ -37,16 +43,72 @@ pub(crate) fn orient(a: Point, b: Point, c: Point, d: Point) -> f64 {
             return parity * sign(a[k] - d[k]) * sign(orient2d(flat(a), flat(b), flat(c)));
         }
     }
-    sign(orient3d(c3(a), c3(b), c3(c), c3(d)))
+    orient_on_grid([a, b, c], d).unwrap_or_else(|| sign(orient3d(c3(a), c3(b), c3(c), c3(d))))
 }
 
-/// A triangle with its plane, for many exact orientation tests against it.
+/// The sign of det[a − d; b − d; c − d] in integer arithmetic, when the nine
+/// differences are exact in f64 and are multiples of one power of two spanning at most
+/// [`GRID_BITS`] bits (points read from a float32 file of one part are); `None`
+/// otherwise. Each product of three then fits in 3 × 40 bits and their sum in an i128.
+/// Exactly coplanar points (flat regions of CAD parts, touching faces) are common, and
+/// for them orient3d's adaptive path computes the whole exact expansion, several times
+/// slower.
+fn orient_on_grid(rows: [Point; 3], d: Point) -> Option<f64> {
+    // Each difference as (mantissa, low, high): mantissa · 2^low, less than 2^high.
+    let mut parts = [(0i64, 0i32, 0i32); 9];
+    for (i, p) in rows.iter().enumerate() {
+        for k in 0..3 {
+            let x = p[k] - d[k];
+            // Knuth's two-difference: the rounding error of p[k] − d[k], zero when exact.
+            let virtual_d = p[k] - x;
+            let tail = (p[k] - (x + virtual_d)) + (virtual_d - d[k]);
+            if tail != 0.0 || !x.is_finite() {
+                return None;
+            }
+            if x != 0.0 {
+                let bits = x.to_bits();
+                let exponent = ((bits >> 52) & 0x7ff) as i32;
+                let fraction = bits & ((1 << 52) - 1);
+                let (significand, scale) = match exponent {
+                    0 => (fraction, -1074), // subnormal
+                    _ => (fraction | 1 << 52, exponent - 1075),
+                };
+                let zeros = significand.trailing_zeros() as i32;
+                let mantissa = (significand >> zeros) as i64;
+                let high = scale + 64 - significand.leading_zeros() as i32;
+                parts[3 * i + k] =
+                    (if x < 0.0 { -mantissa } else { mantissa }, scale + zeros, high);
+            }
+        }
+    }
+    let nonzero = || parts.iter().filter(|p| p.0 != 0);
+    let (Some(low), Some(high)) = (nonzero().map(|p| p.1).min(), nonzero().map(|p| p.2).max())
+    else {
+        return Some(0.0); // every difference is zero: d is a, b and c
+    };
+    if high - low > GRID_BITS {
+        return None;
+    }
+    // In units of 2^low: integers below 2^GRID_BITS.
+    let m = parts.map(|(mantissa, at, _)| match mantissa {
+        0 => 0,
+        _ => i128::from(mantissa) << (at - low),
+    });
+    let det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
+        + m[2] * (m[3] * m[7] - m[4] * m[6]);
+    Some(det.signum() as f64)
+}
+
+/// The widest span of bits [`orient_on_grid`] takes.
+const GRID_BITS: i32 = 40;
+
+/// A triangle with its plane, for exact orientation tests against it.
 ///
-/// [`orient`] against a fixed triangle recomputes its edge vectors' cross product each
-/// time; here it is computed once, with the magnitudes Shewchuk's static error bound
-/// needs (the same expression shape as his orient3d: a coordinate times a difference
-/// of two products, three times, on differences of input coordinates), so most tests
-/// are a dot product and a comparison, and the rest fall back to [`orient`].
+/// The edge vectors' cross product is computed once, with the magnitudes Shewchuk's
+/// static error bound needs (the same expression shape as his orient3d: a coordinate
+/// times a difference of two products, three times, on differences of input
+/// coordinates), so most tests are a dot product and a comparison, and the rest go to
+/// [`orient_exactly`].
 struct Plane {
     t: [Point; 3],
     normal: Point,
@@ -74,7 +136,7 @@ impl Plane {
         if det.abs() > ORIENT3D_BOUND * permanent {
             sign(det)
         } else {
-            orient(self.t[0], self.t[1], self.t[2], p)
+            orient_exactly(self.t, p)
         }
     }
 
@@ -218,12 +280,54 @@ mod tests {
             let k = (next() + 1.5) as usize % 3;
             (p[1][k], p[2][k]) = (p[0][k], p[0][k]);
             let exact = sign(orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3])));
+            assert_eq!(orient_exactly([p[0], p[1], p[2]], p[3]), exact, "{p:?}");
             assert_eq!(orient(p[0], p[1], p[2], p[3]), exact, "{p:?}");
         }
     }
 
     #[test]
-    fn plane_filter_agrees_with_orient() {
+    fn grid_orientation_agrees_with_orient3d() {
+        // Points on grids of 2^-10 (float32-like, up to ±2^17), many exactly coplanar
+        // (the fourth point an integer combination of the first three), some near; and
+        // spans too wide or differences not exact, where it must decline.
+        let mut state = 0x853c49e6748fea9bu64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let mut decided = 0;
+        for i in 0..50_000 {
+            let mut coordinate = || ((next() % (1 << 27)) as f64 - (1 << 26) as f64) / 1024.0;
+            let t = [0; 3].map(|_| [0; 3].map(|_| coordinate()));
+            let (s, r) = ((next() % 5) as f64 - 2.0, (next() % 5) as f64 - 2.0);
+            let mut d =
+                [0, 1, 2].map(|k| t[0][k] + s * (t[1][k] - t[0][k]) + r * (t[2][k] - t[0][k]));
+            match i % 4 {
+                0 => d[(i / 4) % 3] += 1.0 / 1024.0, // one grid step off the plane
+                1 => d = d.map(|x| x * (1.0 + f64::EPSILON)), // not on the grid
+                2 => d[0] = 1e30,                    // too wide a span
+                _ => {}                              // exactly on the plane
+            }
+            let exact = sign(orient3d(c3(t[0]), c3(t[1]), c3(t[2]), c3(d)));
+            if let Some(s) = orient_on_grid(t, d) {
+                assert_eq!(s, exact, "{t:?} {d:?}");
+                decided += 1;
+            }
+            assert_eq!(orient(t[0], t[1], t[2], d), exact, "{t:?} {d:?}");
+        }
+        // It decides the grid cases (exactly and one step off the plane), not the rest.
+        assert!(decided >= 25_000, "{decided}");
+        assert_eq!(orient_on_grid([[0.0; 3]; 3], [0.0; 3]), Some(0.0));
+        assert_eq!(
+            orient_on_grid([[1e-300, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [0.0; 3]),
+            None
+        );
+    }
+
+    #[test]
+    fn plane_filter_agrees_with_orient3d() {
         // Random triangles and points, some exactly or nearly on the plane (a point of
         // the triangle nudged by an ulp or so), some far: the filter may only answer
         // when it is right.
@@ -245,7 +349,8 @@ mod tests {
             };
             let scale = [1.0, 1e-8, 1e8][i % 3];
             let (t, p) = (t.map(|q| q.map(|x| x * scale)), p.map(|x| x * scale));
-            assert_eq!(Plane::of(t).orient(p), orient(t[0], t[1], t[2], p));
+            let exact = sign(orient3d(c3(t[0]), c3(t[1]), c3(t[2]), c3(p)));
+            assert_eq!(Plane::of(t).orient(p), exact, "{t:?} {p:?}");
         }
     }
 
