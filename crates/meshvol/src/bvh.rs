@@ -398,13 +398,10 @@ mod tests {
 
     #[test]
     fn f32_boxes_contain_their_f64_boxes_tightly() {
-        let mut state = 0x853c49e6748fea9bu64;
+        let mut rng = crate::test_rng::XorShift::new(0x853c49e6748fea9bu64);
         let mut values = vec![0.0, -0.0, 1e-300, -1e-300, 1e300, -1e300, 0.1, -0.1, 16777217.0];
         for _ in 0..100_000 {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            let x = f64::from_bits(state);
+            let x = f64::from_bits(rng.next_u64());
             if x.is_finite() {
                 values.push(x);
             }
@@ -424,13 +421,8 @@ mod tests {
     #[test]
     fn spatial_order_is_the_order_of_the_morton_codes() {
         // Clustered points (many share top bits, some share whole codes).
-        let mut state = 0x2545f4914f6cdd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::XorShift::new(0x2545f4914f6cdd1du64);
+        let mut next = || rng.unit();
         let points: Vec<Point> = (0..60_000)
             .map(|i| {
                 let spread = if i % 3 == 0 { 1e-7 } else { 1.0 };

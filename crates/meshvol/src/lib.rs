@@ -30,6 +30,8 @@ pub mod polygon;
 pub mod properties;
 pub mod section;
 pub mod shapes;
+#[cfg(test)]
+mod test_rng;
 pub mod topology;
 mod vector;
 

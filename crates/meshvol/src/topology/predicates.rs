@@ -267,13 +267,8 @@ mod tests {
     fn axis_plane_shortcut_agrees_with_orient3d() {
         // Small integer coordinates: many triples share a coordinate, many quadruples
         // are coplanar.
-        let mut state = 0x9e3779b97f4a7c15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % 4) as f64 - 1.5
-        };
+        let mut rng = crate::test_rng::XorShift::new(0x9e3779b97f4a7c15u64);
+        let mut next = || (rng.next_u64() % 4) as f64 - 1.5;
         for _ in 0..20000 {
             let mut p = [[0.0; 3]; 4];
             p.iter_mut().for_each(|q| q.iter_mut().for_each(|x| *x = next()));
@@ -290,13 +285,8 @@ mod tests {
         // Points on grids of 2^-10 (float32-like, up to ±2^17), many exactly coplanar
         // (the fourth point an integer combination of the first three), some near; and
         // spans too wide or differences not exact, where it must decline.
-        let mut state = 0x853c49e6748fea9bu64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = crate::test_rng::XorShift::new(0x853c49e6748fea9bu64);
+        let mut next = || rng.next_u64();
         let mut decided = 0;
         for i in 0..50_000 {
             let mut coordinate = || ((next() % (1 << 27)) as f64 - (1 << 26) as f64) / 1024.0;
@@ -331,13 +321,8 @@ mod tests {
         // Random triangles and points, some exactly or nearly on the plane (a point of
         // the triangle nudged by an ulp or so), some far: the filter may only answer
         // when it is right.
-        let mut state = 0x2545f4914f6cdd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rng = crate::test_rng::XorShift::new(0x2545f4914f6cdd1du64);
+        let mut next = || rng.unit() - 0.5;
         for i in 0..20000 {
             let t = [[next(), next(), next()], [next(), next(), next()], [next(), next(), next()]];
             let (w, z) = (next() + 0.5, next() + 0.5);

@@ -185,13 +185,8 @@ mod tests {
     fn exact_weld_numbers_by_first_use_at_any_thread_count() {
         // 200 000 corners drawn from 5 000 positions (with −0.0 for some zeros): the
         // vertex numbers must be those a map from position to first corner gives.
-        let mut state = 0x9e3779b97f4a7c15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = crate::test_rng::XorShift::new(0x9e3779b97f4a7c15u64);
+        let mut next = || rng.next_u64();
         let pool: Vec<Point> = (0..5000)
             .map(|i| [(i % 17) as f64 * 0.5, (i / 17) as f64, if i % 3 == 0 { 0.0 } else { 1.0 }])
             .collect();
@@ -230,13 +225,8 @@ mod tests {
     fn agrees_with_brute_force_on_random_clusters() {
         // Points jittered around a few centres, some chains: compare the tolerance
         // weld's partition with the transitive closure of "all coordinates within t".
-        let mut state = 0x2545f4914f6cdd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::XorShift::new(0x2545f4914f6cdd1du64);
+        let mut next = || rng.unit();
         let t = 0.01;
         let corners: Vec<Point> = (0..600)
             .map(|i| {
