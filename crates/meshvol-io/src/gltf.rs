@@ -751,7 +751,7 @@ impl Mode {
     fn corners(self, i: usize) -> [usize; 3] {
         match self {
             Mode::Triangles => [3 * i, 3 * i + 1, 3 * i + 2],
-            Mode::Strip if i % 2 == 0 => [i, i + 1, i + 2],
+            Mode::Strip if i.is_multiple_of(2) => [i, i + 1, i + 2],
             Mode::Strip => [i, i + 2, i + 1],
             Mode::Fan => [i + 1, i + 2, 0],
         }

@@ -107,7 +107,7 @@ fn primitive(points: &[[f32; 3]], indices: Option<&[u8]>, mode: u32) -> Vec<u8> 
         }
         None => (String::new(), String::new()),
     };
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let json = format!(
@@ -126,7 +126,7 @@ fn primitive(points: &[[f32; 3]], indices: Option<&[u8]>, mode: u32) -> Vec<u8> 
 /// A GLB from its JSON and BIN chunks.
 fn glb_container(json: &[u8], bin: &[u8]) -> Vec<u8> {
     let mut json = json.to_vec();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut out = b"glTF".to_vec();

@@ -403,14 +403,14 @@ fn nest(loops: Vec<Vec<Point2>>) -> (Vec<Polygon>, usize) {
     }
     // The majority's sign says how the surface is wound; loops against it are counted.
     let outward: f64 =
-        order.iter().map(|&i| if depth[i] % 2 == 0 { areas[i] } else { -areas[i] }).sum();
+        order.iter().map(|&i| if depth[i].is_multiple_of(2) { areas[i] } else { -areas[i] }).sum();
     let sign = if outward < 0.0 { -1.0 } else { 1.0 };
     let mut misoriented = 0;
     let mut polygon_of = vec![usize::MAX; loops.len()];
     let mut polygons: Vec<Polygon> = Vec::new();
     let mut loops: Vec<Option<Vec<Point2>>> = loops.into_iter().map(Some).collect();
     for &i in &order {
-        let exterior = depth[i] % 2 == 0;
+        let exterior = depth[i].is_multiple_of(2);
         let expected = if exterior { sign } else { -sign };
         if areas[i] * expected < 0.0 {
             misoriented += 1;

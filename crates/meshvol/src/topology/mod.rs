@@ -743,7 +743,7 @@ fn analyse<S: Surface + ?Sized>(
     for (&f, points) in triangles.face.iter().zip(&triangles.points) {
         let s = shell_of_face[f as usize] as usize;
         let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
-        if seen_in_shell[s] % stride == 0 && !candidates[s].is_empty() {
+        if seen_in_shell[s].is_multiple_of(stride) && !candidates[s].is_empty() {
             samples[s].extend_from_slice(points);
         }
         seen_in_shell[s] += 1;
