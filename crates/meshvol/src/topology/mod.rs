@@ -28,7 +28,9 @@
 //!    the interior of the other, found through a [`Bvh`] (never all pairs), skipping
 //!    pairs that share a vertex. Pairs from one shell are *self-intersections*; from two
 //!    shells, *overlapping shells*, whose common volume a plain sum counts twice.
-//!    Touching (shared planes, an edge lying on a face) is not crossing.
+//!    Touching (shared planes, an edge lying on a face) is not crossing. The search
+//!    (parallel) runs beside steps 3–6 (mostly sequential walks), so that on few cores
+//!    neither leaves one idle.
 //! 8. **Euler characteristic** V − E + F per shell, and genus (2 − χ)/2 for closed
 //!    orientable shells.
 //!
@@ -464,6 +466,338 @@ fn analyse<S: Surface + ?Sized>(
     drop((sorted_ids, by_vertices));
     let kept: Vec<bool> = (0..faces).map(|f| !degenerate[f] && !duplicate[f]).collect();
 
+    // The crossing search (parallel, and the longest part) runs beside the connectivity
+    // analysis (mostly sequential walks over edges and shells), so that on few cores
+    // neither leaves one idle.
+    let (space, connected) = rayon::join(
+        || {
+            options.intersections.then(|| {
+                let (triangles, bvh) = triangles_in_space(loops, &kept, &welded);
+                let crossing = crossing_pairs(&triangles, &bvh);
+                (triangles, bvh, crossing)
+            })
+        },
+        || connect(surface, loops, &welded, &kept),
+    );
+    let Connected {
+        used_vertices,
+        non_manifold_vertices,
+        edges,
+        edges_per_shell,
+        boundary_edges,
+        non_manifold_edges,
+        consistently_oriented,
+        face_inconsistent,
+        shell_of_face,
+        shell_count,
+        flip,
+        orientable,
+        shell_open,
+        loops_found,
+        caps:
+            Caps {
+                points: caps,
+                ids: cap_ids,
+                centres,
+                shell: cap_shell,
+                per_shell: shell_loops,
+                volume_uncertainty,
+            },
+        shell_signed,
+        shell_bounds,
+        candidates,
+    } = connected;
+    // Triangles (fans of kept faces) in spatial order, with their corners inline, and
+    // a hierarchy over their boxes: only when something asks for them.
+    let nesting = candidates.iter().any(|c| !c.is_empty());
+    let (triangles, bvh, crossing) = match space {
+        Some((triangles, bvh, crossing)) => (triangles, bvh, Some(crossing)),
+        None if nesting => {
+            let (triangles, bvh) = triangles_in_space(loops, &kept, &welded);
+            (triangles, bvh, None)
+        }
+        None => (Triangles::default(), Bvh::default(), None),
+    };
+
+    // Sample up to NESTING_SAMPLES triangles' corners spread over each shell.
+    let mut shell_triangles = vec![0usize; shell_count];
+    for &f in &triangles.face {
+        shell_triangles[shell_of_face[f as usize] as usize] += 1;
+    }
+    let mut samples: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
+    let mut seen_in_shell = vec![0usize; shell_count];
+    for (&f, points) in triangles.face.iter().zip(&triangles.points) {
+        let s = shell_of_face[f as usize] as usize;
+        let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
+        if seen_in_shell[s].is_multiple_of(stride) && !candidates[s].is_empty() {
+            samples[s].extend_from_slice(points);
+        }
+        seen_in_shell[s] += 1;
+    }
+    // Far enough that an oblique segment from any vertex leaves every shell's box.
+    let reach = {
+        let all = shell_bounds.iter().flatten().fold(None, |acc: Option<Bounds>, b| {
+            let mut all = acc.unwrap_or(*b);
+            all.merge(b);
+            Some(all)
+        });
+        all.map_or(1.0, |b| 4.0 * norm(b.size()) + 1.0)
+    };
+    // For each shell, how many of its samples lie inside / outside each candidate.
+    let classify = |a: usize| -> Vec<(usize, usize, usize)> {
+        let candidates = &candidates[a];
+        let mut counts: Vec<(usize, usize, usize)> =
+            candidates.iter().map(|&b| (b, 0, 0)).collect();
+        let mut winding = vec![0i64; candidates.len()];
+        for &p in &samples[a] {
+            // Rays along each axis direction in turn, until one crosses cleanly; then
+            // an oblique segment to beyond the mesh (it meets many boxes, so it is the
+            // last resort, for symmetric meshes where every axis ray hits an edge).
+            let clean = (0..=predicates::RAY_FRAMES.len()).any(|frame| {
+                let oblique = frame == predicates::RAY_FRAMES.len();
+                let q = add(p, scale(predicates::OBLIQUE, reach));
+                let ray = if oblique {
+                    let mut b = Bounds::of(p);
+                    b.include(q);
+                    b
+                } else {
+                    let (min, max) = predicates::ray_box(p, frame);
+                    Bounds { min, max }
+                };
+                winding.fill(0);
+                let mut grazed = false;
+                bvh.overlapping(&ray, |i| {
+                    let face = triangles.face[i] as usize;
+                    let s = shell_of_face[face] as usize;
+                    if grazed || s == a {
+                        return;
+                    }
+                    let Ok(k) = candidates.binary_search(&s) else { return };
+                    let v = triangles.points[i];
+                    let crossing = if oblique {
+                        predicates::segment_crossing(p, q, v[0], v[1], v[2])
+                    } else {
+                        let rotate = predicates::RAY_FRAMES[frame];
+                        let v = v.map(rotate);
+                        predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
+                    };
+                    match crossing {
+                        Some(w) => winding[k] += if flip[face] { -w } else { w } as i64,
+                        None => grazed = true,
+                    }
+                });
+                !grazed
+            });
+            if !clean {
+                continue; // on another surface: this sample cannot tell
+            }
+            for (c, &w) in counts.iter_mut().zip(&winding) {
+                if w != 0 {
+                    c.1 += 1;
+                } else {
+                    c.2 += 1;
+                }
+            }
+        }
+        counts
+    };
+    let classified: Vec<Vec<(usize, usize, usize)>> =
+        (0..shell_count).into_par_iter().map(classify).collect();
+    // Inside every sample that could tell: nested. Inside for some, outside for others:
+    // the surfaces cross, and the shells overlap.
+    let mut overlapping_shells = std::collections::BTreeSet::new();
+    let containers: Vec<Vec<usize>> = classified
+        .iter()
+        .enumerate()
+        .map(|(a, counts)| {
+            for &(b, inside, outside) in counts {
+                if inside > 0 && outside > 0 {
+                    overlapping_shells.insert([a.min(b), a.max(b)]);
+                }
+            }
+            counts.iter().filter(|c| c.1 > 0 && c.2 == 0).map(|c| c.0).collect()
+        })
+        .collect();
+
+    // Crossing triangles, as face pairs.
+    let mut self_intersections = None;
+    let mut intersection_examples = Vec::new();
+    if let Some(pairs) = crossing {
+        let mut within = 0;
+        for &[f, g] in &pairs {
+            let (sf, sg) = (shell_of_face[f] as usize, shell_of_face[g] as usize);
+            if sf == sg {
+                within += 1;
+            } else {
+                overlapping_shells.insert([sf, sg]);
+            }
+        }
+        intersection_examples = pairs.iter().take(options.examples).copied().collect();
+        self_intersections = Some(within);
+    }
+
+    // Roles: nesting depth parity decides solid or cavity.
+    let mut shells = Vec::with_capacity(shell_count);
+    let mut per_shell = vec![(0usize, 0usize, false); shell_count]; // faces, edges, inconsistent
+    for f in (0..faces).filter(|&f| kept[f]) {
+        let s = shell_of_face[f] as usize;
+        per_shell[s].0 += 1;
+        per_shell[s].2 |= face_inconsistent[f];
+    }
+    for (s, &edges) in edges_per_shell.iter().enumerate() {
+        per_shell[s].1 = edges;
+    }
+    let mut shell_vertices = vec![0i64; shell_count];
+    {
+        let mut last_shell_of_vertex = vec![u32::MAX; welded.positions.len()];
+        for f in (0..faces).filter(|&f| kept[f]) {
+            let s = shell_of_face[f];
+            for c in loops.face(f) {
+                let v = vid(c) as usize;
+                if last_shell_of_vertex[v] != s {
+                    // A vertex can be shared by shells only at non-manifold points; count
+                    // it once per shell visit run, which is exact for manifold meshes.
+                    last_shell_of_vertex[v] = s;
+                    shell_vertices[s as usize] += 1;
+                }
+            }
+        }
+    }
+    let mut flip_shell = vec![false; shell_count];
+    let mut volume = CompensatedSum::default();
+    for s in 0..shell_count {
+        let depth = containers[s].len();
+        let cavity = depth % 2 == 1;
+        let parent = containers[s]
+            .iter()
+            .copied()
+            .min_by(|&a, &b| shell_signed[a].abs().total_cmp(&shell_signed[b].abs()));
+        let (faces_in, edges_in, inconsistent) = per_shell[s];
+        let positive_as_propagated = shell_signed[s] >= 0.0;
+        // The first face keeps its file winding, so as-propagated is as-wound when the
+        // shell is consistent.
+        let wound_outward =
+            (!inconsistent && orientable[s]).then_some(positive_as_propagated != cavity);
+        flip_shell[s] = positive_as_propagated == cavity;
+        let v = shell_signed[s].abs();
+        volume.add(if cavity { -v } else { v });
+        let chi = shell_vertices[s] - edges_in as i64 + faces_in as i64;
+        let closed = !shell_open[s];
+        shells.push(Shell {
+            faces: faces_in,
+            closed,
+            orientable: orientable[s],
+            consistently_oriented: !inconsistent,
+            volume: v,
+            cavity,
+            parent,
+            wound_outward,
+            boundary_loops: shell_loops[s],
+            euler_characteristic: chi,
+            genus: (closed && orientable[s] && chi % 2 == 0).then_some((2 - chi) / 2),
+        });
+    }
+    let orientation = if shells.is_empty() {
+        None
+    } else if shells.iter().all(|s| s.wound_outward == Some(true)) {
+        Some(Orientation::Outward)
+    } else if shells.iter().all(|s| s.wound_outward == Some(false)) {
+        Some(Orientation::Inward)
+    } else {
+        Some(Orientation::Mixed)
+    };
+
+    let face_flip: Vec<bool> = (0..faces)
+        .into_par_iter()
+        .map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize]))
+        .collect();
+    let cap_flip: Vec<bool> = cap_shell.iter().map(|&s| flip_shell[s as usize]).collect();
+    let weld::Welded { corner_vertex, positions: mut vertices, .. } = welded;
+    vertices.extend(centres);
+    let solid = Solid::new(
+        solid::Faces {
+            kept: &kept,
+            flip: &face_flip,
+            corners: corner_vertex,
+            start: loops.start.clone(),
+        },
+        vertices,
+        solid::Caps { points: caps, ids: cap_ids, flip: &cap_flip },
+    );
+
+    let kept_faces = kept.iter().filter(|&&k| k).count();
+    Check {
+        weld_tolerance: tolerance,
+        vertices: used_vertices,
+        edges,
+        faces,
+        closed: kept_faces > 0 && boundary_edges == 0 && non_manifold_edges == 0,
+        boundary_edges,
+        boundary_loops: loops_found.len(),
+        non_manifold_edges,
+        non_manifold_vertices,
+        degenerate_faces: degenerate.iter().filter(|&&d| d).count(),
+        duplicate_faces: duplicate.iter().filter(|&&d| d).count(),
+        consistently_oriented,
+        orientation,
+        cavities: shells.iter().filter(|s| s.cavity).count(),
+        shells,
+        overlapping_shells: overlapping_shells.into_iter().collect(),
+        self_intersections,
+        intersection_examples,
+        euler_characteristic: used_vertices as i64 - edges as i64 + kept_faces as i64,
+        volume: volume.value(),
+        volume_uncertainty,
+        solid,
+    }
+}
+
+/// What the check derives from how faces connect, by edges and vertices: edge counts,
+/// shells, orientation, boundary loops and their caps, per-shell volumes and boxes.
+struct Connected {
+    used_vertices: usize,
+    non_manifold_vertices: usize,
+    edges: usize,
+    edges_per_shell: Vec<usize>,
+    boundary_edges: usize,
+    non_manifold_edges: usize,
+    consistently_oriented: bool,
+    face_inconsistent: Vec<bool>,
+    shell_of_face: Vec<u32>,
+    shell_count: usize,
+    /// Per face: reversed to agree with its shell's first face.
+    flip: Vec<bool>,
+    orientable: Vec<bool>,
+    shell_open: Vec<bool>,
+    loops_found: Vec<(u32, Vec<u32>)>,
+    caps: Caps,
+    shell_signed: Vec<f64>,
+    shell_bounds: Vec<Option<Bounds>>,
+    /// Per shell: the closed shells whose boxes overlap its own.
+    candidates: Vec<Vec<usize>>,
+}
+
+/// The fans capping boundary loops, as points and as vertex ids (each centre a new
+/// vertex after the welded ones), with their shells.
+#[derive(Default)]
+struct Caps {
+    points: Vec<[Point; 3]>,
+    ids: Vec<[u32; 3]>,
+    centres: Vec<Point>,
+    shell: Vec<u32>,
+    per_shell: Vec<usize>,
+    volume_uncertainty: f64,
+}
+
+/// Edges, shells, orientation, caps and per-shell volumes of the kept faces.
+fn connect<S: Surface + ?Sized>(
+    surface: &S,
+    loops: &Loops,
+    welded: &weld::Welded,
+    kept: &[bool],
+) -> Connected {
+    let faces = kept.len();
+    let vid = |c: usize| welded.corner_vertex[c];
     // Each kept corner by its vertex, with its face and the vertices before and after
     // it: the edges and the fans around a vertex are then read from one place.
     let vertex_count = welded.positions.len();
@@ -724,256 +1058,36 @@ fn analyse<S: Surface + ?Sized>(
         })
         .collect();
 
-    // Triangles (fans of kept faces) in spatial order, with their corners inline, and
-    // a hierarchy over their boxes: only when something asks for them.
-    let nesting = candidates.iter().any(|c| !c.is_empty());
-    let (triangles, bvh) = if nesting || options.intersections {
-        triangles_in_space(loops, &kept, &welded)
-    } else {
-        (Triangles::default(), Bvh::default())
-    };
-
-    // Sample up to NESTING_SAMPLES triangles' corners spread over each shell.
-    let mut shell_triangles = vec![0usize; shell_count];
-    for &f in &triangles.face {
-        shell_triangles[shell_of_face[f as usize] as usize] += 1;
-    }
-    let mut samples: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
-    let mut seen_in_shell = vec![0usize; shell_count];
-    for (&f, points) in triangles.face.iter().zip(&triangles.points) {
-        let s = shell_of_face[f as usize] as usize;
-        let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
-        if seen_in_shell[s].is_multiple_of(stride) && !candidates[s].is_empty() {
-            samples[s].extend_from_slice(points);
-        }
-        seen_in_shell[s] += 1;
-    }
-    // Far enough that an oblique segment from any vertex leaves every shell's box.
-    let reach = {
-        let all = shell_bounds.iter().flatten().fold(None, |acc: Option<Bounds>, b| {
-            let mut all = acc.unwrap_or(*b);
-            all.merge(b);
-            Some(all)
-        });
-        all.map_or(1.0, |b| 4.0 * norm(b.size()) + 1.0)
-    };
-    // For each shell, how many of its samples lie inside / outside each candidate.
-    let classify = |a: usize| -> Vec<(usize, usize, usize)> {
-        let candidates = &candidates[a];
-        let mut counts: Vec<(usize, usize, usize)> =
-            candidates.iter().map(|&b| (b, 0, 0)).collect();
-        let mut winding = vec![0i64; candidates.len()];
-        for &p in &samples[a] {
-            // Rays along each axis direction in turn, until one crosses cleanly; then
-            // an oblique segment to beyond the mesh (it meets many boxes, so it is the
-            // last resort, for symmetric meshes where every axis ray hits an edge).
-            let clean = (0..=predicates::RAY_FRAMES.len()).any(|frame| {
-                let oblique = frame == predicates::RAY_FRAMES.len();
-                let q = add(p, scale(predicates::OBLIQUE, reach));
-                let ray = if oblique {
-                    let mut b = Bounds::of(p);
-                    b.include(q);
-                    b
-                } else {
-                    let (min, max) = predicates::ray_box(p, frame);
-                    Bounds { min, max }
-                };
-                winding.fill(0);
-                let mut grazed = false;
-                bvh.overlapping(&ray, |i| {
-                    let face = triangles.face[i] as usize;
-                    let s = shell_of_face[face] as usize;
-                    if grazed || s == a {
-                        return;
-                    }
-                    let Ok(k) = candidates.binary_search(&s) else { return };
-                    let v = triangles.points[i];
-                    let crossing = if oblique {
-                        predicates::segment_crossing(p, q, v[0], v[1], v[2])
-                    } else {
-                        let rotate = predicates::RAY_FRAMES[frame];
-                        let v = v.map(rotate);
-                        predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
-                    };
-                    match crossing {
-                        Some(w) => winding[k] += if flip[face] { -w } else { w } as i64,
-                        None => grazed = true,
-                    }
-                });
-                !grazed
-            });
-            if !clean {
-                continue; // on another surface: this sample cannot tell
-            }
-            for (c, &w) in counts.iter_mut().zip(&winding) {
-                if w != 0 {
-                    c.1 += 1;
-                } else {
-                    c.2 += 1;
-                }
-            }
-        }
-        counts
-    };
-    let classified: Vec<Vec<(usize, usize, usize)>> =
-        (0..shell_count).into_par_iter().map(classify).collect();
-    // Inside every sample that could tell: nested. Inside for some, outside for others:
-    // the surfaces cross, and the shells overlap.
-    let mut overlapping_shells = std::collections::BTreeSet::new();
-    let containers: Vec<Vec<usize>> = classified
-        .iter()
-        .enumerate()
-        .map(|(a, counts)| {
-            for &(b, inside, outside) in counts {
-                if inside > 0 && outside > 0 {
-                    overlapping_shells.insert([a.min(b), a.max(b)]);
-                }
-            }
-            counts.iter().filter(|c| c.1 > 0 && c.2 == 0).map(|c| c.0).collect()
-        })
-        .collect();
-
-    // Crossing triangles, as face pairs.
-    let mut self_intersections = None;
-    let mut intersection_examples = Vec::new();
-    if options.intersections {
-        let test = |i: usize, j: usize| {
-            if shares_a_vertex(&triangles.ids[i], &triangles.ids[j]) {
-                return None; // neighbours meet at shared vertices by design
-            }
-            let (f, g) = (triangles.face[i] as usize, triangles.face[j] as usize);
-            predicates::triangles_cross(triangles.points[i], triangles.points[j])
-                .then_some([f.min(g), f.max(g)])
-        };
-        let mut pairs: Vec<[usize; 2]> = bvh.overlapping_pairs(test);
-        pairs.sort_unstable();
-        let mut within = 0;
-        for &[f, g] in &pairs {
-            let (sf, sg) = (shell_of_face[f] as usize, shell_of_face[g] as usize);
-            if sf == sg {
-                within += 1;
-            } else {
-                overlapping_shells.insert([sf, sg]);
-            }
-        }
-        intersection_examples = pairs.iter().take(options.examples).copied().collect();
-        self_intersections = Some(within);
-    }
-
-    // Roles: nesting depth parity decides solid or cavity.
-    let mut shells = Vec::with_capacity(shell_count);
-    let mut per_shell = vec![(0usize, 0usize, false); shell_count]; // faces, edges, inconsistent
-    for f in (0..faces).filter(|&f| kept[f]) {
-        let s = shell_of_face[f] as usize;
-        per_shell[s].0 += 1;
-        per_shell[s].2 |= face_inconsistent[f];
-    }
+    let mut edges_per_shell = vec![0usize; shell_count];
     for g in &groups {
-        per_shell[shell_of_face[g[0].face as usize] as usize].1 += 1;
+        edges_per_shell[shell_of_face[g[0].face as usize] as usize] += 1;
     }
-    let mut shell_vertices = vec![0i64; shell_count];
-    {
-        let mut last_shell_of_vertex = vec![u32::MAX; welded.positions.len()];
-        for f in (0..faces).filter(|&f| kept[f]) {
-            let s = shell_of_face[f];
-            for c in loops.face(f) {
-                let v = vid(c) as usize;
-                if last_shell_of_vertex[v] != s {
-                    // A vertex can be shared by shells only at non-manifold points; count
-                    // it once per shell visit run, which is exact for manifold meshes.
-                    last_shell_of_vertex[v] = s;
-                    shell_vertices[s as usize] += 1;
-                }
-            }
-        }
-    }
-    let mut flip_shell = vec![false; shell_count];
-    let mut volume = CompensatedSum::default();
-    for s in 0..shell_count {
-        let depth = containers[s].len();
-        let cavity = depth % 2 == 1;
-        let parent = containers[s]
-            .iter()
-            .copied()
-            .min_by(|&a, &b| shell_signed[a].abs().total_cmp(&shell_signed[b].abs()));
-        let (faces_in, edges_in, inconsistent) = per_shell[s];
-        let positive_as_propagated = shell_signed[s] >= 0.0;
-        // The first face keeps its file winding, so as-propagated is as-wound when the
-        // shell is consistent.
-        let wound_outward =
-            (!inconsistent && orientable[s]).then_some(positive_as_propagated != cavity);
-        flip_shell[s] = positive_as_propagated == cavity;
-        let v = shell_signed[s].abs();
-        volume.add(if cavity { -v } else { v });
-        let chi = shell_vertices[s] - edges_in as i64 + faces_in as i64;
-        let closed = !shell_open[s];
-        shells.push(Shell {
-            faces: faces_in,
-            closed,
-            orientable: orientable[s],
-            consistently_oriented: !inconsistent,
-            volume: v,
-            cavity,
-            parent,
-            wound_outward,
-            boundary_loops: shell_loops[s],
-            euler_characteristic: chi,
-            genus: (closed && orientable[s] && chi % 2 == 0).then_some((2 - chi) / 2),
-        });
-    }
-    let orientation = if shells.is_empty() {
-        None
-    } else if shells.iter().all(|s| s.wound_outward == Some(true)) {
-        Some(Orientation::Outward)
-    } else if shells.iter().all(|s| s.wound_outward == Some(false)) {
-        Some(Orientation::Inward)
-    } else {
-        Some(Orientation::Mixed)
-    };
-
-    let face_flip: Vec<bool> = (0..faces)
-        .into_par_iter()
-        .map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize]))
-        .collect();
-    let cap_flip: Vec<bool> = cap_shell.iter().map(|&s| flip_shell[s as usize]).collect();
-    let weld::Welded { corner_vertex, positions: mut vertices, .. } = welded;
-    vertices.extend(centres);
-    let solid = Solid::new(
-        solid::Faces {
-            kept: &kept,
-            flip: &face_flip,
-            corners: corner_vertex,
-            start: loops.start.clone(),
-        },
-        vertices,
-        solid::Caps { points: caps, ids: cap_ids, flip: &cap_flip },
-    );
-
-    let edges = groups.len();
-    let kept_faces = kept.iter().filter(|&&k| k).count();
-    Check {
-        weld_tolerance: tolerance,
-        vertices: used_vertices,
-        edges,
-        faces,
-        closed: kept_faces > 0 && boundary_edges == 0 && non_manifold_edges == 0,
-        boundary_edges,
-        boundary_loops: loops_found.len(),
-        non_manifold_edges,
+    Connected {
+        used_vertices,
         non_manifold_vertices,
-        degenerate_faces: degenerate.iter().filter(|&&d| d).count(),
-        duplicate_faces: duplicate.iter().filter(|&&d| d).count(),
+        edges: groups.len(),
+        edges_per_shell,
+        boundary_edges,
+        non_manifold_edges,
         consistently_oriented,
-        orientation,
-        cavities: shells.iter().filter(|s| s.cavity).count(),
-        shells,
-        overlapping_shells: overlapping_shells.into_iter().collect(),
-        self_intersections,
-        intersection_examples,
-        euler_characteristic: used_vertices as i64 - edges as i64 + kept_faces as i64,
-        volume: volume.value(),
-        volume_uncertainty,
-        solid,
+        face_inconsistent,
+        shell_of_face,
+        shell_count,
+        flip,
+        orientable,
+        shell_open,
+        loops_found,
+        caps: Caps {
+            points: caps,
+            ids: cap_ids,
+            centres,
+            shell: cap_shell,
+            per_shell: shell_loops,
+            volume_uncertainty,
+        },
+        shell_signed,
+        shell_bounds,
+        candidates,
     }
 }
 
@@ -1030,6 +1144,19 @@ fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (T
         })
         .unzip();
     (Triangles { ids, points, face }, Bvh::new(boxes))
+}
+
+/// The pairs of kept faces whose fan triangles cross, sorted.
+fn crossing_pairs(triangles: &Triangles, bvh: &Bvh) -> Vec<[usize; 2]> {
+    let test = |i: usize, j: usize| {
+        if shares_a_vertex(&triangles.ids[i], &triangles.ids[j]) {
+            return None; // neighbours meet at shared vertices by design
+        }
+        let (f, g) = (triangles.face[i] as usize, triangles.face[j] as usize);
+        predicates::triangles_cross(triangles.points[i], triangles.points[j])
+            .then_some([f.min(g), f.max(g)])
+    };
+    bvh.overlapping_pairs(test)
 }
 
 /// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's
