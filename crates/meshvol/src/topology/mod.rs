@@ -526,11 +526,11 @@ fn analyse<S: Surface + ?Sized>(
     }
     let mut samples: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
     let mut seen_in_shell = vec![0usize; shell_count];
-    for (&f, points) in triangles.face.iter().zip(&triangles.points) {
+    for (i, &f) in triangles.face.iter().enumerate() {
         let s = shell_of_face[f as usize] as usize;
         let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
         if seen_in_shell[s].is_multiple_of(stride) && !candidates[s].is_empty() {
-            samples[s].extend_from_slice(points);
+            samples[s].extend(triangles.points(i));
         }
         seen_in_shell[s] += 1;
     }
@@ -573,7 +573,7 @@ fn analyse<S: Surface + ?Sized>(
                         return;
                     }
                     let Ok(k) = candidates.binary_search(&s) else { return };
-                    let v = triangles.points[i];
+                    let v = triangles.points(i);
                     let crossing = if oblique {
                         predicates::segment_crossing(p, q, v[0], v[1], v[2])
                     } else {
@@ -1092,13 +1092,21 @@ fn connect<S: Surface + ?Sized>(
 }
 
 /// The triangles of the kept faces' fans, as parallel arrays: the crossing search
-/// reads `ids` for every nearby pair and `points` only for pairs sharing no vertex.
+/// reads `ids` for every nearby pair and their points only for pairs sharing no vertex.
 #[derive(Default)]
-struct Triangles {
+struct Triangles<'a> {
     /// Welded vertices.
     ids: Vec<[u32; 3]>,
-    points: Vec<[Point; 3]>,
     face: Vec<u32>,
+    /// The welded vertices' positions. (Read through `ids` rather than copied per
+    /// triangle: the copy, 72 bytes a triangle, cost more than the scattered reads.)
+    positions: &'a [Point],
+}
+
+impl Triangles<'_> {
+    fn points(&self, i: usize) -> [Point; 3] {
+        self.ids[i].map(|v| self.positions[v as usize])
+    }
 }
 
 /// Whether two triangles share a vertex: nine comparisons without short-circuiting
@@ -1110,7 +1118,11 @@ fn shares_a_vertex(t: &[u32; 3], u: &[u32; 3]) -> bool {
 
 /// The kept faces' triangles in spatial order (neighbours in space are neighbours in
 /// memory, which the hierarchy's searches then read), and the hierarchy over them.
-fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (Triangles, Bvh) {
+fn triangles_in_space<'a>(
+    loops: &Loops,
+    kept: &[bool],
+    welded: &'a weld::Welded,
+) -> (Triangles<'a>, Bvh) {
     // Each fan triangle as (face, corner of its second vertex).
     let fans: Vec<(u32, u32)> = (0..kept.len())
         .into_par_iter()
@@ -1131,7 +1143,7 @@ fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (T
         .collect();
     let order = Bvh::spatial_order(&centres);
     drop(centres);
-    let ((ids, points), (face, boxes)): ((Vec<_>, Vec<_>), (Vec<_>, Vec<Box32>)) = order
+    let (ids, (face, boxes)): (Vec<_>, (Vec<_>, Vec<Box32>)) = order
         .par_iter()
         .map(|&i| {
             let fan = fans[i as usize];
@@ -1140,10 +1152,10 @@ fn triangles_in_space(loops: &Loops, kept: &[bool], welded: &weld::Welded) -> (T
             let mut bounds = Bounds::of(points[0]);
             bounds.include(points[1]);
             bounds.include(points[2]);
-            ((ids, points), (fan.0, Box32::around(&bounds)))
+            (ids, (fan.0, Box32::around(&bounds)))
         })
         .unzip();
-    (Triangles { ids, points, face }, Bvh::new(boxes))
+    (Triangles { ids, face, positions: &welded.positions }, Bvh::new(boxes))
 }
 
 /// The pairs of kept faces whose fan triangles cross, sorted.
@@ -1153,7 +1165,7 @@ fn crossing_pairs(triangles: &Triangles, bvh: &Bvh) -> Vec<[usize; 2]> {
             return None; // neighbours meet at shared vertices by design
         }
         let (f, g) = (triangles.face[i] as usize, triangles.face[j] as usize);
-        predicates::triangles_cross(triangles.points[i], triangles.points[j])
+        predicates::triangles_cross(triangles.points(i), triangles.points(j))
             .then_some([f.min(g), f.max(g)])
     };
     bvh.overlapping_pairs(test)
