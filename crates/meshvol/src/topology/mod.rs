@@ -755,6 +755,7 @@ fn analyse<S: Surface + ?Sized>(
 /// What the check derives from how faces connect, by edges and vertices: edge counts,
 /// shells, orientation, boundary loops and their caps, per-shell volumes and boxes.
 struct Connected {
+    /// Vertices used by kept faces.
     used_vertices: usize,
     non_manifold_vertices: usize,
     edges: usize,
@@ -769,8 +770,10 @@ struct Connected {
     flip: Vec<bool>,
     orientable: Vec<bool>,
     shell_open: Vec<bool>,
+    /// Boundary loops as (shell, vertices in order).
     loops_found: Vec<(u32, Vec<u32>)>,
     caps: Caps,
+    /// Per shell: its volume as propagated from its first face, holes capped.
     shell_signed: Vec<f64>,
     shell_bounds: Vec<Option<Bounds>>,
     /// Per shell: the closed shells whose boxes overlap its own.
@@ -779,13 +782,14 @@ struct Connected {
 
 /// The fans capping boundary loops, as points and as vertex ids (each centre a new
 /// vertex after the welded ones), with their shells.
-#[derive(Default)]
 struct Caps {
     points: Vec<[Point; 3]>,
     ids: Vec<[u32; 3]>,
     centres: Vec<Point>,
     shell: Vec<u32>,
+    /// Boundary loops per shell.
     per_shell: Vec<usize>,
+    /// Per cap, its area times the rim's largest distance from its plane, summed.
     volume_uncertainty: f64,
 }
 
