@@ -261,15 +261,13 @@ fn run_check(args: CheckArgs) -> ExitCode {
             Ok((report, loaded)) => {
                 all_bound &= report.bounds_a_volume;
                 let text = if args.json {
-                    let mut value =
-                        serde_json::json!({"file": name, "format": loaded.format.name()});
-                    if let (Some(map), Ok(serde_json::Value::Object(facts))) =
-                        (value.as_object_mut(), serde_json::to_value(&report))
-                    {
-                        map.extend(facts);
-                        map.insert("warnings".into(), loaded.warnings.clone().into());
-                    }
-                    value.to_string() + "\n"
+                    let line = check::JsonLine {
+                        file: &name,
+                        format: loaded.format.name(),
+                        report: &report,
+                        warnings: &loaded.warnings,
+                    };
+                    serde_json::to_string(&line).map(|s| s + "\n").unwrap_or_else(|e| e.to_string())
                 } else {
                     check::text(&name, loaded.format.name(), &report)
                 };
