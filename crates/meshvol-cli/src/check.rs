@@ -1,7 +1,6 @@
 //! `meshvol check`: can the volume be trusted? The same facts appear in `meshvol volume`.
 
-use meshvol::topology::{self, Check, CheckOptions, Orientation};
-use meshvol::Surface;
+use meshvol::topology::{Check, Orientation};
 use serde::Serialize;
 use std::fmt::Write;
 
@@ -69,13 +68,9 @@ pub struct JsonLine<'a> {
 /// How many shells or pairs the text report lists before summarising.
 const LISTED: usize = 10;
 
-/// Checks `surface` and builds the report.
-pub fn check<S: Surface + ?Sized>(
-    surface: &S,
-    options: &CheckOptions,
-) -> Result<(Check, CheckReport), String> {
-    let c = topology::check(surface, options).map_err(|e| e.to_string())?;
-    let report = CheckReport {
+/// The report of a check.
+pub fn report(c: &Check) -> CheckReport {
+    CheckReport {
         bounds_a_volume: c.bounds_a_volume(),
         verdict: c.verdict(),
         closed: c.closed,
@@ -115,8 +110,7 @@ pub fn check<S: Surface + ?Sized>(
         euler_characteristic: c.euler_characteristic,
         solid_volume: c.volume,
         volume_uncertainty: c.volume_uncertainty,
-    };
-    Ok((c, report))
+    }
 }
 
 /// The human-readable report: the verdict first, details after.

@@ -2,13 +2,11 @@
 //! `.npy`, `.vti` or `.csv`, with a summary as text or JSON (and a picture of a slice).
 
 use crate::input;
+use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{
-    bytes_text, cell_volumes, occupancy, shells, union_cell_volumes, FaceSubset, Grid,
-};
+use meshvol::grid::{bytes_text, cell_volumes, occupancy, union_cell_volumes, Grid};
 use meshvol::{mass_properties, Point, Surface};
 use meshvol_io::grid_out::{self, Slice};
-use meshvol_io::LoadedSurface;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::io::{BufWriter, Write};
@@ -51,6 +49,8 @@ pub struct GridArgs {
     /// file): overlaps count once.
     #[arg(long)]
     union: bool,
+    #[command(flatten)]
+    solid: SolidArgs,
 }
 
 fn numbers<T: std::str::FromStr>(s: &str, n: &[usize], what: &str) -> Result<Vec<T>, String> {
@@ -177,16 +177,19 @@ struct GridReport {
     seconds: f64,
     out: Option<String>,
     png: Option<String>,
+    /// The readers' warnings and the reasons to doubt each file's solid, as
+    /// `FILE: warning`.
+    warnings: Vec<String>,
 }
 
 /// Several surfaces read as one (their faces one after another).
-struct Together<'a> {
-    surfaces: Vec<&'a LoadedSurface>,
+struct Together<S> {
+    surfaces: Vec<S>,
     starts: Vec<usize>,
 }
 
-impl<'a> Together<'a> {
-    fn new(surfaces: Vec<&'a LoadedSurface>) -> Self {
+impl<S: Surface> Together<S> {
+    fn new(surfaces: Vec<S>) -> Self {
         let mut starts = vec![0];
         for s in &surfaces {
             starts.push(starts.last().copied().unwrap_or(0) + s.face_count());
@@ -195,7 +198,7 @@ impl<'a> Together<'a> {
     }
 }
 
-impl Surface for Together<'_> {
+impl<S: Surface> Surface for Together<S> {
     fn face_count(&self) -> usize {
         self.starts.last().copied().unwrap_or(0)
     }
@@ -219,30 +222,22 @@ pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
 
 fn measure(args: GridArgs, quiet: bool) -> Result<(), String> {
     let progress = input::Progress::new(&args.files, quiet);
-    let mut loaded = Vec::new();
+    let mut inputs = Vec::new();
+    let mut warnings = Vec::new();
     for path in &args.files {
-        progress.stage("reading", path);
-        let file = input::load(path)?;
-        for w in &file.warnings {
-            progress.warn(&path.display().to_string(), w);
+        let input = solid::read(path, args.solid.check(), &progress)?;
+        for w in &input.warnings {
+            progress.warn(&input.name, w);
+            warnings.push(format!("{}: {w}", input.name));
         }
         progress.done(path);
-        loaded.push(file);
+        inputs.push(input);
     }
     progress.finish();
-    let surfaces: Vec<&LoadedSurface> = loaded.iter().map(|l| &l.surface).collect();
-    let together = Together::new(surfaces.clone());
-    if together.face_count() == 0 {
-        return Err("no faces: there is no surface to measure".into());
-    }
+    let together = Together::new(inputs.iter().map(solid::Input::surface).collect());
     let mp = mass_properties(&together);
-    let bodies: Vec<FaceSubset<'_, LoadedSurface>> = if !args.union {
-        Vec::new()
-    } else if surfaces.len() == 1 {
-        shells(surfaces[0]).into_iter().map(|faces| FaceSubset::new(surfaces[0], faces)).collect()
-    } else {
-        surfaces.iter().map(|s| FaceSubset::all(*s)).collect()
-    };
+    let bodies = if args.union { solid::union_bodies(&inputs) } else { Vec::new() };
+    let bodies: Vec<_> = bodies.into_iter().map(|b| b.surface).collect();
     let (min, max, bounds_from) = match args.bounds {
         Some((min, max)) => (min, max, "given"),
         None => {
@@ -312,6 +307,7 @@ fn measure(args: GridArgs, quiet: bool) -> Result<(), String> {
         seconds,
         out: args.out.as_ref().map(|p| p.display().to_string()),
         png: args.png.as_ref().map(|p| p.display().to_string()),
+        warnings,
     };
     let text = if args.json {
         serde_json::to_string(&report).map_err(|e| e.to_string())? + "\n"

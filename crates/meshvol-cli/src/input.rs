@@ -94,8 +94,9 @@ impl Progress {
         self.suspend(|| eprintln!("meshvol: error: {error}"));
     }
 
-    pub fn finish(self) {
-        if let Some(bar) = self.bar {
+    /// Clears the bar; warnings still print after it.
+    pub fn finish(&self) {
+        if let Some(bar) = &self.bar {
             bar.finish_and_clear();
         }
     }

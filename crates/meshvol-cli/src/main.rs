@@ -10,12 +10,13 @@ mod input;
 mod profile;
 mod repair;
 mod section;
+mod solid;
 mod union;
 mod units;
 mod volume;
 
 use clap::{Args, CommandFactory, Parser, Subcommand};
-use meshvol::topology::{CheckOptions, Weld};
+use meshvol::topology::CheckOptions;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -102,15 +103,7 @@ struct TopologyArgs {
 impl TopologyArgs {
     /// Check options; `intersections` turns on the search for crossing triangles.
     fn options(&self, intersections: bool) -> CheckOptions {
-        CheckOptions {
-            weld: match self.weld_tolerance {
-                None => Weld::Auto,
-                Some(0.0) => Weld::Exact,
-                Some(t) => Weld::Tolerance(t),
-            },
-            intersections,
-            ..CheckOptions::default()
-        }
+        solid::check_options(self.weld_tolerance, intersections)
     }
 }
 
@@ -152,16 +145,12 @@ struct VolumeArgs {
     /// slower than the default, which is already within `volume_error_bound`).
     #[arg(long)]
     exact: bool,
-    /// Measure the surface as the file winds it, without checking it: no welding, no
-    /// cavity or shell correction, no caps. Fastest; `volume` is then |signed volume|.
-    #[arg(long, conflicts_with_all = ["weld_tolerance", "intersections"])]
-    no_check: bool,
-    /// Also search for crossing triangles, as `meshvol check` does (slower; the default
-    /// check finds overlapping shells by exact ray tests only).
-    #[arg(long)]
+    /// Accepted for scripts written when the crossing search was optional: it is now
+    /// part of the default check (`--no-intersections` skips it).
+    #[arg(long, hide = true, conflicts_with_all = ["no_check", "no_intersections"])]
     intersections: bool,
     #[command(flatten)]
-    topology: TopologyArgs,
+    solid: solid::SolidArgs,
 }
 
 fn non_negative_finite(s: &str) -> Result<f64, String> {
@@ -219,7 +208,7 @@ fn main() -> ExitCode {
     }
     match cli.command {
         Command::Volume(args) => run_volume(args, cli.quiet),
-        Command::Check(args) => run_check(args),
+        Command::Check(args) => run_check(args, cli.quiet),
         Command::Area(args) => area::run(args, cli.quiet),
         Command::Section(args) => section::run(args, cli.quiet),
         Command::Hull(args) => hull::run(args, cli.quiet),
@@ -249,14 +238,21 @@ fn emit(out: &mut impl Write, text: &str) -> bool {
     out.write_all(text.as_bytes()).is_ok()
 }
 
-fn run_check(args: CheckArgs) -> ExitCode {
+fn run_check(args: CheckArgs, quiet: bool) -> ExitCode {
     let options = args.topology.options(!args.no_intersections);
     let mut all_bound = true;
     let mut stdout = std::io::stdout().lock();
+    let progress = input::Progress::new(&args.files, quiet);
     for path in &args.files {
         let name = path.display().to_string();
-        let checked = input::load(path)
-            .and_then(|loaded| Ok((check::check(&loaded.surface, &options)?.1, loaded)));
+        progress.stage("reading", path);
+        let checked = input::load(path).and_then(|loaded| {
+            progress.stage("checking", path);
+            let c = meshvol::topology::check(&loaded.surface, &options)
+                .map_err(|e| format!("{name}: {e}"))?;
+            Ok((check::report(&c), loaded))
+        });
+        progress.done(path);
         match checked {
             Ok((report, loaded)) => {
                 all_bound &= report.bounds_a_volume;
@@ -272,18 +268,19 @@ fn run_check(args: CheckArgs) -> ExitCode {
                     check::text(&name, loaded.format.name(), &report)
                 };
                 for w in &loaded.warnings {
-                    eprintln!("meshvol: warning: {name}: {w}");
+                    progress.warn(&name, w);
                 }
-                if !emit(&mut stdout, &text) {
+                if !progress.suspend(|| emit(&mut stdout, &text)) {
                     return ExitCode::FAILURE;
                 }
             }
             Err(e) => {
-                eprintln!("meshvol: error: {e}");
+                progress.error(&e);
                 all_bound = false;
             }
         }
     }
+    progress.finish();
     if all_bound {
         ExitCode::SUCCESS
     } else {
@@ -292,21 +289,15 @@ fn run_check(args: CheckArgs) -> ExitCode {
 }
 
 fn run_volume(args: VolumeArgs, quiet: bool) -> ExitCode {
-    let options = VolumeOptions {
-        density: args.density,
-        units: args.units,
-        exact: args.exact,
-        check: (!args.no_check).then(|| args.topology.options(args.intersections)),
-    };
+    let options = VolumeOptions { density: args.density, units: args.units, exact: args.exact };
+    let check = args.solid.check();
     let mut failed = false;
     let mut stdout = std::io::stdout().lock();
     let progress = input::Progress::new(&args.files, quiet);
     for path in &args.files {
-        let name = path.display().to_string();
-        progress.stage("reading", path);
-        let report = input::load(path).and_then(|loaded| {
+        let report = solid::read(path, check, &progress).and_then(|input| {
             progress.stage("measuring", path);
-            volume::report(&name, &loaded, &options)
+            volume::report(&input, &options)
         });
         progress.done(path);
         match report {
@@ -317,7 +308,7 @@ fn run_volume(args: VolumeArgs, quiet: bool) -> ExitCode {
                     volume::text(&r)
                 };
                 for w in &r.warnings {
-                    progress.warn(&name, w);
+                    progress.warn(&r.file, w);
                 }
                 if !progress.suspend(|| emit(&mut stdout, &out)) {
                     return ExitCode::FAILURE;

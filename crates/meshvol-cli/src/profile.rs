@@ -2,6 +2,7 @@
 //! between levels and the cross-section area at each level (a strapping table).
 
 use crate::input;
+use crate::solid::{self, SolidArgs};
 use clap::{Args, ValueEnum};
 use meshvol::grid::{profile, Axis, Levels, Profile};
 use serde::Serialize;
@@ -37,16 +38,21 @@ pub struct ProfileArgs {
     /// Print CSV: level,volume_below,slab_volume,section_area.
     #[arg(long)]
     csv: bool,
+    #[command(flatten)]
+    solid: SolidArgs,
 }
 
 /// The JSON report: exactly these keys.
 #[derive(Serialize)]
 struct ProfileReport<'a> {
+    file: &'a str,
     axis: &'static str,
     levels: &'a [f64],
     volume_below: &'a [f64],
     slab_volume: &'a [f64],
     section_area: &'a [f64],
+    /// The reader's warnings and the reasons to doubt the solid.
+    warnings: &'a [String],
 }
 
 /// Runs the command: the report on stdout, an error on stderr with exit status 1.
@@ -61,13 +67,11 @@ pub fn run(args: ProfileArgs, quiet: bool) -> ExitCode {
 }
 
 fn measure(args: ProfileArgs, quiet: bool) -> Result<(), String> {
-    let name = args.file.display().to_string();
-    let loaded = input::load(&args.file)?;
-    if !quiet {
-        for w in &loaded.warnings {
-            eprintln!("meshvol: warning: {name}: {w}");
-        }
-    }
+    let progress = input::Progress::new(std::slice::from_ref(&args.file), quiet);
+    let input = solid::read(&args.file, args.solid.check(), &progress)?;
+    progress.finish();
+    let name = &input.name;
+    let mut warnings = input.warnings.clone();
     let axis = match args.axis {
         AxisArg::X => Axis::X,
         AxisArg::Y => Axis::Y,
@@ -78,26 +82,31 @@ fn measure(args: ProfileArgs, quiet: bool) -> Result<(), String> {
         (None, Some(h)) => Levels::Step(h),
         (None, None) => return Err("give --levels N or --step H".into()),
     };
-    let p = profile(&loaded.surface, axis, levels).map_err(|e| format!("{name}: {e}"))?;
-    if !quiet && p.volume_below.last().is_some_and(|&v| v < 0.0) {
-        eprintln!(
-            "meshvol: warning: {name}: volumes are negative: the faces are wound inward \
-             (clockwise seen from outside)"
+    let p = profile(&input.surface(), axis, levels).map_err(|e| format!("{name}: {e}"))?;
+    if p.volume_below.last().is_some_and(|&v| v < 0.0) {
+        warnings.push(
+            "volumes are negative: the faces are wound inward (clockwise seen from outside)"
+                .to_string(),
         );
+    }
+    for w in &warnings {
+        progress.warn(name, w);
     }
     let text = if args.json {
         let report = ProfileReport {
+            file: name,
             axis: p.axis.name(),
             levels: &p.levels,
             volume_below: &p.volume_below,
             slab_volume: &p.slab_volume,
             section_area: &p.section_area,
+            warnings: &warnings,
         };
         serde_json::to_string(&report).map_err(|e| e.to_string())? + "\n"
     } else if args.csv {
         csv(&p)
     } else {
-        table(&name, &p)
+        table(name, &p)
     };
     let _ = std::io::stdout().lock().write_all(text.as_bytes());
     Ok(())

@@ -17,7 +17,9 @@ pub fn run(
 ) -> Result<(), String> {
     let name = file.display().to_string();
     let loaded = crate::input::load(file)?;
-    let (checked, report) = crate::check::check(&loaded.surface, options)?;
+    let checked =
+        meshvol::topology::check(&loaded.surface, options).map_err(|e| format!("{name}: {e}"))?;
+    let report = crate::check::report(&checked);
     let mesh = checked.solid_mesh(cap);
     let extension = out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let written = std::fs::File::create(out).and_then(|f| {

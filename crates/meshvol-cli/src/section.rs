@@ -33,6 +33,8 @@ pub struct SectionArgs {
     /// Write the section to OUT (.wkt, .geojson or .json) and print the report.
     #[arg(long, short, value_name = "OUT")]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    solid: crate::solid::SolidArgs,
 }
 
 /// Parses `z=H`, `x=H`, `y=H` or `PX,PY,PZ,NX,NY,NZ`.
@@ -103,15 +105,12 @@ fn plane_report(f: &PlaneFrame) -> PlaneReport {
 }
 
 /// Cuts a loaded mesh.
-fn measure(
-    file: &str,
-    loaded: &meshvol_io::Loaded,
-    plane: &Plane,
-) -> (SectionReport, Vec<Polygon>) {
-    let cut = section(&loaded.surface, plane);
+fn measure(input: &crate::solid::Input, plane: &Plane) -> (SectionReport, Vec<Polygon>) {
+    let (file, loaded) = (&input.name, &input.loaded);
+    let cut = section(&input.surface(), plane);
     let props = area_properties(&cut.polygons);
     let frame = plane.frame();
-    let mut warnings = loaded.warnings.clone();
+    let mut warnings = input.warnings.clone();
     if cut.segments == 0 {
         warnings.push("the plane does not cut the surface: the section is empty".into());
     }
@@ -238,13 +237,12 @@ pub fn run(args: SectionArgs, quiet: bool) -> ExitCode {
 
 fn run_inner(args: &SectionArgs, quiet: bool) -> Result<(), String> {
     let out_geojson = args.out.as_deref().map(out_is_geojson).transpose()?;
-    let loaded = crate::input::load(&args.file)?;
-    let name = args.file.display().to_string();
-    let (report, polygons) = measure(&name, &loaded, &args.plane);
-    if !quiet {
-        for w in &report.warnings {
-            eprintln!("meshvol: warning: {name}: {w}");
-        }
+    let progress = crate::input::Progress::new(std::slice::from_ref(&args.file), quiet);
+    let input = crate::solid::read(&args.file, args.solid.check(), &progress)?;
+    progress.finish();
+    let (report, polygons) = measure(&input, &args.plane);
+    for w in &report.warnings {
+        progress.warn(&input.name, w);
     }
     if let (Some(out), Some(geojson)) = (&args.out, out_geojson) {
         let bytes = geometry(&report, &polygons, geojson).map_err(|e| e.to_string())?;

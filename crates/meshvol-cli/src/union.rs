@@ -2,9 +2,9 @@
 //! shells of one file) as a certified interval, without a boolean mesh.
 
 use crate::input;
+use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{shells, union, FaceSubset};
-use meshvol_io::LoadedSurface;
+use meshvol::grid::union;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::io::Write;
@@ -21,9 +21,11 @@ pub struct UnionArgs {
     #[arg(long, value_name = "REL", default_value_t = 1e-6, value_parser = crate::positive_finite)]
     tolerance: f64,
     /// Print one JSON object: lower, upper, volume, bodies, sum_of_volumes, cells_refined,
-    /// cells_resolved_exactly.
+    /// cells_resolved_exactly, volume_uncertainty, warnings.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    solid: SolidArgs,
 }
 
 /// The JSON report: exactly these keys.
@@ -36,6 +38,10 @@ struct UnionReport {
     sum_of_volumes: f64,
     cells_refined: usize,
     cells_resolved_exactly: usize,
+    /// How far the caps on the bodies' holes could put the volume off; the interval is
+    /// widened by it (0 for closed bodies).
+    volume_uncertainty: f64,
+    warnings: Vec<String>,
 }
 
 /// Runs the command: the report on stdout, an error on stderr with exit status 1.
@@ -50,62 +56,54 @@ pub fn run(args: UnionArgs, quiet: bool) -> ExitCode {
 }
 
 fn measure(args: UnionArgs, quiet: bool) -> Result<(), String> {
-    let mut loaded = Vec::new();
+    let progress = input::Progress::new(&args.files, quiet);
+    let mut inputs = Vec::new();
+    let mut warnings = Vec::new();
     for path in &args.files {
-        let file = input::load(path)?;
-        if !quiet {
-            for w in &file.warnings {
-                eprintln!("meshvol: warning: {}: {w}", path.display());
-            }
-        }
-        loaded.push(file);
+        let input = solid::read(path, args.solid.check(), &progress)?;
+        warnings.extend(input.warnings.iter().map(|w| format!("{}: {w}", input.name)));
+        progress.done(path);
+        inputs.push(input);
     }
-    let surfaces: Vec<&LoadedSurface> = loaded.iter().map(|l| &l.surface).collect();
-    let (bodies, names): (Vec<FaceSubset<'_, LoadedSurface>>, Vec<String>) = if surfaces.len() == 1
-    {
-        let name = args.files[0].display().to_string();
-        shells(surfaces[0])
-            .into_iter()
-            .enumerate()
-            .map(|(k, faces)| {
-                (FaceSubset::new(surfaces[0], faces), format!("{name}, shell {}", k + 1))
-            })
-            .unzip()
-    } else {
-        surfaces
-            .iter()
-            .zip(&args.files)
-            .map(|(s, p)| (FaceSubset::all(*s), p.display().to_string()))
-            .unzip()
-    };
+    progress.finish();
+    let (bodies, names): (Vec<_>, Vec<String>) =
+        solid::union_bodies(&inputs).into_iter().map(|b| (b.surface, b.name)).unzip();
     if bodies.is_empty() {
         return Err("no faces: there is no body to measure".into());
     }
     let start = Instant::now();
-    let u = union(&bodies, args.tolerance).map_err(|e| e.to_string())?;
+    let mut u = union(&bodies, args.tolerance).map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();
+    // Caps on holes are guesses: the interval must hold whatever the missing faces were.
+    let uncertainty: f64 = inputs.iter().map(solid::Input::volume_uncertainty).sum();
+    u.lower = (u.lower - uncertainty).max(0.0);
+    u.upper += uncertainty;
+    for &b in &u.flipped {
+        warnings.push(format!(
+            "{}: wound inward (negative volume); measured as a solid turned outward (if it is \
+             a cavity, the union of shells is not what you want)",
+            names[b]
+        ));
+    }
+    if u.columns_unresolved > 0 {
+        warnings.push(format!(
+            "{} columns of the grid could not be resolved exactly; the interval keeps their \
+             bounds",
+            u.columns_unresolved
+        ));
+    }
+    if u.upper - u.lower > args.tolerance * u.lower.abs() {
+        let why = if uncertainty > 0.0 {
+            "the caps on holes leave it uncertain"
+        } else {
+            "refinement and exact resolution could not close it"
+        };
+        warnings
+            .push(format!("the interval is wider than the tolerance {}: {why}", args.tolerance));
+    }
     if !quiet {
-        for &b in &u.flipped {
-            eprintln!(
-                "meshvol: warning: {}: wound inward (negative volume); measured as a solid \
-                 turned outward (if it is a cavity, the union of shells is not what you want)",
-                names[b]
-            );
-        }
-        if u.columns_unresolved > 0 {
-            eprintln!(
-                "meshvol: warning: {} columns of the grid could not be resolved exactly; \
-                 the interval keeps their bounds",
-                u.columns_unresolved
-            );
-        }
-        let within = u.upper - u.lower <= args.tolerance * u.lower.abs();
-        if !within {
-            eprintln!(
-                "meshvol: warning: the interval is wider than the tolerance {}: refinement and \
-                 exact resolution could not close it",
-                args.tolerance
-            );
+        for w in &warnings {
+            eprintln!("meshvol: warning: {w}");
         }
     }
     let report = UnionReport {
@@ -116,6 +114,8 @@ fn measure(args: UnionArgs, quiet: bool) -> Result<(), String> {
         sum_of_volumes: u.sum_of_volumes,
         cells_refined: u.cells_refined,
         cells_resolved_exactly: u.cells_resolved_exactly,
+        volume_uncertainty: uncertainty,
+        warnings,
     };
     let text = if args.json {
         serde_json::to_string(&report).map_err(|e| e.to_string())? + "\n"
@@ -131,6 +131,9 @@ fn measure(args: UnionArgs, quiet: bool) -> Result<(), String> {
             u.upper,
             u.upper - u.lower
         );
+        if uncertainty > 0.0 {
+            let _ = writeln!(s, "  caps on holes    ± {uncertainty:.3e} (in the interval)");
+        }
         let _ = writeln!(s, "  sum of volumes   {}", u.sum_of_volumes);
         let _ = writeln!(
             s,

@@ -1,9 +1,9 @@
 //! `meshvol volume`: mass properties of each file, as text or one JSON object per line.
 
 use crate::check::CheckReport;
+use crate::solid::Input;
 use crate::units::{UnitNames, UnitsArg};
 use meshvol::accumulate::UNIT_ROUNDOFF;
-use meshvol::topology::CheckOptions;
 use meshvol::{exact_signed_volume, mass_properties, FaceRange, MassProperties, Surface};
 use meshvol_io::Loaded;
 use serde::Serialize;
@@ -16,9 +16,6 @@ pub struct VolumeOptions {
     /// `--units`, resolved per file against the unit the file declares.
     pub units: Option<UnitsArg>,
     pub exact: bool,
-    /// Check the surface and measure the solid it bounds; `None` measures the surface
-    /// as wound.
-    pub check: Option<CheckOptions>,
 }
 
 #[derive(Debug, Serialize)]
@@ -108,40 +105,26 @@ fn measure<S: Surface + ?Sized>(surface: &S, exact: bool) -> Result<MassProperti
     Ok(mp)
 }
 
-/// Measures a loaded file and builds its report.
-pub fn report(
-    file: &str,
-    loaded: &Loaded,
-    options: &VolumeOptions,
-) -> Result<VolumeReport, String> {
-    if loaded.face_count() == 0 {
-        return Err(format!("{file}: no faces: there is no surface to measure"));
-    }
+/// Measures a file's solid (or, unchecked, its surface as wound) and builds its report.
+pub fn report(input: &Input, options: &VolumeOptions) -> Result<VolumeReport, String> {
+    let (file, loaded) = (&input.name, &input.loaded);
     let exact = options.exact;
-    let as_wound = measure(&loaded.surface, exact)?;
-    let mut warnings = loaded.warnings.clone();
+    let as_wound = measure(&loaded.surface, exact).map_err(|e| format!("{file}: {e}"))?;
+    let mut warnings = input.warnings.clone();
     let (units, unit_warning) =
         crate::units::resolve(options.units, loaded.unit).map_err(|e| format!("{file}: {e}"))?;
     warnings.extend(unit_warning);
     // With a check, the properties are the solid's: shells turned outward, cavities
     // subtracted, degenerate and duplicate faces dropped, holes capped.
-    let (mp, check) = match &options.check {
+    let (mp, check) = match &input.check {
         None => (as_wound, None),
-        Some(check_options) => {
-            let (checked, report) = crate::check::check(&loaded.surface, check_options)?;
-            let solid = checked.solid(&loaded.surface);
-            let mp =
-                if checked.repairs() == (0, 0, 0) { as_wound } else { measure(&solid, exact)? };
-            let (_, dropped, caps) = checked.repairs();
-            let inward = report.orientation == Some("inward");
-            if !report.bounds_a_volume
-                || dropped > 0
-                || caps > 0
-                || (!inward && checked.repairs().0 > 0)
-            {
-                warnings.push(report.verdict.clone());
-            }
-            (mp, Some(report))
+        Some(checked) => {
+            let mp = if checked.repairs() == (0, 0, 0) {
+                as_wound
+            } else {
+                measure(&input.surface(), exact).map_err(|e| format!("{file}: {e}"))?
+            };
+            (mp, Some(crate::check::report(checked)))
         }
     };
     if mp.centroid.is_none() {
@@ -176,7 +159,7 @@ pub fn report(
     });
     let principal = mp.principal();
     Ok(VolumeReport {
-        file: file.to_string(),
+        file: file.clone(),
         format: loaded.format.name().to_string(),
         format_source: loaded.format_source.name(),
         vertices: loaded.vertex_count(),
@@ -238,9 +221,14 @@ pub fn text(r: &VolumeReport) -> String {
         "{}: {}, {} faces ({} triangles), {} vertices",
         r.file, r.format, r.faces, r.triangles, r.vertices
     );
-    let how = if r.exact { "exact, correctly rounded" } else { "±" };
-    let bound = if r.exact { String::new() } else { format!(" {}", num(r.volume_error_bound, 2)) };
-    let _ = writeln!(s, "  volume             {}{vol}  ({how}{bound})", num(r.volume, 15));
+    let uncertain = r.check.as_ref().is_some_and(|c| c.volume_uncertainty > 0.0);
+    let how = match (r.exact, uncertain) {
+        (true, false) => "exact, correctly rounded".to_string(),
+        // Exact arithmetic on a guessed surface: the caps' uncertainty dominates.
+        (true, true) => "exact for the capped solid".to_string(),
+        (false, _) => format!("± {}", num(r.volume_error_bound, 2)),
+    };
+    let _ = writeln!(s, "  volume             {}{vol}  ({how})", num(r.volume, 15));
     if r.signed_volume < 0.0 {
         let _ = writeln!(s, "  signed volume      {}{vol}", num(r.signed_volume, 15));
     }

@@ -298,7 +298,10 @@ fn profile_json_and_csv() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = write(dir.path(), "box.obj", &box_obj([0.0; 3], [2.0, 3.0, 4.0], 1));
     let v = json(&meshvol(&["profile", p(&mesh), "--levels", "4", "--json"]));
-    assert_eq!(keys(&v), ["axis", "levels", "section_area", "slab_volume", "volume_below"]);
+    assert_eq!(
+        keys(&v),
+        ["axis", "file", "levels", "section_area", "slab_volume", "volume_below", "warnings"]
+    );
     assert_eq!(v["axis"], "z");
     assert_eq!(v["levels"], serde_json::json!([0.0, 1.0, 2.0, 3.0, 4.0]));
     assert_eq!(v["volume_below"], serde_json::json!([0.0, 6.0, 12.0, 18.0, 24.0]));
@@ -338,7 +341,9 @@ fn union_of_files_and_of_shells() {
                 "lower",
                 "sum_of_volumes",
                 "upper",
-                "volume"
+                "volume",
+                "volume_uncertainty",
+                "warnings"
             ]
         );
         assert_eq!(v["bodies"], 2);

@@ -36,6 +36,25 @@ create_exception!(
      fewer than three vertices."
 );
 
+create_exception!(
+    meshvol,
+    MeshWarning,
+    pyo3::exceptions::PyUserWarning,
+    "A measurement was made, but of a solid that may not be the one meant: the surface is \
+     open (holes were capped), non-manifold, overlapping or self-intersecting, or faces were \
+     left out or turned. The message names the reason, as the meshvol command's warnings do."
+);
+
+/// Issues each of `messages` as a [`MeshWarning`].
+pub fn warn_all(py: Python<'_>, messages: &[String]) -> PyResult<()> {
+    let category = py.get_type::<MeshWarning>();
+    for m in messages {
+        let text = std::ffi::CString::new(m.replace('\0', " ")).unwrap_or_default();
+        PyErr::warn(py, &category, &text, 2)?;
+    }
+    Ok(())
+}
+
 /// A [`MeshError`] with `message`.
 pub fn mesh_error(message: impl Display) -> PyErr {
     MeshError::new_err(message.to_string())

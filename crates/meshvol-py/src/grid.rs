@@ -3,9 +3,8 @@
 
 use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::{mesh_of, PyMesh};
-use crate::properties::require_faces;
 use meshvol::grid::{self, bytes_text, Axis, FaceSubset, Grid, GridError, Levels};
-use meshvol::{mass_properties, Mesh};
+use meshvol::{mass_properties, Surface};
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray1, PyArray3};
 use pyo3::prelude::*;
@@ -54,16 +53,16 @@ fn pitch_of(pitch: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
     Ok(sizes)
 }
 
-/// The cell volumes of `mesh` on the grid the arguments describe.
-pub fn cell_volumes<'py>(
+/// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
+/// arguments describe.
+pub fn cell_volumes<'py, S: Surface>(
     py: Python<'py>,
-    mesh: &Mesh,
+    mesh: &S,
     cells: Option<[i64; 3]>,
     bounds: Option<([f64; 3], [f64; 3])>,
     fraction: bool,
     pitch: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
-    require_faces(mesh)?;
     let (min, max, from_mesh) = match bounds {
         Some((min, max)) => (min, max, false),
         None => match py.detach(|| mass_properties(mesh)).bounds {
@@ -149,10 +148,10 @@ impl PyProfile {
     }
 }
 
-/// The profile of `mesh` along `axis`.
-pub fn profile(
+/// The profile of `mesh` (a checked solid, or a surface as wound) along `axis`.
+pub fn profile<S: Surface>(
     py: Python<'_>,
-    mesh: &Mesh,
+    mesh: &S,
     axis: &str,
     levels: Option<i64>,
     step: Option<f64>,
@@ -209,6 +208,11 @@ pub struct PyUnion {
     columns_unresolved: usize,
     /// Bodies wound inward, measured turned outward.
     flipped: Vec<usize>,
+    /// How far the caps on the bodies' holes could put the volume off; the interval is
+    /// widened by it (0 for closed bodies).
+    volume_uncertainty: f64,
+    /// Why the bodies' solids may not be the ones meant (also issued as MeshWarnings).
+    warnings: Vec<String>,
 }
 
 #[pymethods]
@@ -225,37 +229,60 @@ impl PyUnion {
 /// boolean mesh (the numbers of `meshvol union`).
 ///
 /// meshes is a list of meshes (meshvol.Mesh or objects with .vertices and .faces, such
-/// as trimesh.Trimesh); a single mesh, or a list of one, stands for its shells, as a
-/// single file does for the command. Refinement stops once upper - lower <= tolerance *
-/// lower.
+/// as trimesh.Trimesh); a single mesh, or a list of one, stands for its bodies (each
+/// outermost shell with its cavities), as a single file does for the command.
+/// Refinement stops once upper - lower <= tolerance * lower. check=True (the default)
+/// measures each mesh's checked solid, with holes capped and the caps' uncertainty
+/// widening the interval; check=False the surfaces as wound.
 #[pyfunction]
-#[pyo3(signature = (meshes, tolerance = 1e-6))]
-pub fn union(py: Python<'_>, meshes: &Bound<'_, PyAny>, tolerance: f64) -> PyResult<PyUnion> {
+#[pyo3(signature = (meshes, tolerance = 1e-6, check = true))]
+pub fn union(
+    py: Python<'_>,
+    meshes: &Bound<'_, PyAny>,
+    tolerance: f64,
+    check: bool,
+) -> PyResult<PyUnion> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
     let single = meshes.cast::<PyMesh>().is_ok() || crate::convert::mesh_like(meshes)?.is_some();
-    let bodies: Vec<Bound<'_, PyMesh>> = if single {
+    let meshes: Vec<Bound<'_, PyMesh>> = if single {
         vec![mesh_of(meshes)?]
     } else {
         meshes.try_iter()?.map(|item| mesh_of(&item?)).collect::<PyResult<_>>()?
     };
-    if bodies.is_empty() {
+    if meshes.is_empty() {
         return Err(mesh_error("no bodies: give at least one mesh"));
     }
-    let surfaces: Vec<&Mesh> = bodies.iter().map(|b| &b.get().mesh).collect();
-    let u = py
+    let mut measured = Vec::new();
+    let mut warnings = Vec::new();
+    let mut uncertainty = 0.0;
+    for m in &meshes {
+        let (checked, surface, doubts) = m.get().measured(py, check)?;
+        uncertainty += checked.map_or(0.0, |c| c.volume_uncertainty);
+        warnings.extend(doubts);
+        measured.push((checked, surface, &m.get().mesh));
+    }
+    let mut u = py
         .detach(|| {
-            let subsets: Vec<FaceSubset<'_, Mesh>> = match surfaces.as_slice() {
-                [one] => grid::shells(*one).into_iter().map(|f| FaceSubset::new(*one, f)).collect(),
-                many => many.iter().map(|m| FaceSubset::all(*m)).collect(),
+            let bodies: Vec<FaceSubset<_>> = match measured.as_slice() {
+                [(Some(c), surface, _)] => {
+                    c.bodies().into_iter().map(|b| FaceSubset::new(*surface, b.faces)).collect()
+                }
+                [(None, surface, mesh)] => {
+                    grid::shells(*mesh).into_iter().map(|f| FaceSubset::new(*surface, f)).collect()
+                }
+                many => many.iter().map(|(_, surface, _)| FaceSubset::all(*surface)).collect(),
             };
-            if subsets.is_empty() {
+            if bodies.is_empty() {
                 return Err("no faces: there is no body to measure".to_string());
             }
-            grid::union(&subsets, tolerance).map_err(|e| e.to_string())
+            grid::union(&bodies, tolerance).map_err(|e| e.to_string())
         })
         .map_err(mesh_error)?;
+    // Caps on holes are guesses: the interval must hold whatever the missing faces were.
+    u.lower = (u.lower - uncertainty).max(0.0);
+    u.upper += uncertainty;
     Ok(PyUnion {
         lower: u.lower,
         upper: u.upper,
@@ -266,5 +293,7 @@ pub fn union(py: Python<'_>, meshes: &Bound<'_, PyAny>, tolerance: f64) -> PyRes
         cells_resolved_exactly: u.cells_resolved_exactly,
         columns_unresolved: u.columns_unresolved,
         flipped: u.flipped,
+        volume_uncertainty: uncertainty,
+        warnings,
     })
 }

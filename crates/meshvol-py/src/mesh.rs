@@ -5,6 +5,7 @@ use crate::convert;
 use crate::errors::{invalid, mesh_error, read_error};
 use crate::grid::{self, PyProfile};
 use crate::properties::{self, PyMassProperties};
+use meshvol::topology::{self, Check, CheckOptions, Measured};
 use meshvol::{Faces, Mesh, MeshError};
 use numpy::ndarray::ArrayView2;
 use numpy::{Element, PyArray2, PyArray3};
@@ -12,6 +13,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
+use std::sync::OnceLock;
 
 /// What a file said about the mesh read from it.
 #[derive(Clone, Debug, Default)]
@@ -39,11 +41,44 @@ struct Source {
 pub struct PyMesh {
     pub(crate) mesh: Mesh,
     source: Source,
+    /// The check with default options, made on first use and kept: every measurement
+    /// of the solid starts from it.
+    checked: OnceLock<Check>,
 }
 
 impl From<Mesh> for PyMesh {
     fn from(mesh: Mesh) -> Self {
-        PyMesh { mesh, source: Source::default() }
+        PyMesh { mesh, source: Source::default(), checked: OnceLock::new() }
+    }
+}
+
+impl PyMesh {
+    /// The check with default options (`meshvol check`'s), computed once.
+    pub(crate) fn checked(&self, py: Python<'_>) -> PyResult<&Check> {
+        if let Some(c) = self.checked.get() {
+            return Ok(c);
+        }
+        let c = py
+            .detach(|| topology::check(&self.mesh, &CheckOptions::default()))
+            .map_err(crate::errors::mesh_error)?;
+        Ok(self.checked.get_or_init(|| c))
+    }
+
+    /// What a measurement is taken of, and why to doubt it: with `check`, the solid the
+    /// surface bounds (as every command measures by default); without, the surface as
+    /// wound. The doubts are also issued as MeshWarnings.
+    pub(crate) fn measured(
+        &self,
+        py: Python<'_>,
+        check: bool,
+    ) -> PyResult<(Option<&Check>, Measured<'_, Mesh>, Vec<String>)> {
+        if !check {
+            return Ok((None, Measured::AsWound(&self.mesh), Vec::new()));
+        }
+        let c = self.checked(py)?;
+        let doubts = c.doubts();
+        crate::errors::warn_all(py, &doubts)?;
+        Ok((Some(c), Measured::Solid(c.solid(&self.mesh)), doubts))
     }
 }
 
@@ -112,6 +147,7 @@ impl PyMesh {
             return Ok(PyMesh {
                 mesh: other.get().mesh.clone(),
                 source: other.get().source.clone(),
+                checked: other.get().checked.clone(),
             });
         }
         match convert::mesh_like(vertices)? {
@@ -197,20 +233,28 @@ impl PyMesh {
         self.source.objects.clone()
     }
 
-    /// Volume, area, centroid and inertia of the solid the surface bounds, as wound (the
-    /// numbers of `meshvol volume --no-check`).
+    /// Volume, area, centroid and inertia of the solid the surface bounds: the numbers
+    /// of `meshvol volume`. By default the solid is the checked one (welded, shells
+    /// turned outward, cavities subtracted, duplicate faces dropped, holes capped), and
+    /// why it may not be the one meant is issued as MeshWarnings and listed in
+    /// `warnings`; check=False measures the surface as wound (`meshvol volume
+    /// --no-check`). signed_volume is always the surface's as wound (negative for
+    /// inward winding), as in the command's JSON.
     ///
     /// density scales mass, inertia and principal moments. exact=True replaces the
-    /// signed volume by the correctly rounded exact one (a few times slower).
-    #[pyo3(signature = (density = 1.0, exact = false))]
+    /// volume by the correctly rounded exact one (a few times slower).
+    #[pyo3(signature = (density = 1.0, exact = false, check = true))]
     fn mass_properties(
         &self,
         py: Python<'_>,
         density: f64,
         exact: bool,
+        check: bool,
     ) -> PyResult<PyMassProperties> {
         properties::require_faces(&self.mesh)?;
-        properties::measure(py, &self.mesh, density, exact)
+        properties::check_density(density)?;
+        let (checked, surface, warnings) = self.measured(py, check)?;
+        properties::measure_solid(py, &self.mesh, checked, &surface, density, exact, warnings)
     }
 
     /// The topology facts of `meshvol check`: closed? manifold? winding? shells,
@@ -236,7 +280,10 @@ impl PyMesh {
     /// mesh's bounding box); or pitch=h (or (hx, hy, hz)): cells of that size from the
     /// lower bound, enough of them to cover the upper one. fraction=True divides each
     /// cell's volume by the cell's.
-    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None))]
+    ///
+    /// check=True (the default) measures the checked solid, as `meshvol grid` does;
+    /// check=False the surface as wound.
+    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true))]
     fn grid<'py>(
         &self,
         py: Python<'py>,
@@ -244,21 +291,29 @@ impl PyMesh {
         bounds: Option<([f64; 3], [f64; 3])>,
         fraction: bool,
         pitch: Option<&Bound<'py, PyAny>>,
+        check: bool,
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
-        grid::cell_volumes(py, &self.mesh, cells, bounds, fraction, pitch)
+        properties::require_faces(&self.mesh)?;
+        let (_, surface, _) = self.measured(py, check)?;
+        grid::cell_volumes(py, &surface, cells, bounds, fraction, pitch)
     }
 
     /// The volume below each level along an axis (a strapping table): levels=N gives N
-    /// slabs between the mesh's extremes, step=h a level every h.
-    #[pyo3(signature = (axis = "z", levels = None, step = None))]
+    /// slabs between the mesh's extremes, step=h a level every h. check=True (the
+    /// default) measures the checked solid, as `meshvol profile` does; check=False the
+    /// surface as wound.
+    #[pyo3(signature = (axis = "z", levels = None, step = None, check = true))]
     fn profile(
         &self,
         py: Python<'_>,
         axis: &str,
         levels: Option<i64>,
         step: Option<f64>,
+        check: bool,
     ) -> PyResult<PyProfile> {
-        grid::profile(py, &self.mesh, axis, levels, step)
+        properties::require_faces(&self.mesh)?;
+        let (_, surface, _) = self.measured(py, check)?;
+        grid::profile(py, &surface, axis, levels, step)
     }
 
     /// The same surface with every face replaced by its fan of triangles.
@@ -300,5 +355,5 @@ pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyMesh> {
         let error = meshvol_io::ReadError { path, location: None, message: e.to_string() };
         read_error(py, &error)
     })?;
-    Ok(PyMesh { mesh, source })
+    Ok(PyMesh { mesh, source, checked: OnceLock::new() })
 }

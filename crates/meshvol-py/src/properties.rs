@@ -58,6 +58,10 @@ pub struct PyMassProperties {
     #[pyo3(get)]
     mass: f64,
     bounds: Option<Bounds>,
+    /// Why the measured solid may not be the one meant (empty when beyond doubt or
+    /// unchecked).
+    #[pyo3(get)]
+    warnings: Vec<String>,
 }
 
 impl PyMassProperties {
@@ -85,6 +89,7 @@ impl PyMassProperties {
             density,
             mass: density * volume,
             bounds: mp.bounds,
+            warnings: Vec::new(),
         }
     }
 }
@@ -127,6 +132,34 @@ pub fn measure<S: Surface + ?Sized>(
         })
         .map_err(mesh_error)?;
     Ok(PyMassProperties::new(&mp, density, exact))
+}
+
+/// Measures the solid `surface` of `mesh` (checked as `checked` says, or as wound)
+/// with the GIL released, as `meshvol volume` does: the properties are the solid's,
+/// `signed_volume` the surface's as wound.
+pub fn measure_solid<S: Surface + ?Sized>(
+    py: Python<'_>,
+    mesh: &meshvol::Mesh,
+    checked: Option<&meshvol::topology::Check>,
+    surface: &S,
+    density: f64,
+    exact: bool,
+    warnings: Vec<String>,
+) -> PyResult<PyMassProperties> {
+    let repaired = checked.is_some_and(|c| c.repairs() != (0, 0, 0));
+    let mut solid = if repaired {
+        measure(py, surface, density, exact)?
+    } else {
+        measure(py, mesh, density, exact)?
+    };
+    if repaired {
+        let as_wound = py.detach(|| meshvol::mass_properties(mesh));
+        solid.signed_volume = as_wound.signed_volume;
+        solid.faces = as_wound.faces;
+        solid.triangles = as_wound.triangles;
+    }
+    solid.warnings = warnings;
+    Ok(solid)
 }
 
 #[pymethods]
@@ -188,6 +221,7 @@ impl PyMassProperties {
             None => None,
         };
         d.set_item("bounds", bounds)?;
+        d.set_item("warnings", &self.warnings)?;
         Ok(d)
     }
 

@@ -206,6 +206,29 @@ impl Mesh {
         Mesh { positions: self.positions.clone(), faces: Faces::Triangles(triangles) }
     }
 
+    /// The meshes one after another, as one mesh (vertices not shared between them).
+    ///
+    /// ```
+    /// use meshvol::shapes::cuboid;
+    /// use meshvol::Mesh;
+    /// let two = Mesh::concatenate(&[cuboid([0.0; 3], [1.0; 3]), cuboid([2.0; 3], [3.0; 3])]);
+    /// assert_eq!((two.vertex_count(), two.face_count()), (16, 12));
+    /// ```
+    pub fn concatenate(meshes: &[Mesh]) -> Mesh {
+        let mut positions = Vec::new();
+        let mut offsets = vec![0];
+        let mut indices = Vec::new();
+        for mesh in meshes {
+            let base = positions.len() as u32;
+            positions.extend_from_slice(&mesh.positions);
+            for f in 0..mesh.face_count() {
+                indices.extend(mesh.face(f).iter().map(|&v| v + base));
+                offsets.push(indices.len());
+            }
+        }
+        Mesh { positions, faces: Faces::Polygons { offsets, indices } }.compact()
+    }
+
     /// The same mesh with every face's winding reversed.
     pub fn flipped(&self) -> Mesh {
         let faces = match &self.faces {
@@ -235,6 +258,18 @@ pub trait Surface: Sync {
     ///
     /// Implementations must yield finite coordinates (validate when building).
     fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point));
+}
+
+/// A reference to a surface is the surface.
+impl<S: Surface + ?Sized> Surface for &S {
+    fn face_count(&self) -> usize {
+        (**self).face_count()
+    }
+
+    #[inline]
+    fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
+        (**self).fan(face, triangle)
+    }
 }
 
 impl Surface for Mesh {

@@ -11,24 +11,25 @@ use crate::{Point, Surface};
 use rayon::prelude::*;
 
 /// Some faces of a surface, by index, as a surface of their own: one shell of a file,
-/// or all of a file's faces.
+/// or all of a file's faces. `S` is the surface itself or a reference to it.
 #[derive(Clone, Debug)]
-pub struct FaceSubset<'a, S: ?Sized> {
-    surface: &'a S,
+pub struct FaceSubset<S> {
+    surface: S,
     faces: Vec<usize>,
 }
 
-impl<'a, S: Surface + ?Sized> FaceSubset<'a, S> {
+impl<S: Surface> FaceSubset<S> {
     /// Faces `faces` of `surface`; indices beyond its faces are left out.
-    pub fn new(surface: &'a S, mut faces: Vec<usize>) -> Self {
+    pub fn new(surface: S, mut faces: Vec<usize>) -> Self {
         let n = surface.face_count();
         faces.retain(|&f| f < n);
         FaceSubset { surface, faces }
     }
 
     /// All faces of `surface`.
-    pub fn all(surface: &'a S) -> Self {
-        FaceSubset { surface, faces: (0..surface.face_count()).collect() }
+    pub fn all(surface: S) -> Self {
+        let faces = (0..surface.face_count()).collect();
+        FaceSubset { surface, faces }
     }
 
     /// The faces, as indices into the whole surface.
@@ -37,7 +38,7 @@ impl<'a, S: Surface + ?Sized> FaceSubset<'a, S> {
     }
 }
 
-impl<S: Surface + ?Sized> Surface for FaceSubset<'_, S> {
+impl<S: Surface> Surface for FaceSubset<S> {
     fn face_count(&self) -> usize {
         self.faces.len()
     }

@@ -43,7 +43,7 @@ mod predicates;
 mod solid;
 mod weld;
 
-pub use solid::Solid;
+pub use solid::{Measured, Solid, SolidView};
 
 use crate::buckets::{for_each_range_mut, Buckets, SharedItems};
 use components::Components;
@@ -182,7 +182,7 @@ pub struct Check {
     pub overlapping_shells: Vec<[usize; 2]>,
     /// Crossing face pairs within a shell; `None` when not looked for.
     pub self_intersections: Option<usize>,
-    /// A few crossing face pairs (within or between shells).
+    /// A few crossing face pairs, each once: within shells first, then between shells.
     pub intersection_examples: Vec<[usize; 2]>,
     /// V − E + F of the whole surface.
     pub euler_characteristic: i64,
@@ -267,6 +267,123 @@ impl Check {
     pub fn repairs(&self) -> (usize, usize, usize) {
         self.solid.changes()
     }
+
+    /// The solid's bodies: each outermost shell with the shells nested in it (its
+    /// cavities, and islands in those), as faces of [`Check::solid`]. Bodies are
+    /// numbered as their outermost shells are, in shell order; overlapping shells are
+    /// separate bodies. Each body is a solid of its own (cavities wound inward), so
+    /// measuring one gives its volume with its cavities subtracted.
+    ///
+    /// ```
+    /// use meshvol::shapes::cuboid;
+    /// use meshvol::topology::{check, CheckOptions};
+    /// use meshvol::{mass_properties, Mesh, Surface};
+    /// // A 2×2×2 box with a centred 1×1×1 cavity (both wound outward in the file).
+    /// let (outer, inner) = (cuboid([0.0; 3], [2.0; 3]), cuboid([0.5; 3], [1.5; 3]));
+    /// let mesh = Mesh::concatenate(&[outer, inner]);
+    /// let c = check(&mesh, &CheckOptions::default()).unwrap();
+    /// let bodies = c.bodies();
+    /// assert_eq!((bodies.len(), bodies[0].shell, bodies[0].faces.len()), (1, 0, 12));
+    /// assert_eq!(mass_properties(&c.solid(&mesh)).signed_volume, 7.0);
+    /// ```
+    pub fn bodies(&self) -> Vec<Body> {
+        let root = |mut s: usize| {
+            // Parents are strictly larger shells, so the walk ends.
+            while let Some(p) = self.shells[s].parent {
+                s = p;
+            }
+            s
+        };
+        let roots: Vec<usize> =
+            (0..self.shells.len()).filter(|&s| self.shells[s].parent.is_none()).collect();
+        let mut body_of_root = vec![usize::MAX; self.shells.len()];
+        for (b, &r) in roots.iter().enumerate() {
+            body_of_root[r] = b;
+        }
+        let group: Vec<usize> = (0..self.shells.len()).map(|s| body_of_root[root(s)]).collect();
+        self.solid
+            .faces_by(roots.len(), |s| group[s])
+            .into_iter()
+            .zip(roots)
+            .map(|(faces, shell)| Body { shell, faces })
+            .collect()
+    }
+
+    /// Why the solid of [`Check::solid`] may not be the one the file means, one reason a
+    /// line, empty when it is beyond doubt: holes capped, non-manifold edges, shells
+    /// that cannot be oriented, overlapping shells, self-intersections, faces wound
+    /// against their shell and duplicate faces left out. (Degenerate faces hold no
+    /// volume and are not a doubt.) Every measurement of the solid carries these.
+    pub fn doubts(&self) -> Vec<String> {
+        let mut doubts = Vec::new();
+        if self.shells.is_empty() {
+            doubts.push("no usable faces: nothing bounds a volume".to_string());
+            return doubts;
+        }
+        if self.boundary_loops > 0 {
+            doubts.push(format!(
+                "open: {} capped, so the volume is uncertain by ± {:.3e}",
+                plural(self.boundary_loops, "hole", "holes"),
+                self.volume_uncertainty
+            ));
+        }
+        if self.non_manifold_edges > 0 {
+            doubts.push(format!(
+                "{} (more than two faces meet): the solid is a guess",
+                plural(self.non_manifold_edges, "non-manifold edge", "non-manifold edges")
+            ));
+        }
+        let non_orientable = self.shells.iter().filter(|s| !s.orientable).count();
+        if non_orientable > 0 {
+            doubts.push(format!(
+                "{} not orientable (no inside and outside)",
+                plural(non_orientable, "shell is", "shells are")
+            ));
+        }
+        if !self.overlapping_shells.is_empty() {
+            doubts.push(format!(
+                "{} overlap: their common volume is counted twice (the union counts it once)",
+                plural(self.overlapping_shells.len(), "pair of shells", "pairs of shells")
+            ));
+        }
+        if let Some(n) = self.self_intersections.filter(|&n| n > 0) {
+            doubts.push(format!(
+                "{}: the surface crosses itself, so some volume may count twice or with the wrong sign",
+                plural(n, "self-intersecting face pair", "self-intersecting face pairs")
+            ));
+        }
+        if !self.consistently_oriented {
+            doubts.push(
+                "faces are wound against their neighbours: they were turned to agree with their \
+                 shells"
+                    .to_string(),
+            );
+        } else if self.orientation == Some(Orientation::Mixed) {
+            let against = self.shells.iter().filter(|s| s.wound_outward == Some(false)).count();
+            doubts.push(format!(
+                "{} wound against {} role (a cavity wound like a solid, or a solid like a \
+                 cavity): turned to it",
+                plural(against, "shell is", "shells are"),
+                if against == 1 { "its" } else { "their" }
+            ));
+        }
+        if self.duplicate_faces > 0 {
+            doubts.push(format!(
+                "{} left out (the same vertices as another face)",
+                plural(self.duplicate_faces, "duplicate face", "duplicate faces")
+            ));
+        }
+        doubts
+    }
+}
+
+/// One body of a checked solid: see [`Check::bodies`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Body {
+    /// Its outermost shell.
+    pub shell: usize,
+    /// Its faces, as indices of the faces of [`Check::solid`].
+    pub faces: Vec<usize>,
 }
 
 fn plural(n: usize, one: &str, many: &str) -> String {
@@ -622,17 +739,26 @@ fn analyse<S: Surface + ?Sized>(
     // Crossing triangles, as face pairs.
     let mut self_intersections = None;
     let mut intersection_examples = Vec::new();
-    if let Some(pairs) = crossing {
+    if let Some(mut pairs) = crossing {
+        // Polygon faces fan into several triangles: count each crossing face pair once.
+        pairs.par_sort_unstable();
+        pairs.dedup();
+        let same_shell = |&[f, g]: &[usize; 2]| shell_of_face[f] == shell_of_face[g];
         let mut within = 0;
-        for &[f, g] in &pairs {
-            let (sf, sg) = (shell_of_face[f] as usize, shell_of_face[g] as usize);
-            if sf == sg {
+        for pair in &pairs {
+            if same_shell(pair) {
                 within += 1;
             } else {
-                overlapping_shells.insert([sf, sg]);
+                let (sf, sg) = (shell_of_face[pair[0]] as usize, shell_of_face[pair[1]] as usize);
+                overlapping_shells.insert([sf.min(sg), sf.max(sg)]);
             }
         }
-        intersection_examples = pairs.iter().take(options.examples).copied().collect();
+        // Self-intersections first, so that a count above zero always has an example.
+        let (mut examples, between): (Vec<[usize; 2]>, Vec<[usize; 2]>) =
+            pairs.iter().partition(|p| same_shell(p));
+        examples.extend(between);
+        examples.truncate(options.examples);
+        intersection_examples = examples;
         self_intersections = Some(within);
     }
 
@@ -718,11 +844,12 @@ fn analyse<S: Surface + ?Sized>(
         solid::Faces {
             kept: &kept,
             flip: &face_flip,
+            shell: &shell_of_face,
             corners: corner_vertex,
             start: loops.start.clone(),
         },
         vertices,
-        solid::Caps { points: caps, ids: cap_ids, flip: &cap_flip },
+        solid::Caps { points: caps, ids: cap_ids, flip: &cap_flip, shell: &cap_shell },
     );
 
     let kept_faces = kept.iter().filter(|&&k| k).count();

@@ -9,6 +9,8 @@ use rayon::prelude::*;
 pub(crate) struct Faces<'a> {
     pub kept: &'a [bool],
     pub flip: &'a [bool],
+    /// Each face's shell.
+    pub shell: &'a [u32],
     /// Welded vertex of each corner; face f's corners are `start[f]..start[f + 1]`.
     pub corners: Vec<u32>,
     pub start: Vec<usize>,
@@ -20,6 +22,8 @@ pub(crate) struct Caps<'a> {
     pub points: Vec<[Point; 3]>,
     pub ids: Vec<[u32; 3]>,
     pub flip: &'a [bool],
+    /// Each cap triangle's shell.
+    pub shell: &'a [u32],
 }
 
 /// A triangle the other way round, when `reverse`.
@@ -37,6 +41,8 @@ pub struct Solid {
     /// Kept faces, and whether each is reversed.
     faces: Vec<(usize, bool)>,
     caps: Vec<[Point; 3]>,
+    /// The shell of each face of the solid (kept faces, then caps).
+    shell: Vec<u32>,
     flipped: usize,
     dropped: usize,
     /// Welded vertices (cap centres last), the welded vertex of each corner of the
@@ -50,10 +56,12 @@ pub struct Solid {
 
 impl Solid {
     pub(crate) fn new(faces: Faces, vertices: Vec<Point>, caps: Caps) -> Solid {
-        let Faces { kept, flip, corners, start } = faces;
+        let Faces { kept, flip, shell, corners, start } = faces;
         let kept_faces: Vec<(usize, bool)> =
             (0..kept.len()).into_par_iter().filter(|&f| kept[f]).map(|f| (f, flip[f])).collect();
+        let shell = kept_faces.iter().map(|&(f, _)| shell[f]).chain(caps.shell.iter().copied());
         Solid {
+            shell: shell.collect(),
             dropped: kept.len() - kept_faces.len(),
             flipped: flip.iter().filter(|&&x| x).count(),
             faces: kept_faces,
@@ -104,14 +112,37 @@ impl Solid {
     pub(crate) fn changes(&self) -> (usize, usize, usize) {
         (self.flipped, self.dropped, self.caps.len())
     }
+
+    /// The solid's faces grouped by `group` of their shell: lists of face indices of
+    /// [`SolidView`], in face order, the groups numbered `0..groups`.
+    pub(crate) fn faces_by(
+        &self,
+        groups: usize,
+        group: impl Fn(usize) -> usize,
+    ) -> Vec<Vec<usize>> {
+        let mut faces = vec![Vec::new(); groups];
+        for (f, &s) in self.shell.iter().enumerate() {
+            faces[group(s as usize)].push(f);
+        }
+        faces
+    }
 }
 
 /// A [`Solid`] read over the surface it was checked from.
-#[derive(Clone, Copy, Debug)]
+#[derive(Debug)]
 pub struct SolidView<'a, S: ?Sized> {
     solid: &'a Solid,
     surface: &'a S,
 }
+
+// Copy whatever `S` is: a view holds references only.
+impl<S: ?Sized> Clone for SolidView<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S: ?Sized> Copy for SolidView<'_, S> {}
 
 impl<S: Surface + ?Sized> Surface for SolidView<'_, S> {
     fn face_count(&self) -> usize {
@@ -127,6 +158,39 @@ impl<S: Surface + ?Sized> Surface for SolidView<'_, S> {
                 let [a, b, c] = self.solid.caps[face - self.solid.faces.len()];
                 triangle(a, b, c)
             }
+        }
+    }
+}
+
+/// What a measurement is taken of: the solid a check found (the default of every
+/// measuring command), or the surface as its faces are wound.
+#[derive(Debug)]
+pub enum Measured<'a, S: ?Sized> {
+    Solid(SolidView<'a, S>),
+    AsWound(&'a S),
+}
+
+impl<S: ?Sized> Clone for Measured<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S: ?Sized> Copy for Measured<'_, S> {}
+
+impl<S: Surface + ?Sized> Surface for Measured<'_, S> {
+    fn face_count(&self) -> usize {
+        match self {
+            Measured::Solid(s) => s.face_count(),
+            Measured::AsWound(s) => s.face_count(),
+        }
+    }
+
+    #[inline]
+    fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
+        match self {
+            Measured::Solid(s) => s.fan(face, triangle),
+            Measured::AsWound(s) => s.fan(face, triangle),
         }
     }
 }
