@@ -127,21 +127,7 @@ pub fn report(input: &Input, options: &VolumeOptions) -> Result<VolumeReport, St
             (mp, Some(crate::check::report(checked)))
         }
     };
-    if mp.centroid.is_none() {
-        warnings.push(
-            "the volume is zero within rounding: the surface encloses no solid (flat, or open?); \
-             centroid and inertia are undefined"
-                .to_string(),
-        );
-    } else if as_wound.signed_volume < 0.0
-        && check.as_ref().is_none_or(|c| c.orientation == Some("inward"))
-    {
-        warnings.push(
-            "signed volume is negative: faces are wound inward (clockwise seen from outside, as \
-             OpenSCAD's polyhedron() expects); volume reports the solid's magnitude"
-                .to_string(),
-        );
-    }
+    warnings.extend(meshvol::topology::volume_warnings(input.check.as_ref(), &as_wound, &mp));
 
     let f = units.map_or(1.0, |u| u.length_factor());
     let (f2, f3) = (f * f, f * f * f);

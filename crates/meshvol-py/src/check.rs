@@ -234,11 +234,11 @@ impl PyCheck {
         self.intersection_examples.iter().map(|&[a, b]| (a, b)).collect()
     }
 
-    /// Mass properties of the solid (the numbers `meshvol volume` reports by default):
-    /// shells turned outward, cavities subtracted, degenerate and duplicate faces
-    /// dropped, holes capped. Its signed_volume, faces and triangles are the solid's
-    /// (positive; caps included); the command's keys of those names describe the
-    /// surface as wound, as Mesh.mass_properties() does.
+    /// Mass properties of the solid this check found, as Mesh.mass_properties() gives
+    /// them by default (`meshvol volume` with this check's options): shells turned
+    /// outward, cavities subtracted, degenerate and duplicate faces dropped, holes capped;
+    /// signed_volume, faces and triangles are the surface's as wound, and warnings say
+    /// why the solid may not be the one meant.
     #[pyo3(signature = (density = 1.0, exact = false))]
     fn mass_properties(
         &self,
@@ -248,11 +248,10 @@ impl PyCheck {
     ) -> PyResult<PyMassProperties> {
         let mesh = &self.mesh.get().mesh;
         properties::require_faces(mesh)?;
-        if self.check.repairs() == (0, 0, 0) {
-            properties::measure(py, mesh, density, exact)
-        } else {
-            properties::measure(py, &self.check.solid(mesh), density, exact)
-        }
+        let doubts = self.check.doubts();
+        crate::errors::warn_all(py, &doubts)?;
+        let solid = self.check.solid(mesh);
+        properties::measure_solid(py, mesh, Some(&self.check), &solid, density, exact, doubts)
     }
 
     /// The repaired solid as a new welded Mesh (what `meshvol repair` writes): shells

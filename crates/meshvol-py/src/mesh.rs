@@ -253,7 +253,8 @@ impl PyMesh {
     ) -> PyResult<PyMassProperties> {
         properties::require_faces(&self.mesh)?;
         properties::check_density(density)?;
-        let (checked, surface, warnings) = self.measured(py, check)?;
+        let (checked, surface, doubts) = self.measured(py, check)?;
+        let warnings = self.source.warnings.iter().cloned().chain(doubts).collect();
         properties::measure_solid(py, &self.mesh, checked, &surface, density, exact, warnings)
     }
 

@@ -112,31 +112,24 @@ pub fn require_faces(mesh: &meshvol::Mesh) -> PyResult<()> {
     }
 }
 
-/// Measures `surface` with the GIL released.
-pub fn measure<S: Surface + ?Sized>(
-    py: Python<'_>,
+/// Mass properties of `surface`, with the correctly rounded exact volume when `exact`.
+fn properties<S: Surface + ?Sized>(
     surface: &S,
-    density: f64,
     exact: bool,
-) -> PyResult<PyMassProperties> {
-    check_density(density)?;
-    let mp = py
-        .detach(|| {
-            let mut mp = mass_properties(surface);
-            if exact {
-                mp.signed_volume = exact_signed_volume(surface)?;
-                // Correctly rounded: within half an ulp.
-                mp.volume_error_bound = UNIT_ROUNDOFF * mp.signed_volume.abs();
-            }
-            Ok::<_, meshvol::ExactError>(mp)
-        })
-        .map_err(mesh_error)?;
-    Ok(PyMassProperties::new(&mp, density, exact))
+) -> Result<MassProperties, meshvol::ExactError> {
+    let mut mp = mass_properties(surface);
+    if exact {
+        mp.signed_volume = exact_signed_volume(surface)?;
+        // Correctly rounded: within half an ulp.
+        mp.volume_error_bound = UNIT_ROUNDOFF * mp.signed_volume.abs();
+    }
+    Ok(mp)
 }
 
 /// Measures the solid `surface` of `mesh` (checked as `checked` says, or as wound)
 /// with the GIL released, as `meshvol volume` does: the properties are the solid's,
-/// `signed_volume` the surface's as wound.
+/// `signed_volume`, `faces` and `triangles` the surface's as wound; `warnings` are
+/// followed by the report's own (a zero or inward volume).
 pub fn measure_solid<S: Surface + ?Sized>(
     py: Python<'_>,
     mesh: &meshvol::Mesh,
@@ -144,22 +137,26 @@ pub fn measure_solid<S: Surface + ?Sized>(
     surface: &S,
     density: f64,
     exact: bool,
-    warnings: Vec<String>,
+    mut warnings: Vec<String>,
 ) -> PyResult<PyMassProperties> {
+    check_density(density)?;
     let repaired = checked.is_some_and(|c| c.repairs() != (0, 0, 0));
-    let mut solid = if repaired {
-        measure(py, surface, density, exact)?
-    } else {
-        measure(py, mesh, density, exact)?
-    };
-    if repaired {
-        let as_wound = py.detach(|| meshvol::mass_properties(mesh));
-        solid.signed_volume = as_wound.signed_volume;
-        solid.faces = as_wound.faces;
-        solid.triangles = as_wound.triangles;
-    }
-    solid.warnings = warnings;
-    Ok(solid)
+    let (as_wound, solid) = py
+        .detach(|| {
+            let as_wound = properties(mesh, exact)?;
+            let solid = if repaired { properties(surface, exact)? } else { as_wound };
+            Ok::<_, meshvol::ExactError>((as_wound, solid))
+        })
+        .map_err(mesh_error)?;
+    let report = meshvol::topology::volume_warnings(checked, &as_wound, &solid);
+    crate::errors::warn_all(py, &report)?;
+    warnings.extend(report);
+    let mut measured = PyMassProperties::new(&solid, density, exact);
+    measured.signed_volume = as_wound.signed_volume;
+    measured.faces = as_wound.faces;
+    measured.triangles = as_wound.triangles;
+    measured.warnings = warnings;
+    Ok(measured)
 }
 
 #[pymethods]

@@ -84,11 +84,18 @@ def test_union_of_two_overlapping_boxes():
 def test_union_of_the_shells_of_one_mesh():
     v = np.vstack([box_vertices((0, 0, 0), (2, 2, 2)), box_vertices((1, 0.5, 0.25), (3, 2.5, 2.25))])
     f = np.vstack([BOX_TRIANGLES, BOX_TRIANGLES[:, ::-1] + 8])  # the second wound inward
-    u = meshvol.union(meshvol.Mesh(v, f))
     overlap = 1.0 * 1.5 * 1.75
+    # Checked (the default), the inward shell is a solid turned outward, and said so.
+    with pytest.warns(meshvol.MeshWarning, match="wound against its role"):
+        u = meshvol.union(meshvol.Mesh(v, f))
     assert u.lower <= 16.0 - overlap <= u.upper
     assert u.upper - u.lower <= 1e-6 * u.lower
-    assert u.bodies == 2 and u.flipped == [1]
+    assert u.bodies == 2 and u.flipped == [] and u.volume_uncertainty == 0.0
+    assert any("role" in w for w in u.warnings)
+    # As wound, the union turns it itself.
+    u = meshvol.union(meshvol.Mesh(v, f), check=False)
+    assert u.lower <= 16.0 - overlap <= u.upper
+    assert u.bodies == 2 and u.flipped == [1] and u.warnings == []
 
 
 def test_union_accepts_mesh_like_objects():

@@ -129,10 +129,16 @@ def test_exact_volume_is_the_correctly_rounded_rational_sum():
 
 def test_flat_surface_has_no_centroid():
     vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
-    mp = meshvol.Mesh(vertices, [[0, 1, 2], [0, 2, 1]]).mass_properties()
+    mesh = meshvol.Mesh(vertices, [[0, 1, 2], [0, 2, 1]])
+    mp = mesh.mass_properties(check=False)
     assert mp.volume == 0.0 and mp.centroid is None
     assert mp.area == 1.0
     assert not mp.inertia.any()
+    # Checked, the two sides of the triangle bound nothing either, and it is said.
+    with pytest.warns(meshvol.MeshWarning):
+        mp = mesh.mass_properties()
+    assert mp.volume == 0.0 and mp.centroid is None
+    assert any("encloses no solid" in w for w in mp.warnings)
 
 
 def test_to_dict_has_the_volume_report_keys():
@@ -141,7 +147,7 @@ def test_to_dict_has_the_volume_report_keys():
     assert list(d) == [
         "faces", "triangles", "volume", "signed_volume", "volume_error_bound", "exact",
         "area", "centroid", "inertia", "principal_moments", "principal_axes", "density",
-        "mass", "bounds",
+        "mass", "bounds", "warnings",
     ]
     assert d["mass"] == 3.0 and d["centroid"] == [0.5, 0.5, 0.5]
     assert d["bounds"] == {"min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 1.0]}

@@ -16,11 +16,14 @@ trimesh.Trimesh), or read one with load(); then measure it:
 'closed, 1 shell: volume is exact'
 
 The answers and names are those of the meshvol command: Mesh.mass_properties() is
-`meshvol volume --no-check`, Mesh.check() is `meshvol check`, Check.mass_properties()
-is `meshvol volume`, Mesh.grid() is `meshvol grid`, Mesh.profile() is
-`meshvol profile`, union() is `meshvol union`, polygon_area() is `meshvol area` and
-convex_hull() is `meshvol hull`. Errors raise MeshError (a ValueError) or one of its
-subclasses, ReadError and InvalidMeshError, with the command's messages. Computations
+`meshvol volume`, Mesh.check() is `meshvol check`, Mesh.grid() is `meshvol grid`,
+Mesh.profile() is `meshvol profile`, union() is `meshvol union`, polygon_area() is
+`meshvol area` and convex_hull() is `meshvol hull`. Like the commands, every measure
+of a mesh takes the checked solid (welded, shells turned outward, cavities subtracted,
+holes capped) and issues a MeshWarning naming why that solid may not be the one
+meant; check=False measures the surface as wound (`--no-check`). Errors raise
+MeshError (a ValueError) or one of its subclasses, ReadError and InvalidMeshError,
+with the command's messages. Computations
 release the GIL, so threads measure in parallel.
 """
 
@@ -32,6 +35,7 @@ from ._meshvol import (
     MassProperties,
     Mesh,
     MeshError,
+    MeshWarning,
     Profile,
     ReadError,
     Shell,
@@ -52,6 +56,7 @@ __all__ = [
     "MassProperties",
     "Mesh",
     "MeshError",
+    "MeshWarning",
     "Profile",
     "ReadError",
     "Shell",

@@ -35,6 +35,9 @@ class ReadError(MeshError):
 class InvalidMeshError(MeshError):
     """Arrays that cannot be used as given: shape, dtype, non-finite value, index range."""
 
+class MeshWarning(UserWarning):
+    """A measurement of a solid that may not be the one meant (open, overlapping, ...)."""
+
 class Mesh:
     """A surface mesh: float64 vertices and faces (triangles or polygons) indexing them.
 
@@ -70,8 +73,10 @@ class Mesh:
     @property
     def objects(self) -> list[Tuple[str, int, int]]:
         """(name, first face, end face) of each named part, when there are two or more."""
-    def mass_properties(self, density: float = 1.0, exact: bool = False) -> MassProperties:
-        """Mass properties as wound (`meshvol volume --no-check`)."""
+    def mass_properties(
+        self, density: float = 1.0, exact: bool = False, check: bool = True
+    ) -> MassProperties:
+        """Mass properties of the checked solid (`meshvol volume`); check=False: as wound."""
     def check(
         self, weld_tolerance: Optional[float] = None, intersections: bool = True
     ) -> Check:
@@ -82,10 +87,15 @@ class Mesh:
         bounds: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
         fraction: bool = False,
         pitch: _Union[float, Tuple[float, float, float], None] = None,
+        check: bool = True,
     ) -> npt.NDArray[np.float64]:
         """The solid's volume in each cell: an (nx, ny, nz) array (`meshvol grid`)."""
     def profile(
-        self, axis: str = "z", levels: Optional[int] = None, step: Optional[float] = None
+        self,
+        axis: str = "z",
+        levels: Optional[int] = None,
+        step: Optional[float] = None,
+        check: bool = True,
     ) -> Profile:
         """Volume below each level along an axis (`meshvol profile`)."""
     def triangulated(self) -> Mesh:
@@ -105,6 +115,8 @@ class MassProperties:
     area: float
     density: float
     mass: float
+    warnings: list[str]
+    """Why the measured solid may not be the one meant (the command's warnings)."""
     @property
     def centroid(self) -> Optional[_F64]:
         """Shape (3,); None when the volume is zero."""
@@ -198,6 +210,9 @@ class Union:
     cells_resolved_exactly: int
     columns_unresolved: int
     flipped: list[int]
+    volume_uncertainty: float
+    """The caps on holes' uncertainty, included in [lower, upper]."""
+    warnings: list[str]
 
 class AreaProperties:
     """Area, perimeter, centroid and second moments of plane polygons."""
@@ -234,7 +249,9 @@ class Hull:
 def load(path: _Union[str, "os.PathLike[str]"]) -> Mesh:
     """Read a mesh file (STL, OBJ, OFF, PLY, 3MF, glTF/GLB)."""
 
-def union(meshes: _Union[Any, Iterable[Any]], tolerance: float = 1e-6) -> Union:
+def union(
+    meshes: _Union[Any, Iterable[Any]], tolerance: float = 1e-6, check: bool = True
+) -> Union:
     """Volume of the union of closed bodies, certified (`meshvol union`)."""
 
 def polygon_area(

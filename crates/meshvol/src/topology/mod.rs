@@ -377,6 +377,32 @@ impl Check {
     }
 }
 
+/// What a volume report must say about its numbers beyond the check's doubts: that the
+/// measured solid encloses nothing, or that the file winds its faces inward (as wound,
+/// or as the check found them). `as_wound` and `solid` are the mass properties of the
+/// surface as wound and of the measured solid; `check` the check made, if any.
+pub fn volume_warnings(
+    check: Option<&Check>,
+    as_wound: &crate::MassProperties,
+    solid: &crate::MassProperties,
+) -> Vec<String> {
+    if solid.centroid.is_none() {
+        return vec![
+            "the volume is zero within rounding: the surface encloses no solid (flat, or \
+                     open?); centroid and inertia are undefined"
+                .to_string(),
+        ];
+    }
+    let inward = check.is_none_or(|c| c.orientation == Some(Orientation::Inward));
+    if as_wound.signed_volume < 0.0 && inward {
+        return vec!["signed volume is negative: faces are wound inward (clockwise seen from \
+                     outside, as OpenSCAD's polyhedron() expects); volume reports the solid's \
+                     magnitude"
+            .to_string()];
+    }
+    Vec::new()
+}
+
 /// One body of a checked solid: see [`Check::bodies`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Body {
