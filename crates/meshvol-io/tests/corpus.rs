@@ -216,3 +216,60 @@ fn volumes_agree_with_trimesh() {
     assert!(compared >= 40, "{compared}");
     assert!(disagree.is_empty(), "{disagree:#?}");
 }
+
+/// Every body of a checked manifold file is closed by its own caps: measured alone, each gives
+/// the signed sum of its shells' volumes (solids +, cavities −), and the bodies add up
+/// to the solid. A cap that closed another shell's hole (a boundary loop wandering
+/// across a vertex where two shells touch, as in featuretype.3MF) breaks this.
+#[test]
+fn bodies_add_up_to_the_solid() {
+    use meshvol::grid::FaceSubset;
+    use meshvol::topology::{check, CheckOptions};
+    let Some(dir) = corpus() else { return };
+    let mut files = vec![];
+    mesh_files(&dir, &mut files);
+    let options = CheckOptions { intersections: false, ..CheckOptions::default() };
+    for path in files.iter().filter(|p| std::fs::metadata(p).is_ok_and(|m| m.len() < 2 << 20)) {
+        let Ok(loaded) = read(path) else { continue };
+        let Ok(c) = check(&loaded.surface, &options) else { continue };
+        // Where edges are shared by more than two faces, or a shell has no inside, the
+        // capped shells are not closed and their volumes depend on the reference point.
+        if c.non_manifold_edges > 0 || c.shells.iter().any(|s| !s.orientable) {
+            continue;
+        }
+        let solid = c.solid(&loaded.surface);
+        // Rounding scales with the box the surface spans, not with what it encloses.
+        let size = meshvol::mass_properties(&loaded.surface).bounds.map_or(0.0, |b| {
+            let d = b.size();
+            d[0] * d[1] * d[2]
+        });
+        let scale = c.shells.iter().map(|s| s.volume).sum::<f64>().max(size);
+        let mut total = 0.0;
+        for body in c.bodies() {
+            let measured =
+                meshvol::mass_properties(&FaceSubset::new(solid, body.faces.clone())).signed_volume;
+            // The shells of this body: the outer one and those nested in it.
+            let in_body = |mut s: usize| loop {
+                if s == body.shell {
+                    return true;
+                }
+                match c.shells[s].parent {
+                    Some(p) => s = p,
+                    None => return false,
+                }
+            };
+            let expected: f64 = (0..c.shells.len())
+                .filter(|&s| in_body(s))
+                .map(|s| if c.shells[s].cavity { -c.shells[s].volume } else { c.shells[s].volume })
+                .sum();
+            assert!(
+                (measured - expected).abs() <= 1e-9 * scale,
+                "{}: body of shell {}: measured {measured}, its shells {expected}",
+                path.display(),
+                body.shell
+            );
+            total += measured;
+        }
+        assert!((total - c.volume).abs() <= 1e-9 * scale, "{}", path.display());
+    }
+}

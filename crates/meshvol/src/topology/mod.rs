@@ -1348,7 +1348,13 @@ fn boundary_loops(edges: &[(u32, u32, u32)]) -> Vec<(u32, Vec<u32>)> {
         while at != edges[first].0 {
             ring.push(at);
             let from = ends.partition_point(|e| e.0 < at);
-            let next = ends[from..].iter().take_while(|e| e.0 == at).find(|e| !used[e.1]);
+            // A loop stays in its shell: shells touching at a vertex each cap their own
+            // holes, so that each shell (and each body) is closed by its own caps.
+            let shell = edges[first].2;
+            let next = ends[from..]
+                .iter()
+                .take_while(|e| e.0 == at)
+                .find(|e| !used[e.1] && edges[e.1].2 == shell);
             let Some(&(_, e, starts)) = next else { break }; // a broken chain: close it here
             used[e] = true;
             at = if starts { edges[e].1 } else { edges[e].0 };
