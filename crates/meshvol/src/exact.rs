@@ -63,7 +63,10 @@ fn add_determinant(sum: &mut ExactSum, a: Point, b: Point, c: Point) -> bool {
     TERMS.iter().all(|&(i, j, k, negate)| add_triple_product(sum, a[i], b[j], c[k], negate))
 }
 
-/// The signed volume of the polyhedron, correctly rounded to f64.
+/// The signed volume of the polyhedron, correctly rounded to f64: Σ det(a, b, c)/6 over
+/// the fan triangles about the world origin. For an open surface, the signed volume of
+/// the cones from the origin to the faces, the same convention as
+/// [`crate::MassProperties::signed_volume`].
 ///
 /// ```
 /// use meshvol::{Mesh, exact_signed_volume};

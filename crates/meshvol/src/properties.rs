@@ -15,6 +15,20 @@
 //! I = tr(C)·𝟙 − C. Signs follow the winding: outward normals (counter-clockwise seen from
 //! outside) give V > 0. Reported inertia is that of the solid, whatever the winding.
 //!
+//! # Open surfaces
+//! For a closed surface the sums do not depend on r; for an open one they do. The
+//! signed volume reported is the one about the world origin, Σ det(a, b, c)/6 over the
+//! absolute coordinates (trimesh's convention, and what [`crate::exact_signed_volume`]
+//! rounds): the signed volume of the cones from the origin to the faces. With a, b, c
+//! relative to r, det(a + r, b + r, c + r) = det(a, b, c) + r·((b − a)×(c − a)), so
+//! V_origin = V_r + r·S/6 with S = Σ (b − a)×(c − a), twice the surface's vector area
+//! (zero for a closed surface). S is summed (compensated) in the same pass and the
+//! correction applied once at the end, only when it is distinguishable from its own
+//! rounding: a closed surface keeps the value about r, bit for bit.
+//! The centroid and inertia stay those about r: for an open surface they describe the
+//! solid of the cones from r (the first vertex of the first face) to the faces, i.e.
+//! the surface closed by joining its rim to r; for a closed one, the solid itself.
+//!
 //! A face's area is the length of its vector area (half the sum of its fan triangles'
 //! cross products: Newell's formula), never the sum of the fan triangles' areas, which
 //! overcounts non-convex and non-planar faces.
@@ -30,6 +44,13 @@
 //!   determinant's six terms; the compensated sum adds u·|ΣD| + γ(n)²·Σ|D|; the final
 //!   division by 6 adds u·|V|. (γ(n) = n·u/(1 − n·u), u = 2⁻⁵³.) The bound is evaluated
 //!   with a little headroom for its own rounding.
+//! - The move to the origin adds |r|-weighted bounds on S (each cross product component
+//!   within γ(4) of its products' magnitudes, each face's fan sum within γ(m − 1), the
+//!   compensated sum's own term) and on the dot product. When that would make the bound
+//!   looser than both the bound about r and 2⁻⁴² of the volume (a surface far from the
+//!   origin compared with its size: r·S is huge against the volume), the exact sum of
+//!   [`crate::exact_signed_volume`] is taken instead (3–5× the time) and the bound is
+//!   its rounding, u·|V|. Only if that sum is out of range does the wide bound stay.
 
 use crate::accumulate::{gamma, ordered_reduce, CompensatedSum, UNIT_ROUNDOFF};
 use crate::vector::{add, cross, dot, norm, scale, sub};
@@ -89,8 +110,11 @@ pub struct MassProperties {
     pub faces: usize,
     /// Triangles in the faces' fans.
     pub triangles: usize,
-    /// Σ of signed tetrahedron volumes as the surface is wound: positive for outward
-    /// normals.
+    /// Σ of signed tetrahedron volumes from the world origin to the fan triangles, as
+    /// the surface is wound: positive for outward normals. For a closed surface, the
+    /// solid's signed volume; for an open one, the signed volume of the cones from the
+    /// origin to the faces (trimesh's convention, and the value
+    /// [`crate::exact_signed_volume`] gives correctly rounded).
     pub signed_volume: f64,
     /// A bound on |`signed_volume` − the exact signed volume of the polyhedron given by
     /// the f64 coordinates|.
@@ -98,6 +122,8 @@ pub struct MassProperties {
     /// Total face area.
     pub area: f64,
     /// The centroid of the solid; `None` when the volume is not distinguishable from 0.
+    /// Taken about the first vertex of the first face: for an open surface, that of the
+    /// surface closed by cones to that vertex (see the module docs).
     pub centroid: Option<Point>,
     /// Inertia tensor about the centroid for unit density (scale by the density for a
     /// body); zero when the centroid is `None`.
@@ -132,6 +158,13 @@ struct Partial {
     /// xx, yy, zz, xy, yz, zx.
     second: [CompensatedSum; 6],
     double_area: CompensatedSum,
+    /// Σ over faces of twice the vector area (each face's fan summed plainly), for the
+    /// move from the reference point to the origin.
+    vector_area: [CompensatedSum; 3],
+    /// Per component, Σ of the magnitudes of the two products in each fan triangle's
+    /// cross product, and the same weighted by the face's triangles + 4: for the bound.
+    vector_area_magnitude: [f64; 3],
+    vector_area_weighted: [f64; 3],
     /// The current block's plain sums: first moments, second moments, double area.
     block: [f64; 10],
     /// Σ P, for the error bound.
@@ -152,6 +185,11 @@ impl Partial {
             a.merge(b);
         }
         self.double_area.merge(&o.double_area);
+        for k in 0..3 {
+            self.vector_area[k].merge(&o.vector_area[k]);
+            self.vector_area_magnitude[k] += o.vector_area_magnitude[k];
+            self.vector_area_weighted[k] += o.vector_area_weighted[k];
+        }
         self.determinant_magnitude += o.determinant_magnitude;
         self.abs_six_volume += o.abs_six_volume;
         self.triangles += o.triangles;
@@ -255,14 +293,29 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
             let mut bounds = Bounds::of(r);
             for face in range {
                 let mut vector_area = [0.0; 3];
+                let mut magnitude = [0.0; 3];
+                let mut fan = 0usize;
                 surface.fan(face, |a, b, c| {
-                    vector_area = add(vector_area, cross(sub(b, a), sub(c, a)));
+                    // cross(b − a, c − a), keeping its products for the error bound.
+                    let (u, v) = (sub(b, a), sub(c, a));
+                    let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
+                    let minus = [u[2] * v[1], u[0] * v[2], u[1] * v[0]];
+                    for k in 0..3 {
+                        vector_area[k] += plus[k] - minus[k];
+                        magnitude[k] += plus[k].abs() + minus[k].abs();
+                    }
+                    fan += 1;
                     bounds.include(a);
                     bounds.include(b);
                     bounds.include(c);
                     part.add_triangle(sub(a, r), sub(b, r), sub(c, r));
                 });
                 part.block[9] += norm(vector_area);
+                for k in 0..3 {
+                    part.vector_area[k].add(vector_area[k]);
+                    part.vector_area_magnitude[k] += magnitude[k];
+                    part.vector_area_weighted[k] += (fan + 4) as f64 * magnitude[k];
+                }
                 if face % BLOCK_FACES == BLOCK_FACES - 1 {
                     part.flush_block();
                 }
@@ -274,35 +327,82 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
         Partial::merge,
     )
     .unwrap_or_default();
-    finish(faces, r, &sums)
+    let (mut properties, loose) = finish(faces, r, &sums);
+    if loose {
+        // Far from the origin, the move from r to the origin would widen the bound
+        // beyond what the sum about r achieves: take the exact sum instead (correctly
+        // rounded). Out of its range, the bound stays as wide as it is.
+        if let Ok(exact) = crate::exact::exact_signed_volume(surface) {
+            properties.signed_volume = exact;
+            properties.volume_error_bound = UNIT_ROUNDOFF * exact.abs();
+        }
+    }
+    properties
 }
 
-fn finish(faces: usize, r: Point, sums: &Partial) -> MassProperties {
+/// How much wider than the bound of the sum about r the correction to the origin may
+/// make the volume's bound, relative to the volume, before the exact sum is taken.
+const LOOSE_BOUND: f64 = 1.0 / (1u64 << 42) as f64;
+
+/// The properties from the sums, and whether the volume's bound is loose (see
+/// [`LOOSE_BOUND`]).
+fn finish(faces: usize, r: Point, sums: &Partial) -> (MassProperties, bool) {
     let n = sums.triangles as f64;
     let six_volume = sums.six_volume.value();
-    let signed_volume = six_volume / 6.0;
+    // About r: what the centroid and inertia are taken about.
+    let about_r = six_volume / 6.0;
     let six_bound = gamma(8.0) * sums.determinant_magnitude
         + UNIT_ROUNDOFF * six_volume.abs()
         + gamma(n).powi(2) * sums.abs_six_volume;
     // (1 + γ(n + 8)) covers the rounding of the bound's own sums.
-    let volume_error_bound =
-        six_bound * (1.0 + gamma(n + 8.0)) / 6.0 + UNIT_ROUNDOFF * signed_volume.abs();
+    let headroom = 1.0 + gamma(n + 8.0);
+    let bound_about_r = six_bound * headroom / 6.0 + UNIT_ROUNDOFF * about_r.abs();
+
+    // To the origin: V_O = V_r + r·S/6, S = Σ (b − a) × (c − a) over the fan triangles.
+    // Each cross product component is off by at most γ(4) of its two products'
+    // magnitudes (two subtractions, a product, a difference); a face's fan of m
+    // triangles, summed plainly, by γ(m − 1) more; the compensated sum over faces adds
+    // u·|S| + γ(F)²·Σ|terms|. 2u·(m + 4) covers γ(m + 4) with room.
+    let s = sums.vector_area.map(|x| x.value());
+    let faces_f = faces as f64;
+    let mut correction_bound = 0.0;
+    for k in 0..3 {
+        let s_bound = 2.0 * UNIT_ROUNDOFF * sums.vector_area_weighted[k]
+            + UNIT_ROUNDOFF * s[k].abs()
+            + 2.0 * gamma(faces_f).powi(2) * sums.vector_area_magnitude[k];
+        // The dot product and division by 6 round by γ(4) of Σ|r_k S_k|.
+        correction_bound += r[k].abs() * (s_bound + gamma(4.0) * s[k].abs());
+    }
+    let correction_bound = correction_bound * headroom / 6.0;
+    let correction = dot(r, s) / 6.0;
+    let (signed_volume, volume_error_bound) = if correction.abs() <= correction_bound {
+        // Not distinguishable from 0 (a closed surface's S is 0): adding it would only
+        // add its rounding. The value stays V_r; the bound covers the true correction.
+        (about_r, bound_about_r + correction.abs() + correction_bound)
+    } else {
+        let v = about_r + correction;
+        (v, bound_about_r + correction_bound + UNIT_ROUNDOFF * v.abs())
+    };
+    let loose =
+        volume_error_bound - bound_about_r > bound_about_r.max(LOOSE_BOUND * signed_volume.abs());
 
     let mut centroid = None;
     let mut inertia = [[0.0; 3]; 3];
-    if signed_volume.abs() > volume_error_bound {
+    // Centroid and inertia from the moments about r (for a closed surface the same
+    // solid as about the origin; see the module docs for an open one).
+    if about_r.abs() > bound_about_r {
         let first = sums.first.map(|s| s.value());
         let c = scale(first, 1.0 / (4.0 * six_volume));
         // Covariance of the solid about its centroid, from the second moments about r.
         let m = sums.second.map(|s| s.value() / 120.0);
-        let sign = signed_volume.signum();
-        let cov = |k: usize, i: usize, j: usize| sign * (m[k] - signed_volume * c[i] * c[j]);
+        let sign = about_r.signum();
+        let cov = |k: usize, i: usize, j: usize| sign * (m[k] - about_r * c[i] * c[j]);
         let (xx, yy, zz) = (cov(0, 0, 0), cov(1, 1, 1), cov(2, 2, 2));
         let (xy, yz, zx) = (cov(3, 0, 1), cov(4, 1, 2), cov(5, 2, 0));
         inertia = [[yy + zz, -xy, -zx], [-xy, xx + zz, -yz], [-zx, -yz, xx + yy]];
         centroid = Some(add(r, c));
     }
-    MassProperties {
+    let properties = MassProperties {
         faces,
         triangles: sums.triangles,
         signed_volume,
@@ -311,5 +411,6 @@ fn finish(faces: usize, r: Point, sums: &Partial) -> MassProperties {
         centroid,
         inertia,
         bounds: sums.bounds,
-    }
+    };
+    (properties, loose)
 }

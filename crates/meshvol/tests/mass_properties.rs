@@ -2,7 +2,8 @@
 //! invariances (translation, rotation, flipping, splitting, thread count).
 
 use meshvol::shapes::{cuboid, tetrahedron, torus, torus_volume, uv_sphere, uv_sphere_volume};
-use meshvol::{exact_signed_volume, mass_properties, Faces, MassProperties, Mesh};
+use meshvol::{exact_signed_volume, mass_properties, Faces, MassProperties, Mesh, Surface};
+use num_bigint::BigInt;
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
@@ -314,13 +315,16 @@ fn empty_and_flat_surfaces() {
     let mp = mass_properties(&empty);
     assert_eq!((mp.signed_volume, mp.area, mp.centroid, mp.bounds), (0.0, 0.0, None, None));
     assert_eq!(exact_signed_volume(&empty), Ok(0.0));
-    // A single triangle bounds nothing: volume within its bound of 0, no centroid.
+    // A single triangle bounds nothing: no centroid. Its signed volume is that of the
+    // cone from the origin: area 1/2, facing up at height 3, so 3 · 1/2 / 3.
     let flat = Mesh::from_triangles(
         vec![[1.0, 2.0, 3.0], [2.0, 2.0, 3.0], [1.0, 3.0, 3.0]],
         vec![[0, 1, 2]],
-    );
-    let mp = mass_properties(&flat.unwrap());
-    assert_eq!((mp.signed_volume, mp.area, mp.centroid), (0.0, 0.5, None));
+    )
+    .unwrap();
+    let mp = mass_properties(&flat);
+    assert_eq!((mp.signed_volume, mp.area, mp.centroid), (0.5, 0.5, None));
+    assert_eq!(exact_signed_volume(&flat), Ok(0.5));
 }
 
 /// 6V of a triangle mesh with integer coordinates, in exact integer arithmetic.
@@ -398,4 +402,110 @@ fn revolved_profiles_match_greens_theorem() {
     let l_profile = [(1.0, 0.0), (4.0, 0.0), (4.0, 1.0), (2.0, 1.0), (2.0, 5.0), (1.0, 5.0)];
     let mp = mass_properties(&revolve(&l_profile, 90));
     assert_close("L", mp.signed_volume, revolve_volume(&l_profile, 90), 1e-14);
+}
+
+/// x·2^shift as an integer: exact, for any finite x and shift ≥ 1074 + 53.
+fn big_scaled(x: f64, shift: u32) -> BigInt {
+    let bits = x.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i64;
+    let fraction = bits & ((1u64 << 52) - 1);
+    let (mantissa, e) =
+        if exponent == 0 { (fraction, -1074) } else { (fraction | 1 << 52, exponent - 1075) };
+    let m = BigInt::from(mantissa) << (e + shift as i64) as usize;
+    if bits >> 63 == 1 {
+        -m
+    } else {
+        m
+    }
+}
+
+/// Σ a·(b×c) over the fan triangles, about the origin, times 2^(3·1200): exact.
+fn big_six_volume(mesh: &Mesh) -> BigInt {
+    let mut total = BigInt::from(0);
+    for f in 0..mesh.face_count() {
+        mesh.fan(f, |a, b, c| {
+            let [a, b, c] = [a, b, c].map(|p| p.map(|x| big_scaled(x, 1200)));
+            total += &a[0] * (&b[1] * &c[2] - &b[2] * &c[1])
+                + &a[1] * (&b[2] * &c[0] - &b[0] * &c[2])
+                + &a[2] * (&b[0] * &c[1] - &b[1] * &c[0]);
+        });
+    }
+    total
+}
+
+/// |value − six/6| ≤ bound, with six = Σ a·(b×c) · 2^3600, decided exactly.
+fn within_of_exact(value: f64, bound: f64, six: &BigInt) -> bool {
+    let scale = |x: f64| -> BigInt { (big_scaled(x, 1200) * 6) << 2400 };
+    let difference = scale(value) - six;
+    let bound = scale(bound);
+    difference <= bound && -difference <= bound
+}
+
+/// The open-surface checks: the default signed volume (about the origin) is within its
+/// bound of the exact mode's and of a big-integer sum, and the bound is tight.
+fn assert_origin_convention(what: &str, mesh: &Mesh, expected: Option<f64>) {
+    let mp = mass_properties(mesh);
+    let exact = exact_signed_volume(mesh).unwrap();
+    let six = big_six_volume(mesh);
+    assert!(
+        (mp.signed_volume - exact).abs() <= mp.volume_error_bound,
+        "{what}: {} vs exact {exact}, bound {:e}",
+        mp.signed_volume,
+        mp.volume_error_bound
+    );
+    assert!(within_of_exact(mp.signed_volume, mp.volume_error_bound, &six), "{what}");
+    assert!(within_of_exact(exact, f64::EPSILON / 2.0 * exact.abs(), &six), "{what}: exact");
+    assert!(mp.volume_error_bound <= 1e-11 * exact.abs(), "{what}: {:e}", mp.volume_error_bound);
+    if let Some(v) = expected {
+        assert_eq!(exact, v, "{what}");
+        assert!((mp.signed_volume - v).abs() <= mp.volume_error_bound, "{what}");
+    }
+}
+
+#[test]
+fn open_surfaces_measure_cones_from_the_origin() {
+    // The unit cube without its top: each remaining face contributes area · (signed
+    // distance of its plane from the origin) / 3, which for the box [t, t + 1] sums to
+    // (2 − t_z)/3 (the x and y pairs give 1 each, the bottom −t_z).
+    let cube = cuboid([0.0; 3], [1.0; 3]);
+    let top =
+        (0..6).find(|&f| cube.face(f).iter().all(|&v| cube.positions()[v as usize][2] == 1.0));
+    let top = top.unwrap();
+    let faces: Vec<&[u32]> = (0..6).filter(|&f| f != top).map(|f| cube.face(f)).collect();
+    let open = Mesh::from_polygons(cube.positions().to_vec(), faces).unwrap();
+    for t in [[0.0; 3], [1e3, -2e3, 5e2], [-0.5, 0.25, 7.0], [3e6, 1e6, -2e6]] {
+        let moved = translated(&open, t);
+        assert_origin_convention(&format!("open cube at {t:?}"), &moved, Some((2.0 - t[2]) / 3.0));
+        // The triangulated faces give the same: the convention is per surface, not fan.
+        let tris = moved.triangulated();
+        assert_origin_convention(&format!("open cube triangles at {t:?}"), &tris, None);
+    }
+    // A hemisphere (faces of a sphere with every vertex at z ≥ 0), snapped to a grid,
+    // near and far from the origin.
+    let snap = |p: [f64; 3]| p.map(|x| (x * 1048576.0).round() / 1048576.0);
+    let sphere = mapped(&uv_sphere(1.0, 32, 16), snap).triangulated();
+    let upper: Vec<&[u32]> = (0..sphere.face_count())
+        .map(|f| sphere.face(f))
+        .filter(|f| f.iter().all(|&v| sphere.positions()[v as usize][2] >= 0.0))
+        .collect();
+    let hemisphere = Mesh::from_polygons(sphere.positions().to_vec(), upper).unwrap();
+    for t in [[0.0; 3], [0.3, -0.7, 0.1], [1e3, -2e3, 5e2], [-4e6, 2e5, 1e7]] {
+        assert_origin_convention(
+            &format!("hemisphere at {t:?}"),
+            &translated(&hemisphere, t),
+            None,
+        );
+    }
+    // A fan: a cone's side around an apex, without its base.
+    let n = 24;
+    let mut p = vec![[0.0, 0.0, 1.5]];
+    p.extend((0..n).map(|i| {
+        let t = 2.0 * PI * i as f64 / n as f64;
+        snap([1.25 * t.cos(), 1.25 * t.sin(), 0.0])
+    }));
+    let fan: Vec<[u32; 3]> = (0..n).map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
+    let fan = Mesh::from_triangles(p, fan).unwrap();
+    for t in [[0.0; 3], [1e3, -2e3, 5e2], [0.125, 3.5, -2.0]] {
+        assert_origin_convention(&format!("fan at {t:?}"), &translated(&fan, t), None);
+    }
 }

@@ -3,10 +3,22 @@
 //!
 //! # What is computed
 //! 1. **Weld** corners into vertices (exact positions, or snapped to a tolerance grid).
-//! 2. **Faces**: a face with a repeated vertex, or zero vector area, is *degenerate*; a
-//!    face with the same vertex set as an earlier one is a *duplicate*. Both are left
-//!    out of everything below (and out of the solid's volume).
-//! 3. **Edges**: the undirected edges of the remaining faces, with their uses. One use:
+//! 2. **Faces**: a face with a repeated vertex (collapsed by welding) is *degenerate*
+//!    and left out of everything below (and out of the solid). A face with distinct
+//!    vertices but zero vector area (a sliver, one corner on the segment between two
+//!    others, or a flat fold) is *degenerate* and *flat*: it stays in the edges, shells,
+//!    orientation and solid (its volume is zero), but having no interior it is left out
+//!    of the triangles the crossing search (7) and nesting rays (6) test, where it could
+//!    only graze. Faces with the same vertex set are *duplicates*: among them, copies
+//!    traversing it in opposite cyclic directions cancel in pairs, both dropped (a
+//!    *double wall*: the shared face of two parts exported with both); of the rest,
+//!    copies in the same direction collapse to the first. (Direction: each face read
+//!    from its smallest vertex, forward against backward; a polygon whose order is
+//!    neither counts as the same direction.) Dropped duplicates are left out of
+//!    everything below.
+//! 3. **Edges**: the undirected edges of the remaining faces (flat ones included:
+//!    closedness and manifoldness are decided on every face with distinct vertices, so
+//!    a sliver filling a T-junction closes it), with their uses. One use:
 //!    *boundary*; two: *manifold*, and *consistent* when the two faces traverse it in
 //!    opposite directions; more: *non-manifold*. A vertex whose faces form more than one
 //!    fan around it (a bowtie) is a *non-manifold vertex*.
@@ -35,7 +47,7 @@
 //!    orientable shells.
 //!
 //! [`Check::solid`] gives a [`Surface`] of the solid: shells turned outward (cavities
-//! inward), degenerate and duplicate faces dropped, holes capped, so that
+//! inward), collapsed and duplicate faces dropped (flat ones kept), holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
 mod components;
@@ -129,7 +141,8 @@ impl Orientation {
 /// One connected component of faces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Shell {
-    /// Faces in the shell (degenerate and duplicate faces are in no shell).
+    /// Faces in the shell (flat faces included; collapsed and dropped duplicate faces
+    /// are in no shell).
     pub faces: usize,
     /// Every edge used by exactly two faces.
     pub closed: bool,
@@ -163,15 +176,27 @@ pub struct Check {
     pub vertices: usize,
     pub edges: usize,
     pub faces: usize,
-    /// Every edge used by exactly two faces (after dropping degenerate and duplicate
-    /// faces), and at least one face.
+    /// Every edge used by exactly two faces (after dropping collapsed and duplicate
+    /// faces; flat faces count), and at least one face.
     pub closed: bool,
     pub boundary_edges: usize,
     pub boundary_loops: usize,
     pub non_manifold_edges: usize,
     pub non_manifold_vertices: usize,
+    /// Faces with a repeated welded vertex (collapsed by welding; left out of
+    /// everything) plus flat faces.
     pub degenerate_faces: usize,
+    /// Faces with distinct vertices but zero vector area (slivers: a corner on the
+    /// segment between two others). They count among `degenerate_faces`, and stay in
+    /// the edges, shells and solid: only the crossing search and nesting rays skip them.
+    pub flat_faces: usize,
+    /// Faces dropped for having the vertex set of another face: copies wound the same
+    /// way beyond the first, and both faces of each opposite pair (`double_wall_faces`).
     pub duplicate_faces: usize,
+    /// Faces dropped because they cancelled in pairs with a copy wound the opposite
+    /// way: an internal double wall, such as the shared face of two boxes exported
+    /// with both boxes. Counted in `duplicate_faces` too.
+    pub double_wall_faces: usize,
     /// Every manifold edge's two faces traverse it in opposite directions.
     pub consistently_oriented: bool,
     /// `None` when there is no shell to judge.
@@ -204,14 +229,14 @@ impl Check {
     }
 
     /// The solid as a surface over `surface` (which must be the one checked): shells
-    /// turned outward (cavities inward), degenerate and duplicate faces dropped, holes
+    /// turned outward (cavities inward), collapsed and duplicate faces dropped, holes
     /// capped.
     pub fn solid<'a, S: Surface + ?Sized>(&'a self, surface: &'a S) -> solid::SolidView<'a, S> {
         self.solid.view(surface)
     }
 
     /// The solid as a welded mesh, ready to write: shells turned outward (cavities
-    /// inward), degenerate and duplicate faces dropped, and, with `with_caps`, holes
+    /// inward), collapsed and duplicate faces dropped, and, with `with_caps`, holes
     /// capped.
     pub fn solid_mesh(&self, with_caps: bool) -> crate::Mesh {
         self.solid.mesh(with_caps)
@@ -573,8 +598,10 @@ fn analyse<S: Surface + ?Sized>(
     let welded = weld::weld(&loops.corners, tolerance);
     let vid = |c: usize| welded.corner_vertex[c];
 
-    // Degenerate faces: a repeated vertex, or zero vector area.
-    let degenerate: Vec<bool> = (0..faces)
+    // Collapsed faces (a repeated welded vertex) are left out of everything; flat faces
+    // (distinct vertices, zero vector area: slivers) stay in the edge table but have no
+    // interior, so they stay out of the spatial triangles.
+    let (collapsed, flat): (Vec<bool>, Vec<bool>) = (0..faces)
         .into_par_iter()
         .map(|f| {
             let r = loops.face(f);
@@ -583,17 +610,17 @@ fn analyse<S: Surface + ?Sized>(
             let area = (r.start + 1..r.end - 1).fold([0.0; 3], |s, c| {
                 add(s, cross(sub(loops.corners[c], apex), sub(loops.corners[c + 1], apex)))
             });
-            repeated || area == [0.0; 3]
+            (repeated, !repeated && area == [0.0; 3])
         })
-        .collect();
-    // Duplicates: the same vertex set as an earlier face. Faces grouped by their
-    // smallest vertex, each group sorted by (sorted vertex list, face): a duplicate
-    // follows its twin.
+        .unzip();
+    // Duplicates: the same vertex set as another face. Faces grouped by their smallest
+    // vertex, each group sorted by (sorted vertex list, face): faces with one vertex set
+    // form a run, in face order.
     let mut sorted_ids: Vec<u32> = welded.corner_vertex.clone();
     for_each_range_mut(&mut sorted_ids, faces, &|f| loops.face(f), &|_, ids| ids.sort_unstable());
     let ids_of = |f: u32| &sorted_ids[loops.face(f as usize)];
     let mut by_vertices = Buckets::new(welded.positions.len(), faces, |range| {
-        range.filter(|&f| !degenerate[f]).map(|f| (ids_of(f as u32)[0], f as u32))
+        range.filter(|&f| !collapsed[f]).map(|f| (ids_of(f as u32)[0], f as u32))
     });
     by_vertices.for_each_mut(|group| {
         if group.len() > 1 {
@@ -601,13 +628,34 @@ fn analyse<S: Surface + ?Sized>(
         }
     });
     let mut duplicate = vec![false; faces];
-    for w in by_vertices.items.windows(2) {
-        if ids_of(w[0]) == ids_of(w[1]) {
-            duplicate[w[1] as usize] = true;
+    let mut double_wall = vec![false; faces];
+    let items = &by_vertices.items;
+    let mut i = 0;
+    while i < items.len() {
+        let run = items[i..].iter().take_while(|&&g| ids_of(g) == ids_of(items[i])).count();
+        if run > 1 {
+            let corners = |f: u32| &welded.corner_vertex[loops.face(f as usize)];
+            let first = corners(items[i]);
+            let (same, opposite): (Vec<u32>, Vec<u32>) =
+                items[i..i + run].iter().partition(|&&g| !opposite_direction(first, corners(g)));
+            // Opposite copies cancel in pairs (an internal double wall); of the rest, one
+            // copy stays.
+            let pairs = same.len().min(opposite.len());
+            for &g in same[..pairs].iter().chain(&opposite[..pairs]) {
+                double_wall[g as usize] = true;
+                duplicate[g as usize] = true;
+            }
+            let rest = if same.len() > pairs { &same[pairs..] } else { &opposite[pairs..] };
+            for &g in rest.iter().skip(1) {
+                duplicate[g as usize] = true;
+            }
         }
+        i += run;
     }
     drop((sorted_ids, by_vertices));
-    let kept: Vec<bool> = (0..faces).map(|f| !degenerate[f] && !duplicate[f]).collect();
+    let kept: Vec<bool> = (0..faces).map(|f| !collapsed[f] && !duplicate[f]).collect();
+    // The faces with an interior: those the crossing search and nesting rays see.
+    let spatial: Vec<bool> = (0..faces).map(|f| kept[f] && !flat[f]).collect();
 
     // The crossing search (parallel, and the longest part) runs beside the connectivity
     // analysis (mostly sequential walks over edges and shells), so that on few cores
@@ -615,7 +663,7 @@ fn analyse<S: Surface + ?Sized>(
     let (space, connected) = rayon::join(
         || {
             options.intersections.then(|| {
-                let (triangles, bvh) = triangles_in_space(loops, &kept, &welded);
+                let (triangles, bvh) = triangles_in_space(loops, &spatial, &welded);
                 let crossing = crossing_pairs(&triangles, &bvh);
                 (triangles, bvh, crossing)
             })
@@ -656,7 +704,7 @@ fn analyse<S: Surface + ?Sized>(
     let (triangles, bvh, crossing) = match space {
         Some((triangles, bvh, crossing)) => (triangles, bvh, Some(crossing)),
         None if nesting => {
-            let (triangles, bvh) = triangles_in_space(loops, &kept, &welded);
+            let (triangles, bvh) = triangles_in_space(loops, &spatial, &welded);
             (triangles, bvh, None)
         }
         None => (Triangles::default(), Bvh::default(), None),
@@ -889,8 +937,10 @@ fn analyse<S: Surface + ?Sized>(
         boundary_loops: loops_found.len(),
         non_manifold_edges,
         non_manifold_vertices,
-        degenerate_faces: degenerate.iter().filter(|&&d| d).count(),
+        degenerate_faces: (0..faces).filter(|&f| collapsed[f] || flat[f]).count(),
+        flat_faces: flat.iter().filter(|&&d| d).count(),
         duplicate_faces: duplicate.iter().filter(|&&d| d).count(),
+        double_wall_faces: double_wall.iter().filter(|&&d| d).count(),
         consistently_oriented,
         orientation,
         cavities: shells.iter().filter(|s| s.cavity).count(),
@@ -1264,6 +1314,20 @@ impl Triangles<'_> {
     fn points(&self, i: usize) -> [Point; 3] {
         self.ids[i].map(|v| self.positions[v as usize])
     }
+}
+
+/// Whether `face` runs through the vertices of `first` (the same vertex set, distinct
+/// vertices) in the opposite cyclic direction: each read from its smallest vertex, one
+/// forward and the other backward. (For triangles this is the parity of the
+/// permutation; a polygon whose order is neither counts as the same direction.)
+fn opposite_direction(first: &[u32], face: &[u32]) -> bool {
+    let n = first.len();
+    if n != face.len() || n == 0 {
+        return false;
+    }
+    let start = |ids: &[u32]| (0..n).min_by_key(|&k| ids[k]).unwrap_or(0);
+    let (i, j) = (start(first), start(face));
+    (0..n).all(|k| first[(i + k) % n] == face[(j + n - k) % n])
 }
 
 /// Whether two triangles share a vertex: nine comparisons without short-circuiting
