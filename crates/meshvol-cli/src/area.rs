@@ -274,5 +274,55 @@ pub fn run(args: AreaArgs, quiet: bool) -> ExitCode {
 
 fn measure(path: &Path) -> Result<AreaReport, String> {
     let polygons = read_polygons(path).map_err(|e| e.to_string())?;
-    Ok(report(&path.display().to_string(), &polygons))
+    let mut r = report(&path.display().to_string(), &polygons);
+    overflow(&mut r, &polygons)?;
+    Ok(r)
+}
+
+/// An area or perimeter that is not finite is an error (f64 cannot hold it; JSON would
+/// print null); a centroid or second moments that overflow where the area does not are
+/// left out with a warning.
+fn overflow(r: &mut AreaReport, polygons: &PolygonFile) -> Result<(), String> {
+    let largest = |f: &meshvol_io::PolygonFeature| {
+        f.polygons
+            .iter()
+            .flat_map(|p| p.rings())
+            .flatten()
+            .fold(0.0f64, |m, q| m.max(q[0].abs()).max(q[1].abs()))
+    };
+    let all = polygons.features.iter().map(largest).fold(0.0f64, f64::max);
+    let many = r.features.is_some();
+    let mut measures = vec![(None, r.area, r.perimeter, &mut r.centroid, &mut r.inertia, all)];
+    for (f, feature) in r.features.iter_mut().flatten().zip(&polygons.features) {
+        let at = many.then_some(f.index);
+        measures.push((at, f.area, f.perimeter, &mut f.centroid, &mut f.inertia, largest(feature)));
+    }
+    let mut warnings = Vec::new();
+    // Features first, so the message names the one that overflows.
+    for (at, area, perimeter, centroid, inertia, m) in measures.into_iter().rev() {
+        let which = at.map(|i| format!("feature {i}: ")).unwrap_or_default();
+        if !area.is_finite() || !perimeter.is_finite() {
+            return Err(format!(
+                "{}: {which}the area overflows f64: coordinates up to {m:e} give an area or \
+                 perimeter beyond {:e}; rescale the coordinates (e.g. to larger units)",
+                r.file,
+                f64::MAX
+            ));
+        }
+        let moments = inertia.as_ref().is_some_and(|i| {
+            [i.ix, i.iy, i.ixy, i.polar, i.principal_angle_degrees]
+                .iter()
+                .chain(&i.principal)
+                .any(|x| !x.is_finite())
+        });
+        if centroid.is_some_and(|c| !c[0].is_finite() || !c[1].is_finite()) || moments {
+            *centroid = centroid.filter(|c| c[0].is_finite() && c[1].is_finite());
+            *inertia = None;
+            warnings.push(format!(
+                "{which}the second moments overflow f64 (coordinates up to {m:e}): left out"
+            ));
+        }
+    }
+    r.warnings.extend(warnings);
+    Ok(())
 }

@@ -137,6 +137,15 @@ pub fn report(input: &Input, options: &VolumeOptions) -> Result<VolumeReport, St
     // Converting rounds a few more times: widen the bound by that.
     let conversion = if f == 1.0 { 0.0 } else { 4.0 * UNIT_ROUNDOFF * volume };
     let inertia = mp.inertia.map(|row| row.map(|x| x * rho * f3 * f2));
+    // Density times volume or second moments beyond f64 would print as null: refuse.
+    let principal = mp.principal().moments.map(|x| x * rho * f3 * f2);
+    let mut moments = inertia.iter().flatten().chain(&principal);
+    if !(rho * volume).is_finite() || moments.any(|x| !x.is_finite()) {
+        return Err(format!(
+            "{file}: mass or inertia overflows f64 with density {rho:e} (volume {volume:e}): \
+             use a smaller density or other units"
+        ));
+    }
     let check = check.map(|mut c| {
         c.solid_volume *= f3;
         c.volume_uncertainty *= f3;

@@ -367,6 +367,12 @@ fn bad_grids_are_refused_before_allocating() {
         Grid::new([0.0; 3], [1.0, -1.0, 1.0], [4, 4, 4]),
         Err(GridError::BadCellSize { .. })
     ));
+    // Cells of 1e300 per side: each volume (1e900) is beyond f64; 1e100 per side is not.
+    assert!(matches!(
+        Grid::new([0.0; 3], [1e300; 3], [1, 1, 1]),
+        Err(GridError::CellVolumeOverflow { .. })
+    ));
+    assert_eq!(Grid::new([0.0; 3], [1e100; 3], [1, 1, 1]).unwrap().cell_volume(), 1e300);
     // 10²¹ cells do not fit in memory addresses; 10¹⁸ do, but no machine has 6.9 EiB.
     match Grid::new([0.0; 3], [1.0; 3], [10_000_000; 3]) {
         Err(e @ GridError::TooManyCells { .. }) => assert!(e.to_string().contains("EiB"), "{e}"),

@@ -62,6 +62,8 @@ pub enum GridError {
     NoCells { counts: [usize; 3] },
     #[error("cell sizes must be positive and finite; got {}, {}, {}", .cell[0], .cell[1], .cell[2])]
     BadCellSize { cell: [f64; 3] },
+    #[error("cells of {:e} × {:e} × {:e} have a volume beyond f64 (it overflows): use smaller cells", .cell[0], .cell[1], .cell[2])]
+    CellVolumeOverflow { cell: [f64; 3] },
     #[error("the grid's origin must be finite; got ({}, {}, {})", .origin[0], .origin[1], .origin[2])]
     BadOrigin { origin: Point },
     #[error("the bounds are empty along {axis} (from {min} to {max}): give bounds with min < max")]
@@ -101,6 +103,10 @@ impl Grid {
         }
         if counts.contains(&0) {
             return Err(GridError::NoCells { counts });
+        }
+        // Every cell volume is a multiple of this: if it overflows, so do they.
+        if !(cell[0] * cell[1] * cell[2]).is_finite() {
+            return Err(GridError::CellVolumeOverflow { cell });
         }
         let cells = counts.iter().map(|&n| n as u128).product::<u128>();
         let bytes = cells * 8;

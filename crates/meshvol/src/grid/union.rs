@@ -72,6 +72,10 @@ pub const MAX_DEPTH: usize = 4;
 /// Open cells per refinement level at most: a level that would hold more is not made.
 const MAX_OPEN: usize = 1 << 18;
 
+/// A body whose volume in a cell leaves `[−s·|C|, (1 + s)·|C|]` for this `s` is not a
+/// closed solid: rounding in a valid solid's column sums stays some 10⁶ times below it.
+const SOLID_SLACK: f64 = 1e-9;
+
 /// Sub-pieces have at most this many vertices (a piece cut by many lines).
 const SUB: usize = 32;
 
@@ -104,6 +108,14 @@ pub struct UnionVolume {
     pub grid: Grid,
     /// Bodies wound inward, measured turned outward.
     pub flipped: Vec<usize>,
+    /// Bodies that are not closed solids: some cell's volume of theirs left `[0, |C|]`
+    /// by more than rounding (an open or self-overlapping surface). The per-cell bounds
+    /// assume closed solids, so with any body listed here the interval is only ordered,
+    /// not certified, and may exceed `sum_of_volumes`: callers should warn or refuse. A
+    /// body not listed may still be open where its cell volumes happen to stay in range
+    /// (a missing face on the grid's bottom plane adds nothing): this is a symptom found
+    /// on the way, not a closedness check.
+    pub bodies_not_solid: Vec<usize>,
 }
 
 impl UnionVolume {
@@ -215,6 +227,9 @@ enum Cell {
 fn classify(cell_volume: f64, bodies: impl Iterator<Item = (f64, bool)>) -> Cell {
     let (mut touching, mut max, mut sum, mut full) = (0, 0.0f64, 0.0, false);
     for (v, touches) in bodies {
+        // A closed solid's volume in a cell lies in [0, |C|]; clamped, max ≤ Σ holds and
+        // the bounds stay ordered whatever the input (`UnionVolume::bodies_not_solid`).
+        let v = v.max(0.0).min(cell_volume);
         if touches {
             touching += 1;
             max = max.max(v);
@@ -245,6 +260,8 @@ struct Bodies<'a, S: ?Sized> {
     max: Vec<f64>,
     sum: Vec<f64>,
     bins: Vec<ColumnBins>,
+    /// Bodies with a cell volume outside `[0, |C|]` beyond [`SOLID_SLACK`].
+    not_solid: Vec<usize>,
 }
 
 impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
@@ -256,9 +273,18 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
         let mut max = super::cells::zeroed(cells)?;
         let mut sum = super::cells::zeroed(cells)?;
         let mut touched = vec![0u8; cells];
-        for body in &bodies {
+        let mut not_solid = Vec::new();
+        // Rounding leaves a solid's cell volumes within about 1e-15 |C| of [0, |C|].
+        let slack = SOLID_SLACK * cell_volume;
+        for (b, body) in bodies.iter().enumerate() {
             touched.fill(0);
-            let v = cell_volumes(body, &grid, Some(&mut touched))?;
+            let mut v = cell_volumes(body, &grid, Some(&mut touched))?;
+            if v.iter().any(|&x| !(-slack..=cell_volume + slack).contains(&x)) {
+                not_solid.push(b);
+            }
+            // Clamped, the bounds below stay ordered (max ≤ Σ) for any input.
+            // (max/min also send NaN to 0.)
+            v.iter_mut().for_each(|x| *x = x.max(0.0).min(cell_volume));
             for c in 0..cells {
                 if touched[c] != 0 {
                     touching[c] = (touching[c] + 1).min(2);
@@ -270,7 +296,8 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
             }
         }
         let bins = bodies.iter().map(|b| ColumnBins::new(b, &grid)).collect();
-        Ok(Bodies { bodies, grid, units: Units::new(&grid), full, touching, max, sum, bins })
+        let units = Units::new(&grid);
+        Ok(Bodies { bodies, grid, units, full, touching, max, sum, bins, not_solid })
     }
 
     fn cell(&self, c: usize) -> Cell {
@@ -830,12 +857,14 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
     let mut oriented = Vec::new();
     let mut flipped = Vec::new();
     let mut sum_of_volumes = CompensatedSum::default();
+    let mut largest = 0.0f64;
     let (mut min, mut max) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     let mut projected = 0.0;
     let mut triangles = 0;
     for (i, body) in bodies.iter().enumerate() {
         let mp = mass_properties(body);
         sum_of_volumes.add(mp.signed_volume.abs());
+        largest = largest.max(mp.signed_volume.abs());
         triangles += mp.triangles;
         if mp.signed_volume < 0.0 {
             flipped.push(i);
@@ -871,6 +900,7 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
             columns_unresolved: 0,
             grid,
             flipped,
+            bodies_not_solid: Vec::new(),
         });
     }
     let target = triangles.clamp(1 << 15, 1 << 18);
@@ -984,9 +1014,19 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
             }
         }
     }
+    let (mut low, mut high) = (total(&exact, &lower), total(&exact, &upper));
+    if model.not_solid.is_empty() {
+        // For solids the union holds the largest body and is held by their sum: facts
+        // that bound the interval whatever its cells' rounding.
+        low = low.max(largest);
+        high = high.min(sum_of_volumes);
+    }
+    // Ordered for any input: per-column bounds are updated in place (rounding), and a
+    // body that is not a solid makes the bounds meaningless (then it is listed).
+    let (low, high) = (low.min(high), low.max(high));
     Ok(UnionVolume {
-        lower: total(&exact, &lower) - allowance,
-        upper: total(&exact, &upper) + allowance,
+        lower: low - allowance,
+        upper: high + allowance,
         bodies: bodies.len(),
         sum_of_volumes,
         cells_refined,
@@ -994,6 +1034,7 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
         columns_unresolved,
         grid,
         flipped,
+        bodies_not_solid: model.not_solid,
     })
 }
 
