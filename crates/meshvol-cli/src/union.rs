@@ -85,6 +85,13 @@ fn measure(args: UnionArgs, quiet: bool) -> Result<(), String> {
             names[b]
         ));
     }
+    for &b in &u.bodies_not_solid {
+        warnings.push(format!(
+            "{}: not a closed solid (its volume in some cells leaves [0, cell volume]): the \
+             interval is ordered but not certified",
+            names[b]
+        ));
+    }
     if u.columns_unresolved > 0 {
         warnings.push(format!(
             "{} columns of the grid could not be resolved exactly; the interval keeps their \

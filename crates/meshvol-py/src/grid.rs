@@ -283,6 +283,18 @@ pub fn union(
     // Caps on holes are guesses: the interval must hold whatever the missing faces were.
     u.lower = (u.lower - uncertainty).max(0.0);
     u.upper += uncertainty;
+    let not_solid: Vec<String> = u
+        .bodies_not_solid
+        .iter()
+        .map(|b| {
+            format!(
+                "body {b}: not a closed solid (its volume in some cells leaves [0, cell \
+                 volume]): the interval is ordered but not certified"
+            )
+        })
+        .collect();
+    crate::errors::warn_all(py, &not_solid)?;
+    warnings.extend(not_solid);
     Ok(PyUnion {
         lower: u.lower,
         upper: u.upper,
