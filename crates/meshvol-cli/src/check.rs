@@ -35,7 +35,11 @@ pub struct CheckReport {
     pub non_manifold_edges: usize,
     pub non_manifold_vertices: usize,
     pub degenerate_faces: usize,
+    /// Degenerate faces with distinct vertices (zero area): kept in the edge table.
+    pub flat_faces: usize,
     pub duplicate_faces: usize,
+    /// Duplicate faces left out because they cancel with a twin wound the other way.
+    pub double_wall_faces: usize,
     pub consistently_oriented: bool,
     /// `outward`, `inward` or `mixed`.
     pub orientation: Option<&'static str>,
@@ -82,7 +86,9 @@ pub fn report(c: &Check) -> CheckReport {
         non_manifold_edges: c.non_manifold_edges,
         non_manifold_vertices: c.non_manifold_vertices,
         degenerate_faces: c.degenerate_faces,
+        flat_faces: c.flat_faces,
         duplicate_faces: c.duplicate_faces,
+        double_wall_faces: c.double_wall_faces,
         consistently_oriented: c.consistently_oriented,
         orientation: c.orientation.map(Orientation::name),
         winding: c.orientation.and_then(Orientation::winding),

@@ -109,9 +109,15 @@ pub struct PyCheck {
     /// Faces with a repeated vertex or zero area.
     #[pyo3(get)]
     degenerate_faces: usize,
-    /// Faces with the same vertices as an earlier face.
+    /// Degenerate faces with distinct vertices (zero area), kept in the edge table.
+    #[pyo3(get)]
+    flat_faces: usize,
+    /// Faces with the same vertices as another face, left out.
     #[pyo3(get)]
     duplicate_faces: usize,
+    /// Of those, faces that cancel with a twin wound the other way (double walls).
+    #[pyo3(get)]
+    double_wall_faces: usize,
     /// Every manifold edge's two faces traverse it in opposite directions.
     #[pyo3(get)]
     consistently_oriented: bool,
@@ -196,7 +202,9 @@ pub fn check(
         non_manifold_edges: c.non_manifold_edges,
         non_manifold_vertices: c.non_manifold_vertices,
         degenerate_faces: c.degenerate_faces,
+        flat_faces: c.flat_faces,
         duplicate_faces: c.duplicate_faces,
+        double_wall_faces: c.double_wall_faces,
         consistently_oriented: c.consistently_oriented,
         orientation,
         winding,
@@ -283,7 +291,9 @@ impl PyCheck {
         d.set_item("non_manifold_edges", self.non_manifold_edges)?;
         d.set_item("non_manifold_vertices", self.non_manifold_vertices)?;
         d.set_item("degenerate_faces", self.degenerate_faces)?;
+        d.set_item("flat_faces", self.flat_faces)?;
         d.set_item("duplicate_faces", self.duplicate_faces)?;
+        d.set_item("double_wall_faces", self.double_wall_faces)?;
         d.set_item("consistently_oriented", self.consistently_oriented)?;
         d.set_item("orientation", self.orientation)?;
         d.set_item("winding", self.winding)?;

@@ -14,7 +14,8 @@ from solids import BOX_TRIANGLES, OPENSCAD_CUBE_FACES, OPENSCAD_CUBE_POINTS, box
 CHECK_KEYS = [
     "bounds_a_volume", "verdict", "closed", "weld_tolerance", "welded_vertices", "edges",
     "boundary_edges", "boundary_loops", "non_manifold_edges", "non_manifold_vertices",
-    "degenerate_faces", "duplicate_faces", "consistently_oriented", "orientation", "winding",
+    "degenerate_faces", "flat_faces", "duplicate_faces", "double_wall_faces",
+    "consistently_oriented", "orientation", "winding",
     "shells", "cavities", "shell_details", "overlapping_shells", "self_intersections",
     "intersection_examples", "euler_characteristic", "solid_volume", "volume_uncertainty",
 ]

@@ -164,7 +164,9 @@ class Check:
     non_manifold_edges: int
     non_manifold_vertices: int
     degenerate_faces: int
+    flat_faces: int
     duplicate_faces: int
+    double_wall_faces: int
     consistently_oriented: bool
     orientation: Optional[str]
     winding: Optional[str]

@@ -252,7 +252,7 @@ impl Check {
             n => format!(", {}", plural(n, "cavity", "cavities")),
         };
         if c.shells.is_empty() {
-            return "no usable faces: nothing bounds a volume".into();
+            return c.no_faces_left();
         }
         if c.bounds_a_volume() {
             let wound = match c.orientation {
@@ -286,6 +286,18 @@ impl Check {
             problems.push("not orientable (no inside and outside)".into());
         }
         format!("does not bound a volume: {}; {shells}{cavities}", problems.join(", "))
+    }
+
+    /// Why no face is left to bound a volume.
+    fn no_faces_left(&self) -> String {
+        if self.double_wall_faces > 0 {
+            "no usable faces: every face cancels with a twin wound the other way (a \
+             double-sided surface), so nothing bounds a volume; measure it unchecked (as
+             wound) instead"
+                .into()
+        } else {
+            "no usable faces: nothing bounds a volume".into()
+        }
     }
 
     /// What [`Check::solid`] changes: (faces flipped, faces dropped, cap triangles).
@@ -342,7 +354,7 @@ impl Check {
     pub fn doubts(&self) -> Vec<String> {
         let mut doubts = Vec::new();
         if self.shells.is_empty() {
-            doubts.push("no usable faces: nothing bounds a volume".to_string());
+            doubts.push(self.no_faces_left());
             return doubts;
         }
         if self.boundary_loops > 0 {
