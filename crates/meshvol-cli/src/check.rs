@@ -1,198 +1,43 @@
-//! `meshvol check`: can the volume be trusted? The same facts appear in `meshvol volume`.
+//! `meshvol check`: can the volume be trusted? Exits 1 when a file does not bound a
+//! volume.
 
-use meshvol::topology::{Check, Orientation};
-use serde::Serialize;
-use std::fmt::Write;
+use crate::driver::{self, Output};
+use crate::input;
+use clap::Args;
+use meshvol_report::check::check;
+use meshvol_report::subject::Source;
+use std::path::PathBuf;
+use std::process::ExitCode;
 
-/// One shell in the report.
-#[derive(Debug, Serialize)]
-pub struct ShellReport {
-    pub faces: usize,
-    pub closed: bool,
-    pub orientable: bool,
-    pub volume: f64,
-    pub cavity: bool,
-    pub parent: Option<usize>,
-    pub wound_outward: Option<bool>,
-    pub boundary_loops: usize,
-    pub euler_characteristic: i64,
-    pub genus: Option<i64>,
+#[derive(Args)]
+pub struct CheckArgs {
+    /// Mesh files.
+    #[arg(required = true, value_name = "FILE")]
+    files: Vec<PathBuf>,
+    /// Print one JSON object per file, one per line.
+    #[arg(long)]
+    json: bool,
+    /// Skip the search for crossing triangles (self-intersections; overlapping shells
+    /// are then found only by the ray tests).
+    #[arg(long)]
+    no_intersections: bool,
+    /// Weld vertices whose coordinates differ by at most T; 0 welds exactly equal
+    /// positions only. Default: exactly, and when that leaves holes, again within 1e-9 of
+    /// the bounding box diagonal (reported as `weld_tolerance`).
+    #[arg(long, value_name = "T", value_parser = crate::non_negative_finite)]
+    weld_tolerance: Option<f64>,
 }
 
-/// The topology facts. Field names are JSON keys (a public contract); in `volume`
-/// reports they are flattened into the top level.
-#[derive(Debug, Serialize)]
-pub struct CheckReport {
-    pub bounds_a_volume: bool,
-    pub verdict: String,
-    pub closed: bool,
-    /// The weld tolerance used (`null`: exact).
-    pub weld_tolerance: Option<f64>,
-    pub welded_vertices: usize,
-    pub edges: usize,
-    pub boundary_edges: usize,
-    pub boundary_loops: usize,
-    pub non_manifold_edges: usize,
-    pub non_manifold_vertices: usize,
-    pub degenerate_faces: usize,
-    /// Degenerate faces with distinct vertices (zero area): kept in the edge table.
-    pub flat_faces: usize,
-    pub duplicate_faces: usize,
-    /// Duplicate faces left out because they cancel with a twin wound the other way.
-    pub double_wall_faces: usize,
-    pub consistently_oriented: bool,
-    /// `outward`, `inward` or `mixed`.
-    pub orientation: Option<&'static str>,
-    /// `ccw` (counter-clockwise seen from outside) or `cw` (as OpenSCAD wants).
-    pub winding: Option<&'static str>,
-    pub shells: usize,
-    pub cavities: usize,
-    pub shell_details: Vec<ShellReport>,
-    pub overlapping_shells: Vec<[usize; 2]>,
-    pub self_intersections: Option<usize>,
-    pub intersection_examples: Vec<[usize; 2]>,
-    pub euler_characteristic: i64,
-    /// The solid's volume from the topology (cavities subtracted, holes capped).
-    pub solid_volume: f64,
-    pub volume_uncertainty: f64,
-}
-
-/// One file's line of `meshvol check --json`: the file, its format, the facts and the
-/// reader's warnings. (Serialized directly: going through `serde_json::Value` built a
-/// map per shell, 0.13 s for the 85k shells of the benchmark's cubes.)
-#[derive(Serialize)]
-pub struct JsonLine<'a> {
-    pub file: &'a str,
-    pub format: &'a str,
-    #[serde(flatten)]
-    pub report: &'a CheckReport,
-    pub warnings: &'a [String],
-}
-
-/// How many shells or pairs the text report lists before summarising.
-const LISTED: usize = 10;
-
-/// The report of a check.
-pub fn report(c: &Check) -> CheckReport {
-    CheckReport {
-        bounds_a_volume: c.bounds_a_volume(),
-        verdict: c.verdict(),
-        closed: c.closed,
-        weld_tolerance: c.weld_tolerance,
-        welded_vertices: c.vertices,
-        edges: c.edges,
-        boundary_edges: c.boundary_edges,
-        boundary_loops: c.boundary_loops,
-        non_manifold_edges: c.non_manifold_edges,
-        non_manifold_vertices: c.non_manifold_vertices,
-        degenerate_faces: c.degenerate_faces,
-        flat_faces: c.flat_faces,
-        duplicate_faces: c.duplicate_faces,
-        double_wall_faces: c.double_wall_faces,
-        consistently_oriented: c.consistently_oriented,
-        orientation: c.orientation.map(Orientation::name),
-        winding: c.orientation.and_then(Orientation::winding),
-        shells: c.shells.len(),
-        cavities: c.cavities,
-        shell_details: c
-            .shells
-            .iter()
-            .map(|s| ShellReport {
-                faces: s.faces,
-                closed: s.closed,
-                orientable: s.orientable,
-                volume: s.volume,
-                cavity: s.cavity,
-                parent: s.parent,
-                wound_outward: s.wound_outward,
-                boundary_loops: s.boundary_loops,
-                euler_characteristic: s.euler_characteristic,
-                genus: s.genus,
-            })
-            .collect(),
-        overlapping_shells: c.overlapping_shells.clone(),
-        self_intersections: c.self_intersections,
-        intersection_examples: c.intersection_examples.clone(),
-        euler_characteristic: c.euler_characteristic,
-        solid_volume: c.volume,
-        volume_uncertainty: c.volume_uncertainty,
-    }
-}
-
-/// The human-readable report: the verdict first, details after.
-pub fn text(file: &str, format: &str, r: &CheckReport) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "{file}: {}", r.verdict);
-    let _ = writeln!(s, "  format             {format}");
-    let _ = writeln!(
-        s,
-        "  closed             {} ({} boundary edges in {} loops)",
-        r.closed, r.boundary_edges, r.boundary_loops
-    );
-    let weld = r.weld_tolerance.map_or("exact".to_string(), |t| format!("within {t:.3e}"));
-    let _ = writeln!(
-        s,
-        "  vertices           {} welded ({weld}), {} edges",
-        r.welded_vertices, r.edges
-    );
-    let _ = writeln!(
-        s,
-        "  manifold           {} non-manifold edges, {} non-manifold vertices",
-        r.non_manifold_edges, r.non_manifold_vertices
-    );
-    let _ = writeln!(
-        s,
-        "  faces dropped      {} degenerate, {} duplicate",
-        r.degenerate_faces, r.duplicate_faces
-    );
-    let _ = writeln!(
-        s,
-        "  orientation        {} (consistent: {}; winding {})",
-        r.orientation.unwrap_or("none"),
-        r.consistently_oriented,
-        r.winding.unwrap_or("undetermined")
-    );
-    let _ = writeln!(s, "  shells             {} ({} cavities)", r.shells, r.cavities);
-    for (i, sh) in r.shell_details.iter().enumerate().take(LISTED) {
-        let role = if sh.cavity { "cavity" } else { "solid" };
-        let parent = sh.parent.map(|p| format!(" inside shell {p}")).unwrap_or_default();
-        let genus = sh.genus.map(|g| format!(", genus {g}")).unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "    shell {i}: {role}{parent}, {} faces, volume {}, {}{}, χ = {}{genus}",
-            sh.faces,
-            crate::volume::num(sh.volume, 10),
-            if sh.closed { "closed" } else { "open" },
-            if sh.orientable { "" } else { ", not orientable" },
-            sh.euler_characteristic
-        );
-    }
-    if r.shell_details.len() > LISTED {
-        let _ = writeln!(s, "    ... and {} more (see --json)", r.shell_details.len() - LISTED);
-    }
-    if !r.overlapping_shells.is_empty() {
-        let shown = &r.overlapping_shells[..r.overlapping_shells.len().min(LISTED)];
-        let more = r.overlapping_shells.len() - shown.len();
-        let more = if more > 0 { format!(" and {more} more") } else { String::new() };
-        let _ = writeln!(s, "  overlapping shells {shown:?}{more}");
-    }
-    match r.self_intersections {
-        Some(n) => {
-            let _ = writeln!(s, "  self-intersections {n}");
-        }
-        None => {
-            let _ = writeln!(s, "  self-intersections not checked");
-        }
-    }
-    if !r.intersection_examples.is_empty() {
-        let _ = writeln!(s, "  crossing faces     {:?}", r.intersection_examples);
-    }
-    let _ = writeln!(s, "  euler char.        {}", r.euler_characteristic);
-    let _ = writeln!(
-        s,
-        "  volume             {} ± {}",
-        crate::volume::num(r.solid_volume, 15),
-        crate::volume::num(r.volume_uncertainty, 3)
-    );
-    s
+/// Runs the command. A file without faces is checked too: it bounds nothing.
+pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
+    let options = crate::solid::check_options(args.weld_tolerance, !args.no_intersections);
+    driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
+        let name = path.display().to_string();
+        progress.stage("reading", path);
+        let loaded = input::load(path)?;
+        progress.stage("checking", path);
+        let c = meshvol::topology::check(&loaded.surface, &options)
+            .map_err(|e| format!("{name}: {e}"))?;
+        Ok(check(&Source::of(&name, &loaded), &c))
+    })
 }

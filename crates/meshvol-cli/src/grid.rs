@@ -1,14 +1,15 @@
 //! `meshvol grid`: the volume of the solid in each cell of a regular grid, written as
 //! `.npy`, `.vti` or `.csv`, with a summary as text or JSON (and a picture of a slice).
 
-use crate::input;
+use crate::driver::{self, Output};
+use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{bytes_text, cell_volumes, occupancy, union_cell_volumes, Grid};
-use meshvol::{mass_properties, Point, Surface};
+use meshvol::grid::{cell_volumes, union_cell_volumes};
+use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};
-use serde::Serialize;
-use std::fmt::Write as _;
+use meshvol_report::grid::{check_memory, choose, summary, GridReport, GridRun, Spacing};
+use meshvol_report::subject::{union_bodies, Subject};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -117,88 +118,23 @@ fn extension(path: &Path) -> Option<String> {
     path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)
 }
 
-/// Memory the machine has available, from /proc/meminfo where there is one.
-pub fn available_memory() -> Option<u128> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
-
-/// Refuses a grid whose arrays (`arrays` f64 values per cell) would not fit in the
-/// memory available, naming what it would need.
-pub fn check_memory(grid: &Grid, arrays: u128) -> Result<(), String> {
-    let need = grid.array_bytes() * arrays;
-    if let Some(available) = available_memory() {
-        if need > available {
-            let [nx, ny, nz] = grid.counts;
-            let cells = nx as u128 * ny as u128 * nz as u128;
-            return Err(format!(
-                "a {nx}×{ny}×{nz} grid has {cells} cells and would need {} of memory; {} is available: use fewer cells",
-                bytes_text(need),
-                bytes_text(available)
-            ));
-        }
-    }
-    Ok(())
-}
-
-#[derive(Serialize)]
-struct BoundsReport {
-    min: Point,
-    max: Point,
-}
-
-/// The summary. Field names are the JSON keys.
-#[derive(Serialize)]
-struct GridReport {
-    files: Vec<String>,
-    /// The grid's box.
-    bounds: BoundsReport,
-    /// `mesh` (the bounding box of the meshes, grown to whole cells with --pitch) or
-    /// `given` (--bounds).
-    bounds_from: &'static str,
-    cells: [usize; 3],
-    cell_size: [f64; 3],
-    /// Σ of the cells.
-    total: f64,
-    /// The meshes' volume: Σ of signed volumes (with --union, of each body's |volume|,
-    /// which counts overlaps more than once).
-    mesh_volume: f64,
-    union: bool,
-    /// Bodies (with --union).
-    bodies: usize,
-    cells_full: usize,
-    cells_partial: usize,
-    cells_empty: usize,
-    /// Columns of the union left at their lower bound (could not be resolved exactly).
-    columns_unresolved: usize,
-    /// Seconds spent computing the cell volumes.
-    seconds: f64,
-    out: Option<String>,
-    png: Option<String>,
-    /// The readers' warnings and the reasons to doubt each file's solid, as
-    /// `FILE: warning`.
-    warnings: Vec<String>,
-}
-
-/// Several surfaces read as one (their faces one after another).
-struct Together<S> {
+// TEMPORARY until meshvol::surface::Joined lands (core-stages branch).
+struct Joined<S> {
     surfaces: Vec<S>,
     starts: Vec<usize>,
 }
 
-impl<S: Surface> Together<S> {
+impl<S: meshvol::Surface> Joined<S> {
     fn new(surfaces: Vec<S>) -> Self {
         let mut starts = vec![0];
         for s in &surfaces {
             starts.push(starts.last().copied().unwrap_or(0) + s.face_count());
         }
-        Together { surfaces, starts }
+        Joined { surfaces, starts }
     }
 }
 
-impl<S: Surface> Surface for Together<S> {
+impl<S: meshvol::Surface> meshvol::Surface for Joined<S> {
     fn face_count(&self) -> usize {
         self.starts.last().copied().unwrap_or(0)
     }
@@ -209,55 +145,36 @@ impl<S: Surface> Surface for Together<S> {
     }
 }
 
-/// Runs the command: the report on stdout, an error on stderr with exit status 1.
+/// Runs the command: one summary for all the files.
 pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
-    match measure(args, quiet) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("meshvol: error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    let output = Output { json: args.json, quiet };
+    driver::once(&args.files, output, |progress| measure(&args, progress))
 }
 
-fn measure(args: GridArgs, quiet: bool) -> Result<(), String> {
-    let progress = input::Progress::new(&args.files, quiet);
+fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
     let mut inputs = Vec::new();
     let mut warnings = Vec::new();
     for path in &args.files {
-        let input = solid::read(path, args.solid.check(), &progress)?;
-        for w in &input.warnings {
-            progress.warn(&input.name, w);
-            warnings.push(format!("{}: {w}", input.name));
-        }
+        let input = solid::read(path, args.solid.check(), progress)?;
+        let subject = input.subject();
+        warnings.extend(subject.warnings().iter().map(|w| format!("{}: {w}", input.source.name())));
         progress.done(path);
         inputs.push(input);
     }
-    progress.finish();
-    let together = Together::new(inputs.iter().map(solid::Input::surface).collect());
+    let subjects = solid::subjects(&inputs);
+    let together = Joined::new(subjects.iter().map(Subject::measured).collect());
     let mp = mass_properties(&together);
-    let bodies = if args.union { solid::union_bodies(&inputs) } else { Vec::new() };
+    let bodies = if args.union { union_bodies(&subjects) } else { Vec::new() };
     let bodies: Vec<_> = bodies.into_iter().map(|b| b.surface).collect();
-    let (min, max, bounds_from) = match args.bounds {
-        Some((min, max)) => (min, max, "given"),
-        None => {
-            let b = mp.bounds.ok_or("no vertices: there is no surface to measure")?;
-            (b.min, b.max, "mesh")
-        }
-    };
-    let grid = match (args.cells, args.pitch) {
-        (Some(counts), _) => Grid::from_bounds(min, max, counts),
-        (None, Some(pitch)) => Grid::with_pitch(min, max, pitch),
+    let spacing = match (args.cells, args.pitch) {
+        (Some(counts), _) => Spacing::Cells(counts),
+        (None, Some(pitch)) => Spacing::Pitch(pitch),
         (None, None) => return Err("give --cells NX,NY,NZ or --pitch H".into()),
-    }
-    .map_err(|e| match e {
-        meshvol::grid::GridError::EmptyBounds { .. } if bounds_from == "mesh" => {
-            format!("{e}; the meshes are flat: give --bounds")
-        }
-        e => e.to_string(),
-    })?;
+    };
+    let (grid, bounds_from) = choose(args.bounds, mp.bounds, spacing, "--bounds")?;
     // The cell array, and with --union four more per-cell arrays.
     check_memory(&grid, if args.union { 5 } else { 1 })?;
+    progress.stage_all("computing cell volumes");
     let start = Instant::now();
     let (volumes, columns_unresolved) = if args.union {
         union_cell_volumes(&bodies, &grid).map_err(|e| e.to_string())?
@@ -287,93 +204,17 @@ fn measure(args: GridArgs, quiet: bool) -> Result<(), String> {
         grid_out::png(&mut bytes, &grid, &volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
-    let occupied = occupancy(&volumes, grid.cell_volume());
-    let mut total = meshvol::accumulate::CompensatedSum::default();
-    volumes.iter().for_each(|&v| total.add(v));
-    let report = GridReport {
+    let run = GridRun {
         files: args.files.iter().map(|p| p.display().to_string()).collect(),
-        bounds: BoundsReport { min: grid.origin, max: grid.max() },
         bounds_from,
-        cells: grid.counts,
-        cell_size: grid.cell,
-        total: total.value(),
         mesh_volume,
-        union: args.union,
-        bodies: bodies.len(),
-        cells_full: occupied.full,
-        cells_partial: occupied.partial,
-        cells_empty: occupied.empty,
+        union_bodies: args.union.then_some(bodies.len()),
         columns_unresolved,
         seconds,
         out: args.out.as_ref().map(|p| p.display().to_string()),
+        fraction: args.fraction,
         png: args.png.as_ref().map(|p| p.display().to_string()),
         warnings,
     };
-    let text = if args.json {
-        serde_json::to_string(&report).map_err(|e| e.to_string())? + "\n"
-    } else {
-        text(&report, args.fraction)
-    };
-    if std::io::stdout().lock().write_all(text.as_bytes()).is_err() {
-        return Ok(()); // stdout closed
-    }
-    Ok(())
-}
-
-fn vector(v: [f64; 3]) -> String {
-    format!("({}, {}, {})", v[0], v[1], v[2])
-}
-
-fn text(r: &GridReport, fraction: bool) -> String {
-    let mut s = String::new();
-    let [nx, ny, nz] = r.cells;
-    let from = if r.bounds_from == "mesh" { "the meshes' bounding box" } else { "--bounds" };
-    let _ = writeln!(s, "{}: grid of {nx}×{ny}×{nz} cells", r.files.join(", "));
-    let _ = writeln!(
-        s,
-        "  bounds         {} to {} (from {from})",
-        vector(r.bounds.min),
-        vector(r.bounds.max)
-    );
-    let _ = writeln!(s, "  cell size      {}", vector(r.cell_size));
-    if r.union {
-        let _ = writeln!(
-            s,
-            "  union of       {} bodies (Σ of their volumes {})",
-            r.bodies, r.mesh_volume
-        );
-        let _ = writeln!(s, "  total          {}", r.total);
-        if r.columns_unresolved > 0 {
-            let _ = writeln!(
-                s,
-                "  unresolved     {} columns hold lower bounds in their open cells",
-                r.columns_unresolved
-            );
-        }
-    } else {
-        let _ = writeln!(s, "  total          {}  (mesh volume {})", r.total, r.mesh_volume);
-    }
-    let _ = writeln!(
-        s,
-        "  cells          {} full, {} partial, {} empty",
-        r.cells_full, r.cells_partial, r.cells_empty
-    );
-    if let Some(out) = &r.out {
-        let what = match Path::new(out).extension().and_then(|e| e.to_str()) {
-            Some(e) if e.eq_ignore_ascii_case("npy") => format!(
-                "float64 {}, shape ({nx}, {ny}, {nz}), C order",
-                if fraction { "fractions" } else { "volumes" }
-            ),
-            Some(e) if e.eq_ignore_ascii_case("vti") => {
-                "VTK image data, cell arrays volume and fraction".to_string()
-            }
-            _ => "i,j,k,volume,fraction of the non-empty cells".to_string(),
-        };
-        let _ = writeln!(s, "  wrote          {out} ({what})");
-    }
-    if let Some(png) = &r.png {
-        let _ = writeln!(s, "  picture        {png}");
-    }
-    let _ = writeln!(s, "  time           {:.3} s", r.seconds);
-    s
+    Ok(summary(&grid, &volumes, run))
 }

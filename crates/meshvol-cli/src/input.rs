@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use meshvol_io::Loaded;
+use meshvol_io::{Loaded, PointCloud, PolygonFile};
 
 /// Inputs of at least this many bytes in all get a progress bar.
 const LARGE: u64 = 16 << 20;
@@ -21,18 +21,41 @@ pub fn is_stdin(path: &Path) -> bool {
     path.as_os_str() == "-"
 }
 
+/// All of standard input.
+fn stdin_bytes() -> Result<Vec<u8>, String> {
+    let mut bytes = Vec::new();
+    std::io::stdin()
+        .lock()
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("-: cannot read standard input: {e}"))?;
+    Ok(bytes)
+}
+
 /// Reads a mesh from a file, or from standard input for `-` (all of it, then the format
 /// from its content).
 pub fn load(path: &Path) -> Result<Loaded, String> {
     if is_stdin(path) {
-        let mut bytes = Vec::new();
-        std::io::stdin()
-            .lock()
-            .read_to_end(&mut bytes)
-            .map_err(|e| format!("-: cannot read standard input: {e}"))?;
-        return meshvol_io::read_bytes(path, bytes).map_err(|e| e.to_string());
+        return meshvol_io::read_bytes(path, stdin_bytes()?).map_err(|e| e.to_string());
     }
     meshvol_io::read(path).map_err(|e| e.to_string())
+}
+
+/// Reads polygons from a file, or from standard input for `-`.
+pub fn load_polygons(path: &Path) -> Result<PolygonFile, String> {
+    if is_stdin(path) {
+        return meshvol_io::read_polygons_bytes(path, &stdin_bytes()?).map_err(|e| e.to_string());
+    }
+    meshvol_io::read_polygons(path).map_err(|e| e.to_string())
+}
+
+/// Reads points from a file, or from standard input for `-`.
+pub fn load_points(path: &Path) -> Result<PointCloud, String> {
+    if is_stdin(path) {
+        // TEMPORARY until meshvol_io::read_points_bytes lands (io-forgiving branch).
+        let _ = stdin_bytes()?;
+        return Err("-: not yet".into());
+    }
+    meshvol_io::read_points(path).map_err(|e| e.to_string())
 }
 
 /// Progress on stderr, and the warnings printed around it.
@@ -64,6 +87,13 @@ impl Progress {
     pub fn stage(&self, what: &str, path: &Path) {
         if let Some(bar) = &self.bar {
             bar.set_message(format!("{what} {}", path.display()));
+        }
+    }
+
+    /// Says what is being done to all the inputs together.
+    pub fn stage_all(&self, what: &str) {
+        if let Some(bar) = &self.bar {
+            bar.set_message(what.to_string());
         }
     }
 

@@ -1,13 +1,12 @@
 //! `meshvol profile`: the volume below each level along an axis, the volume of each slab
 //! between levels and the cross-section area at each level (a strapping table).
 
-use crate::input;
+use crate::driver::{Driver, Output};
+use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::{Args, ValueEnum};
-use meshvol::grid::{profile, Axis, Levels, Profile};
-use serde::Serialize;
-use std::fmt::Write as _;
-use std::io::Write;
+use meshvol::grid::{Axis, Levels};
+use meshvol_report::profile::{profile, ProfileReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -42,36 +41,20 @@ pub struct ProfileArgs {
     solid: SolidArgs,
 }
 
-/// The JSON report: exactly these keys.
-#[derive(Serialize)]
-struct ProfileReport<'a> {
-    file: &'a str,
-    axis: &'static str,
-    levels: &'a [f64],
-    volume_below: &'a [f64],
-    slab_volume: &'a [f64],
-    section_area: &'a [f64],
-    /// The reader's warnings and the reasons to doubt the solid.
-    warnings: &'a [String],
-}
-
-/// Runs the command: the report on stdout, an error on stderr with exit status 1.
+/// Runs the command: the table, CSV or JSON on stdout.
 pub fn run(args: ProfileArgs, quiet: bool) -> ExitCode {
-    match measure(args, quiet) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("meshvol: error: {e}");
-            ExitCode::FAILURE
-        }
+    let files = std::slice::from_ref(&args.file);
+    let mut driver = Driver::new(files, Output { json: args.json, quiet });
+    match measure(&args, &driver.progress) {
+        Ok(report) if args.csv => driver.print(&report, &report.csv()),
+        Ok(report) => driver.report(&report),
+        Err(e) => driver.fail(&args.file.display().to_string(), &e),
     }
+    driver.finish()
 }
 
-fn measure(args: ProfileArgs, quiet: bool) -> Result<(), String> {
-    let progress = input::Progress::new(std::slice::from_ref(&args.file), quiet);
-    let input = solid::read(&args.file, args.solid.check(), &progress)?;
-    progress.finish();
-    let name = &input.name;
-    let mut warnings = input.warnings.clone();
+fn measure(args: &ProfileArgs, progress: &Progress) -> Result<ProfileReport, String> {
+    let input = solid::read(&args.file, args.solid.check(), progress)?;
     let axis = match args.axis {
         AxisArg::X => Axis::X,
         AxisArg::Y => Axis::Y,
@@ -82,62 +65,6 @@ fn measure(args: ProfileArgs, quiet: bool) -> Result<(), String> {
         (None, Some(h)) => Levels::Step(h),
         (None, None) => return Err("give --levels N or --step H".into()),
     };
-    let p = profile(&input.surface(), axis, levels).map_err(|e| format!("{name}: {e}"))?;
-    if p.volume_below.last().is_some_and(|&v| v < 0.0) {
-        warnings.push(
-            "volumes are negative: the faces are wound inward (clockwise seen from outside)"
-                .to_string(),
-        );
-    }
-    for w in &warnings {
-        progress.warn(name, w);
-    }
-    let text = if args.json {
-        let report = ProfileReport {
-            file: name,
-            axis: p.axis.name(),
-            levels: &p.levels,
-            volume_below: &p.volume_below,
-            slab_volume: &p.slab_volume,
-            section_area: &p.section_area,
-            warnings: &warnings,
-        };
-        serde_json::to_string(&report).map_err(|e| e.to_string())? + "\n"
-    } else if args.csv {
-        csv(&p)
-    } else {
-        table(name, &p)
-    };
-    let _ = std::io::stdout().lock().write_all(text.as_bytes());
-    Ok(())
-}
-
-/// `level,volume_below,slab_volume,section_area`; the last level has no slab above it.
-fn csv(p: &Profile) -> String {
-    let mut s = String::from("level,volume_below,slab_volume,section_area\n");
-    for (k, level) in p.levels.iter().enumerate() {
-        let slab = p.slab_volume.get(k).map(|v| format!("{v:?}")).unwrap_or_default();
-        let _ = writeln!(s, "{level:?},{:?},{slab},{:?}", p.volume_below[k], p.section_area[k]);
-    }
-    s
-}
-
-fn table(name: &str, p: &Profile) -> String {
-    let mut s = String::new();
-    let axis = p.axis.name();
-    let _ = writeln!(s, "{name}: profile along {axis}, {} levels", p.levels.len());
-    let _ = writeln!(
-        s,
-        "  {:>22}  {:>22}  {:>22}  {:>22}",
-        axis, "volume below", "slab volume (to next)", "section area"
-    );
-    for (k, level) in p.levels.iter().enumerate() {
-        let slab = p.slab_volume.get(k).map(|v| v.to_string()).unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "  {:>22}  {:>22}  {:>22}  {:>22}",
-            level, p.volume_below[k], slab, p.section_area[k]
-        );
-    }
-    s
+    progress.stage("measuring", &args.file);
+    profile(&input.subject(), axis, levels)
 }

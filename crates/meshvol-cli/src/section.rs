@@ -1,16 +1,15 @@
 //! `meshvol section`: the cross-section of a mesh by a plane, its area and moments, and
 //! its outline as WKT or GeoJSON.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use crate::driver::{Driver, Output};
+use crate::input::Progress;
 use clap::Args;
-use meshvol::polygon::{area_properties, Polygon};
-use meshvol::section::{section, Plane, PlaneFrame};
-use serde::Serialize;
-
-use crate::area::InertiaReport;
+use meshvol::polygon::Polygon;
+use meshvol::section::Plane;
+use meshvol_report::section::{section, SectionReport};
 
 #[derive(Args)]
 pub struct SectionArgs {
@@ -65,139 +64,6 @@ fn parse_plane(s: &str) -> Result<Plane, String> {
     Plane::new([px, py, pz], [nx, ny, nz]).map_err(|e| e.to_string())
 }
 
-#[derive(Debug, Serialize)]
-pub struct PlaneReport {
-    /// A point of the plane: the 2D origin.
-    pub origin: [f64; 3],
-    pub normal: [f64; 3],
-    /// The 3D directions of the 2D coordinates' axes: (s, t) is origin + s·u + t·v.
-    pub u: [f64; 3],
-    pub v: [f64; 3],
-}
-
-/// The report. Field names are the JSON keys.
-#[derive(Debug, Serialize)]
-pub struct SectionReport {
-    pub file: String,
-    pub format: String,
-    pub plane: PlaneReport,
-    /// Exteriors minus holes, in the plane's 2D coordinates.
-    pub area: f64,
-    /// Σ of the loops' areas as the mesh winds them (negative for inward winding).
-    pub signed_area: f64,
-    pub perimeter: f64,
-    /// In the plane's 2D coordinates.
-    pub centroid: Option<[f64; 2]>,
-    pub centroid_3d: Option<[f64; 3]>,
-    /// About the centroid, in the plane's 2D axes.
-    pub inertia: Option<InertiaReport>,
-    pub polygons: usize,
-    pub holes: usize,
-    pub loops: usize,
-    /// Triangles crossing the plane.
-    pub segments: usize,
-    pub open_chains: usize,
-    pub warnings: Vec<String>,
-}
-
-fn plane_report(f: &PlaneFrame) -> PlaneReport {
-    PlaneReport { origin: f.origin, normal: f.normal, u: f.u, v: f.v }
-}
-
-/// Cuts a loaded mesh.
-fn measure(input: &crate::solid::Input, plane: &Plane) -> (SectionReport, Vec<Polygon>) {
-    let (file, loaded) = (&input.name, &input.loaded);
-    let cut = section(&input.surface(), plane);
-    let props = area_properties(&cut.polygons);
-    let frame = plane.frame();
-    let mut warnings = input.warnings.clone();
-    if cut.segments == 0 {
-        warnings.push("the plane does not cut the surface: the section is empty".into());
-    }
-    if cut.open_chains > 0 {
-        warnings.push(format!(
-            "{} chain(s) of the section do not close: the surface is open along the plane; \
-             they are left out of the area",
-            cut.open_chains
-        ));
-    }
-    if cut.ambiguous_edges > 0 {
-        warnings.push(format!(
-            "{} edge(s) crossed twice in one direction: edges shared by more than two \
-             triangles, or inconsistent winding; loops through them are chained arbitrarily",
-            cut.ambiguous_edges
-        ));
-    }
-    if cut.misoriented_loops > 0 {
-        warnings.push(format!(
-            "{} loop(s) wound against their nesting: an inward-wound shell inside another, or \
-             intersecting shells; the area follows the nesting",
-            cut.misoriented_loops
-        ));
-    }
-    if cut.signed_area < 0.0 {
-        warnings.push(
-            "the loops wind clockwise: the mesh is wound inward (the area is still reported \
-             positive)"
-                .into(),
-        );
-    }
-    let centroid_3d = props
-        .centroid
-        .map(|[s, t]| [0, 1, 2].map(|k| frame.origin[k] + s * frame.u[k] + t * frame.v[k]));
-    let report = SectionReport {
-        file: file.to_string(),
-        format: loaded.format.name().to_string(),
-        plane: plane_report(&frame),
-        area: props.area,
-        signed_area: cut.signed_area,
-        perimeter: props.perimeter,
-        centroid: props.centroid,
-        centroid_3d,
-        inertia: props.centroid.map(|_| props.inertia.into()),
-        polygons: cut.polygons.len(),
-        holes: cut.polygons.iter().map(|p| p.holes.len()).sum(),
-        loops: cut.loops,
-        segments: cut.segments,
-        open_chains: cut.open_chains,
-        warnings,
-    };
-    (report, cut.polygons)
-}
-
-fn text(r: &SectionReport) -> String {
-    let mut s = String::new();
-    let p = &r.plane;
-    let _ = writeln!(
-        s,
-        "{}: {}, section by the plane through {:?} with normal {:?}",
-        r.file, r.format, p.origin, p.normal
-    );
-    let _ = writeln!(s, "  2D axes    u {:?}, v {:?}", p.u, p.v);
-    let _ = writeln!(
-        s,
-        "  outline    {} polygon(s), {} hole(s), from {} loop(s) of {} segment(s)",
-        r.polygons, r.holes, r.loops, r.segments
-    );
-    let _ = writeln!(s, "  area       {}", r.area);
-    let _ = writeln!(s, "  perimeter  {}", r.perimeter);
-    match (&r.centroid, &r.centroid_3d, &r.inertia) {
-        (Some(c), Some(c3), Some(m)) => {
-            let _ =
-                writeln!(s, "  centroid   ({}, {}) in the plane, {:?} in space", c[0], c[1], c3);
-            let _ = writeln!(
-                s,
-                "  inertia    iu {}  iv {}  iuv {}  polar {}  (about the centroid)",
-                m.ix, m.iy, m.ixy, m.polar
-            );
-        }
-        _ => {
-            let _ = writeln!(s, "  centroid   undefined (no area)");
-        }
-    }
-    s
-}
-
 /// The section as WKT or GeoJSON, by `geojson`.
 fn geometry(r: &SectionReport, polygons: &[Polygon], geojson: bool) -> std::io::Result<Vec<u8>> {
     let mut out = Vec::new();
@@ -226,38 +92,36 @@ fn out_is_geojson(out: &Path) -> Result<bool, String> {
 
 /// Runs `meshvol section`.
 pub fn run(args: SectionArgs, quiet: bool) -> ExitCode {
-    match run_inner(&args, quiet) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("meshvol: error: {e}");
-            ExitCode::FAILURE
-        }
+    let files = std::slice::from_ref(&args.file);
+    let mut driver = Driver::new(files, Output { json: args.json, quiet });
+    match measure(&args, &driver.progress) {
+        Ok((report, Some(geometry))) => driver.print(&report, &geometry),
+        Ok((report, None)) => driver.report(&report),
+        Err(e) => driver.fail(&args.file.display().to_string(), &e),
     }
+    driver.finish()
 }
 
-fn run_inner(args: &SectionArgs, quiet: bool) -> Result<(), String> {
+/// The report, and the section's outline when it is what is printed.
+fn measure(
+    args: &SectionArgs,
+    progress: &Progress,
+) -> Result<(SectionReport, Option<String>), String> {
     let out_geojson = args.out.as_deref().map(out_is_geojson).transpose()?;
-    let progress = crate::input::Progress::new(std::slice::from_ref(&args.file), quiet);
-    let input = crate::solid::read(&args.file, args.solid.check(), &progress)?;
-    progress.finish();
-    let (report, polygons) = measure(&input, &args.plane);
-    for w in &report.warnings {
-        progress.warn(&input.name, w);
-    }
+    let input = crate::solid::read(&args.file, args.solid.check(), progress)?;
+    progress.stage("cutting", &args.file);
+    let (report, polygons) = section(&input.subject(), &args.plane);
     if let (Some(out), Some(geojson)) = (&args.out, out_geojson) {
         let bytes = geometry(&report, &polygons, geojson).map_err(|e| e.to_string())?;
         std::fs::write(out, bytes).map_err(|e| format!("{}: {e}", out.display()))?;
     }
     let printed = if args.wkt || args.geojson {
-        geometry(&report, &polygons, args.geojson).map_err(|e| e.to_string())?
-    } else if args.json {
-        serde_json::to_string(&report).map(|s| s + "\n").map_err(|e| e.to_string())?.into_bytes()
+        let bytes = geometry(&report, &polygons, args.geojson).map_err(|e| e.to_string())?;
+        Some(String::from_utf8_lossy(&bytes).into_owned())
     } else {
-        text(&report).into_bytes()
+        None
     };
-    // A closed stdout (piped into `head`) is not an error worth a message.
-    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), &printed);
-    Ok(())
+    Ok((report, printed))
 }
 
 #[cfg(test)]

@@ -193,9 +193,18 @@ fn errors_name_the_file_and_place_and_set_the_exit_status() {
         "--json",
     ]);
     assert_eq!(out.status.code(), Some(1));
-    // The good file is still measured.
+    // The good file is still measured; each failed one has a line {"file", "error"}.
     let stdout = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(stdout.lines().count(), 1);
+    let lines: Vec<serde_json::Value> =
+        stdout.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 4, "{stdout}");
+    assert_eq!(lines[0]["volume"], 1.0);
+    for (line, path) in lines[1..].iter().zip([&broken, &empty, &missing]) {
+        let keys: Vec<&String> = line.as_object().unwrap().keys().collect();
+        assert_eq!(keys, ["error", "file"]);
+        assert_eq!(line["file"], path.to_str().unwrap());
+        assert!(line["error"].as_str().unwrap().contains(path.to_str().unwrap()));
+    }
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert!(stderr.contains("broken.obj: line 4"), "{stderr}");
     assert!(stderr.contains("empty.stl") && stderr.contains("no faces"), "{stderr}");

@@ -6,67 +6,78 @@
 //! `--units :cm` converts from it. An explicit FILE unit wins over the declaration, with
 //! a warning when they differ. `:REPORT` for a file that declares nothing is an error.
 
+use meshvol_io::LengthUnit;
 use serde::Serialize;
 use std::str::FromStr;
 
-/// A length unit, or a volume unit that implies one (mL = cm³, L = dm³).
+/// A unit to report in: a length (areas and volumes follow it), or a volume unit that
+/// implies one (mL = cm³, L = dm³). Lengths are [`LengthUnit`]s, the type the readers use
+/// for what a file declares: there is one length unit type.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Unit {
-    Um,
-    Mm,
-    Cm,
-    M,
-    In,
-    Ft,
-    Ml,
-    L,
+    Length(LengthUnit),
+    Millilitre,
+    Litre,
 }
 
 impl Unit {
-    /// Metres per length unit.
+    /// The length unit lengths are reported in.
+    fn length(self) -> Length {
+        match self {
+            Unit::Length(l) => Length::Unit(l),
+            Unit::Millilitre => Length::Unit(LengthUnit::Centimetre),
+            Unit::Litre => Length::Decimetre,
+        }
+    }
+}
+
+/// A reported length unit: a [`LengthUnit`], or the decimetre that litres imply.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Length {
+    Unit(LengthUnit),
+    Decimetre,
+}
+
+impl Length {
     fn metres(self) -> f64 {
         match self {
-            Unit::Um => 1e-6,
-            Unit::Mm => 1e-3,
-            Unit::Cm | Unit::Ml => 1e-2,
-            Unit::M => 1.0,
-            Unit::In => 0.0254,
-            Unit::Ft => 0.3048,
-            Unit::L => 0.1,
+            Length::Unit(l) => l.metres(),
+            Length::Decimetre => 0.1,
         }
     }
 
-    fn length_name(self) -> &'static str {
+    fn symbol(self) -> &'static str {
         match self {
-            Unit::Um => "um",
-            Unit::Mm => "mm",
-            Unit::Cm | Unit::Ml => "cm",
-            Unit::M => "m",
-            Unit::In => "in",
-            Unit::Ft => "ft",
-            Unit::L => "dm",
+            Length::Unit(l) => l.symbol(),
+            Length::Decimetre => "dm",
         }
     }
+}
+
+/// Parses a length unit's name: um (or µm, micron), mm, cm, m, in (inch), ft (foot).
+fn length_unit(s: &str) -> Option<LengthUnit> {
+    Some(match s.to_ascii_lowercase().as_str() {
+        "um" | "µm" | "micron" => LengthUnit::Micrometre,
+        "mm" => LengthUnit::Millimetre,
+        "cm" => LengthUnit::Centimetre,
+        "m" => LengthUnit::Metre,
+        "in" | "inch" => LengthUnit::Inch,
+        "ft" | "foot" => LengthUnit::Foot,
+        _ => return None,
+    })
 }
 
 impl FromStr for Unit {
     type Err = String;
     fn from_str(s: &str) -> Result<Unit, String> {
-        Ok(match s.to_ascii_lowercase().as_str() {
-            "um" | "µm" | "micron" => Unit::Um,
-            "mm" => Unit::Mm,
-            "cm" => Unit::Cm,
-            "m" => Unit::M,
-            "in" | "inch" => Unit::In,
-            "ft" | "foot" => Unit::Ft,
-            "ml" => Unit::Ml,
-            "l" => Unit::L,
-            _ => {
-                return Err(format!(
-                    "unknown unit '{s}' (use um, mm, cm, m, in, ft, or mL/L to report)"
-                ))
-            }
-        })
+        if let Some(l) = length_unit(s) {
+            return Ok(Unit::Length(l));
+        }
+        match s.to_ascii_lowercase().as_str() {
+            "ml" => Ok(Unit::Millilitre),
+            "l" => Ok(Unit::Litre),
+            _ => Err(format!("unknown unit '{s}' (use um, mm, cm, m, in, ft, or mL/L to report)")),
+        }
     }
 }
 
@@ -74,33 +85,18 @@ impl FromStr for Unit {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Units {
     /// The file's length unit.
-    pub file: Unit,
+    pub file: LengthUnit,
     /// The unit results are reported in.
     pub report: Unit,
     /// The unit the file declares, if it declares one.
-    pub declared: Option<Unit>,
-}
-
-impl Unit {
-    /// The unit a file declares.
-    pub fn declared(unit: meshvol_io::LengthUnit) -> Unit {
-        use meshvol_io::LengthUnit as L;
-        match unit {
-            L::Micrometre => Unit::Um,
-            L::Millimetre => Unit::Mm,
-            L::Centimetre => Unit::Cm,
-            L::Metre => Unit::M,
-            L::Inch => Unit::In,
-            L::Foot => Unit::Ft,
-        }
-    }
+    pub declared: Option<LengthUnit>,
 }
 
 /// What `--units` says: `FILE`, `FILE:REPORT`, or `:REPORT` (the file unit from the
 /// file's declaration).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct UnitsArg {
-    pub file: Option<Unit>,
+    pub file: Option<LengthUnit>,
     pub report: Unit,
 }
 
@@ -108,12 +104,15 @@ impl FromStr for UnitsArg {
     type Err = String;
     fn from_str(s: &str) -> Result<UnitsArg, String> {
         let (file, report) = s.split_once(':').unwrap_or((s, s));
-        let file: Option<Unit> = if file.is_empty() { None } else { Some(file.parse()?) };
-        if matches!(file, Some(Unit::Ml | Unit::L)) {
-            return Err(format!("'{s}': the file's unit must be a length (um, mm, cm, m, in, ft)"));
-        }
+        let file = match file {
+            "" => None,
+            f => Some(length_unit(f).ok_or_else(|| match f.parse::<Unit>() {
+                Ok(_) => format!("'{s}': the file's unit must be a length (um, mm, cm, m, in, ft)"),
+                Err(e) => e,
+            })?),
+        };
         let report = match (report, file) {
-            ("", Some(file)) => file,
+            ("", Some(file)) => Unit::Length(file),
             ("", None) => return Err(format!("'{s}': no unit given")),
             (report, _) => report.parse()?,
         };
@@ -125,20 +124,19 @@ impl FromStr for UnitsArg {
 /// when neither says anything) and a warning when `--units` overrides the declaration.
 pub fn resolve(
     arg: Option<UnitsArg>,
-    declared: Option<meshvol_io::LengthUnit>,
+    declared: Option<LengthUnit>,
 ) -> Result<(Option<Units>, Option<String>), String> {
-    let declared = declared.map(Unit::declared);
     let units = |file, report| Some(Units { file, report, declared });
     Ok(match (arg, declared) {
         (None, None) => (None, None),
-        (None, Some(d)) => (units(d, d), None),
+        (None, Some(d)) => (units(d, Unit::Length(d)), None),
         (Some(UnitsArg { file: Some(f), report }), d) => {
             let warning = d.filter(|&d| d != f).map(|d| {
                 format!(
                     "the file declares its lengths in {}; --units says {}: using {}",
-                    d.length_name(),
-                    f.length_name(),
-                    f.length_name()
+                    d.symbol(),
+                    f.symbol(),
+                    f.symbol()
                 )
             });
             (units(f, report), warning)
@@ -165,22 +163,22 @@ pub struct UnitNames {
 impl Units {
     /// Reported length per file length.
     pub fn length_factor(&self) -> f64 {
-        self.file.metres() / self.report.metres()
+        self.file.metres() / self.report.length().metres()
     }
 
     pub fn names(&self) -> UnitNames {
-        let length = self.report.length_name();
+        let length = self.report.length().symbol();
         let volume = match self.report {
-            Unit::Ml => "mL".to_string(),
-            Unit::L => "L".to_string(),
+            Unit::Millilitre => "mL".to_string(),
+            Unit::Litre => "L".to_string(),
             _ => format!("{length}^3"),
         };
         UnitNames {
             length: length.to_string(),
             area: format!("{length}^2"),
             volume,
-            file: self.file.length_name().to_string(),
-            file_declared: self.declared.map(|d| d.length_name().to_string()),
+            file: self.file.symbol().to_string(),
+            file_declared: self.declared.map(|d| d.symbol().to_string()),
         }
     }
 }
@@ -189,7 +187,7 @@ impl Units {
 mod tests {
     use super::*;
 
-    fn units(s: &str, declared: Option<meshvol_io::LengthUnit>) -> Units {
+    fn units(s: &str, declared: Option<LengthUnit>) -> Units {
         resolve(Some(s.parse().unwrap()), declared).unwrap().0.unwrap()
     }
 
@@ -210,11 +208,14 @@ mod tests {
 
     #[test]
     fn declared_units() {
-        use meshvol_io::LengthUnit as L;
+        use LengthUnit as L;
         // Nothing given: the declaration, reported as is.
         let (u, w) = resolve(None, Some(L::Inch)).unwrap();
         let u = u.unwrap();
-        assert_eq!((u.file, u.report, u.length_factor(), w), (Unit::In, Unit::In, 1.0, None));
+        assert_eq!(
+            (u.file, u.report, u.length_factor(), w),
+            (L::Inch, Unit::Length(L::Inch), 1.0, None)
+        );
         assert_eq!(u.names().file_declared.as_deref(), Some("in"));
         // A report unit only: converted from the declaration.
         let u = units(":cm", Some(L::Inch));
@@ -222,7 +223,7 @@ mod tests {
         assert_eq!(u.names().file, "in");
         // An explicit file unit wins, with a warning when it differs.
         let (u, w) = resolve(Some("mm:cm".parse().unwrap()), Some(L::Inch)).unwrap();
-        assert_eq!(u.unwrap().file, Unit::Mm);
+        assert_eq!(u.unwrap().file, L::Millimetre);
         assert!(w.unwrap().contains("declares its lengths in in"));
         assert_eq!(resolve(Some("mm".parse().unwrap()), Some(L::Millimetre)).unwrap().1, None);
         // Nothing declared and no file unit.

@@ -1,0 +1,133 @@
+//! The one loop every command runs: for each input, measure it and print its report.
+//!
+//! It owns what is the same for every command: the progress bar, warnings on stderr
+//! (silenced by `--quiet`), the report as text or one JSON line on stdout, a failed input
+//! as an error on stderr and, under `--json`, a `{"file": ..., "error": ...}` line on
+//! stdout, a closed stdout (piped into `head`) ending the run quietly, and the exit
+//! status: 0 when every input was measured and passed, 1 otherwise.
+
+use crate::input::Progress;
+use meshvol_report::{error_line, json_line, Report};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// How reports are printed.
+#[derive(Clone, Copy, Debug)]
+pub struct Output {
+    pub json: bool,
+    pub quiet: bool,
+}
+
+/// Prints reports and errors, and remembers what decides the exit status.
+pub struct Driver {
+    pub progress: Progress,
+    output: Output,
+    failed: bool,
+    /// stdout was closed: nothing more is printed.
+    closed: bool,
+}
+
+impl Driver {
+    /// A driver for `inputs` (their sizes set the progress bar).
+    pub fn new(inputs: &[PathBuf], output: Output) -> Driver {
+        Driver {
+            progress: Progress::new(inputs, output.quiet),
+            output,
+            failed: false,
+            closed: false,
+        }
+    }
+
+    /// Prints `report`: its warnings on stderr, then its text or JSON line.
+    pub fn report(&mut self, report: &impl Report) {
+        let body = if self.output.json { json_line(report) } else { Ok(report.text()) };
+        match body {
+            Ok(body) => self.print(report, &body),
+            Err(e) => self.fail(report.file(), &e),
+        }
+    }
+
+    /// Prints `report`'s warnings, then `body` (the report in a form of the command's
+    /// own: CSV, WKT, GeoJSON).
+    pub fn print(&mut self, report: &impl Report, body: &str) {
+        for w in report.warnings() {
+            self.progress.warn(report.file(), w);
+        }
+        self.failed |= !report.passed();
+        self.emit(body);
+    }
+
+    /// Reports that `file` failed with `error` (which names the file).
+    pub fn fail(&mut self, file: &str, error: &str) {
+        self.failed = true;
+        self.progress.error(error);
+        if self.output.json {
+            self.emit(&error_line(file, error));
+        }
+    }
+
+    fn emit(&mut self, text: &str) {
+        if self.closed {
+            return;
+        }
+        let written = self.progress.suspend(|| {
+            let mut stdout = std::io::stdout().lock();
+            stdout.write_all(text.as_bytes()).and_then(|()| stdout.flush())
+        });
+        self.closed = written.is_err();
+    }
+
+    /// Whether stdout was closed (the rest of the run can be skipped).
+    pub fn closed(&self) -> bool {
+        self.closed
+    }
+
+    /// Clears the progress bar and gives the exit status.
+    pub fn finish(self) -> ExitCode {
+        self.progress.finish();
+        if self.failed {
+            ExitCode::FAILURE
+        } else {
+            ExitCode::SUCCESS
+        }
+    }
+}
+
+/// Runs `measure` on each input in turn and prints what it gives.
+pub fn each<R: Report>(
+    inputs: &[PathBuf],
+    output: Output,
+    mut measure: impl FnMut(&Path, &Progress) -> Result<R, String>,
+) -> ExitCode {
+    let mut driver = Driver::new(inputs, output);
+    for path in inputs {
+        if driver.closed() {
+            break;
+        }
+        let result = measure(path, &driver.progress);
+        driver.progress.done(path);
+        match result {
+            Ok(report) => driver.report(&report),
+            Err(e) => driver.fail(&path.display().to_string(), &e),
+        }
+    }
+    driver.finish()
+}
+
+/// Runs `measure` once over all `inputs` (a grid, a union) and prints its report.
+pub fn once<R: Report>(
+    inputs: &[PathBuf],
+    output: Output,
+    measure: impl FnOnce(&Progress) -> Result<R, String>,
+) -> ExitCode {
+    let mut driver = Driver::new(inputs, output);
+    match measure(&driver.progress) {
+        Ok(report) => driver.report(&report),
+        Err(e) => {
+            let names: Vec<String> = inputs.iter().map(|p| p.display().to_string()).collect();
+            driver.fail(&names.join(", "), &e)
+        }
+    }
+    driver.finish()
+}

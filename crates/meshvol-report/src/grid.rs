@@ -1,0 +1,234 @@
+//! `grid`: the summary of a grid of cell volumes, the grid's choice from the arguments,
+//! and the memory estimate that refuses a grid before it is allocated.
+
+use crate::number::{count, num, vector};
+use crate::Report;
+use meshvol::grid::{bytes_text, occupancy, Grid, GridError};
+use meshvol::{Bounds, Point};
+use serde::Serialize;
+use std::fmt::Write;
+use std::path::Path;
+
+/// How the cells are given.
+#[derive(Clone, Copy, Debug)]
+pub enum Spacing {
+    /// NX, NY, NZ cells across the bounds.
+    Cells([usize; 3]),
+    /// Cells of this size from the lower bound, enough to cover the upper one.
+    Pitch([f64; 3]),
+}
+
+/// The grid the arguments describe: over `given` bounds, or else the meshes' bounding
+/// box (`mesh`). Returns it and where its bounds came from (`given` or `mesh`).
+/// `bounds_argument` names the argument that gives bounds, for the message about a flat
+/// mesh.
+pub fn choose(
+    given: Option<(Point, Point)>,
+    mesh: Option<Bounds>,
+    spacing: Spacing,
+    bounds_argument: &str,
+) -> Result<(Grid, &'static str), String> {
+    let (min, max, from) = match given {
+        Some((min, max)) => (min, max, "given"),
+        None => {
+            let b = mesh.ok_or("no vertices: there is no surface to measure")?;
+            (b.min, b.max, "mesh")
+        }
+    };
+    let grid = match spacing {
+        Spacing::Cells(counts) => Grid::from_bounds(min, max, counts),
+        Spacing::Pitch(pitch) => Grid::with_pitch(min, max, pitch),
+    }
+    .map_err(|e| match e {
+        GridError::EmptyBounds { .. } if from == "mesh" => {
+            format!("{e}; the mesh is flat: give {bounds_argument}")
+        }
+        e => e.to_string(),
+    })?;
+    Ok((grid, from))
+}
+
+/// Memory the machine has available, from /proc/meminfo where there is one.
+fn available_memory() -> Option<u128> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Refuses a grid whose arrays (`arrays` f64 values per cell) would not fit in the
+/// memory available, naming what it would need: an allocation the system overcommits
+/// would kill the process later instead.
+pub fn check_memory(grid: &Grid, arrays: u128) -> Result<(), String> {
+    let need = grid.array_bytes() * arrays;
+    match available_memory() {
+        Some(available) if need > available => {
+            let [nx, ny, nz] = grid.counts;
+            let cells = nx as u128 * ny as u128 * nz as u128;
+            Err(format!(
+                "a {nx}×{ny}×{nz} grid has {cells} cells and would need {} of memory; {} is \
+                 available: use fewer cells",
+                bytes_text(need),
+                bytes_text(available)
+            ))
+        }
+        _ => Ok(()),
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct GridBounds {
+    pub min: Point,
+    pub max: Point,
+}
+
+/// The summary of a grid. Field names are the JSON keys.
+#[derive(Clone, Debug, Serialize)]
+pub struct GridReport {
+    /// The files, joined by `, `.
+    pub file: String,
+    pub files: Vec<String>,
+    /// The grid's box.
+    pub bounds: GridBounds,
+    /// `mesh` (the bounding box of the meshes, grown to whole cells with a pitch) or
+    /// `given`.
+    pub bounds_from: &'static str,
+    pub cells: [usize; 3],
+    pub cell_size: [f64; 3],
+    /// Σ of the cells.
+    pub total: f64,
+    /// The meshes' volume: Σ of signed volumes (for a union, of each body's |volume|,
+    /// which counts overlaps more than once).
+    pub mesh_volume: f64,
+    pub union: bool,
+    /// Bodies (of a union).
+    pub bodies: usize,
+    pub cells_full: usize,
+    pub cells_partial: usize,
+    pub cells_empty: usize,
+    /// Columns of the union left at their lower bound (could not be resolved exactly).
+    pub columns_unresolved: usize,
+    /// Seconds spent computing the cell volumes.
+    pub seconds: f64,
+    pub out: Option<String>,
+    /// Whether `out` holds fractions (volume / cell volume) instead of volumes.
+    pub fraction: bool,
+    pub png: Option<String>,
+    /// The readers' warnings and the reasons to doubt each file's solid, as
+    /// `FILE: warning`.
+    pub warnings: Vec<String>,
+}
+
+/// What a grid's summary is made of besides the grid and its cells.
+pub struct GridRun {
+    pub files: Vec<String>,
+    pub bounds_from: &'static str,
+    pub mesh_volume: f64,
+    /// Bodies, for a union; `None` otherwise.
+    pub union_bodies: Option<usize>,
+    pub columns_unresolved: usize,
+    pub seconds: f64,
+    pub out: Option<String>,
+    pub fraction: bool,
+    pub png: Option<String>,
+    pub warnings: Vec<String>,
+}
+
+/// The summary of `volumes`, the cells of `grid`.
+pub fn summary(grid: &Grid, volumes: &[f64], run: GridRun) -> GridReport {
+    let occupied = occupancy(volumes, grid.cell_volume());
+    let mut total = meshvol::accumulate::CompensatedSum::default();
+    volumes.iter().for_each(|&v| total.add(v));
+    GridReport {
+        file: run.files.join(", "),
+        files: run.files,
+        bounds: GridBounds { min: grid.origin, max: grid.max() },
+        bounds_from: run.bounds_from,
+        cells: grid.counts,
+        cell_size: grid.cell,
+        total: total.value(),
+        mesh_volume: run.mesh_volume,
+        union: run.union_bodies.is_some(),
+        bodies: run.union_bodies.unwrap_or(0),
+        cells_full: occupied.full,
+        cells_partial: occupied.partial,
+        cells_empty: occupied.empty,
+        columns_unresolved: run.columns_unresolved,
+        seconds: run.seconds,
+        out: run.out,
+        fraction: run.fraction,
+        png: run.png,
+        warnings: run.warnings,
+    }
+}
+
+impl Report for GridReport {
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    fn text(&self) -> String {
+        let r = self;
+        let mut s = String::new();
+        let [nx, ny, nz] = r.cells;
+        let from = if r.bounds_from == "mesh" { "the meshes' bounding box" } else { "--bounds" };
+        let _ = writeln!(s, "{}: grid of {nx}×{ny}×{nz} cells", r.file);
+        let _ = writeln!(
+            s,
+            "  bounds         {} to {} (from {from})",
+            vector(r.bounds.min, 15),
+            vector(r.bounds.max, 15)
+        );
+        let _ = writeln!(s, "  cell size      {}", vector(r.cell_size, 15));
+        if r.union {
+            let _ = writeln!(
+                s,
+                "  union of       {} (Σ of their volumes {})",
+                count(r.bodies, "body", "bodies"),
+                num(r.mesh_volume, 15)
+            );
+            let _ = writeln!(s, "  total          {}", num(r.total, 15));
+            if r.columns_unresolved > 0 {
+                let _ = writeln!(
+                    s,
+                    "  unresolved     {} hold lower bounds in their open cells",
+                    count(r.columns_unresolved, "column", "columns")
+                );
+            }
+        } else {
+            let _ = writeln!(
+                s,
+                "  total          {}  (mesh volume {})",
+                num(r.total, 15),
+                num(r.mesh_volume, 15)
+            );
+        }
+        let _ = writeln!(
+            s,
+            "  cells          {} full, {} partial, {} empty",
+            r.cells_full, r.cells_partial, r.cells_empty
+        );
+        if let Some(out) = &r.out {
+            let what = match Path::new(out).extension().and_then(|e| e.to_str()) {
+                Some(e) if e.eq_ignore_ascii_case("npy") => format!(
+                    "float64 {}, shape ({nx}, {ny}, {nz}), C order",
+                    if r.fraction { "fractions" } else { "volumes" }
+                ),
+                Some(e) if e.eq_ignore_ascii_case("vti") => {
+                    "VTK image data, cell arrays volume and fraction".to_string()
+                }
+                _ => "i,j,k,volume,fraction of the non-empty cells".to_string(),
+            };
+            let _ = writeln!(s, "  wrote          {out} ({what})");
+        }
+        if let Some(png) = &r.png {
+            let _ = writeln!(s, "  picture        {png}");
+        }
+        let _ = writeln!(s, "  time           {:.3} s", r.seconds);
+        s
+    }
+}

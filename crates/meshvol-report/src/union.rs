@@ -1,0 +1,159 @@
+//! `union`: the volume of the union of bodies as a certified interval, widened by the
+//! caps' uncertainty, with the warnings that say when it is not certified.
+
+use crate::number::{count, num};
+use crate::subject::{joined_names, union_bodies, Subject};
+use crate::Report;
+use meshvol::grid::union as kernel;
+use meshvol::Surface;
+use serde::Serialize;
+use std::fmt::Write;
+use std::time::Instant;
+
+/// The report. Field names are the JSON keys.
+#[derive(Clone, Debug, Serialize)]
+pub struct UnionReport {
+    /// The inputs, joined by `, `.
+    pub file: String,
+    pub files: Vec<String>,
+    pub lower: f64,
+    pub upper: f64,
+    /// The midpoint of [lower, upper].
+    pub volume: f64,
+    pub bodies: usize,
+    /// Each body's name: `FILE`, or `FILE, shell N` for the bodies of a single input.
+    pub body_names: Vec<String>,
+    /// Σ of the bodies' volumes (overlaps counted more than once).
+    pub sum_of_volumes: f64,
+    pub cells_refined: usize,
+    pub cells_resolved_exactly: usize,
+    /// Grid columns left unresolved: their bounds stay in the interval.
+    pub columns_unresolved: usize,
+    /// Bodies wound inward, measured turned outward (indices into `body_names`).
+    pub flipped: Vec<usize>,
+    /// How far the caps on the bodies' holes could put the volume off; the interval is
+    /// widened by it (0 for closed bodies).
+    pub volume_uncertainty: f64,
+    /// The base grid's cells.
+    pub grid: [usize; 3],
+    pub seconds: f64,
+    pub warnings: Vec<String>,
+}
+
+/// The union of the bodies of `subjects` (one input: its bodies; several: each whole),
+/// refined until `upper − lower ≤ tolerance · lower` where it can be.
+pub fn union<S: Surface + Sync>(
+    subjects: &[Subject<'_, S>],
+    tolerance: f64,
+) -> Result<UnionReport, String> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(format!("tolerance must be a positive number; got {tolerance}"));
+    }
+    let mut warnings: Vec<String> = subjects
+        .iter()
+        .flat_map(|s| s.warnings().into_iter().map(|w| format!("{}: {w}", s.source.name())))
+        .collect();
+    let (bodies, names): (Vec<_>, Vec<String>) =
+        union_bodies(subjects).into_iter().map(|b| (b.surface, b.name)).unzip();
+    if bodies.is_empty() {
+        return Err("no faces: there is no body to measure".into());
+    }
+    let start = Instant::now();
+    let mut u = kernel(&bodies, tolerance).map_err(|e| e.to_string())?;
+    let seconds = start.elapsed().as_secs_f64();
+    // Caps on holes are guesses: the interval must hold whatever the missing faces were.
+    let uncertainty: f64 = subjects.iter().map(Subject::volume_uncertainty).sum();
+    u.lower = (u.lower - uncertainty).max(0.0);
+    u.upper += uncertainty;
+    for &b in &u.flipped {
+        warnings.push(format!(
+            "{}: wound inward (negative volume); measured as a solid turned outward (if it is \
+             a cavity, the union of shells is not what you want)",
+            names[b]
+        ));
+    }
+    for &b in &u.bodies_not_solid {
+        warnings.push(format!(
+            "{}: not a closed solid (its volume in some cells leaves [0, cell volume]): the \
+             interval is ordered but not certified",
+            names[b]
+        ));
+    }
+    if u.columns_unresolved > 0 {
+        warnings.push(format!(
+            "{} of the grid could not be resolved exactly; the interval keeps their bounds",
+            count(u.columns_unresolved, "column", "columns")
+        ));
+    }
+    if u.upper - u.lower > tolerance * u.lower.abs() {
+        let why = if uncertainty > 0.0 {
+            "the caps on holes leave it uncertain"
+        } else {
+            "refinement and exact resolution could not close it"
+        };
+        warnings.push(format!("the interval is wider than the tolerance {tolerance}: {why}"));
+    }
+    Ok(UnionReport {
+        file: joined_names(subjects),
+        files: subjects.iter().map(|s| s.source.name().to_string()).collect(),
+        lower: u.lower,
+        upper: u.upper,
+        volume: u.volume(),
+        bodies: u.bodies,
+        body_names: names,
+        sum_of_volumes: u.sum_of_volumes,
+        cells_refined: u.cells_refined,
+        cells_resolved_exactly: u.cells_resolved_exactly,
+        columns_unresolved: u.columns_unresolved,
+        flipped: u.flipped,
+        volume_uncertainty: uncertainty,
+        grid: u.grid.counts,
+        seconds,
+        warnings,
+    })
+}
+
+impl Report for UnionReport {
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    fn text(&self) -> String {
+        let mut s = String::new();
+        let [nx, ny, nz] = self.grid;
+        let _ = writeln!(
+            s,
+            "union of {}: {}",
+            count(self.bodies, "body", "bodies"),
+            self.body_names.join("; ")
+        );
+        let _ = writeln!(s, "  volume           {}  (midpoint)", num(self.volume, 15));
+        let _ = writeln!(
+            s,
+            "  certified        [{}, {}]  (width {})",
+            num(self.lower, 17),
+            num(self.upper, 17),
+            num(self.upper - self.lower, 3)
+        );
+        if self.volume_uncertainty > 0.0 {
+            let _ = writeln!(
+                s,
+                "  caps on holes    ± {} (in the interval)",
+                num(self.volume_uncertainty, 4)
+            );
+        }
+        let _ = writeln!(s, "  sum of volumes   {}", num(self.sum_of_volumes, 15));
+        let _ = writeln!(
+            s,
+            "  grid             {nx}×{ny}×{nz}, {} refined, {} resolved exactly",
+            count(self.cells_refined, "cell", "cells"),
+            self.cells_resolved_exactly
+        );
+        let _ = writeln!(s, "  time             {:.3} s", self.seconds);
+        s
+    }
+}
