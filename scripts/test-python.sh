@@ -36,7 +36,7 @@ rm -rf "$wheels"
 if [ -z "${MESHVOL_BIN:-}" ]; then
     command=$CARGO_TARGET_DIR/debug/meshvol
     if [ -x "$command" ] && [ -z "$(find crates/meshvol/src crates/meshvol-io/src \
-        crates/meshvol-cli/src -newer "$command" -print -quit)" ]; then
+        crates/meshvol-report/src crates/meshvol-cli/src -newer "$command" -print -quit)" ]; then
         export MESHVOL_BIN=$command
     fi
 fi

@@ -2,41 +2,26 @@
 //! (what `meshvol hull` reports).
 
 use crate::convert::coordinates;
+use crate::dict::Fields;
 use crate::errors::{invalid, mesh_error};
 use crate::mesh::PyMesh;
-use meshvol::hull::{self, Degeneracy, Hull, HullError};
+use meshvol::hull::{self, Hull, HullError};
+use meshvol_report::hull::HullReport;
 use numpy::PyArray1;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
-/// The convex hull of a point set, with the names of the keys of `meshvol hull --json`.
+/// The convex hull of a point set: the report of `meshvol hull --json`, whose keys are
+/// its attributes (points, hull_vertices, hull_faces, volume, volume_error_bound, area,
+/// degenerate, warnings, ...) and the keys of to_dict().
 ///
 /// mesh is the hull as an outward-wound triangle Mesh over a subset of the points, or
 /// None when the points are degenerate; degenerate then says why ('no points',
 /// 'coincident', 'collinear' or 'coplanar') and the volume is 0.
 #[pyclass(module = "meshvol", name = "Hull", frozen)]
 pub struct PyHull {
-    /// Points given.
-    #[pyo3(get)]
-    points: usize,
-    /// Vertices of the hull.
-    #[pyo3(get)]
-    hull_vertices: usize,
-    /// Triangles of the hull.
-    #[pyo3(get)]
-    hull_faces: usize,
-    /// The hull's volume.
-    #[pyo3(get)]
-    volume: f64,
-    /// A bound on the volume's rounding error (the hull's vertices taken as exact).
-    #[pyo3(get)]
-    volume_error_bound: f64,
-    /// The hull's surface area.
-    #[pyo3(get)]
-    area: f64,
-    centroid: Option<[f64; 3]>,
-    /// Why the hull has no volume, or None.
-    #[pyo3(get)]
-    degenerate: Option<&'static str>,
+    report: HullReport,
+    fields: Fields,
     /// The hull as a Mesh, or None for degenerate points.
     #[pyo3(get)]
     mesh: Option<Py<PyMesh>>,
@@ -47,15 +32,30 @@ impl PyHull {
     /// The centroid of the hull's solid, a float64 array of 3, or None.
     #[getter]
     fn centroid<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
-        self.centroid.map(|c| PyArray1::from_slice(py, &c))
+        self.report.centroid.map(|c| PyArray1::from_slice(py, &c))
+    }
+
+    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.fields.get(py, "Hull", name)
+    }
+
+    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
+        slf.get().fields.dir(slf.as_any())
+    }
+
+    /// The report as a dict of plain Python values, with the keys of `meshvol hull
+    /// --json`.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.fields.to_dict(py)
     }
 
     fn __repr__(&self) -> String {
-        match self.degenerate {
-            Some(why) => format!("Hull(points={}, degenerate='{why}', volume=0)", self.points),
+        let r = &self.report;
+        match r.degenerate {
+            Some(why) => format!("Hull(points={}, degenerate='{why}', volume=0)", r.points),
             None => format!(
                 "Hull(points={}, hull_vertices={}, hull_faces={}, volume={:?})",
-                self.points, self.hull_vertices, self.hull_faces, self.volume
+                r.points, r.hull_vertices, r.hull_faces, r.volume
             ),
         }
     }
@@ -76,30 +76,12 @@ fn hull_of(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<(usize, Hull)>
 #[pyfunction]
 pub fn convex_hull(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<PyHull> {
     let (count, hull) = hull_of(py, points)?;
-    let degenerate = hull.degeneracy.map(|d| match d {
-        Degeneracy::NoPoints => "no points",
-        Degeneracy::AllCoincide => "coincident",
-        Degeneracy::Collinear => "collinear",
-        Degeneracy::Coplanar => "coplanar",
-    });
-    let volume = hull.volume();
-    let (hull_vertices, hull_faces) =
-        hull.mesh.as_ref().map_or((0, 0), |m| (m.vertex_count(), m.face_count()));
+    let report = meshvol_report::hull::hull(None, None, count, &hull, Vec::new());
     let mesh = match hull.mesh {
         Some(m) => Some(Py::new(py, PyMesh::from(m))?),
         None => None,
     };
-    Ok(PyHull {
-        points: count,
-        hull_vertices,
-        hull_faces,
-        volume,
-        volume_error_bound: hull.properties.volume_error_bound,
-        area: hull.properties.area,
-        centroid: hull.properties.centroid,
-        degenerate,
-        mesh,
-    })
+    Ok(PyHull { fields: Fields::new(&report)?, report, mesh })
 }
 
 /// The volume of the convex hull of points, an (n, 3) array (0 for degenerate sets):

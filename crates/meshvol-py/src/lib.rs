@@ -15,6 +15,7 @@
 
 mod check;
 mod convert;
+mod dict;
 mod errors;
 mod grid;
 mod hull;

@@ -5,8 +5,9 @@ use crate::convert;
 use crate::errors::{invalid, mesh_error, read_error};
 use crate::grid::{self, PyProfile};
 use crate::properties::{self, PyMassProperties};
-use meshvol::topology::{self, Check, CheckOptions, Measured};
+use meshvol::topology::{self, Check, CheckOptions};
 use meshvol::{Faces, Mesh, MeshError};
+use meshvol_report::subject::{Source, Subject};
 use numpy::ndarray::ArrayView2;
 use numpy::{Element, PyArray2, PyArray3};
 use pyo3::exceptions::PyTypeError;
@@ -14,16 +15,6 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
 use std::sync::OnceLock;
-
-/// What a file said about the mesh read from it.
-#[derive(Clone, Debug, Default)]
-struct Source {
-    format: Option<&'static str>,
-    unit: Option<&'static str>,
-    warnings: Vec<String>,
-    /// (name, first face, end face).
-    objects: Vec<(String, usize, usize)>,
-}
 
 /// A surface mesh: float64 vertices and faces (triangles, or polygons of any size) that
 /// index them.
@@ -40,7 +31,8 @@ struct Source {
 #[pyclass(module = "meshvol", name = "Mesh", frozen)]
 pub struct PyMesh {
     pub(crate) mesh: Mesh,
-    source: Source,
+    /// Where it came from: a file (as the readers found it), or arrays.
+    pub(crate) source: Source,
     /// The check with default options, made on first use and kept: every measurement
     /// of the solid starts from it.
     checked: OnceLock<Check>,
@@ -48,7 +40,8 @@ pub struct PyMesh {
 
 impl From<Mesh> for PyMesh {
     fn from(mesh: Mesh) -> Self {
-        PyMesh { mesh, source: Source::default(), checked: OnceLock::new() }
+        let source = Source::arrays(mesh.vertex_count());
+        PyMesh { mesh, source, checked: OnceLock::new() }
     }
 }
 
@@ -64,21 +57,19 @@ impl PyMesh {
         Ok(self.checked.get_or_init(|| c))
     }
 
-    /// What a measurement is taken of, and why to doubt it: with `check`, the solid the
-    /// surface bounds (as every command measures by default); without, the surface as
-    /// wound. The doubts are also issued as MeshWarnings.
-    pub(crate) fn measured(
-        &self,
-        py: Python<'_>,
-        check: bool,
-    ) -> PyResult<(Option<&Check>, Measured<'_, Mesh>, Vec<String>)> {
-        if !check {
-            return Ok((None, Measured::AsWound(&self.mesh), Vec::new()));
-        }
-        let c = self.checked(py)?;
-        let doubts = c.doubts();
-        crate::errors::warn_all(py, &doubts)?;
-        Ok((Some(c), Measured::Solid(c.solid(&self.mesh)), doubts))
+    /// What a measurement is taken of: with `check`, the solid the surface bounds (as
+    /// every command measures by default); without, the surface as wound.
+    pub(crate) fn subject(&self, py: Python<'_>, check: bool) -> PyResult<Subject<'_, Mesh>> {
+        let check = if check { Some(self.checked(py)?) } else { None };
+        Ok(Subject { source: &self.source, surface: &self.mesh, check })
+    }
+
+    /// Issues a report's warnings as MeshWarnings, less the reader's (given once, in
+    /// `Mesh.warnings`).
+    pub(crate) fn warn(&self, py: Python<'_>, warnings: &[String]) -> PyResult<()> {
+        let new: Vec<String> =
+            warnings.iter().filter(|w| !self.source.warnings.contains(w)).cloned().collect();
+        crate::errors::warn_all(py, &new)
     }
 }
 
@@ -213,11 +204,17 @@ impl PyMesh {
         self.source.format
     }
 
+    /// The path the mesh was read from, as given to load(); None for arrays.
+    #[getter]
+    fn file(&self) -> Option<&str> {
+        self.source.file.as_deref()
+    }
+
     /// The length unit the file declares (`mm`, `m`, ...: 3MF and glTF declare one), or
     /// None. Measurements are always in the file's own coordinates.
     #[getter]
     fn unit(&self) -> Option<&'static str> {
-        self.source.unit
+        self.source.unit.map(|u| u.symbol())
     }
 
     /// What the reader read but did not use, or had to guess (as the command warns).
@@ -230,10 +227,10 @@ impl PyMesh {
     /// tuples, faces [first, end) of this mesh. Empty otherwise.
     #[getter]
     fn objects(&self) -> Vec<(String, usize, usize)> {
-        self.source.objects.clone()
+        self.source.objects.iter().map(|o| (o.name.clone(), o.faces.start, o.faces.end)).collect()
     }
 
-    /// Volume, area, centroid and inertia of the solid the surface bounds: the numbers
+    /// Volume, area, centroid and inertia of the solid the surface bounds: the report
     /// of `meshvol volume`. By default the solid is the checked one (welded, shells
     /// turned outward, cavities subtracted, duplicate faces dropped, holes capped), and
     /// why it may not be the one meant is issued as MeshWarnings and listed in
@@ -242,20 +239,21 @@ impl PyMesh {
     /// inward winding), as in the command's JSON.
     ///
     /// density scales mass, inertia and principal moments. exact=True replaces the
-    /// volume by the correctly rounded exact one (a few times slower).
-    #[pyo3(signature = (density = 1.0, exact = false, check = true))]
+    /// volume by the correctly rounded exact one (a few times slower). units converts
+    /// as the command's --units does: 'FILE[:REPORT]' ('mm:cm', 'in:mL') or ':REPORT'
+    /// from the unit the file declares (3MF, glTF); files that declare one are reported
+    /// in it by default.
+    #[pyo3(signature = (density = 1.0, exact = false, check = true, units = None))]
     fn mass_properties(
         &self,
         py: Python<'_>,
         density: f64,
         exact: bool,
         check: bool,
+        units: Option<&str>,
     ) -> PyResult<PyMassProperties> {
-        properties::require_faces(&self.mesh)?;
-        properties::check_density(density)?;
-        let (checked, surface, doubts) = self.measured(py, check)?;
-        let warnings = self.source.warnings.iter().cloned().chain(doubts).collect();
-        properties::measure_solid(py, &self.mesh, checked, &surface, density, exact, warnings)
+        let check = if check { Some(self.checked(py)?) } else { None };
+        properties::measure(py, self, check, density, exact, units)
     }
 
     /// The topology facts of `meshvol check`: closed? manifold? winding? shells,
@@ -295,8 +293,9 @@ impl PyMesh {
         check: bool,
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
         properties::require_faces(&self.mesh)?;
-        let (_, surface, _) = self.measured(py, check)?;
-        grid::cell_volumes(py, &surface, cells, bounds, fraction, pitch)
+        let subject = self.subject(py, check)?;
+        self.warn(py, &subject.warnings())?;
+        grid::cell_volumes(py, &subject.measured(), cells, bounds, fraction, pitch)
     }
 
     /// The volume below each level along an axis (a strapping table): levels=N gives N
@@ -313,8 +312,10 @@ impl PyMesh {
         check: bool,
     ) -> PyResult<PyProfile> {
         properties::require_faces(&self.mesh)?;
-        let (_, surface, _) = self.measured(py, check)?;
-        grid::profile(py, &surface, axis, levels, step)
+        let subject = self.subject(py, check)?;
+        let profile = grid::profile(py, &subject, axis, levels, step)?;
+        self.warn(py, profile.warnings())?;
+        Ok(profile)
     }
 
     /// The same surface with every face replaced by its fan of triangles.
@@ -345,12 +346,7 @@ impl PyMesh {
 #[pyfunction]
 pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyMesh> {
     let loaded = py.detach(|| meshvol_io::read(&path)).map_err(|e| read_error(py, &e))?;
-    let source = Source {
-        format: Some(loaded.format.name()),
-        unit: loaded.unit.map(|u| u.symbol()),
-        warnings: loaded.warnings,
-        objects: loaded.objects.into_iter().map(|o| (o.name, o.faces.start, o.faces.end)).collect(),
-    };
+    let source = Source::of(&path.display().to_string(), &loaded);
     let surface = loaded.surface;
     let mesh = py.detach(|| surface.into_mesh()).map_err(|e| {
         let error = meshvol_io::ReadError { path, location: None, message: e.to_string() };

@@ -2,15 +2,19 @@
 //! polygons with holes (what `meshvol area` reports).
 
 use crate::convert::coordinates;
-use crate::errors::invalid;
-use meshvol::polygon::{area_properties, polygon_issues, Point2, Polygon};
+use crate::dict::Fields;
+use crate::errors::{invalid, mesh_error};
+use meshvol::polygon::{polygon_issues, Point2, Polygon};
+use meshvol_io::PolygonFeature;
+use meshvol_report::area::{area, AreaReport, InertiaReport};
 use numpy::PyArray1;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// Area, perimeter, centroid and second moments of plane polygons, with the names of
-/// the keys of `meshvol area --json` (its inertia keys flattened).
+/// Area, perimeter, centroid and second moments of plane polygons: the report of
+/// `meshvol area --json` (area, perimeter, centroid, inertia, rings, warnings, ...),
+/// whose keys are the keys of to_dict(), with the second moments also as attributes.
 ///
 /// Holes subtract whatever their winding. ix = ∫(y - cy)² dA and iy = ∫(x - cx)² dA are
 /// about axes through the centroid parallel to x and y, ixy = ∫(x - cx)(y - cy) dA, polar
@@ -21,32 +25,18 @@ use pyo3::types::PyDict;
 /// warns.
 #[pyclass(module = "meshvol", name = "AreaProperties", frozen)]
 pub struct PyAreaProperties {
-    /// Exteriors minus holes.
-    #[pyo3(get)]
-    area: f64,
-    /// The length of every ring, holes included.
-    #[pyo3(get)]
-    perimeter: f64,
-    centroid: Option<Point2>,
-    /// ∫(y - cy)² dA.
-    #[pyo3(get)]
-    ix: f64,
-    /// ∫(x - cx)² dA.
-    #[pyo3(get)]
-    iy: f64,
-    /// ∫(x - cx)(y - cy) dA.
-    #[pyo3(get)]
-    ixy: f64,
-    /// ix + iy.
-    #[pyo3(get)]
-    polar: f64,
-    principal_moments: [f64; 2],
-    /// The angle of the first principal axis, counter-clockwise from x, in degrees.
-    #[pyo3(get)]
-    principal_angle_degrees: f64,
+    report: AreaReport,
+    fields: Fields,
     /// Problems found in the rings, as sentences.
     #[pyo3(get)]
     issues: Vec<String>,
+}
+
+impl PyAreaProperties {
+    fn inertia(&self) -> InertiaReport {
+        // No area: no centroid, and moments of zero.
+        self.report.inertia.unwrap_or_default()
+    }
 }
 
 #[pymethods]
@@ -54,23 +44,69 @@ impl PyAreaProperties {
     /// The centroid, a float64 array of 2, or None when the area is zero.
     #[getter]
     fn centroid<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
-        self.centroid.map(|c| PyArray1::from_slice(py, &c))
+        self.report.centroid.map(|c| PyArray1::from_slice(py, &c))
+    }
+
+    /// ∫(y - cy)² dA.
+    #[getter]
+    fn ix(&self) -> f64 {
+        self.inertia().ix
+    }
+
+    /// ∫(x - cx)² dA.
+    #[getter]
+    fn iy(&self) -> f64 {
+        self.inertia().iy
+    }
+
+    /// ∫(x - cx)(y - cy) dA.
+    #[getter]
+    fn ixy(&self) -> f64 {
+        self.inertia().ixy
+    }
+
+    /// ix + iy.
+    #[getter]
+    fn polar(&self) -> f64 {
+        self.inertia().polar
     }
 
     /// The principal second moments, larger first.
     #[getter]
     fn principal_moments<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.principal_moments)
+        PyArray1::from_slice(py, &self.inertia().principal)
+    }
+
+    /// The angle of the first principal axis, counter-clockwise from x, in degrees.
+    #[getter]
+    fn principal_angle_degrees(&self) -> f64 {
+        self.inertia().principal_angle_degrees
+    }
+
+    /// Any other key of the report (area, perimeter, polygons, rings, warnings, ...).
+    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.fields.get(py, "AreaProperties", name)
+    }
+
+    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
+        slf.get().fields.dir(slf.as_any())
+    }
+
+    /// The report as a dict of plain Python values, with the keys of `meshvol area
+    /// --json`.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.fields.to_dict(py)
     }
 
     fn __repr__(&self) -> String {
-        let centroid = match self.centroid {
+        let r = &self.report;
+        let centroid = match r.centroid {
             Some([x, y]) => format!("({x:?}, {y:?})"),
             None => "None".to_string(),
         };
         format!(
             "AreaProperties(area={:?}, perimeter={:?}, centroid={centroid})",
-            self.area, self.perimeter
+            r.area, r.perimeter
         )
     }
 }
@@ -181,19 +217,12 @@ pub fn polygon_area(
             vec![Polygon::new(outline, holes)]
         }
     };
-    let (measured, issues) = py.detach(|| (area_properties(&polygons), polygon_issues(&polygons)));
-    let (principal_moments, angle) =
-        if measured.centroid.is_some() { measured.inertia.principal() } else { ([0.0; 2], 0.0) };
-    Ok(PyAreaProperties {
-        area: measured.area,
-        perimeter: measured.perimeter,
-        centroid: measured.centroid,
-        ix: measured.inertia.ix,
-        iy: measured.inertia.iy,
-        ixy: measured.inertia.ixy,
-        polar: measured.inertia.polar,
-        principal_moments,
-        principal_angle_degrees: angle.to_degrees(),
-        issues: issues.iter().map(ToString::to_string).collect(),
-    })
+    let features = [PolygonFeature { name: None, polygons }];
+    let (report, issues) = py.detach(|| {
+        let issues: Vec<String> =
+            polygon_issues(&features[0].polygons).iter().map(ToString::to_string).collect();
+        (area(None, None, &features, Vec::new()), issues)
+    });
+    let report = report.map_err(mesh_error)?;
+    Ok(PyAreaProperties { fields: Fields::new(&report)?, report, issues })
 }

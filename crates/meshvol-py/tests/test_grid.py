@@ -92,10 +92,12 @@ def test_union_of_the_shells_of_one_mesh():
     assert u.upper - u.lower <= 1e-6 * u.lower
     assert u.bodies == 2 and u.flipped == [] and u.volume_uncertainty == 0.0
     assert any("role" in w for w in u.warnings)
-    # As wound, the union turns it itself.
-    u = meshvol.union(meshvol.Mesh(v, f), check=False)
+    # As wound, the union turns it itself, and says so as the command does.
+    with pytest.warns(meshvol.MeshWarning, match="shell 1: wound inward"):
+        u = meshvol.union(meshvol.Mesh(v, f), check=False)
     assert u.lower <= 16.0 - overlap <= u.upper
-    assert u.bodies == 2 and u.flipped == [1] and u.warnings == []
+    assert u.bodies == 2 and u.flipped == [1]
+    assert len(u.warnings) == 1 and "measured as a solid turned outward" in u.warnings[0]
 
 
 def test_union_accepts_mesh_like_objects():

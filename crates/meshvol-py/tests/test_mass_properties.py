@@ -144,11 +144,16 @@ def test_flat_surface_has_no_centroid():
 def test_to_dict_has_the_volume_report_keys():
     mp = meshvol.Mesh(*box()).mass_properties(density=3.0)
     d = mp.to_dict()
-    assert list(d) == [
+    assert list(d)[:22] == [
+        "file", "format", "format_source", "vertices",
         "faces", "triangles", "volume", "signed_volume", "volume_error_bound", "exact",
         "area", "centroid", "inertia", "principal_moments", "principal_axes", "density",
-        "mass", "bounds", "warnings",
+        "mass", "bounds", "units", "warnings", "bounds_a_volume", "verdict",
     ]
+    assert (d["file"], d["format"], d["vertices"], d["units"]) == (None, None, 8, None)
+    # Unchecked, the check's facts are absent, as with `meshvol volume --no-check`.
+    unchecked = meshvol.Mesh(*box()).mass_properties(check=False).to_dict()
+    assert list(unchecked) == list(d)[:20]
     assert d["mass"] == 3.0 and d["centroid"] == [0.5, 0.5, 0.5]
     assert d["bounds"] == {"min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 1.0]}
     assert d["inertia"] == mp.inertia.tolist()
@@ -173,9 +178,14 @@ def test_exact_volume_out_of_range_is_an_error():
         meshvol.Mesh(vertices, faces).mass_properties(exact=True)
 
 
-def test_overflowing_moments_leave_the_principal_frame_undefined():
+def test_overflowing_moments_are_an_error_as_in_the_command():
     # A box 1e100 on a side: its volume fits a float64, its inertia (1e500) does not.
-    mp = meshvol.Mesh(*box((0, 0, 0), (1e100, 1e100, 1e100))).mass_properties()
-    assert mp.volume == pytest.approx(1e300, rel=1e-15)
-    assert not np.isfinite(mp.inertia).all()
-    assert np.isnan(mp.principal_moments).all() and np.isnan(mp.principal_axes).all()
+    mesh = meshvol.Mesh(*box((0, 0, 0), (1e100, 1e100, 1e100)))
+    with pytest.raises(meshvol.MeshError, match="inertia overflows f64"):
+        mesh.mass_properties()
+    # In other units it fits: 1e100 um = 1e94 m, an inertia of 1e470 m^5 still does not,
+    # but the volume does in any unit; a smaller box converts fine.
+    small = meshvol.Mesh(*box((0, 0, 0), (1e60, 1e60, 1e60)))
+    mp = small.mass_properties(units="um:m")
+    assert mp.volume == pytest.approx(1e162, rel=1e-12)
+    assert mp.to_dict()["units"]["volume"] == "m^3"

@@ -14,7 +14,7 @@ use meshvol_io::PolygonFeature;
 use serde::Serialize;
 
 /// Second moments about the centroid, and the principal ones.
-#[derive(Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct InertiaReport {
     /// ∫(y − cy)² dA.
     pub ix: f64,
@@ -43,7 +43,7 @@ impl From<SecondMoments> for InertiaReport {
     }
 }
 
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct RingReport {
     pub feature: usize,
     pub polygon: usize,
@@ -58,7 +58,7 @@ pub struct RingReport {
     pub perimeter: f64,
 }
 
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct FeatureReport {
     pub index: usize,
     pub name: Option<String>,
@@ -71,7 +71,7 @@ pub struct FeatureReport {
 }
 
 /// One file's report. Field names are the JSON keys.
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct AreaReport {
     pub file: Option<String>,
     pub format: Option<&'static str>,

@@ -9,7 +9,7 @@ use meshvol::Mesh;
 use serde::Serialize;
 
 /// One file's report. Field names are the JSON keys.
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct HullReport {
     pub file: Option<String>,
     pub format: Option<&'static str>,

@@ -11,7 +11,7 @@ use meshvol::section::{section as kernel, Plane, PlaneFrame};
 use meshvol::Surface;
 use serde::Serialize;
 
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct PlaneReport {
     /// A point of the plane: the 2D origin.
     pub origin: [f64; 3],
@@ -22,7 +22,7 @@ pub struct PlaneReport {
 }
 
 /// The report. Field names are the JSON keys.
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct SectionReport {
     pub file: Option<String>,
     pub format: Option<&'static str>,

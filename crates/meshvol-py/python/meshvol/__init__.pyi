@@ -65,6 +65,9 @@ class Mesh:
     def format(self) -> Optional[str]:
         """The format of the file read ('stl-binary', 'obj', ...); None for arrays."""
     @property
+    def file(self) -> Optional[str]:
+        """The path given to load(); None for arrays."""
+    @property
     def unit(self) -> Optional[str]:
         """The length unit the file declares ('mm', 'm', ...), or None."""
     @property
@@ -74,9 +77,14 @@ class Mesh:
     def objects(self) -> list[Tuple[str, int, int]]:
         """(name, first face, end face) of each named part, when there are two or more."""
     def mass_properties(
-        self, density: float = 1.0, exact: bool = False, check: bool = True
+        self,
+        density: float = 1.0,
+        exact: bool = False,
+        check: bool = True,
+        units: Optional[str] = None,
     ) -> MassProperties:
-        """Mass properties of the checked solid (`meshvol volume`); check=False: as wound."""
+        """Mass properties of the checked solid (`meshvol volume`); check=False: as wound;
+        units: as --units ('mm:cm', ':in', ...)."""
     def check(
         self, weld_tolerance: Optional[float] = None, intersections: bool = True
     ) -> Check:
@@ -104,8 +112,43 @@ class Mesh:
         """Every face's winding reversed."""
 
 class MassProperties:
-    """Volume, area, centroid and inertia, named as `meshvol volume --json`'s keys."""
+    """Volume, area, centroid and inertia, named as `meshvol volume --json`'s keys.
 
+    Checked (the default), the check's facts are attributes too, as in the command's
+    JSON; unchecked (check=False) they are absent."""
+
+    file: Optional[str]
+    format: Optional[str]
+    format_source: Optional[str]
+    vertices: int
+    units: Optional[dict[str, Any]]
+    """Names of the reported units (length, area, volume, file, file_declared)."""
+    bounds_a_volume: bool
+    verdict: str
+    closed: bool
+    weld_tolerance: Optional[float]
+    welded_vertices: int
+    edges: int
+    boundary_edges: int
+    boundary_loops: int
+    non_manifold_edges: int
+    non_manifold_vertices: int
+    degenerate_faces: int
+    flat_faces: int
+    duplicate_faces: int
+    double_wall_faces: int
+    consistently_oriented: bool
+    orientation: Optional[str]
+    winding: Optional[str]
+    shells: int
+    cavities: int
+    shell_details: list[dict[str, Any]]
+    overlapping_shells: list[list[int]]
+    self_intersections: Optional[int]
+    intersection_examples: list[list[int]]
+    euler_characteristic: int
+    solid_volume: float
+    volume_uncertainty: float
     faces: int
     triangles: int
     volume: float
@@ -153,6 +196,9 @@ class Shell:
 class Check:
     """The facts of `meshvol check`, named as its JSON keys."""
 
+    file: Optional[str]
+    format: Optional[str]
+    warnings: list[str]
     bounds_a_volume: bool
     verdict: str
     closed: bool
@@ -180,7 +226,9 @@ class Check:
     solid_volume: float
     volume_uncertainty: float
     repairs: Tuple[int, int, int]
-    def mass_properties(self, density: float = 1.0, exact: bool = False) -> MassProperties:
+    def mass_properties(
+        self, density: float = 1.0, exact: bool = False, units: Optional[str] = None
+    ) -> MassProperties:
         """Mass properties of the repaired solid (`meshvol volume`)."""
     def solid_mesh(self, caps: bool = False) -> Mesh:
         """The repaired solid as a welded mesh (`meshvol repair`)."""
@@ -191,6 +239,10 @@ class Profile:
     """Volume below each level (`meshvol profile --json`'s keys)."""
 
     axis: str
+    file: Optional[str]
+    warnings: list[str]
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol profile --json`."""
     @property
     def levels(self) -> _F64: ...
     @property
@@ -215,6 +267,14 @@ class Union:
     volume_uncertainty: float
     """The caps on holes' uncertainty, included in [lower, upper]."""
     warnings: list[str]
+    file: str
+    """The meshes' names (their files, or 'mesh'), joined by ', '."""
+    files: list[str]
+    body_names: list[str]
+    grid: list[int]
+    seconds: float
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol union --json`."""
 
 class AreaProperties:
     """Area, perimeter, centroid and second moments of plane polygons."""
@@ -227,6 +287,15 @@ class AreaProperties:
     polar: float
     principal_angle_degrees: float
     issues: list[str]
+    file: Optional[str]
+    format: Optional[str]
+    polygons: int
+    inertia: Optional[dict[str, Any]]
+    """The second moments as `meshvol area --json` nests them; None without area."""
+    rings: list[dict[str, Any]]
+    warnings: list[str]
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol area --json`."""
     @property
     def centroid(self) -> Optional[_F64]:
         """Shape (2,); None when the area is zero."""
@@ -245,6 +314,11 @@ class Hull:
     area: float
     degenerate: Optional[str]
     mesh: Optional[Mesh]
+    file: Optional[str]
+    format: Optional[str]
+    warnings: list[str]
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol hull --json`."""
     @property
     def centroid(self) -> Optional[_F64]: ...
 

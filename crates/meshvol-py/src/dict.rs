@@ -1,0 +1,87 @@
+//! Reports as Python values: every result class keeps the report the `meshvol` command
+//! prints (`meshvol_report`) serialized once, and its `to_dict()` and plain attributes
+//! come from that serialization, so their keys are the command's JSON keys.
+
+use pyo3::exceptions::PyAttributeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use serde::Serialize;
+use serde_json::Value;
+
+/// A report's JSON object: the text the command prints, and its values by key.
+pub struct Fields {
+    json: String,
+    values: serde_json::Map<String, Value>,
+}
+
+impl Fields {
+    /// Serializes `report` (a struct: a JSON object).
+    pub fn new(report: &impl Serialize) -> PyResult<Fields> {
+        let json = serde_json::to_string(report).map_err(crate::errors::mesh_error)?;
+        match serde_json::from_str(&json) {
+            Ok(Value::Object(values)) => Ok(Fields { json, values }),
+            Ok(_) => Err(crate::errors::mesh_error("a report is not a JSON object")),
+            Err(e) => Err(crate::errors::mesh_error(e)),
+        }
+    }
+
+    /// The value of key `name`, as a new Python object; AttributeError without it.
+    pub fn get<'py>(
+        &self,
+        py: Python<'py>,
+        owner: &str,
+        name: &str,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        match self.values.get(name) {
+            Some(v) => to_python(py, v),
+            None => Err(PyAttributeError::new_err(format!(
+                "'{owner}' object has no attribute '{name}'"
+            ))),
+        }
+    }
+
+    /// `dir()` of an object whose other attributes are these keys: its class's names and
+    /// the keys, so that tab completion and `inspect` see every attribute.
+    pub fn dir(&self, object: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+        let mut names: Vec<String> = object.get_type().dir()?.extract()?;
+        names.extend(self.values.keys().cloned());
+        names.sort();
+        names.dedup();
+        Ok(names)
+    }
+
+    /// The whole object as a new dict, its keys in the command's order (Python's json
+    /// keeps the order of the text; serde_json's maps would sort them).
+    pub fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let json = py.import("json")?;
+        Ok(json.call_method1("loads", (&self.json,))?.cast_into::<PyDict>()?)
+    }
+}
+
+/// A JSON value as plain Python values: None, bool, int, float, str, list, dict.
+fn to_python<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),
+        Value::Number(n) => match (n.as_u64(), n.as_i64()) {
+            (Some(u), _) => u.into_pyobject(py)?.into_any(),
+            (None, Some(i)) => i.into_pyobject(py)?.into_any(),
+            _ => n.as_f64().unwrap_or(f64::NAN).into_pyobject(py)?.into_any(),
+        },
+        Value::String(s) => s.into_pyobject(py)?.into_any(),
+        Value::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(to_python(py, item)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(map) => {
+            let d = PyDict::new(py);
+            for (k, item) in map {
+                d.set_item(k, to_python(py, item)?)?;
+            }
+            d.into_any()
+        }
+    })
+}
