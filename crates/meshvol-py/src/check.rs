@@ -7,7 +7,6 @@ use crate::properties::{self, PyMassProperties};
 use meshvol::topology::{self, Check, CheckOptions, Weld};
 use meshvol_report::check::{CheckReport, ShellReport};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 /// One shell (connected component of faces) of a checked mesh: an entry of
 /// `shell_details` in `meshvol check --json`, whose keys are its attributes (faces,
@@ -21,19 +20,6 @@ pub struct PyShell {
 
 #[pymethods]
 impl PyShell {
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.fields.get(py, "Shell", name)
-    }
-
-    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
-        slf.get().fields.dir(slf.as_any())
-    }
-
-    /// The values as a dict, with the keys of `meshvol check --json`'s shell_details.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.fields.to_dict(py)
-    }
-
     fn __repr__(&self) -> String {
         let r = &self.report;
         let py_bool = |b: bool| if b { "True" } else { "False" };
@@ -144,23 +130,11 @@ impl PyCheck {
         self.check.repairs()
     }
 
-    /// Any other key of the report (bounds_a_volume, verdict, closed, shells, ...), as
-    /// a plain value.
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.fields.get(py, "Check", name)
-    }
-
-    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
-        slf.get().fields.dir(slf.as_any())
-    }
-
-    /// The report as a dict of plain Python values, with exactly the keys (and nested
-    /// lists) of `meshvol check --json`.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.fields.to_dict(py)
-    }
-
     fn __repr__(&self) -> String {
         format!("Check('{}')", self.report.facts.verdict)
     }
 }
+
+crate::dict::report_methods!(PyShell, "Shell");
+
+crate::dict::report_methods!(PyCheck, "Check");

@@ -85,3 +85,35 @@ fn to_python<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
         }
     })
 }
+
+/// The methods every result class has (its pyclass holds its report's [`Fields`] as
+/// `fields`): the report's keys as attributes and in `dir()`, and `to_dict()`.
+macro_rules! report_methods {
+    ($class:ty, $name:literal) => {
+        #[pyo3::pymethods]
+        impl $class {
+            /// A key of the report, as a plain value.
+            fn __getattr__<'py>(
+                &self,
+                py: pyo3::Python<'py>,
+                name: &str,
+            ) -> pyo3::PyResult<pyo3::Bound<'py, pyo3::PyAny>> {
+                self.fields.get(py, $name, name)
+            }
+
+            fn __dir__(slf: &pyo3::Bound<'_, Self>) -> pyo3::PyResult<Vec<String>> {
+                slf.get().fields.dir(slf.as_any())
+            }
+
+            /// The report as a dict of plain Python values: the keys, order and structure
+            /// of the command's JSON (docs/json.md).
+            fn to_dict<'py>(
+                &self,
+                py: pyo3::Python<'py>,
+            ) -> pyo3::PyResult<pyo3::Bound<'py, pyo3::types::PyDict>> {
+                self.fields.to_dict(py)
+            }
+        }
+    };
+}
+pub(crate) use report_methods;

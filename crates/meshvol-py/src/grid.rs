@@ -13,7 +13,6 @@ use meshvol_report::union::UnionReport;
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray1, PyArray3};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 /// `pitch` as three cell sizes: one number for cubic cells, or three.
 fn pitch_of(pitch: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
@@ -114,21 +113,6 @@ impl PyProfile {
         PyArray1::from_slice(py, &self.report.section_area)
     }
 
-    /// Any other key of the report (axis, file, warnings), as a plain value.
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.fields.get(py, "Profile", name)
-    }
-
-    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
-        slf.get().fields.dir(slf.as_any())
-    }
-
-    /// The report as a dict of plain Python values, with the keys of `meshvol profile
-    /// --json`.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.fields.to_dict(py)
-    }
-
     fn __repr__(&self) -> String {
         let r = &self.report;
         format!("Profile(axis='{}', slabs={})", r.axis, r.slab_volume.len())
@@ -179,23 +163,6 @@ pub struct PyUnion {
 
 #[pymethods]
 impl PyUnion {
-    /// Any key of the report (lower, upper, volume, bodies, sum_of_volumes,
-    /// cells_refined, cells_resolved_exactly, columns_unresolved, flipped,
-    /// volume_uncertainty, warnings, ...), as a plain value.
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.fields.get(py, "Union", name)
-    }
-
-    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
-        slf.get().fields.dir(slf.as_any())
-    }
-
-    /// The report as a dict of plain Python values, with the keys of `meshvol union
-    /// --json`.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.fields.to_dict(py)
-    }
-
     fn __repr__(&self) -> String {
         let r = &self.report;
         format!(
@@ -241,3 +208,7 @@ pub fn union(
     meshes[0].get().warn(py, &report.warnings)?;
     Ok(PyUnion { fields: Fields::new(&report)?, report })
 }
+
+crate::dict::report_methods!(PyProfile, "Profile");
+
+crate::dict::report_methods!(PyUnion, "Union");

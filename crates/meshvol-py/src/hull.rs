@@ -9,7 +9,6 @@ use meshvol::hull::{self, Hull, HullError};
 use meshvol_report::hull::HullReport;
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 /// The convex hull of a point set: the report of `meshvol hull --json`, whose keys are
 /// its attributes (points, hull_vertices, hull_faces, volume, volume_error_bound, area,
@@ -33,20 +32,6 @@ impl PyHull {
     #[getter]
     fn centroid<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
         self.report.centroid.map(|c| PyArray1::from_slice(py, &c))
-    }
-
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.fields.get(py, "Hull", name)
-    }
-
-    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
-        slf.get().fields.dir(slf.as_any())
-    }
-
-    /// The report as a dict of plain Python values, with the keys of `meshvol hull
-    /// --json`.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.fields.to_dict(py)
     }
 
     fn __repr__(&self) -> String {
@@ -90,3 +75,5 @@ pub fn convex_hull(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<PyHull
 pub fn hull_volume(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<f64> {
     Ok(hull_of(py, points)?.1.volume())
 }
+
+crate::dict::report_methods!(PyHull, "Hull");

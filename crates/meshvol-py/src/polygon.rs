@@ -83,21 +83,6 @@ impl PyAreaProperties {
         self.inertia().principal_angle_degrees
     }
 
-    /// Any other key of the report (area, perimeter, polygons, rings, warnings, ...).
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.fields.get(py, "AreaProperties", name)
-    }
-
-    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
-        slf.get().fields.dir(slf.as_any())
-    }
-
-    /// The report as a dict of plain Python values, with the keys of `meshvol area
-    /// --json`.
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.fields.to_dict(py)
-    }
-
     fn __repr__(&self) -> String {
         let r = &self.report;
         let centroid = match r.centroid {
@@ -226,3 +211,5 @@ pub fn polygon_area(
     let report = report.map_err(mesh_error)?;
     Ok(PyAreaProperties { fields: Fields::new(&report)?, report, issues })
 }
+
+crate::dict::report_methods!(PyAreaProperties, "AreaProperties");

@@ -10,7 +10,6 @@ use meshvol_report::volume::{volume, VolumeOptions, VolumeReport, NO_FACES};
 use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 /// A box's (min, max) corners as NumPy arrays.
 type Corners<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
@@ -109,22 +108,6 @@ impl PyMassProperties {
         Some((PyArray1::from_slice(py, &b.min), PyArray1::from_slice(py, &b.max)))
     }
 
-    /// Any other key of the report (volume, signed_volume, volume_error_bound, exact,
-    /// area, density, mass, faces, triangles, warnings, ...), as a plain value.
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.fields.get(py, "MassProperties", name)
-    }
-
-    fn __dir__(slf: &Bound<'_, Self>) -> PyResult<Vec<String>> {
-        slf.get().fields.dir(slf.as_any())
-    }
-
-    /// The report as a dict of plain Python values, with the keys, order and structure of
-    /// `meshvol volume --json` (bounds as {"min": [...], "max": [...]}).
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.fields.to_dict(py)
-    }
-
     fn __repr__(&self) -> String {
         let r = &self.report;
         let centroid = match r.centroid {
@@ -138,3 +121,5 @@ impl PyMassProperties {
         )
     }
 }
+
+crate::dict::report_methods!(PyMassProperties, "MassProperties");

@@ -213,13 +213,7 @@ fn write_measures(
 }
 
 impl Report for AreaReport {
-    fn file(&self) -> &str {
-        self.file.as_deref().unwrap_or("polygons")
-    }
-
-    fn warnings(&self) -> &[String] {
-        &self.warnings
-    }
+    crate::file_and_warnings!("polygons");
 
     fn text(&self) -> String {
         let r = self;

@@ -143,13 +143,7 @@ pub fn check(source: &Source, c: &Check) -> CheckReport {
 const LISTED: usize = 10;
 
 impl Report for CheckReport {
-    fn file(&self) -> &str {
-        self.file.as_deref().unwrap_or("mesh")
-    }
-
-    fn warnings(&self) -> &[String] {
-        &self.warnings
-    }
+    crate::file_and_warnings!("mesh");
 
     fn passed(&self) -> bool {
         self.facts.bounds_a_volume

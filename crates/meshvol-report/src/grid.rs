@@ -82,30 +82,33 @@ pub struct GridBounds {
     pub max: Point,
 }
 
-/// The summary of a grid. Field names are the JSON keys.
+/// The grid and what its cells hold.
 #[derive(Clone, Debug, Serialize)]
-pub struct GridReport {
-    /// The files, joined by `, `.
-    pub file: String,
-    pub files: Vec<String>,
+pub struct CellSummary {
     /// The grid's box.
     pub bounds: GridBounds,
-    /// `mesh` (the bounding box of the meshes, grown to whole cells with a pitch) or
-    /// `given`.
-    pub bounds_from: &'static str,
     pub cells: [usize; 3],
     pub cell_size: [f64; 3],
     /// Σ of the cells.
     pub total: f64,
-    /// The meshes' volume: Σ of signed volumes (for a union, of each body's |volume|,
-    /// which counts overlaps more than once).
-    pub mesh_volume: f64,
-    pub union: bool,
-    /// Bodies (of a union).
-    pub bodies: usize,
     pub cells_full: usize,
     pub cells_partial: usize,
     pub cells_empty: usize,
+}
+
+/// How the cells were computed and where they went: what the caller knows.
+#[derive(Clone, Debug, Serialize)]
+pub struct GridRun {
+    pub files: Vec<String>,
+    /// `mesh` (the bounding box of the meshes, grown to whole cells with a pitch) or
+    /// `given`.
+    pub bounds_from: &'static str,
+    /// The meshes' volume: Σ of signed volumes (for a union, of each body's |volume|,
+    /// which counts overlaps more than once).
+    pub mesh_volume: f64,
+    /// Whether the cells are the union's, and of how many bodies.
+    pub union: bool,
+    pub bodies: usize,
     /// Columns of the union left at their lower bound (could not be resolved exactly).
     pub columns_unresolved: usize,
     /// Seconds spent computing the cell volumes.
@@ -119,19 +122,15 @@ pub struct GridReport {
     pub warnings: Vec<String>,
 }
 
-/// What a grid's summary is made of besides the grid and its cells.
-pub struct GridRun {
-    pub files: Vec<String>,
-    pub bounds_from: &'static str,
-    pub mesh_volume: f64,
-    /// Bodies, for a union; `None` otherwise.
-    pub union_bodies: Option<usize>,
-    pub columns_unresolved: usize,
-    pub seconds: f64,
-    pub out: Option<String>,
-    pub fraction: bool,
-    pub png: Option<String>,
-    pub warnings: Vec<String>,
+/// The summary of a grid. Field names are the JSON keys.
+#[derive(Clone, Debug, Serialize)]
+pub struct GridReport {
+    /// The files, joined by `, `.
+    pub file: String,
+    #[serde(flatten)]
+    pub cells: CellSummary,
+    #[serde(flatten)]
+    pub run: GridRun,
 }
 
 /// The summary of `volumes`, the cells of `grid`.
@@ -141,24 +140,16 @@ pub fn summary(grid: &Grid, volumes: &[f64], run: GridRun) -> GridReport {
     volumes.iter().for_each(|&v| total.add(v));
     GridReport {
         file: run.files.join(", "),
-        files: run.files,
-        bounds: GridBounds { min: grid.origin, max: grid.max() },
-        bounds_from: run.bounds_from,
-        cells: grid.counts,
-        cell_size: grid.cell,
-        total: total.value(),
-        mesh_volume: run.mesh_volume,
-        union: run.union_bodies.is_some(),
-        bodies: run.union_bodies.unwrap_or(0),
-        cells_full: occupied.full,
-        cells_partial: occupied.partial,
-        cells_empty: occupied.empty,
-        columns_unresolved: run.columns_unresolved,
-        seconds: run.seconds,
-        out: run.out,
-        fraction: run.fraction,
-        png: run.png,
-        warnings: run.warnings,
+        cells: CellSummary {
+            bounds: GridBounds { min: grid.origin, max: grid.max() },
+            cells: grid.counts,
+            cell_size: grid.cell,
+            total: total.value(),
+            cells_full: occupied.full,
+            cells_partial: occupied.partial,
+            cells_empty: occupied.empty,
+        },
+        run,
     }
 }
 
@@ -168,22 +159,22 @@ impl Report for GridReport {
     }
 
     fn warnings(&self) -> &[String] {
-        &self.warnings
+        &self.run.warnings
     }
 
     fn text(&self) -> String {
-        let r = self;
+        let (r, c) = (&self.run, &self.cells);
         let mut s = String::new();
-        let [nx, ny, nz] = r.cells;
+        let [nx, ny, nz] = c.cells;
         let from = if r.bounds_from == "mesh" { "the meshes' bounding box" } else { "--bounds" };
-        let _ = writeln!(s, "{}: grid of {nx}×{ny}×{nz} cells", r.file);
+        let _ = writeln!(s, "{}: grid of {nx}×{ny}×{nz} cells", self.file);
         let _ = writeln!(
             s,
             "  bounds         {} to {} (from {from})",
-            vector(r.bounds.min, 15),
-            vector(r.bounds.max, 15)
+            vector(c.bounds.min, 15),
+            vector(c.bounds.max, 15)
         );
-        let _ = writeln!(s, "  cell size      {}", vector(r.cell_size, 15));
+        let _ = writeln!(s, "  cell size      {}", vector(c.cell_size, 15));
         if r.union {
             let _ = writeln!(
                 s,
@@ -191,7 +182,7 @@ impl Report for GridReport {
                 count(r.bodies, "body", "bodies"),
                 num(r.mesh_volume, 15)
             );
-            let _ = writeln!(s, "  total          {}", num(r.total, 15));
+            let _ = writeln!(s, "  total          {}", num(c.total, 15));
             if r.columns_unresolved > 0 {
                 let _ = writeln!(
                     s,
@@ -203,14 +194,14 @@ impl Report for GridReport {
             let _ = writeln!(
                 s,
                 "  total          {}  (mesh volume {})",
-                num(r.total, 15),
+                num(c.total, 15),
                 num(r.mesh_volume, 15)
             );
         }
         let _ = writeln!(
             s,
             "  cells          {} full, {} partial, {} empty",
-            r.cells_full, r.cells_partial, r.cells_empty
+            c.cells_full, c.cells_partial, c.cells_empty
         );
         if let Some(out) = &r.out {
             let what = match Path::new(out).extension().and_then(|e| e.to_str()) {

@@ -65,13 +65,7 @@ pub fn hull(
 }
 
 impl Report for HullReport {
-    fn file(&self) -> &str {
-        self.file.as_deref().unwrap_or("points")
-    }
-
-    fn warnings(&self) -> &[String] {
-        &self.warnings
-    }
+    crate::file_and_warnings!("points");
 
     fn text(&self) -> String {
         let r = self;

@@ -15,6 +15,21 @@
 //! [`subject::Subject`], and hand it to a report function; they print or convert what
 //! comes back. This crate never prints.
 
+/// `Report::file` and `Report::warnings` of a report with the fields `file` (an
+/// `Option<String>`, named `$unnamed` when `None`: a surface from arrays) and `warnings`.
+macro_rules! file_and_warnings {
+    ($unnamed:literal) => {
+        fn file(&self) -> &str {
+            self.file.as_deref().unwrap_or($unnamed)
+        }
+
+        fn warnings(&self) -> &[String] {
+            &self.warnings
+        }
+    };
+}
+pub(crate) use file_and_warnings;
+
 pub mod area;
 pub mod check;
 pub mod grid;

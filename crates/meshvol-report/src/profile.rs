@@ -71,13 +71,7 @@ impl ProfileReport {
 }
 
 impl Report for ProfileReport {
-    fn file(&self) -> &str {
-        self.file.as_deref().unwrap_or("mesh")
-    }
-
-    fn warnings(&self) -> &[String] {
-        &self.warnings
-    }
+    crate::file_and_warnings!("mesh");
 
     fn text(&self) -> String {
         let mut s = String::new();

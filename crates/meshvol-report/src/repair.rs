@@ -75,13 +75,7 @@ pub fn repair<S: Surface>(
 }
 
 impl Report for RepairReport {
-    fn file(&self) -> &str {
-        self.file.as_deref().unwrap_or("mesh")
-    }
-
-    fn warnings(&self) -> &[String] {
-        &self.warnings
-    }
+    crate::file_and_warnings!("mesh");
 
     fn text(&self) -> String {
         let r = self;

@@ -111,18 +111,9 @@ class Mesh:
     def flipped(self) -> Mesh:
         """Every face's winding reversed."""
 
-class MassProperties:
-    """Volume, area, centroid and inertia, named as `meshvol volume --json`'s keys.
+class _CheckFacts:
+    """The facts of `meshvol check` that Check and (checked) MassProperties share."""
 
-    Checked (the default), the check's facts are attributes too, as in the command's
-    JSON; unchecked (check=False) they are absent."""
-
-    file: Optional[str]
-    format: Optional[str]
-    format_source: Optional[str]
-    vertices: int
-    units: Optional[dict[str, Any]]
-    """Names of the reported units (length, area, volume, file, file_declared)."""
     bounds_a_volume: bool
     verdict: str
     closed: bool
@@ -142,13 +133,26 @@ class MassProperties:
     winding: Optional[str]
     shells: int
     cavities: int
-    shell_details: list[dict[str, Any]]
-    overlapping_shells: list[list[int]]
     self_intersections: Optional[int]
-    intersection_examples: list[list[int]]
     euler_characteristic: int
     solid_volume: float
     volume_uncertainty: float
+
+class MassProperties(_CheckFacts):
+    """Volume, area, centroid and inertia, named as `meshvol volume --json`'s keys.
+
+    Checked (the default), the check's facts are attributes too, as in the command's
+    JSON; unchecked (check=False) they are absent."""
+
+    file: Optional[str]
+    format: Optional[str]
+    format_source: Optional[str]
+    vertices: int
+    units: Optional[dict[str, Any]]
+    """Names of the reported units (length, area, volume, file, file_declared)."""
+    shell_details: list[dict[str, Any]]
+    overlapping_shells: list[list[int]]
+    intersection_examples: list[list[int]]
     faces: int
     triangles: int
     volume: float
@@ -193,38 +197,15 @@ class Shell:
     genus: Optional[int]
     def to_dict(self) -> dict[str, Any]: ...
 
-class Check:
+class Check(_CheckFacts):
     """The facts of `meshvol check`, named as its JSON keys."""
 
     file: Optional[str]
     format: Optional[str]
     warnings: list[str]
-    bounds_a_volume: bool
-    verdict: str
-    closed: bool
-    weld_tolerance: Optional[float]
-    welded_vertices: int
-    edges: int
-    boundary_edges: int
-    boundary_loops: int
-    non_manifold_edges: int
-    non_manifold_vertices: int
-    degenerate_faces: int
-    flat_faces: int
-    duplicate_faces: int
-    double_wall_faces: int
-    consistently_oriented: bool
-    orientation: Optional[str]
-    winding: Optional[str]
-    shells: int
-    cavities: int
     shell_details: list[Shell]
     overlapping_shells: list[Tuple[int, int]]
-    self_intersections: Optional[int]
     intersection_examples: list[Tuple[int, int]]
-    euler_characteristic: int
-    solid_volume: float
-    volume_uncertainty: float
     repairs: Tuple[int, int, int]
     def mass_properties(
         self, density: float = 1.0, exact: bool = False, units: Optional[str] = None
