@@ -1,20 +1,10 @@
 //! `meshvol area`, `section` and `hull` on small files, checked against values known in
 //! closed form.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+use common::{f, meshvol, write};
 
 use serde_json::Value;
-
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
-
-fn write(dir: &Path, name: &str, content: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, content).unwrap();
-    path
-}
 
 /// Runs a command that must succeed with one JSON object per line on stdout.
 fn json(args: &[&str]) -> Vec<Value> {
@@ -25,10 +15,6 @@ fn json(args: &[&str]) -> Vec<Value> {
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
         .collect()
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 fn close(a: f64, b: f64, tolerance: f64) -> bool {
@@ -155,7 +141,7 @@ fn tube_obj(a: f64, b: f64, c: f64, h: f64) -> String {
 #[test]
 fn section_of_a_tube_has_a_hole_and_the_analytic_area() {
     let dir = tempfile::tempdir().unwrap();
-    let tube = write(dir.path(), "tube.obj", &tube_obj(4.0, 3.0, 2.0, 1.0));
+    let tube = write(dir.path(), "tube.obj", tube_obj(4.0, 3.0, 2.0, 1.0));
     let t = tube.to_str().unwrap();
     // The file's own volume confirms the fixture: (4·3 − 1)·2.
     assert_eq!(f(&json(&["volume", "--json", t])[0]["volume"]), 22.0);
@@ -189,7 +175,7 @@ fn section_of_a_tube_has_a_hole_and_the_analytic_area() {
 #[test]
 fn section_prints_wkt_and_geojson() {
     let dir = tempfile::tempdir().unwrap();
-    let tube = write(dir.path(), "tube.obj", &tube_obj(4.0, 3.0, 2.0, 1.0));
+    let tube = write(dir.path(), "tube.obj", tube_obj(4.0, 3.0, 2.0, 1.0));
     let t = tube.to_str().unwrap();
     let out = meshvol(&["section", t, "--plane", "z=1", "--wkt"]);
     let wkt = String::from_utf8(out.stdout).unwrap();
@@ -261,7 +247,7 @@ fn hull_of_a_far_away_box_cloud_is_exact_and_written() {
 fn hull_of_mesh_vertices_and_point_clouds() {
     let dir = tempfile::tempdir().unwrap();
     // The tube's hull is its outer box: 4 × 3 × 2.
-    let tube = write(dir.path(), "tube.obj", &tube_obj(4.0, 3.0, 2.0, 1.0));
+    let tube = write(dir.path(), "tube.obj", tube_obj(4.0, 3.0, 2.0, 1.0));
     assert_eq!(f(&json(&["hull", "--json", tube.to_str().unwrap()])[0]["volume"]), 24.0);
     // A point-only PLY: the unit tetrahedron's corners and its centroid.
     let ply = "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.25 0.25 0.25\n";

@@ -1,13 +1,12 @@
 //! `meshvol check`, `meshvol repair`, and the solid-aware `meshvol volume`, end to end on
 //! boxes whose volumes are known by construction.
 
+mod common;
+use common::{f, meshvol};
+
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
+use std::process::Output;
 
 fn json(out: &Output) -> Value {
     let text = String::from_utf8(out.stdout.clone()).unwrap();
@@ -45,10 +44,6 @@ fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 #[test]

@@ -2,23 +2,12 @@
 //! `warnings`; a file that fails gives `{"file", "error"}` and exit status 1; global
 //! flags work before or after the subcommand; `-q` silences every warning.
 
+mod common;
+use common::{meshvol, p, write};
+
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
-fn p(path: &Path) -> &str {
-    path.to_str().unwrap()
-}
+use std::path::Path;
+use std::process::Output;
 
 /// The unit cube as OBJ triangles; `open` leaves out the top face; an `l` line makes the
 /// reader warn (a line element, `l`, is read and not used).
@@ -53,7 +42,7 @@ fn lines(out: &Output) -> Vec<Value> {
 #[test]
 fn every_json_line_has_file_and_warnings() {
     let dir = tempfile::tempdir().unwrap();
-    let obj = write(dir.path(), "cube.obj", &cube(false));
+    let obj = write(dir.path(), "cube.obj", cube(false));
     let wkt = write(dir.path(), "square.wkt", "POLYGON ((0 0, 2 0, 2 2, 0 2, 0 0))");
     let xyz = write(dir.path(), "corners.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
     let repaired = dir.path().join("out.stl");
@@ -115,7 +104,7 @@ fn a_failed_file_is_a_json_line_with_its_error() {
 #[test]
 fn global_flags_work_before_or_after_the_subcommand() {
     let dir = tempfile::tempdir().unwrap();
-    let open = write(dir.path(), "open.obj", &cube(true));
+    let open = write(dir.path(), "open.obj", cube(true));
     // Checked, the open cube is capped and warned about (and the reader warns too).
     let loud = meshvol(&["volume", p(&open)]);
     assert!(loud.status.success());
@@ -146,7 +135,7 @@ fn global_flags_work_before_or_after_the_subcommand() {
 #[test]
 fn absurd_thread_counts_are_capped_with_a_warning() {
     let dir = tempfile::tempdir().unwrap();
-    let obj = write(dir.path(), "cube.obj", &cube(false));
+    let obj = write(dir.path(), "cube.obj", cube(false));
     let out = meshvol(&["--threads", "100000", "volume", p(&obj), "--json"]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("per core"));

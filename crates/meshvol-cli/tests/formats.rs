@@ -1,14 +1,12 @@
 //! The formats end to end: PLY, 3MF and GLB files, objects, units declared by files,
 //! standard input, format detection and `--quiet`, through the built binary.
 
+mod common;
+use common::{f, meshvol, write};
+
 use serde_json::Value;
 use std::io::Write;
-use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
 
 /// Runs meshvol with `input` on standard input.
 fn meshvol_stdin(args: &[&str], input: &[u8]) -> Output {
@@ -32,18 +30,8 @@ fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
-}
-
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-12 * b.abs().max(1.0)
-}
-
-fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, bytes).unwrap();
-    path
 }
 
 /// The box [x, x + a] × [0, b] × [0, c] as a 3MF mesh: eight vertices, twelve outward
@@ -87,7 +75,7 @@ fn two_boxes_in_inches() -> Vec<u8> {
 #[test]
 fn three_mf_objects_and_declared_unit() {
     let dir = tempfile::tempdir().unwrap();
-    let path = write(dir.path(), "boxes.3mf", &two_boxes_in_inches());
+    let path = write(dir.path(), "boxes.3mf", two_boxes_in_inches());
     let path = path.to_str().unwrap();
 
     // No --units: reported in the declared unit.

@@ -1,21 +1,16 @@
 //! `meshvol grid`, `profile` and `union` end to end: the built binary on files written
 //! here, checked against closed forms (boxes) and by reading the outputs back.
 
-use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+use common::{f, meshvol, p, write};
 
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
+use serde_json::Value;
+use std::path::Path;
+use std::process::Output;
 
 fn json(out: &Output) -> Value {
     assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).expect("one JSON object")
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 fn keys(v: &Value) -> Vec<String> {
@@ -39,16 +34,6 @@ fn box_obj(lo: [f64; 3], hi: [f64; 3], first: usize) -> String {
         s += &format!("f {} {} {} {}\n", q[0] + first, q[1] + first, q[2] + first, q[3] + first);
     }
     s
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
-fn p(path: &Path) -> &str {
-    path.to_str().unwrap()
 }
 
 /// Reads a little-endian f64 array.
@@ -128,7 +113,7 @@ fn overlap(a0: f64, a1: f64, b0: f64, b1: f64) -> f64 {
 fn grid_writes_npy_vti_and_csv_that_read_back() {
     let dir = tempfile::tempdir().unwrap();
     let (lo, hi) = ([0.25, 0.5, -0.3], [1.5, 1.25, 0.9]);
-    let mesh = write(dir.path(), "box.obj", &box_obj(lo, hi, 1));
+    let mesh = write(dir.path(), "box.obj", box_obj(lo, hi, 1));
     // A negative first number must not read as a flag.
     let bounds = "-0,0,-0.5,2,1.5,1";
     let (npy, vti, csv) =
@@ -223,7 +208,7 @@ fn grid_writes_npy_vti_and_csv_that_read_back() {
 #[test]
 fn grid_defaults_to_the_bounding_box_and_draws_a_slice() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = write(dir.path(), "box.obj", &box_obj([0.0; 3], [1.0, 2.0, 3.0], 1));
+    let mesh = write(dir.path(), "box.obj", box_obj([0.0; 3], [1.0, 2.0, 3.0], 1));
     let png = dir.path().join("s.png");
     let summary = json(&meshvol(&[
         "grid",
@@ -255,7 +240,7 @@ fn grid_defaults_to_the_bounding_box_and_draws_a_slice() {
 #[test]
 fn grid_refuses_bad_grids_with_clear_messages() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = write(dir.path(), "box.obj", &box_obj([0.0; 3], [1.0; 3], 1));
+    let mesh = write(dir.path(), "box.obj", box_obj([0.0; 3], [1.0; 3], 1));
     let usage = [
         vec!["--cells", "0,4,4"],
         vec!["--cells", "4,4"],
@@ -296,7 +281,7 @@ fn grid_refuses_bad_grids_with_clear_messages() {
 #[test]
 fn profile_json_and_csv() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = write(dir.path(), "box.obj", &box_obj([0.0; 3], [2.0, 3.0, 4.0], 1));
+    let mesh = write(dir.path(), "box.obj", box_obj([0.0; 3], [2.0, 3.0, 4.0], 1));
     let v = json(&meshvol(&["profile", p(&mesh), "--levels", "4", "--json"]));
     assert_eq!(
         keys(&v),
@@ -324,8 +309,8 @@ fn union_of_files_and_of_shells() {
     let dir = tempfile::tempdir().unwrap();
     let (a, b) = (([0.0; 3], [2.0; 3]), ([1.0, 0.5, 1.5], [3.0, 1.75, 2.5]));
     let exact = 8.0 + 2.0 * 1.25 * 1.0 - 1.0 * 1.25 * 0.5;
-    let fa = write(dir.path(), "a.obj", &box_obj(a.0, a.1, 1));
-    let fb = write(dir.path(), "b.obj", &box_obj(b.0, b.1, 1));
+    let fa = write(dir.path(), "a.obj", box_obj(a.0, a.1, 1));
+    let fb = write(dir.path(), "b.obj", box_obj(b.0, b.1, 1));
     let both = write(dir.path(), "ab.obj", &(box_obj(a.0, a.1, 1) + &box_obj(b.0, b.1, 9)));
     for files in [vec![p(&fa), p(&fb)], vec![p(&both)]] {
         let mut args = vec!["union"];

@@ -3,23 +3,17 @@
 //! be the one meant, and measure the surface as wound with `--no-check`. Every expected
 //! value is a closed form of the construction.
 
+mod common;
+use common::{f, meshvol};
+
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
 
 /// The one JSON object a successful run prints.
 fn json(args: &[&str]) -> Value {
     let out = meshvol(args);
     assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).expect("one JSON object")
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 fn warnings(v: &Value) -> Vec<String> {

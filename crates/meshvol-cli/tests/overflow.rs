@@ -1,12 +1,11 @@
 //! Numbers beyond f64 are an error (or a warning with the value left out), never a
 //! silent `null` with exit status 0.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+use common::meshvol;
 
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
+use std::path::{Path, PathBuf};
+use std::process::Output;
 
 fn sample() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples/flanged-bushing.stl")

@@ -1,13 +1,12 @@
 //! `meshvol volume` end to end: the built binary on files written here, checked against
 //! closed forms and hand-computed values.
 
-use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+use common::{f, meshvol, write};
 
-fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
-}
+use serde_json::Value;
+use std::path::Path;
+use std::process::Output;
 
 fn json_lines(out: &Output) -> Vec<Value> {
     assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
@@ -18,21 +17,11 @@ fn json_lines(out: &Output) -> Vec<Value> {
         .collect()
 }
 
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
 fn sample() -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../samples/flanged-bushing.stl")
         .display()
         .to_string()
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 /// The unit cube as OBJ quads, wound outward.
@@ -140,7 +129,7 @@ fn quad_cube_and_plain_invocation() {
 #[test]
 fn openscad_winding_is_reported() {
     let dir = tempfile::tempdir().unwrap();
-    let path = write(dir.path(), "openscad.stl", &openscad_cube_stl());
+    let path = write(dir.path(), "openscad.stl", openscad_cube_stl());
     let out = meshvol(&[path.to_str().unwrap(), "--json"]);
     let r = &json_lines(&out)[0];
     assert_eq!(r["format"], "stl-ascii");
