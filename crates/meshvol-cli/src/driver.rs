@@ -126,6 +126,13 @@ pub fn once<R: Report>(
         Ok(report) => driver.report(&report),
         Err(e) => {
             let names: Vec<String> = inputs.iter().map(|p| p.display().to_string()).collect();
+            // Every error names the input: a reader's does, a kernel's (a grid too
+            // large, an overflow) is given the names here.
+            let e = if names.iter().any(|n| e.starts_with(n.as_str())) {
+                e
+            } else {
+                format!("{}: {e}", names.join(", "))
+            };
             driver.fail(&names.join(", "), &e)
         }
     }

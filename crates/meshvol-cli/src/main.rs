@@ -72,14 +72,14 @@ enum Command {
 fn non_negative_finite(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-        _ => Err(format!("'{s}' is not a non-negative number")),
+        _ => Err(format!("must be zero or a positive number; got {s}")),
     }
 }
 
 fn positive_finite(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        _ => Err(format!("'{s}' is not a positive number")),
+        _ => Err(format!("must be a positive number; got {s}")),
     }
 }
 

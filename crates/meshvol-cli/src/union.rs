@@ -14,7 +14,7 @@ pub struct UnionArgs {
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
     /// Stop refining once (upper − lower) ≤ REL · lower.
-    #[arg(long, value_name = "REL", default_value_t = 1e-6, value_parser = crate::positive_finite)]
+    #[arg(long, value_name = "REL", default_value_t = 1e-6, value_parser = crate::positive_finite, allow_hyphen_values = true)]
     tolerance: f64,
     /// Print one JSON object: lower, upper, volume, bodies, sum_of_volumes, cells_refined,
     /// cells_resolved_exactly, volume_uncertainty, warnings.
