@@ -57,6 +57,7 @@ use super::cells::{
 use super::clip::Polygon;
 use super::{Grid, GridError};
 use crate::accumulate::CompensatedSum;
+use crate::surface::Oriented;
 use crate::{mass_properties, Point, Surface};
 use rayon::prelude::*;
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -122,27 +123,6 @@ impl UnionVolume {
     /// The midpoint of the interval.
     pub fn volume(&self) -> f64 {
         0.5 * (self.lower + self.upper)
-    }
-}
-
-/// A body wound outward: its fan triangles, reversed when the surface is wound inward.
-struct Body<'a, S: ?Sized> {
-    surface: &'a S,
-    flip: bool,
-}
-
-impl<S: Surface + ?Sized> Surface for Body<'_, S> {
-    fn face_count(&self) -> usize {
-        self.surface.face_count()
-    }
-
-    #[inline]
-    fn fan(&self, face: usize, mut triangle: impl FnMut(Point, Point, Point)) {
-        if self.flip {
-            self.surface.fan(face, |a, b, c| triangle(a, c, b))
-        } else {
-            self.surface.fan(face, triangle)
-        }
     }
 }
 
@@ -249,7 +229,7 @@ fn classify(cell_volume: f64, bodies: impl Iterator<Item = (f64, bool)>) -> Cell
 
 /// The bodies on a grid: per-cell facts from the kernel, and faces binned by column.
 struct Bodies<'a, S: ?Sized> {
-    bodies: Vec<Body<'a, S>>,
+    bodies: Vec<Oriented<'a, S>>,
     grid: Grid,
     units: Units,
     /// Per cell: some body fills it without touching it.
@@ -265,7 +245,7 @@ struct Bodies<'a, S: ?Sized> {
 }
 
 impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
-    fn new(bodies: Vec<Body<'a, S>>, grid: Grid) -> Result<Self, GridError> {
+    fn new(bodies: Vec<Oriented<'a, S>>, grid: Grid) -> Result<Self, GridError> {
         let cells = grid.cell_count();
         let cell_volume = grid.cell_volume();
         let mut full = vec![false; cells];
@@ -772,7 +752,7 @@ fn faces_in_column<S: Surface + ?Sized>(
 }
 
 fn refine<S: Surface + ?Sized>(
-    bodies: &[Body<'_, S>],
+    bodies: &[Oriented<'_, S>],
     cell: &OpenCell,
 ) -> Result<Refined, GridError> {
     let half = cell.size.map(|s| 0.5 * s);
@@ -882,7 +862,7 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
             });
         }
         projected += p;
-        oriented.push(Body { surface: body, flip: mp.signed_volume < 0.0 });
+        oriented.push(Oriented::new(body, mp.signed_volume < 0.0));
     }
     let sum_of_volumes = sum_of_volumes.value();
     // Also true for no vertices at all (min = +∞).
@@ -1047,10 +1027,8 @@ pub fn union_cell_volumes<S: Surface>(
     grid: &Grid,
 ) -> Result<(Vec<f64>, usize), GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
-    let oriented = bodies
-        .iter()
-        .map(|b| Body { surface: b, flip: mass_properties(b).signed_volume < 0.0 })
-        .collect();
+    let oriented =
+        bodies.iter().map(|b| Oriented::new(b, mass_properties(b).signed_volume < 0.0)).collect();
     let model = Bodies::new(oriented, grid)?;
     let [_, _, nz] = grid.counts;
     let mut out = super::cells::zeroed(grid.cell_count())?;

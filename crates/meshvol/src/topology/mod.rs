@@ -50,7 +50,6 @@
 //! inward), collapsed and duplicate faces dropped (flat ones kept), holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
-mod components;
 mod predicates;
 mod solid;
 mod weld;
@@ -58,7 +57,7 @@ mod weld;
 pub use solid::{Measured, Solid, SolidView};
 
 use crate::buckets::{for_each_range_mut, Buckets, SharedItems};
-use components::Components;
+use crate::union_find::UnionFind;
 
 use crate::accumulate::CompensatedSum;
 use crate::bvh::{Box32, Bvh};
@@ -1031,7 +1030,7 @@ fn connect<S: Surface + ?Sized>(
     // Per vertex: the edge uses whose smaller vertex it is, and the fans of corners
     // around it, two corners being in one fan when their faces share an edge there. A
     // vertex in more than one fan (a bowtie) is non-manifold.
-    let fans_and_uses = |(ends, fans): &mut (Vec<(u32, u32)>, Components), v: usize| {
+    let fans_and_uses = |(ends, fans): &mut (Vec<(u32, u32)>, UnionFind), v: usize| {
         let corners = around.get(v);
         let low = |w: u32| (w as usize > v) as u32;
         let uses = corners.iter().map(|k| low(k.previous) + low(k.next)).sum::<u32>();
@@ -1051,7 +1050,7 @@ fn connect<S: Surface + ?Sized>(
     };
     let per_vertex: Vec<(u32, u32)> = (0..vertex_count)
         .into_par_iter()
-        .map_init(|| (Vec::new(), Components::new(0)), fans_and_uses)
+        .map_init(|| (Vec::new(), UnionFind::new(0)), fans_and_uses)
         .collect();
     let used_vertices = per_vertex.iter().filter(|p| p.1 > 0).count();
     let non_manifold_vertices = per_vertex.iter().filter(|p| p.1 > 1).count();
@@ -1094,7 +1093,7 @@ fn connect<S: Surface + ?Sized>(
     let groups: Vec<&[EdgeUse]> = group_start.par_windows(2).map(|w| &uses[w[0]..w[1]]).collect();
     drop(group_start);
 
-    let mut shells_of = Components::new(faces);
+    let mut shells_of = UnionFind::new(faces);
     let (mut boundary_edges, mut non_manifold_edges) = (0, 0);
     let mut consistently_oriented = true;
     let mut face_inconsistent = vec![false; faces];
