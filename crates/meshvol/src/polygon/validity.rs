@@ -170,13 +170,12 @@ fn contact(a: [Point2; 2], b: [Point2; 2]) -> Option<Contact> {
 /// An edge of positive length, for the sweep.
 #[derive(Clone, Copy)]
 struct SweepEdge {
-    x_range: [f64; 2],
-    y_range: [f64; 2],
+    /// [min, max] of its ends' x, then of their y.
+    range: [[f64; 2]; 2],
     ends: [Point2; 2],
-    polygon: u32,
-    ring: u32,
-    /// The edge's index in its ring (edge j runs from vertex j).
-    index: u32,
+    /// Its polygon, its ring, and its index in the ring (edge j runs from vertex j):
+    /// compared in this order, they order the edges of a set.
+    place: [u32; 3],
     /// Its position among the ring's edges of positive length, and their number:
     /// neighbours in this order share a vertex.
     rank: u32,
@@ -250,12 +249,9 @@ pub fn polygon_issues<P: Borrow<Polygon>>(polygons: &[P]) -> Vec<PolygonIssue> {
                     continue;
                 }
                 edges.push(SweepEdge {
-                    x_range: [ends[0][0].min(ends[1][0]), ends[0][0].max(ends[1][0])],
-                    y_range: [ends[0][1].min(ends[1][1]), ends[0][1].max(ends[1][1])],
+                    range: [0, 1].map(|a| [ends[0][a].min(ends[1][a]), ends[0][a].max(ends[1][a])]),
                     ends,
-                    polygon: polygon_index as u32,
-                    ring: ring_index as u32,
-                    index: j as u32,
+                    place: [polygon_index as u32, ring_index as u32, j as u32],
                     rank: (edges.len() - start) as u32,
                     ring_edges: 0,
                 });
@@ -291,20 +287,20 @@ pub fn polygon_issues<P: Borrow<Polygon>>(polygons: &[P]) -> Vec<PolygonIssue> {
 
 /// Tests every pair of edges whose x ranges overlap; reports each pair of rings once.
 fn sweep(edges: &mut [SweepEdge], issues: &mut Vec<PolygonIssue>) {
-    edges.sort_unstable_by(|a, b| a.x_range[0].total_cmp(&b.x_range[0]));
+    edges.sort_unstable_by(|a, b| a.range[0][0].total_cmp(&b.range[0][0]));
     // Issues already reported, by ring pair: index into `issues`.
     let mut reported: std::collections::BTreeMap<[u32; 4], usize> = Default::default();
     let mut active: Vec<u32> = Vec::new();
     let mut pairs = 0u64;
     for (i, edge) in edges.iter().enumerate() {
-        active.retain(|&k| edges[k as usize].x_range[1] >= edge.x_range[0]);
+        active.retain(|&k| edges[k as usize].range[0][1] >= edge.range[0][0]);
         for &k in &active {
             let other = &edges[k as usize];
             pairs += 1;
-            if other.y_range[1] < edge.y_range[0] || other.y_range[0] > edge.y_range[1] {
+            if other.range[1][1] < edge.range[1][0] || other.range[1][0] > edge.range[1][1] {
                 continue;
             }
-            let same_ring = other.polygon == edge.polygon && other.ring == edge.ring;
+            let same_ring = other.place[..2] == edge.place[..2];
             if same_ring {
                 let gap = other.rank.abs_diff(edge.rank);
                 if gap == 1 || gap + 1 == edge.ring_edges {
@@ -317,14 +313,9 @@ fn sweep(edges: &mut [SweepEdge], issues: &mut Vec<PolygonIssue>) {
                 Contact::Touch(p) if same_ring => p,
                 Contact::Touch(_) => continue,
             };
-            let (first, second) = if (other.polygon, other.ring, other.index)
-                <= (edge.polygon, edge.ring, edge.index)
-            {
-                (other, edge)
-            } else {
-                (edge, other)
-            };
-            let key = [first.polygon, first.ring, second.polygon, second.ring];
+            let (first, second) =
+                if other.place <= edge.place { (other, edge) } else { (edge, other) };
+            let key = [first.place[0], first.place[1], second.place[0], second.place[1]];
             if let Some(&at) = reported.get(&key) {
                 if let PolygonIssue::SelfIntersection { contacts, .. }
                 | PolygonIssue::RingsCross { contacts, .. } = &mut issues[at]
@@ -334,11 +325,11 @@ fn sweep(edges: &mut [SweepEdge], issues: &mut Vec<PolygonIssue>) {
                 continue;
             }
             reported.insert(key, issues.len());
-            let edges = [first.index as usize, second.index as usize];
+            let edges = [first.place[2] as usize, second.place[2] as usize];
             issues.push(if same_ring {
                 PolygonIssue::SelfIntersection {
-                    polygon: first.polygon as usize,
-                    ring: first.ring as usize,
+                    polygon: first.place[0] as usize,
+                    ring: first.place[1] as usize,
                     edges,
                     near,
                     contacts: 1,
@@ -346,8 +337,8 @@ fn sweep(edges: &mut [SweepEdge], issues: &mut Vec<PolygonIssue>) {
             } else {
                 PolygonIssue::RingsCross {
                     rings: [
-                        (first.polygon as usize, first.ring as usize),
-                        (second.polygon as usize, second.ring as usize),
+                        (first.place[0] as usize, first.place[1] as usize),
+                        (second.place[0] as usize, second.place[1] as usize),
                     ],
                     edges,
                     near,
