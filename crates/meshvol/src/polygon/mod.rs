@@ -31,7 +31,7 @@
 //!   origin, so the terms are the size of the parcel, not of its offset.
 //! - k is computed with fused multiply-adds (Kahan's 2×2 determinant: error below
 //!   1.5 ulp of k itself, however much x₀y₁ and x₁y₀ cancel), and every sum is a
-//!   [`CompensatedSum`].
+//!   [`CompensatedSum`](crate::accumulate::CompensatedSum).
 //! - The second moments are summed in a second pass about the centroid itself, never
 //!   shifted with the parallel-axis theorem (which subtracts two large numbers).
 //!

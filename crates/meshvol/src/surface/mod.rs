@@ -1,4 +1,4 @@
-//! Adapters that read surfaces, or parts of them, as a [`Surface`] of their own, without
+//! Adapters that read surfaces, or parts of them, as a [`Surface`](crate::Surface) of their own, without
 //! copying faces; and the connected parts of a surface as read.
 //!
 //! | adapter | what it reads | file |
