@@ -163,20 +163,6 @@ fn candidates(points: &[Vector3]) -> Vec<Vector3> {
     .unwrap_or_default()
 }
 
-/// Mass properties of nothing, for degenerate sets.
-fn empty_properties() -> MassProperties {
-    MassProperties {
-        faces: 0,
-        triangles: 0,
-        signed_volume: 0.0,
-        volume_error_bound: 0.0,
-        area: 0.0,
-        centroid: None,
-        inertia: [[0.0; 3]; 3],
-        bounds: None,
-    }
-}
-
 /// The convex hull of `points`.
 ///
 /// ```
@@ -208,7 +194,7 @@ pub fn convex_hull(points: &[Point]) -> Result<Hull, HullError> {
         return Err(HullError::TooManyPoints(points.len()));
     }
     if let Some(d) = degeneracy(points) {
-        return Ok(Hull { mesh: None, properties: empty_properties(), degeneracy: Some(d) });
+        return Ok(Hull { mesh: None, properties: MassProperties::empty(0), degeneracy: Some(d) });
     }
     let reference = points[0];
     let local: Vec<Vector3> = points

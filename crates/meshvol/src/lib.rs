@@ -11,6 +11,8 @@
 //!   second moments of plane polygons with holes, and whether their rings are simple;
 //! - [`section::section`]: the cross-section of a surface by a plane, as polygons;
 //! - `hull::convex_hull` (cargo feature `hull`): the convex hull of a point set;
+//! - [`surface`]: parts of a surface, several surfaces as one, or one turned inside out,
+//!   read as surfaces of their own, and the connected parts of a surface;
 //! - [`grid::cell_volumes`], [`grid::profile`] and [`grid::union`]: the exact volume in
 //!   each cell of a grid, volume below each level along an axis, and the volume of a union
 //!   of overlapping bodies as a certified interval.
@@ -30,14 +32,18 @@ pub mod polygon;
 pub mod properties;
 pub mod section;
 pub mod shapes;
+pub mod surface;
 #[cfg(test)]
 mod test_rng;
 pub mod topology;
+mod union_find;
 mod vector;
 
 pub use exact::{exact_signed_volume, ExactError};
-pub use mesh::{FaceRange, Faces, Mesh, MeshError, Surface};
+pub use mesh::{Faces, Mesh, MeshError, Surface};
 pub use properties::{mass_properties, Bounds, MassProperties, Principal};
+/// Old path of [`surface::FaceRange`], kept until the other crates use the new one.
+pub use surface::FaceRange;
 
 /// A point or vector in 3D.
 pub type Point = [f64; 3];

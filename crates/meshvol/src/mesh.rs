@@ -296,49 +296,6 @@ impl Surface for Mesh {
     }
 }
 
-/// A contiguous run of another surface's faces, measured on its own: one object of a
-/// multi-object file, without copying.
-///
-/// ```
-/// use meshvol::{mass_properties, FaceRange, Mesh};
-/// // Two corner tetrahedra in one mesh, the second twice the size.
-/// let p = vec![
-///     [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0],
-///     [5.0, 0.0, 0.0], [7.0, 0.0, 0.0], [5.0, 2.0, 0.0], [5.0, 0.0, 2.0],
-/// ];
-/// let t = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
-/// let faces = t.iter().chain(&t).enumerate().map(|(f, t)| t.map(|i| i + 4 * (f as u32 / 4)));
-/// let mesh = Mesh::from_triangles(p, faces.collect()).unwrap();
-/// assert_eq!(mass_properties(&FaceRange::new(&mesh, 4..8)).signed_volume, 8.0 / 6.0);
-/// assert_eq!(mass_properties(&mesh).signed_volume, 9.0 / 6.0);
-/// ```
-#[derive(Clone, Copy, Debug)]
-pub struct FaceRange<'a, S: ?Sized> {
-    surface: &'a S,
-    start: usize,
-    len: usize,
-}
-
-impl<'a, S: Surface + ?Sized> FaceRange<'a, S> {
-    /// Faces `range` of `surface`, clamped to the faces it has.
-    pub fn new(surface: &'a S, range: std::ops::Range<usize>) -> Self {
-        let end = range.end.min(surface.face_count());
-        let start = range.start.min(end);
-        FaceRange { surface, start, len: end - start }
-    }
-}
-
-impl<S: Surface + ?Sized> Surface for FaceRange<'_, S> {
-    fn face_count(&self) -> usize {
-        self.len
-    }
-
-    #[inline]
-    fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
-        self.surface.fan(self.start + face, triangle)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -133,6 +133,21 @@ pub struct MassProperties {
 }
 
 impl MassProperties {
+    /// What `faces` faces with no triangles (or a degenerate point set) measure: nothing,
+    /// with no centroid.
+    pub(crate) fn empty(faces: usize) -> MassProperties {
+        MassProperties {
+            faces,
+            triangles: 0,
+            signed_volume: 0.0,
+            volume_error_bound: 0.0,
+            area: 0.0,
+            centroid: None,
+            inertia: [[0.0; 3]; 3],
+            bounds: None,
+        }
+    }
+
     /// The solid's volume: |signed volume|.
     pub fn volume(&self) -> f64 {
         self.signed_volume.abs()
@@ -274,16 +289,7 @@ fn reference_point<S: Surface + ?Sized>(surface: &S) -> Option<Point> {
 pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
     let faces = surface.face_count();
     let Some(r) = reference_point(surface) else {
-        return MassProperties {
-            faces,
-            triangles: 0,
-            signed_volume: 0.0,
-            volume_error_bound: 0.0,
-            area: 0.0,
-            centroid: None,
-            inertia: [[0.0; 3]; 3],
-            bounds: None,
-        };
+        return MassProperties::empty(faces);
     };
     let sums = ordered_reduce(
         faces,

@@ -17,6 +17,11 @@ impl XorShift {
         s
     }
 
+    /// Uniform in `0..n` (up to a bias of n/2⁶⁴).
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.next_u64() % n
+    }
+
     /// Uniform in [0, 1), on a 2⁻⁵³ grid.
     pub fn unit(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64

@@ -2,21 +2,14 @@
 //! nested in it, each closed by its own caps, so that measuring a body gives its volume
 //! and the bodies add up to the solid. Expected values are closed forms.
 
+mod common;
+
+use common::open_box;
+
 use meshvol::grid::FaceSubset;
 use meshvol::shapes::cuboid;
 use meshvol::topology::{check, CheckOptions};
 use meshvol::{mass_properties, Mesh};
-
-/// A box without its top face (the face whose corners all have z = max).
-fn open_box(min: [f64; 3], max: [f64; 3]) -> Mesh {
-    let closed = cuboid(min, max);
-    let faces: Vec<Vec<u32>> = (0..closed.face_count())
-        .map(|f| closed.face(f).to_vec())
-        .filter(|face| !face.iter().all(|&v| closed.positions()[v as usize][2] == max[2]))
-        .collect();
-    assert_eq!(faces.len(), closed.face_count() - 1);
-    Mesh::from_polygons(closed.positions().to_vec(), faces.iter().map(|f| &f[..])).unwrap()
-}
 
 /// Each body's volume, measured over the checked solid.
 fn body_volumes(mesh: &Mesh) -> (Vec<usize>, Vec<f64>, f64) {

@@ -1,6 +1,10 @@
 //! Grid kernels against independent values: closed forms, exact boxes, a separate
 //! polyhedron clipper written here, and invariances (threads, winding, bounds).
 
+mod common;
+
+use common::mapped;
+
 use meshvol::grid::{cell_volumes, occupancy, profile, Axis, Grid, GridError, Levels};
 use meshvol::shapes::{cuboid, torus, torus_volume, uv_sphere, uv_sphere_volume};
 use meshvol::{mass_properties, Faces, Mesh, Surface};
@@ -14,10 +18,6 @@ fn sum(v: &[f64]) -> f64 {
 
 fn assert_close(what: &str, a: f64, b: f64, tolerance: f64) {
     assert!((a - b).abs() <= tolerance, "{what}: {a} vs {b} (difference {:e})", a - b);
-}
-
-fn mapped(mesh: &Mesh, f: impl Fn([f64; 3]) -> [f64; 3]) -> Mesh {
-    Mesh::new(mesh.positions().iter().map(|&p| f(p)).collect(), mesh.faces().clone()).unwrap()
 }
 
 /// A grid of `counts` cells over the surface's bounding box grown by `margin` of its

@@ -1,6 +1,10 @@
 //! Mass properties against independent values: closed forms, integer arithmetic, and
 //! invariances (translation, rotation, flipping, splitting, thread count).
 
+mod common;
+
+use common::{mapped, moved};
+
 use meshvol::shapes::{cuboid, tetrahedron, torus, torus_volume, uv_sphere, uv_sphere_volume};
 use meshvol::{exact_signed_volume, mass_properties, Faces, MassProperties, Mesh, Surface};
 use num_bigint::BigInt;
@@ -58,15 +62,6 @@ fn openscad_cube() -> Mesh {
         [3, 7, 4],
     ];
     Mesh::from_triangles(p, f).unwrap()
-}
-
-fn translated(mesh: &Mesh, t: [f64; 3]) -> Mesh {
-    let p = mesh.positions().iter().map(|p| [p[0] + t[0], p[1] + t[1], p[2] + t[2]]).collect();
-    Mesh::new(p, mesh.faces().clone()).unwrap()
-}
-
-fn mapped(mesh: &Mesh, f: impl Fn([f64; 3]) -> [f64; 3]) -> Mesh {
-    Mesh::new(mesh.positions().iter().map(|&p| f(p)).collect(), mesh.faces().clone()).unwrap()
 }
 
 /// Σ a·(b×c)/6 about the world origin, in plain f64: what most tools compute.
@@ -193,7 +188,7 @@ fn far_from_the_origin_keeps_every_digit() {
     let sphere = mapped(&uv_sphere(1.0, 64, 32), snap);
     let here = mass_properties(&sphere);
     let offset = [1e7, -2e7, 3e7];
-    let far = translated(&sphere, offset);
+    let far = moved(&sphere, offset);
     let there = mass_properties(&far);
     let rel = |a: f64| ((a - here.signed_volume) / here.signed_volume).abs();
     assert!(rel(there.signed_volume) < 1e-13, "meshvol loses {:e}", rel(there.signed_volume));
@@ -296,7 +291,7 @@ fn splitting_faces_changes_nothing() {
 
 #[test]
 fn same_bits_at_any_thread_count() {
-    let mesh = translated(&uv_sphere(3.0, 300, 150), [1e5, 2e5, -3e5]); // 89k triangles
+    let mesh = moved(&uv_sphere(3.0, 300, 150), [1e5, 2e5, -3e5]); // 89k triangles
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| (mass_properties(&mesh), exact_signed_volume(&mesh)))
@@ -474,7 +469,7 @@ fn open_surfaces_measure_cones_from_the_origin() {
     let faces: Vec<&[u32]> = (0..6).filter(|&f| f != top).map(|f| cube.face(f)).collect();
     let open = Mesh::from_polygons(cube.positions().to_vec(), faces).unwrap();
     for t in [[0.0; 3], [1e3, -2e3, 5e2], [-0.5, 0.25, 7.0], [3e6, 1e6, -2e6]] {
-        let moved = translated(&open, t);
+        let moved = moved(&open, t);
         assert_origin_convention(&format!("open cube at {t:?}"), &moved, Some((2.0 - t[2]) / 3.0));
         // The triangulated faces give the same: the convention is per surface, not fan.
         let tris = moved.triangulated();
@@ -490,11 +485,7 @@ fn open_surfaces_measure_cones_from_the_origin() {
         .collect();
     let hemisphere = Mesh::from_polygons(sphere.positions().to_vec(), upper).unwrap();
     for t in [[0.0; 3], [0.3, -0.7, 0.1], [1e3, -2e3, 5e2], [-4e6, 2e5, 1e7]] {
-        assert_origin_convention(
-            &format!("hemisphere at {t:?}"),
-            &translated(&hemisphere, t),
-            None,
-        );
+        assert_origin_convention(&format!("hemisphere at {t:?}"), &moved(&hemisphere, t), None);
     }
     // A fan: a cone's side around an apex, without its base.
     let n = 24;
@@ -506,6 +497,6 @@ fn open_surfaces_measure_cones_from_the_origin() {
     let fan: Vec<[u32; 3]> = (0..n).map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
     let fan = Mesh::from_triangles(p, fan).unwrap();
     for t in [[0.0; 3], [1e3, -2e3, 5e2], [0.125, 3.5, -2.0]] {
-        assert_origin_convention(&format!("fan at {t:?}"), &translated(&fan, t), None);
+        assert_origin_convention(&format!("fan at {t:?}"), &moved(&fan, t), None);
     }
 }

@@ -1,26 +1,23 @@
 //! Polygon areas and centroids compared with the geo crate's.
 
+mod common;
+
+use common::XorShift;
 use geo::{Area, Centroid, LineString, MultiPolygon};
 use meshvol::polygon::{area_properties, polygon_issues, Point2, Polygon};
 
-/// Deterministic pseudo-random numbers in [0, 1) (xorshift64*).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// A star-shaped ring around `centre` with radii in [r/2, r), wound as asked.
-fn star(rng: &mut Rng, n: usize, centre: Point2, r: f64, counter_clockwise: bool) -> Vec<Point2> {
+fn star(
+    rng: &mut XorShift,
+    n: usize,
+    centre: Point2,
+    r: f64,
+    counter_clockwise: bool,
+) -> Vec<Point2> {
     let mut ring: Vec<Point2> = (0..n)
         .map(|i| {
             let a = std::f64::consts::TAU * i as f64 / n as f64;
-            let radius = r * (0.5 + 0.5 * rng.next());
+            let radius = r * (0.5 + 0.5 * rng.unit());
             [centre[0] + radius * a.cos(), centre[1] + radius * a.sin()]
         })
         .collect();
@@ -38,18 +35,18 @@ fn to_geo(p: &Polygon) -> geo::Polygon<f64> {
 
 #[test]
 fn polygons_with_holes_match_geo() {
-    let mut rng = Rng(5);
+    let mut rng = XorShift::new(0x2545f4914f6cdd1d);
     for trial in 0..100 {
-        let centre = [rng.next() * 1000.0 - 500.0, rng.next() * 1000.0 - 500.0];
-        let n = 3 + (rng.next() * 200.0) as usize;
-        let counter_clockwise = rng.next() < 0.5;
+        let centre = [rng.unit() * 1000.0 - 500.0, rng.unit() * 1000.0 - 500.0];
+        let n = 3 + (rng.unit() * 200.0) as usize;
+        let counter_clockwise = rng.unit() < 0.5;
         let exterior = star(&mut rng, n, centre, 100.0, counter_clockwise);
         // Holes inside the exterior's inner radius (50), wound either way.
         let holes: Vec<Vec<Point2>> = (0..trial % 4)
             .map(|k| {
                 let angle = k as f64 * 2.0;
                 let c = [centre[0] + 30.0 * angle.cos(), centre[1] + 30.0 * angle.sin()];
-                let counter_clockwise = rng.next() < 0.5;
+                let counter_clockwise = rng.unit() < 0.5;
                 star(&mut rng, 3 + k * 5, c, 10.0, counter_clockwise)
             })
             .collect();
@@ -70,7 +67,7 @@ fn polygons_with_holes_match_geo() {
 
 #[test]
 fn multipolygons_match_geo() {
-    let mut rng = Rng(8);
+    let mut rng = XorShift::new(0x9e3779b97f4a7c15);
     let polygons: Vec<Polygon> = (0..10)
         .map(|k| {
             let centre = [k as f64 * 300.0, (k % 3) as f64 * 250.0];

@@ -7,18 +7,9 @@ use meshvol::section::{section, Plane};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
 use meshvol::{Faces, Mesh};
 
-/// Meshes side by side in one mesh (their triangles, indices shifted).
+/// Meshes side by side in one mesh, as triangles.
 fn merge(meshes: &[Mesh]) -> Mesh {
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for m in meshes {
-        let base = positions.len() as u32;
-        positions.extend_from_slice(m.positions());
-        if let Faces::Triangles(t) = m.triangulated().faces() {
-            triangles.extend(t.iter().map(|t| t.map(|i| i + base)));
-        }
-    }
-    Mesh::from_triangles(positions, triangles).unwrap()
+    Mesh::concatenate(&meshes.iter().map(Mesh::triangulated).collect::<Vec<_>>())
 }
 
 /// The area of a regular m-gon of circumradius r.

@@ -1,23 +1,15 @@
 //! Topology checks on hand-built tricky cases, against facts known by construction.
 
+mod common;
+
+use common::{face_lists, polygons};
+
 use meshvol::shapes::{cuboid, torus, uv_sphere};
 use meshvol::topology::{check, Check, CheckOptions, Orientation, Weld};
 use meshvol::{mass_properties, Mesh};
 
 fn checked(mesh: &Mesh) -> Check {
     check(mesh, &CheckOptions::default()).unwrap()
-}
-
-/// The meshes side by side in one mesh (faces of each kept as polygons).
-fn merge(meshes: &[Mesh]) -> Mesh {
-    let mut positions = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for m in meshes {
-        let base = positions.len() as u32;
-        positions.extend_from_slice(m.positions());
-        faces.extend((0..m.face_count()).map(|f| m.face(f).iter().map(|i| i + base).collect()));
-    }
-    Mesh::from_polygons(positions, faces.iter().map(|f| &f[..])).unwrap()
 }
 
 fn without_face(mesh: &Mesh, drop: usize) -> Mesh {
@@ -59,7 +51,7 @@ fn inside_out_sphere_is_inward_and_still_measured() {
 fn box_with_cavity(cavity_wound_like_a_solid: bool) -> Mesh {
     let outer = cuboid([0.0; 3], [2.0; 3]);
     let inner = cuboid([0.25; 3], [1.25; 3]);
-    merge(&[outer, if cavity_wound_like_a_solid { inner } else { inner.flipped() }])
+    Mesh::concatenate(&[outer, if cavity_wound_like_a_solid { inner } else { inner.flipped() }])
 }
 
 #[test]
@@ -88,7 +80,7 @@ fn cavity_is_subtracted_whatever_its_winding() {
 #[test]
 fn nested_solid_inside_a_cavity() {
     // Box, cavity, and an island inside the cavity: 8 − 3.375 + 1 (depth 0, 1, 2).
-    let mesh = merge(&[
+    let mesh = Mesh::concatenate(&[
         cuboid([0.0; 3], [2.0; 3]),
         cuboid([0.25; 3], [1.75; 3]),
         cuboid([0.5; 3], [1.5; 3]),
@@ -125,17 +117,19 @@ fn missing_face_is_capped_exactly_when_flat() {
 #[test]
 fn overlapping_shells_are_found() {
     // In general position, triangles cross.
-    let mesh = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5, 0.6, 0.7], [1.5, 1.6, 1.7])]);
+    let mesh =
+        Mesh::concatenate(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5, 0.6, 0.7], [1.5, 1.6, 1.7])]);
     let c = checked(&mesh);
     assert_eq!(c.overlapping_shells, vec![[0, 1]]);
     assert_eq!(c.self_intersections, Some(0));
     assert!(!c.intersection_examples.is_empty() && !c.bounds_a_volume());
     // Symmetric: every crossing point lies on a quad's diagonal, so no triangle pair
     // crosses strictly; the vertex inside the other box still reveals the overlap.
-    let mesh = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5; 3], [1.5; 3])]);
+    let mesh = Mesh::concatenate(&[cuboid([0.0; 3], [1.0; 3]), cuboid([0.5; 3], [1.5; 3])]);
     assert_eq!(checked(&mesh).overlapping_shells, vec![[0, 1]]);
     // Touching boxes (sharing a face's plane) do not overlap.
-    let touching = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0])]);
+    let touching =
+        Mesh::concatenate(&[cuboid([0.0; 3], [1.0; 3]), cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0])]);
     assert!(checked(&touching).overlapping_shells.is_empty());
 }
 
@@ -187,7 +181,7 @@ fn bowtie_vertex_and_non_manifold_edge() {
         )
         .unwrap()
     };
-    let bowtie = merge(&[t(1.0), t(-1.0).flipped()]);
+    let bowtie = Mesh::concatenate(&[t(1.0), t(-1.0).flipped()]);
     let c = checked(&bowtie);
     assert_eq!((c.non_manifold_vertices, c.non_manifold_edges, c.shells.len()), (1, 0, 2));
     assert!(close(c.volume, 2.0 / 6.0));
@@ -257,7 +251,11 @@ fn unwelded_soup_welds_exactly_or_with_a_tolerance() {
 
 #[test]
 fn same_result_at_any_thread_count() {
-    let mesh = merge(&[uv_sphere(2.0, 96, 48), uv_sphere(1.0, 64, 32), cuboid([1.5; 3], [3.0; 3])]);
+    let mesh = Mesh::concatenate(&[
+        uv_sphere(2.0, 96, 48),
+        uv_sphere(1.0, 64, 32),
+        cuboid([1.5; 3], [3.0; 3]),
+    ]);
     let run = |n| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
         pool.install(|| format!("{:?}", checked(&mesh)))
@@ -269,7 +267,7 @@ fn same_result_at_any_thread_count() {
 fn repaired_mesh_is_a_clean_outward_solid() {
     // A cavity wound like a solid, plus an open box elsewhere, plus a duplicate face.
     let open_box = without_face(&cuboid([5.0; 3], [6.0; 3]), 2);
-    let mut mesh = merge(&[box_with_cavity(true), open_box]);
+    let mut mesh = Mesh::concatenate(&[box_with_cavity(true), open_box]);
     let faces: Vec<Vec<u32>> = (0..mesh.face_count())
         .map(|f| mesh.face(f).to_vec())
         .chain([mesh.face(0).to_vec()])
@@ -290,22 +288,8 @@ fn repaired_mesh_is_a_clean_outward_solid() {
 
 /// The unit cube as quads wound counter-clockwise seen from outside: positions and faces.
 fn cube_faces() -> (Vec<[f64; 3]>, Vec<Vec<u32>>) {
-    let p = vec![
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [1.0, 0.0, 1.0],
-        [1.0, 1.0, 1.0],
-        [0.0, 1.0, 1.0],
-    ];
-    let f = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
-    (p, f.iter().map(|q| q.to_vec()).collect())
-}
-
-fn polygons(p: &[[f64; 3]], faces: &[Vec<u32>]) -> Mesh {
-    Mesh::from_polygons(p.to_vec(), faces.iter().map(|f| &f[..])).unwrap()
+    let cube = cuboid([0.0; 3], [1.0; 3]);
+    (cube.positions().to_vec(), face_lists(&cube))
 }
 
 /// Puts a new vertex at the midpoint of the edge from `a` to `b`, splits the quad that
@@ -383,7 +367,8 @@ fn several_slivers_and_a_collapsed_face() {
 #[test]
 fn boxes_glued_face_to_face_cancel_their_double_wall() {
     // Both boxes keep their copy of the square at x = 1, wound opposite ways.
-    let mesh = merge(&[cuboid([0.0; 3], [1.0; 3]), cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0])]);
+    let mesh =
+        Mesh::concatenate(&[cuboid([0.0; 3], [1.0; 3]), cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0])]);
     let c = checked(&mesh);
     assert!(c.closed && c.bounds_a_volume(), "{}", c.verdict());
     assert_eq!((c.shells.len(), c.non_manifold_edges, c.boundary_edges), (1, 0, 0));

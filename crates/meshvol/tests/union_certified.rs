@@ -2,14 +2,13 @@
 //! as narrow as asked where faces touch or lie on each other (coplanar contact), against
 //! volumes computed by hand from boxes and prisms.
 
+mod common;
+
+use common::{face_lists, moved, open_box, polygons};
+
 use meshvol::grid::{union, UnionVolume};
 use meshvol::shapes::cuboid;
 use meshvol::{mass_properties, Mesh};
-
-fn moved(mesh: &Mesh, d: [f64; 3]) -> Mesh {
-    let positions = mesh.positions().iter().map(|p| [p[0] + d[0], p[1] + d[1], p[2] + d[2]]);
-    Mesh::new(positions.collect(), mesh.faces().clone()).unwrap()
-}
 
 /// A prism: the polygon `profile` (x, z), counter-clockwise and fan-triangulable from its
 /// first vertex, extruded along y over [0, depth]. Each side wall is cut into `n × n`
@@ -227,13 +226,6 @@ fn a_tilted_box_and_a_copy_shifted_along_its_faces() {
     }
 }
 
-/// A unit cube at `lo` without its top face (an open surface).
-fn open_box(lo: [f64; 3]) -> Mesh {
-    let cube = moved(&cuboid([0.0; 3], [1.0; 3]), lo);
-    let faces: Vec<Vec<u32>> = (0..6).filter(|&f| f != 1).map(|f| cube.face(f).to_vec()).collect();
-    Mesh::from_polygons(cube.positions().to_vec(), faces.iter().map(|f| &f[..])).unwrap()
-}
-
 #[test]
 fn bodies_that_are_not_solids_are_named_and_the_interval_stays_ordered() {
     // Open boxes over a solid one, and a box with its top face wound the wrong way:
@@ -241,14 +233,22 @@ fn bodies_that_are_not_solids_are_named_and_the_interval_stays_ordered() {
     let solid = cuboid([0.2, 0.1, 0.3], [1.4, 1.0, 1.1]);
     let mut twisted = cuboid([0.5; 3], [1.5; 3]);
     twisted = {
-        let mut faces: Vec<Vec<u32>> = (0..6).map(|f| twisted.face(f).to_vec()).collect();
+        let mut faces = face_lists(&twisted);
         faces[1].reverse();
-        Mesh::from_polygons(twisted.positions().to_vec(), faces.iter().map(|f| &f[..])).unwrap()
+        polygons(twisted.positions(), &faces)
     };
     // (An open box whose bottom lies on the grid's bottom plane adds nothing to any cell
     // and is not caught here: callers check that bodies are closed.)
+    let unit_open_box = open_box([0.0; 3], [1.0; 3]);
     let cases: [(Vec<Mesh>, Vec<usize>); 2] = [
-        (vec![solid.clone(), open_box([0.3, 0.2, 0.4]), open_box([0.6, 0.5, 0.5])], vec![1, 2]),
+        (
+            vec![
+                solid.clone(),
+                moved(&unit_open_box, [0.3, 0.2, 0.4]),
+                moved(&unit_open_box, [0.6, 0.5, 0.5]),
+            ],
+            vec![1, 2],
+        ),
         (vec![solid, twisted], vec![1]),
     ];
     for (bodies, not_solid) in cases {

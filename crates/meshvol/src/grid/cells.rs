@@ -390,15 +390,17 @@ impl Bins {
     }
 }
 
-/// A zeroed f64 array of `len` entries, or the error naming the memory it needed.
+/// An array of `len` default (zero) entries, or the error naming the memory it needed.
 ///
 /// The reservation is only a probe that fails cleanly where the memory cannot be had;
-/// `vec!` then takes zeroed pages from the system, which the tiles touch in parallel.
-pub(crate) fn zeroed(len: usize) -> Result<Vec<f64>, GridError> {
-    let mut probe: Vec<f64> = Vec::new();
-    probe.try_reserve_exact(len).map_err(|_| GridError::OutOfMemory { bytes: len as u128 * 8 })?;
+/// `vec!` then takes zeroed pages from the system for an f64 array, which the tiles
+/// touch in parallel.
+pub(crate) fn zeroed<T: Clone + Default>(len: usize) -> Result<Vec<T>, GridError> {
+    let mut probe: Vec<T> = Vec::new();
+    let bytes = len as u128 * std::mem::size_of::<T>() as u128;
+    probe.try_reserve_exact(len).map_err(|_| GridError::OutOfMemory { bytes })?;
     drop(probe);
-    Ok(vec![0.0; len])
+    Ok(vec![T::default(); len])
 }
 
 /// Adds the column pieces of `faces` that fall in `columns` (a run of columns of
@@ -460,29 +462,11 @@ pub(crate) fn cell_volumes<S: Surface + ?Sized>(
         let columns = tiling.range(tile);
         let mut area = vec![0.0; columns.len() * (nz + 1)];
         let faces = bins.faces(tile);
-        if closed {
-            add_faces::<S, true>(
-                surface,
-                faces,
-                &units,
-                grid.counts,
-                &columns,
-                cells,
-                &mut area,
-                touched,
-            );
-        } else {
-            add_faces::<S, false>(
-                surface,
-                faces,
-                &units,
-                grid.counts,
-                &columns,
-                cells,
-                &mut area,
-                touched,
-            );
-        }
+        // One call for both kinds of tile: the kernel is compiled for each.
+        type Add<'s, S, I> =
+            fn(&'s S, I, &Units, [usize; 3], &Range<usize>, &mut [f64], &mut [f64], &mut [u8]);
+        let add: Add<S, _> = if closed { add_faces::<S, true> } else { add_faces::<S, false> };
+        add(surface, faces, &units, grid.counts, &columns, cells, &mut area, touched);
         for (direct, area) in cells.chunks_mut(nz).zip(area.chunks(nz + 1)) {
             finish_column(direct, area, scale);
         }

@@ -18,8 +18,7 @@
 //! where it is the area just below (the left derivative, which counts them). A box from
 //! z = 0 to 1 thus reports its footprint at 0 and at 1.
 
-use super::cells::{sweep_layers, LayerSink, Piece};
-use super::clip::Polygon;
+use super::cells::{sweep_layers, ColumnSink, Piece};
 use crate::accumulate::{ordered_reduce, two_sum};
 use crate::properties::CHUNK_FACES;
 use crate::{Point, Surface};
@@ -100,21 +99,6 @@ struct Sums {
     direct: Vec<f64>,
     area: Vec<f64>,
     flat: Vec<f64>,
-}
-
-impl LayerSink for Sums {
-    #[inline(always)]
-    fn slab<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) {
-        let (area, moment) = part.area_and_moment(layer as f64);
-        self.direct[layer] += moment;
-        self.area[layer] += area;
-    }
-
-    #[inline(always)]
-    fn above<const N: usize>(&mut self, part: &Polygon<N>) {
-        let top = self.area.len() - 1;
-        self.area[top] += part.area();
-    }
 }
 
 impl Sums {
@@ -213,7 +197,8 @@ pub fn profile<S: Surface + ?Sized>(
                     if z0 == z1 && z0.fract() == 0.0 && (0.0..=n as f64).contains(&z0) {
                         sums.flat[z0 as usize] += t.area();
                     }
-                    sweep_layers(&t, (z0, z1), n, &mut sums);
+                    let mut sink = ColumnSink { direct: &mut sums.direct, area: &mut sums.area };
+                    sweep_layers(&t, (z0, z1), n, &mut sink);
                 });
             }
             sums

@@ -14,8 +14,8 @@
 //! one vertex). Candidates come from a hashed grid of cells of size 2t: the points
 //! within t of a point lie in the 2 × 2 × 2 cells its box of half-width t touches.
 
-use super::components::Components;
 use crate::buckets::{Buckets, SharedItems};
+use crate::union_find::UnionFind;
 use crate::Point;
 use hashbrown::HashTable;
 use rayon::prelude::*;
@@ -129,7 +129,7 @@ pub(crate) fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
         let entry = runs.entry(hash, |r| r.0 == c, |r| state.hash_one(r.0));
         entry.or_insert((c, i as u32, i as u32)).into_mut().2 = i as u32 + 1;
     }
-    let mut clusters = Components::new(points.len());
+    let mut clusters = UnionFind::new(points.len());
     for (i, &p) in points.iter().enumerate() {
         // Every q within t of p lies in a cell between those of p − t and p + t
         // (rounding is monotone, so this holds in floating point too): 2 per axis.

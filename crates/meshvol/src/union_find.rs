@@ -1,12 +1,17 @@
 //! Union–find: connected components under joins, with path halving. The smaller root
 //! wins every join, so the components' roots do not depend on the order of joins.
+//!
+//! The one union–find of the crate: welding with a tolerance (clusters of close
+//! points), the check's shells (faces joined across edges) and fans (corners joined
+//! around a vertex), and [`crate::surface::connected_parts`] (faces joined at shared
+//! positions).
 
-pub(crate) struct Components(Vec<u32>);
+pub(crate) struct UnionFind(Vec<u32>);
 
-impl Components {
+impl UnionFind {
     /// `n` singletons.
     pub fn new(n: usize) -> Self {
-        Components((0..n as u32).collect())
+        UnionFind((0..n as u32).collect())
     }
 
     /// Back to `n` singletons, keeping the allocation.

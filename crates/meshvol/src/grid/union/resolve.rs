@@ -1,0 +1,413 @@
+//! Exact resolution of what refinement leaves open, one column of the base grid at a
+//! time: each piece of a body's triangle in an open cell is split along the other
+//! touching bodies' surfaces into sub-pieces no other surface crosses, and a sub-piece
+//! is kept when it is on the union's boundary (module docs of [`super`]): outside every
+//! other body by a vertical ray with exact predicates and a symbolic perturbation, or on
+//! a coplanar face shared the same way round with a later body.
+
+use super::bounds::{Bodies, Cell};
+use crate::grid::cells::{finish_column, for_each_piece, sweep_layers, LayerSink, Piece};
+use crate::grid::clip::Polygon;
+use crate::{Point, Surface};
+use robust::{orient2d, orient3d, Coord, Coord3D};
+
+/// Sub-pieces have at most this many vertices (a piece cut by many lines).
+const SUB: usize = 32;
+
+impl<S: Surface + ?Sized> Bodies<'_, S> {
+    /// The union's volume in each cell of column `c`, exactly (module docs of [`super`]), and how
+    /// many open cells that resolved; `None` where a piece needed more than [`SUB`]
+    /// sides or a resolved value falls outside its cell's bounds.
+    pub(super) fn exact_column(&self, c: usize) -> Option<(Vec<f64>, usize)> {
+        let [nx, ny, nz] = self.grid.counts;
+        let (i, j) = (c / ny, c % ny);
+        let touch = self.column_touches(c);
+        let m = self.bodies.len();
+        let base = c * nz;
+        // Open layers: their touching bodies, cutters and ray triangles.
+        let mut open: Vec<Option<OpenLayer>> = (0..nz).map(|_| None).collect();
+        let mut resolved = 0;
+        for (k, slot) in open.iter_mut().enumerate() {
+            if self.tally[base + k].full || self.tally[base + k].touching < 2 {
+                continue;
+            }
+            let bodies: Vec<usize> = (0..m).filter(|&b| touch[b * nz + k]).collect();
+            if bodies.len() < 2 {
+                continue;
+            }
+            let lo = [i as f64, j as f64, k as f64];
+            let mut cutters = Vec::new();
+            for &b in &bodies {
+                for &f in self.bins[b].column(c) {
+                    self.bodies[b].fan(f as usize, |p, q, r| {
+                        let unit = [p, q, r].map(|x| self.units.map(x));
+                        let meets = (0..3).all(|a| {
+                            let (mn, mx) = (
+                                unit.iter().map(|v| v[a]).fold(f64::INFINITY, f64::min),
+                                unit.iter().map(|v| v[a]).fold(f64::NEG_INFINITY, f64::max),
+                            );
+                            mn <= lo[a] + 1.0 && mx >= lo[a]
+                        });
+                        if meets {
+                            cutters.push(Cutter { body: b, world: [p, q, r], unit });
+                        }
+                    });
+                }
+            }
+            *slot = Some(OpenLayer { bodies, cutters });
+            resolved += 1;
+        }
+        // Ray triangles per body: the column's non-vertical triangles.
+        let rays: Vec<Vec<[Point; 3]>> = (0..m)
+            .map(|b| {
+                let mut tris = Vec::new();
+                for &f in self.bins[b].column(c) {
+                    self.bodies[b].fan(f as usize, |p, q, r| {
+                        let t = [p, q, r].map(|x| self.units.map(x));
+                        if orient2d(xy(t[0]), xy(t[1]), xy(t[2])) != 0.0 {
+                            tris.push(t);
+                        }
+                    });
+                }
+                tris
+            })
+            .collect();
+        let mut direct = vec![0.0; nz];
+        let mut area = vec![0.0; nz + 1];
+        let mut failed = false;
+        for (b, body) in self.bodies.iter().enumerate() {
+            for &f in self.bins[b].column(c) {
+                body.fan(f as usize, |p, q, r| {
+                    let unit = [p, q, r].map(|x| self.units.map(x));
+                    let t = Piece::triangle(unit[0], unit[1], unit[2]);
+                    if t.area() == 0.0 {
+                        return;
+                    }
+                    for_each_piece(&t, [nx, ny], &(c..c + 1), false, |_, piece| {
+                        let mut sink = KeptSink {
+                            owner: self,
+                            column: c,
+                            body: b,
+                            triangle: [p, q, r],
+                            unit,
+                            open: &open,
+                            rays: &rays,
+                            direct: &mut direct,
+                            area: &mut area,
+                            failed: &mut failed,
+                        };
+                        sweep_layers(piece, piece.range(2), nz, &mut sink);
+                    });
+                });
+            }
+        }
+        if failed {
+            return None;
+        }
+        let cell_volume = self.grid.cell_volume();
+        finish_column(&mut direct, &area, cell_volume);
+        // The resolved values must respect every cell's bounds; where they do not (a
+        // configuration the classification got wrong), the column keeps its bounds.
+        let slack = 1e-9 * cell_volume;
+        let consistent = direct.iter().enumerate().all(|(k, &u)| match self.cell(base + k) {
+            Cell::Exact(v) => (u - v).abs() <= slack,
+            Cell::Open { lower, upper } => lower - slack <= u && u <= upper + slack,
+        });
+        consistent.then_some((direct, resolved))
+    }
+}
+
+/// A triangle of another body that meets an open cell.
+struct Cutter {
+    body: usize,
+    world: [Point; 3],
+    unit: [Point; 3],
+}
+
+/// An open cell of a column being resolved.
+struct OpenLayer {
+    bodies: Vec<usize>,
+    cutters: Vec<Cutter>,
+}
+
+fn xy(p: Point) -> Coord<f64> {
+    Coord { x: p[0], y: p[1] }
+}
+
+fn xyz(p: Point) -> Coord3D<f64> {
+    Coord3D { x: p[0], y: p[1], z: p[2] }
+}
+
+/// Whether `p`, perturbed by (ε, ε²), lies left of the directed line a → b.
+fn left_of(a: Point, b: Point, p: Point) -> bool {
+    let o = orient2d(xy(a), xy(b), xy(p));
+    if o != 0.0 {
+        return o > 0.0;
+    }
+    // d/dε of orient2d(a, b, p + (ε, ε²)) is a_y − b_y; then b_x − a_x.
+    if a[1] != b[1] {
+        a[1] > b[1]
+    } else {
+        b[0] > a[0]
+    }
+}
+
+/// Signed crossings of the vertical ray up from `p` with `triangles` (±1 by the sign of
+/// the triangle's n_z): 1 inside an outward closed surface, 0 outside.
+fn winding(p: Point, triangles: &[[Point; 3]]) -> i32 {
+    let mut w = 0;
+    for t in triangles {
+        let up = orient2d(xy(t[0]), xy(t[1]), xy(t[2])) > 0.0;
+        let [a, b, c] = if up { *t } else { [t[0], t[2], t[1]] };
+        if left_of(a, b, p) && left_of(b, c, p) && left_of(c, a, p) {
+            // orient3d(a, b, c, p) > 0: p below the plane of the counter-clockwise (a, b, c).
+            if orient3d(xyz(a), xyz(b), xyz(c), xyz(p)) > 0.0 {
+                w += if up { 1 } else { -1 };
+            }
+        }
+    }
+    w
+}
+
+/// Triangles of two bodies closer than this (grid cells) to lying in one plane count as
+/// coplanar: faces that coincide up to the rounding of their coordinates (a quad split
+/// along the other diagonal, a copy moved and moved back).
+pub const COPLANAR_TOLERANCE: f64 = 1e-10;
+
+/// Whether `u` lies in the plane of `t`: exactly (world coordinates), or within
+/// [`COPLANAR_TOLERANCE`] (grid units `tu`, `uu`).
+fn coplanar(t: &[Point; 3], u: &[Point; 3], tu: &[Point; 3], uu: &[Point; 3]) -> bool {
+    if u.iter().all(|&v| orient3d(xyz(t[0]), xyz(t[1]), xyz(t[2]), xyz(v)) == 0.0) {
+        return true;
+    }
+    let (e1, e2) = ([0, 1, 2].map(|k| tu[1][k] - tu[0][k]), [0, 1, 2].map(|k| tu[2][k] - tu[0][k]));
+    let n = [
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ];
+    let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    length > 0.0
+        && uu.iter().all(|v| {
+            let d = (0..3).map(|k| n[k] * (v[k] - tu[0][k])).sum::<f64>();
+            d.abs() <= COPLANAR_TOLERANCE * length
+        })
+}
+
+/// Adds the kept parts of one body's pieces to a column's sums.
+struct KeptSink<'s, 'a, S: ?Sized> {
+    owner: &'s Bodies<'a, S>,
+    column: usize,
+    body: usize,
+    triangle: [Point; 3],
+    unit: [Point; 3],
+    open: &'s [Option<OpenLayer>],
+    rays: &'s [Vec<[Point; 3]>],
+    direct: &'s mut [f64],
+    area: &'s mut [f64],
+    failed: &'s mut bool,
+}
+
+impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
+    /// The kept area and ∫ (z − layer) dA of `part`, which lies in cell `layer`.
+    fn kept<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) -> (f64, f64) {
+        let nz = self.owner.grid.counts[2];
+        let cell = self.column * nz + layer;
+        if self.owner.tally[cell].full {
+            return (0.0, 0.0);
+        }
+        let Some(open) = &self.open[layer] else {
+            return part.area_and_moment(layer as f64);
+        };
+        match resolve(part, layer as f64, self.body, [&self.triangle, &self.unit], open, self.rays)
+        {
+            Some(kept) => kept,
+            None => {
+                *self.failed = true;
+                (0.0, 0.0)
+            }
+        }
+    }
+}
+
+impl<S: Surface + ?Sized> LayerSink for KeptSink<'_, '_, S> {
+    fn slab<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) {
+        let (area, moment) = self.kept(layer, part);
+        self.direct[layer] += moment;
+        self.area[layer] += area;
+    }
+
+    fn above<const N: usize>(&mut self, part: &Polygon<N>) {
+        // On or above the top plane: classified with the top cell, whose closed box it
+        // touches.
+        let top = self.area.len() - 1;
+        let (area, _) = self.kept(top - 1, part);
+        self.area[top] += area;
+    }
+}
+
+/// Splits `part` (of body `body`'s triangle `triangle`, in an open cell at height
+/// `layer`) along the other bodies' surfaces and returns the kept sub-pieces' area and
+/// ∫ (z − layer) dA; `None` when a sub-piece would need more than [`SUB`] sides.
+fn resolve<const N: usize>(
+    part: &Polygon<N>,
+    layer: f64,
+    body: usize,
+    [triangle, unit]: [&[Point; 3]; 2],
+    open: &OpenLayer,
+    rays: &[Vec<[Point; 3]>],
+) -> Option<(f64, f64)> {
+    let mut first = Polygon::<SUB>::EMPTY;
+    for &v in part.vertices() {
+        first.push(v);
+    }
+    let mut pieces = vec![first];
+    let plane = plane_of(part);
+    let mut coplanar_cutters = Vec::new();
+    for (index, cutter) in open.cutters.iter().enumerate() {
+        if cutter.body == body {
+            continue;
+        }
+        if coplanar(triangle, &cutter.world, unit, &cutter.unit) {
+            coplanar_cutters.push(index);
+            let u = cutter.unit;
+            for (p, q) in [(u[0], u[1]), (u[1], u[2]), (u[2], u[0])] {
+                cut(&mut pieces, p, q)?;
+            }
+        } else if let Some((p, q)) = plane.and_then(|pl| crossing(&cutter.unit, pl)) {
+            cut(&mut pieces, p, q)?;
+        }
+    }
+    let (mut area, mut moment) = (0.0, 0.0);
+    let own_up = orient2d(xy(triangle[0]), xy(triangle[1]), xy(triangle[2])) > 0.0;
+    for piece in &pieces {
+        let (a, m) = piece.area_and_moment(layer);
+        if a == 0.0 {
+            continue;
+        }
+        let point = centroid(piece, a);
+        let kept = open.bodies.iter().filter(|&&other| other != body).all(|&other| {
+            let on = coplanar_cutters
+                .iter()
+                .map(|&i| &open.cutters[i])
+                .find(|t| t.body == other && inside_triangle(&t.unit, point));
+            match on {
+                Some(t) => {
+                    let up = orient2d(xy(t.world[0]), xy(t.world[1]), xy(t.world[2])) > 0.0;
+                    up == own_up && body < other
+                }
+                None => winding(point, &rays[other]) <= 0,
+            }
+        });
+        if kept {
+            area += a;
+            moment += m;
+        }
+    }
+    Some((area, moment))
+}
+
+/// The plane z = z0 + gx·x + gy·y through a non-vertical polygon, from its first,
+/// farthest and middle vertices; `None` when it is vertical or degenerate.
+fn plane_of<const N: usize>(part: &Polygon<N>) -> Option<[f64; 3]> {
+    let v = part.vertices();
+    if v.len() < 3 {
+        return None;
+    }
+    // The triangle of largest projected area among (v0, vk, vk+1).
+    let o = v[0];
+    let (mut best, mut cross) = (1, 0.0f64);
+    for k in 1..v.len() - 1 {
+        let c = (v[k][0] - o[0]) * (v[k + 1][1] - o[1]) - (v[k][1] - o[1]) * (v[k + 1][0] - o[0]);
+        if c.abs() > cross.abs() {
+            best = k;
+            cross = c;
+        }
+    }
+    if cross == 0.0 {
+        return None;
+    }
+    let (a, b) = (v[best], v[best + 1]);
+    let (ax, ay, az) = (a[0] - o[0], a[1] - o[1], a[2] - o[2]);
+    let (bx, by, bz) = (b[0] - o[0], b[1] - o[1], b[2] - o[2]);
+    let gx = (az * by - bz * ay) / cross;
+    let gy = (ax * bz - bx * az) / cross;
+    Some([o[2] - gx * o[0] - gy * o[1], gx, gy])
+}
+
+/// Where triangle `t` crosses the plane z = p0 + p1·x + p2·y: the segment's two ends
+/// (xy matters), or `None` when it does not cross it along a segment.
+fn crossing(t: &[Point; 3], plane: [f64; 3]) -> Option<(Point, Point)> {
+    let d = t.map(|v| v[2] - (plane[0] + plane[1] * v[0] + plane[2] * v[1]));
+    let mut ends = [[0.0; 3]; 3];
+    let mut n = 0;
+    for k in 0..3 {
+        let (u, w, du, dw) = (t[k], t[(k + 1) % 3], d[k], d[(k + 1) % 3]);
+        if du == 0.0 {
+            ends[n] = u;
+            n += 1;
+        }
+        if (du < 0.0 && dw > 0.0) || (du > 0.0 && dw < 0.0) {
+            let s = du / (du - dw);
+            ends[n] = [0, 1, 2].map(|a| u[a] + s * (w[a] - u[a]));
+            n += 1;
+        }
+        if n == 3 {
+            break;
+        }
+    }
+    (n >= 2 && (ends[0][0] != ends[1][0] || ends[0][1] != ends[1][1])).then(|| (ends[0], ends[1]))
+}
+
+/// Cuts every piece that the segment p–q's box meets and its line crosses.
+fn cut(pieces: &mut Vec<Polygon<SUB>>, p: Point, q: Point) -> Option<()> {
+    let line = |v: &Point| (q[0] - p[0]) * (v[1] - p[1]) - (q[1] - p[1]) * (v[0] - p[0]);
+    let (x0, x1) = (p[0].min(q[0]), p[0].max(q[0]));
+    let (y0, y1) = (p[1].min(q[1]), p[1].max(q[1]));
+    // Only the pieces from before this cut: the two halves of a split lie on their
+    // sides of the line (up to the rounding of the new vertices).
+    for k in 0..pieces.len() {
+        let s = pieces[k];
+        let (sx, sy) = (s.range(0), s.range(1));
+        let meets = sx.0 <= x1 && sx.1 >= x0 && sy.0 <= y1 && sy.1 >= y0;
+        let (mut neg, mut pos) = (false, false);
+        for v in s.vertices() {
+            let d = line(v);
+            neg |= d < 0.0;
+            pos |= d > 0.0;
+        }
+        if meets && neg && pos {
+            if s.vertices().len() + 1 > SUB {
+                return None;
+            }
+            let (mut below, mut above) = (Polygon::EMPTY, Polygon::EMPTY);
+            s.split_into(line, None, &mut below, &mut above);
+            pieces[k] = below;
+            pieces.push(above);
+        }
+    }
+    Some(())
+}
+
+/// The centroid of a polygon (xy) with z the mean of z over it (z linear).
+fn centroid<const N: usize>(piece: &Polygon<N>, area: f64) -> Point {
+    let v = piece.vertices();
+    let o = v[0];
+    let mut sum = [0.0; 3];
+    for k in 1..v.len() - 1 {
+        let (a, b) = (v[k], v[k + 1]);
+        let w = 0.5 * ((a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]));
+        for d in 0..3 {
+            sum[d] += w * ((a[d] - o[d]) + (b[d] - o[d])) / 3.0;
+        }
+    }
+    [0, 1, 2].map(|d| o[d] + sum[d] / area)
+}
+
+/// Whether p's xy lies inside triangle t's xy projection (floating point: callers split
+/// pieces along t's edges first, so p is well inside or outside).
+fn inside_triangle(t: &[Point; 3], p: Point) -> bool {
+    let side = |a: Point, b: Point| (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+    let s = [side(t[0], t[1]), side(t[1], t[2]), side(t[2], t[0])];
+    s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
+}

@@ -1,0 +1,135 @@
+//! Stage 7, crossings: pairs of kept faces whose fan triangles cross, an edge of one
+//! passing strictly through the interior of the other.
+//!
+//! The triangles of faces with an interior (flat ones have none) are put in spatial
+//! order and a [`Bvh`] is built over their boxes; every pair of overlapping boxes whose
+//! triangles share no welded vertex (neighbours meet there by design) is tested with
+//! exact orientation predicates ([`predicates::triangles_cross`]). Touching is not
+//! crossing. Pairs within one shell are self-intersections; pairs from two shells make
+//! those shells overlap. The same triangles and hierarchy serve the nesting rays.
+
+use super::loops::Loops;
+use super::predicates;
+use super::weld::Welded;
+use crate::bvh::{Box32, Bvh};
+use crate::properties::Bounds;
+use crate::Point;
+use rayon::prelude::*;
+use std::collections::BTreeSet;
+
+/// The triangles of the kept faces' fans, as parallel arrays: the crossing search
+/// reads `ids` for every nearby pair and their points only for pairs sharing no vertex.
+#[derive(Default)]
+pub(super) struct Triangles<'a> {
+    /// Welded vertices.
+    pub ids: Vec<[u32; 3]>,
+    pub face: Vec<u32>,
+    /// The welded vertices' positions. (Read through `ids` rather than copied per
+    /// triangle: the copy, 72 bytes a triangle, cost more than the scattered reads.)
+    positions: &'a [Point],
+}
+
+impl Triangles<'_> {
+    pub fn points(&self, i: usize) -> [Point; 3] {
+        self.ids[i].map(|v| self.positions[v as usize])
+    }
+}
+
+/// Whether two triangles share a vertex: nine comparisons without short-circuiting
+/// (most pairs tested are neighbours, in no predictable pattern).
+#[inline(always)]
+fn shares_a_vertex(t: &[u32; 3], u: &[u32; 3]) -> bool {
+    t.iter().fold(false, |shared, v| shared | (*v == u[0]) | (*v == u[1]) | (*v == u[2]))
+}
+
+/// The kept faces' triangles in spatial order (neighbours in space are neighbours in
+/// memory, which the hierarchy's searches then read), and the hierarchy over them.
+pub(super) fn triangles_in_space<'a>(
+    loops: &Loops,
+    kept: &[bool],
+    welded: &'a Welded,
+) -> (Triangles<'a>, Bvh) {
+    // Each fan triangle as (face, corner of its second vertex).
+    let fans: Vec<(u32, u32)> = (0..kept.len())
+        .into_par_iter()
+        .filter(|&f| kept[f])
+        .flat_map_iter(|f| {
+            let r = loops.face(f);
+            (r.start + 1..r.end - 1).map(move |c| (f as u32, c as u32))
+        })
+        .collect();
+    let corners = |(f, c): (u32, u32)| [loops.start[f as usize], c as usize, c as usize + 1];
+    // Ordered by the face's own corners (read in sequence), not the welded vertices.
+    let centres: Vec<Point> = fans
+        .par_iter()
+        .map(|&fan| {
+            let p = corners(fan).map(|c| loops.corners[c]);
+            [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
+        })
+        .collect();
+    let order = Bvh::spatial_order(&centres);
+    drop(centres);
+    let (ids, (face, boxes)): (Vec<_>, (Vec<_>, Vec<Box32>)) = order
+        .par_iter()
+        .map(|&i| {
+            let fan = fans[i as usize];
+            let ids = corners(fan).map(|c| welded.corner_vertex[c]);
+            let points = ids.map(|v| welded.positions[v as usize]);
+            let mut bounds = Bounds::of(points[0]);
+            bounds.include(points[1]);
+            bounds.include(points[2]);
+            (ids, (fan.0, Box32::around(&bounds)))
+        })
+        .unzip();
+    (Triangles { ids, face, positions: &welded.positions }, Bvh::new(boxes))
+}
+
+/// The pairs of kept faces whose fan triangles cross, sorted.
+pub(super) fn crossing_pairs(triangles: &Triangles, bvh: &Bvh) -> Vec<[usize; 2]> {
+    let test = |i: usize, j: usize| {
+        if shares_a_vertex(&triangles.ids[i], &triangles.ids[j]) {
+            return None; // neighbours meet at shared vertices by design
+        }
+        let (f, g) = (triangles.face[i] as usize, triangles.face[j] as usize);
+        predicates::triangles_cross(triangles.points(i), triangles.points(j))
+            .then_some([f.min(g), f.max(g)])
+    };
+    bvh.overlapping_pairs(test)
+}
+
+/// What the crossing pairs say: crossing face pairs within shells and a few examples.
+pub(super) struct Crossings {
+    /// Crossing face pairs within a shell.
+    pub self_intersections: usize,
+    /// A few crossing face pairs, each once: within shells first, then between shells.
+    pub examples: Vec<[usize; 2]>,
+}
+
+/// Counts the crossing triangle `pairs` as face pairs, keeps up to `keep` of them,
+/// and adds the pairs of shells they make overlap to `overlapping_shells`.
+pub(super) fn face_pairs(
+    mut pairs: Vec<[usize; 2]>,
+    shell_of_face: &[u32],
+    keep: usize,
+    overlapping_shells: &mut BTreeSet<[usize; 2]>,
+) -> Crossings {
+    // Polygon faces fan into several triangles: count each crossing face pair once.
+    pairs.par_sort_unstable();
+    pairs.dedup();
+    let same_shell = |&[f, g]: &[usize; 2]| shell_of_face[f] == shell_of_face[g];
+    let mut within = 0;
+    for pair in &pairs {
+        if same_shell(pair) {
+            within += 1;
+        } else {
+            let (sf, sg) = (shell_of_face[pair[0]] as usize, shell_of_face[pair[1]] as usize);
+            overlapping_shells.insert([sf.min(sg), sf.max(sg)]);
+        }
+    }
+    // Self-intersections first, so that a count above zero always has an example.
+    let (mut examples, between): (Vec<[usize; 2]>, Vec<[usize; 2]>) =
+        pairs.iter().partition(|p| same_shell(p));
+    examples.extend(between);
+    examples.truncate(keep);
+    Crossings { self_intersections: within, examples }
+}

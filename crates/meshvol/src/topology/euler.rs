@@ -1,0 +1,62 @@
+//! Stage 8, Euler characteristic: χ = V − E + F per shell, and the genus (2 − χ)/2 of a
+//! closed orientable one (a sphere 0, a torus 1).
+//!
+//! F counts the shell's kept faces, E its edges (an edge belongs to the shell of its
+//! first use), V its vertices: a vertex is counted once per run of consecutive kept
+//! faces of one shell that use it, which is exact for manifold meshes (a vertex is
+//! shared by shells only at non-manifold points).
+
+use super::edges::EdgeUse;
+use super::loops::Loops;
+use super::shells::Shells;
+use super::weld::Welded;
+
+/// One shell's counts.
+pub(super) struct ShellCounts {
+    pub faces: usize,
+    pub euler_characteristic: i64,
+}
+
+/// The counts of each of `shells`, from the `kept` faces of `loops` and the `edges`
+/// (each its uses).
+pub(super) fn per_shell(
+    loops: &Loops,
+    welded: &Welded,
+    kept: &[bool],
+    shells: &Shells,
+    edges: &[&[EdgeUse]],
+) -> Vec<ShellCounts> {
+    let shell_of_face = &shells.of_face;
+    let mut faces = vec![0usize; shells.count];
+    for f in (0..kept.len()).filter(|&f| kept[f]) {
+        faces[shell_of_face[f] as usize] += 1;
+    }
+    let mut edges_in = vec![0usize; shells.count];
+    for g in edges {
+        edges_in[shell_of_face[g[0].face as usize] as usize] += 1;
+    }
+    let mut vertices = vec![0i64; shells.count];
+    let mut last_shell_of_vertex = vec![u32::MAX; welded.positions.len()];
+    for f in (0..kept.len()).filter(|&f| kept[f]) {
+        let s = shell_of_face[f];
+        for c in loops.face(f) {
+            let v = welded.corner_vertex[c] as usize;
+            if last_shell_of_vertex[v] != s {
+                last_shell_of_vertex[v] = s;
+                vertices[s as usize] += 1;
+            }
+        }
+    }
+    (0..shells.count)
+        .map(|s| ShellCounts {
+            faces: faces[s],
+            euler_characteristic: vertices[s] - edges_in[s] as i64 + faces[s] as i64,
+        })
+        .collect()
+}
+
+/// (2 − χ)/2 for a closed orientable shell.
+pub(super) fn genus(closed: bool, orientable: bool, euler_characteristic: i64) -> Option<i64> {
+    let chi = euler_characteristic;
+    (closed && orientable && chi % 2 == 0).then_some((2 - chi) / 2)
+}

@@ -1,0 +1,112 @@
+//! Stage 2, faces: which faces are collapsed, flat or duplicates, and so which ones the
+//! later stages see.
+//!
+//! A face with a repeated welded vertex is *collapsed*. One with distinct vertices but
+//! zero vector area Σ (cᵢ − c₀) × (cᵢ₊₁ − c₀) is *flat*: it keeps its edges but has no
+//! interior. Faces with the same vertex set are *duplicates*: grouped by their smallest
+//! vertex and sorted by (sorted vertex list, face), each vertex set is a run in face
+//! order; in a run, copies wound opposite ways cancel in pairs (a *double wall*) and of
+//! the rest the first stays.
+
+use super::loops::Loops;
+use super::weld::Welded;
+use crate::buckets::{for_each_range_mut, Buckets};
+use crate::vector::{add, cross, sub};
+use rayon::prelude::*;
+
+/// Per face: what stage 2 found.
+pub(super) struct FaceClasses {
+    /// A repeated welded vertex: left out of everything.
+    pub collapsed: Vec<bool>,
+    /// Distinct vertices, zero vector area.
+    pub flat: Vec<bool>,
+    /// Dropped for having the vertex set of another face.
+    pub duplicate: Vec<bool>,
+    /// Dropped in an opposite pair (also `duplicate`).
+    pub double_wall: Vec<bool>,
+    /// Neither collapsed nor duplicate: the faces of edges, shells and the solid.
+    pub kept: Vec<bool>,
+    /// Kept and not flat: the faces with an interior, which the crossing search and
+    /// nesting rays see.
+    pub spatial: Vec<bool>,
+}
+
+/// Classifies the faces `loops`, welded as `welded`.
+pub(super) fn classify(loops: &Loops, welded: &Welded) -> FaceClasses {
+    let faces = loops.face_count();
+    let vid = |c: usize| welded.corner_vertex[c];
+
+    // Collapsed faces (a repeated welded vertex) are left out of everything; flat faces
+    // (distinct vertices, zero vector area: slivers) stay in the edge table but have no
+    // interior, so they stay out of the spatial triangles.
+    let (collapsed, flat): (Vec<bool>, Vec<bool>) = (0..faces)
+        .into_par_iter()
+        .map(|f| {
+            let r = loops.face(f);
+            let repeated = (r.start..r.end).any(|i| (r.start..i).any(|j| vid(j) == vid(i)));
+            let apex = loops.corners[r.start];
+            let area = (r.start + 1..r.end - 1).fold([0.0; 3], |s, c| {
+                add(s, cross(sub(loops.corners[c], apex), sub(loops.corners[c + 1], apex)))
+            });
+            (repeated, !repeated && area == [0.0; 3])
+        })
+        .unzip();
+    // Duplicates: the same vertex set as another face. Faces grouped by their smallest
+    // vertex, each group sorted by (sorted vertex list, face): faces with one vertex set
+    // form a run, in face order.
+    let mut sorted_ids: Vec<u32> = welded.corner_vertex.clone();
+    for_each_range_mut(&mut sorted_ids, faces, &|f| loops.face(f), &|_, ids| ids.sort_unstable());
+    let ids_of = |f: u32| &sorted_ids[loops.face(f as usize)];
+    let mut by_vertices = Buckets::new(welded.positions.len(), faces, |range| {
+        range.filter(|&f| !collapsed[f]).map(|f| (ids_of(f as u32)[0], f as u32))
+    });
+    by_vertices.for_each_mut(|group| {
+        if group.len() > 1 {
+            group.sort_unstable_by(|&a, &b| ids_of(a).cmp(ids_of(b)).then(a.cmp(&b)))
+        }
+    });
+    let mut duplicate = vec![false; faces];
+    let mut double_wall = vec![false; faces];
+    let items = &by_vertices.items;
+    let mut i = 0;
+    while i < items.len() {
+        let run = items[i..].iter().take_while(|&&g| ids_of(g) == ids_of(items[i])).count();
+        if run > 1 {
+            let corners = |f: u32| &welded.corner_vertex[loops.face(f as usize)];
+            let first = corners(items[i]);
+            let (same, opposite): (Vec<u32>, Vec<u32>) =
+                items[i..i + run].iter().partition(|&&g| !opposite_direction(first, corners(g)));
+            // Opposite copies cancel in pairs (an internal double wall); of the rest, one
+            // copy stays.
+            let pairs = same.len().min(opposite.len());
+            for &g in same[..pairs].iter().chain(&opposite[..pairs]) {
+                double_wall[g as usize] = true;
+                duplicate[g as usize] = true;
+            }
+            let rest = if same.len() > pairs { &same[pairs..] } else { &opposite[pairs..] };
+            for &g in rest.iter().skip(1) {
+                duplicate[g as usize] = true;
+            }
+        }
+        i += run;
+    }
+    drop((sorted_ids, by_vertices));
+    let kept: Vec<bool> = (0..faces).map(|f| !collapsed[f] && !duplicate[f]).collect();
+    // The faces with an interior: those the crossing search and nesting rays see.
+    let spatial: Vec<bool> = (0..faces).map(|f| kept[f] && !flat[f]).collect();
+    FaceClasses { collapsed, flat, duplicate, double_wall, kept, spatial }
+}
+
+/// Whether `face` runs through the vertices of `first` (the same vertex set, distinct
+/// vertices) in the opposite cyclic direction: each read from its smallest vertex, one
+/// forward and the other backward. (For triangles this is the parity of the
+/// permutation; a polygon whose order is neither counts as the same direction.)
+fn opposite_direction(first: &[u32], face: &[u32]) -> bool {
+    let n = first.len();
+    if n != face.len() || n == 0 {
+        return false;
+    }
+    let start = |ids: &[u32]| (0..n).min_by_key(|&k| ids[k]).unwrap_or(0);
+    let (i, j) = (start(first), start(face));
+    (0..n).all(|k| first[(i + k) % n] == face[(j + n - k) % n])
+}

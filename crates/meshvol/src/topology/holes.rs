@@ -1,0 +1,166 @@
+//! Stage 5, holes: boundary edges chained into loops, each capped with a fan from its
+//! centroid, and each shell's volume with its holes capped.
+//!
+//! A boundary edge is followed in the direction its face was given by orientation
+//! propagation, so a loop runs the way its shell does and the cap (centre, q, p) over rim
+//! edge p → q closes the shell the same way round. A cap may be off by as much as its
+//! area times the rim's largest distance from the cap's plane (along the unit normal of
+//! the cap's vector area): zero for a flat hole, which is thus recovered exactly.
+//!
+//! A shell's volume is (1/6) Σ (a − r)·((b − r) × (c − r)) over the fan triangles of its
+//! faces, as propagated, and of its caps, about the first corner r (terms the size of
+//! the model, not of its offset), summed with compensation in face order.
+
+use super::edges::EdgeUse;
+use super::loops::Loops;
+use super::shells::Shells;
+use super::weld::Welded;
+use crate::accumulate::CompensatedSum;
+use crate::vector::{add, cross, dot, norm, scale, sub};
+use crate::{Point, Surface};
+use rayon::prelude::*;
+
+/// The fans capping boundary loops, as points and as vertex ids (each centre a new
+/// vertex after the welded ones), with their shells.
+pub(super) struct Caps {
+    pub points: Vec<[Point; 3]>,
+    pub ids: Vec<[u32; 3]>,
+    pub centres: Vec<Point>,
+    pub shell: Vec<u32>,
+    /// Boundary loops per shell.
+    pub per_shell: Vec<usize>,
+    /// Per cap, its area times the rim's largest distance from its plane, summed.
+    pub volume_uncertainty: f64,
+}
+
+/// The caps over the boundary loops of the `edges` (each its uses) of `shells`.
+pub(super) fn caps(loops: &Loops, welded: &Welded, edges: &[&[EdgeUse]], shells: &Shells) -> Caps {
+    let vid = |c: usize| welded.corner_vertex[c];
+    let (flip, shell_of_face) = (&shells.flip, &shells.of_face);
+    // Boundary loops, following each face's propagated direction, and their caps.
+    let boundary: Vec<(u32, u32, u32)> = edges
+        .iter()
+        .filter(|g| g.len() == 1)
+        .map(|g| {
+            let e = g[0];
+            let (c, n) = (e.corner as usize, loops.next(e.face as usize, e.corner as usize));
+            let (u, v) = if flip[e.face as usize] { (vid(n), vid(c)) } else { (vid(c), vid(n)) };
+            (u, v, shell_of_face[e.face as usize])
+        })
+        .collect();
+    let loops_found = boundary_loops(&boundary);
+    let mut caps: Vec<[Point; 3]> = Vec::new();
+    // The same caps as vertex ids, each centre a new vertex after the welded ones.
+    let mut cap_ids: Vec<[u32; 3]> = Vec::new();
+    let mut centres: Vec<Point> = Vec::new();
+    let mut cap_shell: Vec<u32> = Vec::new();
+    let mut shell_loops = vec![0usize; shells.count];
+    let mut volume_uncertainty = 0.0;
+    for (shell, ring) in &loops_found {
+        shell_loops[*shell as usize] += 1;
+        let pts: Vec<Point> = ring.iter().map(|&v| welded.positions[v as usize]).collect();
+        let centre = scale(pts.iter().fold([0.0; 3], |s, &p| add(s, p)), 1.0 / pts.len() as f64);
+        let centre_id = (welded.positions.len() + centres.len()) as u32;
+        centres.push(centre);
+        let mut vector_area = [0.0; 3];
+        for i in 0..pts.len() {
+            let (p, q) = (pts[i], pts[(i + 1) % pts.len()]);
+            // The cap traverses each rim edge against its face: (centre, q, p).
+            caps.push([centre, q, p]);
+            cap_ids.push([centre_id, ring[(i + 1) % ring.len()], ring[i]]);
+            cap_shell.push(*shell);
+            vector_area = add(vector_area, cross(sub(q, centre), sub(p, centre)));
+        }
+        let area = norm(vector_area) / 2.0;
+        if area > 0.0 {
+            let n = scale(vector_area, 0.5 / area);
+            let thickness = pts.iter().map(|&p| dot(sub(p, centre), n).abs()).fold(0.0, f64::max);
+            volume_uncertainty += area * thickness;
+        }
+    }
+    Caps {
+        points: caps,
+        ids: cap_ids,
+        centres,
+        shell: cap_shell,
+        per_shell: shell_loops,
+        volume_uncertainty,
+    }
+}
+
+/// Per shell: its signed volume as propagated from its first face, holes capped.
+pub(super) fn shell_volumes<S: Surface + ?Sized>(
+    surface: &S,
+    loops: &Loops,
+    kept: &[bool],
+    shells: &Shells,
+    caps: &Caps,
+) -> Vec<f64> {
+    let faces = kept.len();
+    let (flip, shell_of_face) = (&shells.flip, &shells.of_face);
+    // Per-shell signed volume (propagated orientation, holes capped), about a local point.
+    let reference = loops.corners.first().copied().unwrap_or([0.0; 3]);
+    let six_volume = |a: Point, b: Point, c: Point| {
+        let (a, b, c) = (sub(a, reference), sub(b, reference), sub(c, reference));
+        dot(a, cross(b, c))
+    };
+    let face_six: Vec<f64> = (0..faces)
+        .into_par_iter()
+        .map(|f| {
+            if !kept[f] {
+                return 0.0;
+            }
+            let mut s = 0.0;
+            surface.fan(f, |a, b, c| s += six_volume(a, b, c));
+            if flip[f] {
+                -s
+            } else {
+                s
+            }
+        })
+        .collect();
+    let mut shell_six = vec![CompensatedSum::default(); shells.count];
+    for f in (0..faces).filter(|&f| kept[f]) {
+        shell_six[shell_of_face[f] as usize].add(face_six[f]);
+    }
+    for (cap, &s) in caps.points.iter().zip(&caps.shell) {
+        shell_six[s as usize].add(six_volume(cap[0], cap[1], cap[2]));
+    }
+    shell_six.iter().map(|s| s.value() / 6.0).collect()
+}
+
+/// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's
+/// direction where the next edge continues it, against it where only that continues
+/// (across the seam of a non-orientable strip).
+fn boundary_loops(edges: &[(u32, u32, u32)]) -> Vec<(u32, Vec<u32>)> {
+    // Every edge listed at both ends: (vertex, edge, the edge starts there).
+    let mut ends: Vec<(u32, usize, bool)> =
+        edges.iter().enumerate().flat_map(|(i, e)| [(e.0, i, true), (e.1, i, false)]).collect();
+    ends.sort_unstable_by_key(|&(v, i, starts)| (v, !starts, i));
+    let mut used = vec![false; edges.len()];
+    let mut loops = Vec::new();
+    for first in 0..edges.len() {
+        if used[first] {
+            continue;
+        }
+        used[first] = true;
+        let mut ring = vec![edges[first].0];
+        let mut at = edges[first].1;
+        while at != edges[first].0 {
+            ring.push(at);
+            let from = ends.partition_point(|e| e.0 < at);
+            // A loop stays in its shell: shells touching at a vertex each cap their own
+            // holes, so that each shell (and each body) is closed by its own caps.
+            let shell = edges[first].2;
+            let next = ends[from..]
+                .iter()
+                .take_while(|e| e.0 == at)
+                .find(|e| !used[e.1] && edges[e.1].2 == shell);
+            let Some(&(_, e, starts)) = next else { break }; // a broken chain: close it here
+            used[e] = true;
+            at = if starts { edges[e].1 } else { edges[e].0 };
+        }
+        loops.push((edges[first].2, ring));
+    }
+    loops
+}

@@ -1,0 +1,266 @@
+//! Stage 6, nesting: which closed shells lie inside which, which overlap, and so each
+//! shell's role (solid or cavity) and the solid's volume.
+//!
+//! Only closed orientable shells can contain anything. For each shell, the candidates
+//! are those whose boxes overlap its own (a [`Bvh`] over the shells' boxes). From the
+//! corners of up to [`NESTING_SAMPLES`] triangles spread over the shell, rays count
+//! signed crossings (winding numbers, each crossing signed as its face was propagated)
+//! with each candidate: along the six axis directions in turn until one meets no edge
+//! or vertex, else an oblique segment to beyond every box; a corner lying on another
+//! surface is skipped. Inside for every sample that could tell: *nested*; inside for
+//! some and outside for others: the two *overlap*.
+//!
+//! A shell inside an odd number of others is a *cavity*; its parent is the smallest
+//! shell containing it. The solid's volume is Σ ±|shell volume| in shell order (+ for
+//! solids, − for cavities), and each shell is turned to its role: outward for a solid,
+//! inward for a cavity, whatever its winding in the file.
+
+use super::crossings::Triangles;
+use super::euler::{self, ShellCounts};
+use super::loops::Loops;
+use super::predicates;
+use super::shells::Shells;
+use super::weld::Welded;
+use super::Shell;
+use crate::accumulate::CompensatedSum;
+use crate::bvh::{Box32, Bvh};
+use crate::properties::Bounds;
+use crate::vector::{add, norm, scale};
+use crate::Point;
+use rayon::prelude::*;
+use std::collections::BTreeSet;
+
+/// Triangles per shell whose corners are classified against other shells for nesting
+/// and overlap.
+const NESTING_SAMPLES: usize = 32;
+
+/// Each shell's box, and the closed orientable shells whose boxes overlap it (its
+/// candidates for nesting and overlap), sorted.
+pub(super) struct Candidates {
+    pub bounds: Vec<Option<Bounds>>,
+    pub of_shell: Vec<Vec<usize>>,
+}
+
+impl Candidates {
+    /// Whether any shell has a candidate, and so needs the triangles in space.
+    pub fn any(&self) -> bool {
+        self.of_shell.iter().any(|c| !c.is_empty())
+    }
+}
+
+/// The candidates of each of `shells`, the kept faces of `loops`.
+pub(super) fn candidates(
+    loops: &Loops,
+    welded: &Welded,
+    kept: &[bool],
+    shells: &Shells,
+) -> Candidates {
+    let (faces, shell_count, shell_of_face) = (kept.len(), shells.count, &shells.of_face);
+    let vid = |c: usize| welded.corner_vertex[c];
+    // Nesting and overlap concern closed, orientable shells.
+    let solid_shell: Vec<bool> =
+        (0..shell_count).map(|s| shells.orientable[s] && !shells.open[s]).collect();
+    let mut shell_bounds: Vec<Option<Bounds>> = vec![None; shell_count];
+    for f in (0..faces).filter(|&f| kept[f]) {
+        let bounds = &mut shell_bounds[shell_of_face[f] as usize];
+        for c in loops.face(f) {
+            let p = welded.positions[vid(c) as usize];
+            bounds.get_or_insert(Bounds::of(p)).include(p);
+        }
+    }
+    // For each shell, the closed shells whose boxes overlap its own (found through a
+    // hierarchy over the shells' boxes: files with 100 000 parts are common).
+    let shell_tree =
+        Bvh::new(shell_bounds.iter().map(|b| Box32::around(&b.unwrap_or(Bounds::EMPTY))).collect());
+    let candidates: Vec<Vec<usize>> = (0..shell_count)
+        .into_par_iter()
+        .map(|a| {
+            let mut near = Vec::new();
+            if let Some(ba) = shell_bounds[a] {
+                shell_tree.overlapping(&ba, |b| {
+                    if b != a && solid_shell[b] {
+                        near.push(b);
+                    }
+                });
+            }
+            near.sort_unstable();
+            near
+        })
+        .collect();
+    Candidates { bounds: shell_bounds, of_shell: candidates }
+}
+
+/// For each shell, the shells containing it, found by rays from its samples against the
+/// `triangles` (spatially ordered, under `bvh`); pairs of shells whose samples disagree
+/// go to `overlapping_shells`.
+pub(super) fn containers(
+    triangles: &Triangles,
+    bvh: &Bvh,
+    shells: &Shells,
+    candidates: &Candidates,
+    overlapping_shells: &mut BTreeSet<[usize; 2]>,
+) -> Vec<Vec<usize>> {
+    let (shell_count, shell_of_face, flip) = (shells.count, &shells.of_face, &shells.flip);
+    let (candidates, shell_bounds) = (&candidates.of_shell, &candidates.bounds);
+    // Sample up to NESTING_SAMPLES triangles' corners spread over each shell.
+    let mut shell_triangles = vec![0usize; shell_count];
+    for &f in &triangles.face {
+        shell_triangles[shell_of_face[f as usize] as usize] += 1;
+    }
+    let mut samples: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
+    let mut seen_in_shell = vec![0usize; shell_count];
+    for (i, &f) in triangles.face.iter().enumerate() {
+        let s = shell_of_face[f as usize] as usize;
+        let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
+        if seen_in_shell[s].is_multiple_of(stride) && !candidates[s].is_empty() {
+            samples[s].extend(triangles.points(i));
+        }
+        seen_in_shell[s] += 1;
+    }
+    // Far enough that an oblique segment from any vertex leaves every shell's box.
+    let reach = {
+        let all = shell_bounds.iter().flatten().fold(None, |acc: Option<Bounds>, b| {
+            let mut all = acc.unwrap_or(*b);
+            all.merge(b);
+            Some(all)
+        });
+        all.map_or(1.0, |b| 4.0 * norm(b.size()) + 1.0)
+    };
+    // For each shell, how many of its samples lie inside / outside each candidate.
+    let classify = |a: usize| -> Vec<(usize, usize, usize)> {
+        let candidates = &candidates[a];
+        let mut counts: Vec<(usize, usize, usize)> =
+            candidates.iter().map(|&b| (b, 0, 0)).collect();
+        let mut winding = vec![0i64; candidates.len()];
+        for &p in &samples[a] {
+            // Rays along each axis direction in turn, until one crosses cleanly; then
+            // an oblique segment to beyond the mesh (it meets many boxes, so it is the
+            // last resort, for symmetric meshes where every axis ray hits an edge).
+            let clean = (0..=predicates::RAY_FRAMES.len()).any(|frame| {
+                let oblique = frame == predicates::RAY_FRAMES.len();
+                let q = add(p, scale(predicates::OBLIQUE, reach));
+                let ray = if oblique {
+                    let mut b = Bounds::of(p);
+                    b.include(q);
+                    b
+                } else {
+                    let (min, max) = predicates::ray_box(p, frame);
+                    Bounds { min, max }
+                };
+                winding.fill(0);
+                let mut grazed = false;
+                bvh.overlapping(&ray, |i| {
+                    let face = triangles.face[i] as usize;
+                    let s = shell_of_face[face] as usize;
+                    if grazed || s == a {
+                        return;
+                    }
+                    let Ok(k) = candidates.binary_search(&s) else { return };
+                    let v = triangles.points(i);
+                    let crossing = if oblique {
+                        predicates::segment_crossing(p, q, v[0], v[1], v[2])
+                    } else {
+                        let rotate = predicates::RAY_FRAMES[frame];
+                        let v = v.map(rotate);
+                        predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
+                    };
+                    match crossing {
+                        Some(w) => winding[k] += if flip[face] { -w } else { w } as i64,
+                        None => grazed = true,
+                    }
+                });
+                !grazed
+            });
+            if !clean {
+                continue; // on another surface: this sample cannot tell
+            }
+            for (c, &w) in counts.iter_mut().zip(&winding) {
+                if w != 0 {
+                    c.1 += 1;
+                } else {
+                    c.2 += 1;
+                }
+            }
+        }
+        counts
+    };
+    let classified: Vec<Vec<(usize, usize, usize)>> =
+        (0..shell_count).into_par_iter().map(classify).collect();
+    // Inside every sample that could tell: nested. Inside for some, outside for others:
+    // the surfaces cross, and the shells overlap.
+    classified
+        .iter()
+        .enumerate()
+        .map(|(a, counts)| {
+            for &(b, inside, outside) in counts {
+                if inside > 0 && outside > 0 {
+                    overlapping_shells.insert([a.min(b), a.max(b)]);
+                }
+            }
+            counts.iter().filter(|c| c.1 > 0 && c.2 == 0).map(|c| c.0).collect()
+        })
+        .collect()
+}
+
+/// The shells in their roles, and what the solid makes of them.
+pub(super) struct Roles {
+    pub shells: Vec<Shell>,
+    /// Per shell: turned over (as propagated) to face its role.
+    pub flip_shell: Vec<bool>,
+    /// Σ ±|shell volume|: the solid's volume.
+    pub volume: f64,
+}
+
+/// Each shell's role from its `containers`, with its propagated volume `shell_signed`,
+/// its `counts`, its holes `loops_per_shell` and whether any of its kept faces is
+/// `face_inconsistent`.
+pub(super) fn roles(
+    containers: &[Vec<usize>],
+    shell_signed: &[f64],
+    shells: &Shells,
+    counts: &[ShellCounts],
+    loops_per_shell: &[usize],
+    kept: &[bool],
+    face_inconsistent: &[bool],
+) -> Roles {
+    let (shell_count, orientable) = (shells.count, &shells.orientable);
+    let mut inconsistent = vec![false; shell_count];
+    for f in (0..kept.len()).filter(|&f| kept[f]) {
+        inconsistent[shells.of_face[f] as usize] |= face_inconsistent[f];
+    }
+    let mut roles = Vec::with_capacity(shell_count);
+    let mut flip_shell = vec![false; shell_count];
+    let mut volume = CompensatedSum::default();
+    for s in 0..shell_count {
+        let depth = containers[s].len();
+        let cavity = depth % 2 == 1;
+        let parent = containers[s]
+            .iter()
+            .copied()
+            .min_by(|&a, &b| shell_signed[a].abs().total_cmp(&shell_signed[b].abs()));
+        let positive_as_propagated = shell_signed[s] >= 0.0;
+        // The first face keeps its file winding, so as-propagated is as-wound when the
+        // shell is consistent.
+        let wound_outward =
+            (!inconsistent[s] && orientable[s]).then_some(positive_as_propagated != cavity);
+        flip_shell[s] = positive_as_propagated == cavity;
+        let v = shell_signed[s].abs();
+        volume.add(if cavity { -v } else { v });
+        let chi = counts[s].euler_characteristic;
+        let closed = !shells.open[s];
+        roles.push(Shell {
+            faces: counts[s].faces,
+            closed,
+            orientable: orientable[s],
+            consistently_oriented: !inconsistent[s],
+            volume: v,
+            cavity,
+            parent,
+            wound_outward,
+            boundary_loops: loops_per_shell[s],
+            euler_characteristic: chi,
+            genus: euler::genus(closed, orientable[s], chi),
+        });
+    }
+    Roles { shells: roles, flip_shell, volume: volume.value() }
+}

@@ -1,0 +1,40 @@
+//! Helpers shared by the core crate's integration tests: the random generator the unit
+//! tests use too, and meshes made from the standard solids of [`meshvol::shapes`].
+// Each test file uses some of them.
+#![allow(dead_code, unused_imports)]
+
+#[path = "../../src/test_rng.rs"]
+mod test_rng;
+
+use meshvol::shapes::cuboid;
+use meshvol::Mesh;
+pub(crate) use test_rng::XorShift;
+
+/// `mesh` with every position mapped by `f`, its faces unchanged.
+pub fn mapped(mesh: &Mesh, f: impl Fn([f64; 3]) -> [f64; 3]) -> Mesh {
+    Mesh::new(mesh.positions().iter().map(|&p| f(p)).collect(), mesh.faces().clone()).unwrap()
+}
+
+/// `mesh` moved by `d`.
+pub fn moved(mesh: &Mesh, d: [f64; 3]) -> Mesh {
+    mapped(mesh, |p| [p[0] + d[0], p[1] + d[1], p[2] + d[2]])
+}
+
+/// The faces of `mesh` as lists of vertex indices.
+pub fn face_lists(mesh: &Mesh) -> Vec<Vec<u32>> {
+    (0..mesh.face_count()).map(|f| mesh.face(f).to_vec()).collect()
+}
+
+/// A mesh of polygon faces given as index lists.
+pub fn polygons(p: &[[f64; 3]], faces: &[Vec<u32>]) -> Mesh {
+    Mesh::from_polygons(p.to_vec(), faces.iter().map(|f| &f[..])).unwrap()
+}
+
+/// A box without its top face (the face whose corners all have z = max).
+pub fn open_box(min: [f64; 3], max: [f64; 3]) -> Mesh {
+    let closed = cuboid(min, max);
+    let top = |face: &Vec<u32>| face.iter().all(|&v| closed.positions()[v as usize][2] == max[2]);
+    let faces: Vec<Vec<u32>> = face_lists(&closed).into_iter().filter(|f| !top(f)).collect();
+    assert_eq!(faces.len(), closed.face_count() - 1);
+    polygons(closed.positions(), &faces)
+}
