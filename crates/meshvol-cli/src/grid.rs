@@ -6,6 +6,7 @@ use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol::grid::{cell_volumes, union_cell_volumes};
+use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};
 use meshvol_report::grid::{check_memory, choose, summary, GridReport, GridRun, Spacing};
@@ -116,33 +117,6 @@ fn parse_slice(s: &str) -> Result<Slice, String> {
 
 fn extension(path: &Path) -> Option<String> {
     path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)
-}
-
-// TEMPORARY until meshvol::surface::Joined lands (core-stages branch).
-struct Joined<S> {
-    surfaces: Vec<S>,
-    starts: Vec<usize>,
-}
-
-impl<S: meshvol::Surface> Joined<S> {
-    fn new(surfaces: Vec<S>) -> Self {
-        let mut starts = vec![0];
-        for s in &surfaces {
-            starts.push(starts.last().copied().unwrap_or(0) + s.face_count());
-        }
-        Joined { surfaces, starts }
-    }
-}
-
-impl<S: meshvol::Surface> meshvol::Surface for Joined<S> {
-    fn face_count(&self) -> usize {
-        self.starts.last().copied().unwrap_or(0)
-    }
-
-    fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
-        let s = self.starts.partition_point(|&start| start <= face) - 1;
-        self.surfaces[s].fan(face - self.starts[s], triangle)
-    }
 }
 
 /// Runs the command: one summary for all the files.

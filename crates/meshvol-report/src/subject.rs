@@ -2,7 +2,7 @@
 //! makes the solid every command measures by default; and the rule that turns inputs into
 //! the bodies of a union.
 
-use meshvol::grid::{shells, FaceSubset};
+use meshvol::surface::{connected_parts, FaceSubset};
 use meshvol::topology::{Check, Measured};
 use meshvol::Surface;
 use meshvol_io::{LengthUnit, Loaded, Object};
@@ -103,7 +103,7 @@ impl<'a, S: Surface> Subject<'a, S> {
         let surface = self.measured();
         let parts: Vec<(usize, Vec<usize>)> = match self.check {
             Some(check) => check.bodies().into_iter().map(|b| (b.shell, b.faces)).collect(),
-            None => shells(self.surface).into_iter().enumerate().collect(),
+            None => connected_parts(self.surface).into_iter().enumerate().collect(),
         };
         parts
             .into_iter()

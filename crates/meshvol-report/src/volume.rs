@@ -10,7 +10,8 @@ use crate::subject::Subject;
 use crate::units::{UnitNames, UnitsArg};
 use crate::Report;
 use meshvol::accumulate::UNIT_ROUNDOFF;
-use meshvol::{exact_signed_volume, mass_properties, FaceRange, MassProperties, Surface};
+use meshvol::surface::FaceRange;
+use meshvol::{exact_signed_volume, mass_properties, MassProperties, Surface};
 use serde::Serialize;
 use std::fmt::Write;
 

@@ -26,11 +26,12 @@ impl Check {
         }
         let mut problems = Vec::new();
         if c.boundary_loops > 0 {
-            problems.push(format!(
-                "open ({}, capped: volume ± {:.3e})",
-                plural(c.boundary_loops, "hole", "holes"),
-                c.volume_uncertainty
-            ));
+            let caps = if c.volume_uncertainty > 0.0 {
+                format!("capped: volume ± {:.3e}", c.volume_uncertainty)
+            } else {
+                "flat, capped exactly".to_string()
+            };
+            problems.push(format!("open ({}, {caps})", plural(c.boundary_loops, "hole", "holes")));
         }
         if !c.overlapping_shells.is_empty() {
             problems.push(format!(
@@ -74,11 +75,16 @@ impl Check {
             return doubts;
         }
         if self.boundary_loops > 0 {
-            doubts.push(format!(
-                "open: {} capped, so the volume is uncertain by ± {:.3e}",
-                plural(self.boundary_loops, "hole", "holes"),
-                self.volume_uncertainty
-            ));
+            let holes = plural(self.boundary_loops, "hole", "holes");
+            doubts.push(if self.volume_uncertainty > 0.0 {
+                format!(
+                    "open: {holes} capped, so the volume is uncertain by ± {:.3e}",
+                    self.volume_uncertainty
+                )
+            } else {
+                // A flat hole's cap is the one plane face that can close it.
+                format!("open: {holes} capped; the holes are flat, so the caps are exact")
+            });
         }
         if self.non_manifold_edges > 0 {
             doubts.push(format!(
