@@ -218,6 +218,23 @@ impl Node {
 /// Deeper than any tree built here (depth ≤ log₂ of the item count + 1).
 const STACK: usize = 64;
 
+/// No tag: see [`Bvh::overlapping_pairs`].
+pub const NO_TAG: u32 = u32::MAX;
+
+/// What a search for overlapping pairs carries down the tree.
+struct Walk<'a, F> {
+    /// Per node, the tags all its items share.
+    shared: Option<&'a [[u32; 3]]>,
+    test: &'a F,
+}
+
+impl<F> Walk<'_, F> {
+    /// Whether every item under node `a` shares a tag with every item under node `b`.
+    fn share_a_tag(&self, a: usize, b: usize) -> bool {
+        self.shared.is_some_and(|s| s[a].iter().any(|&t| t != NO_TAG && s[b].contains(&t)))
+    }
+}
+
 /// A bounding-volume hierarchy over items identified by their index.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
@@ -326,30 +343,63 @@ impl Bvh {
     /// A dual-tree traversal: pairs of nodes whose boxes overlap are split (the larger
     /// node first) down to pairs of leaves, so the work is proportional to the pairs of
     /// nearby nodes rather than a full query per item; the top levels run in parallel.
+    ///
+    /// With `tags` (up to three per item, [`NO_TAG`] for none), node pairs whose items all
+    /// share a tag are skipped unvisited (pairs that share one may still reach `test`):
+    /// the triangles around a vertex of degree k overlap near it, k²/2 pairs that a
+    /// search for crossings between non-neighbours need not walk.
     pub fn overlapping_pairs<T: Ord + Send>(
         &self,
+        tags: Option<&[[u32; 3]]>,
         test: impl Fn(usize, usize) -> Option<T> + Sync,
     ) -> Vec<T> {
         let mut found = Vec::new();
         if !self.nodes.is_empty() {
-            self.pairs_under(0, 0, &test, &mut found);
+            let shared = tags.map(|tags| self.shared_tags(tags));
+            let walk = Walk { shared: shared.as_deref(), test: &test };
+            self.pairs_under(0, 0, &walk, &mut found);
         }
         found.par_sort_unstable();
         found
     }
 
+    /// Per node, the tags every item under it has (unused slots [`NO_TAG`]): leaves from
+    /// their items, inner nodes from their children (which come after them).
+    fn shared_tags(&self, tags: &[[u32; 3]]) -> Vec<[u32; 3]> {
+        let common = |a: [u32; 3], b: &[u32; 3]| a.map(|t| if b.contains(&t) { t } else { NO_TAG });
+        let mut shared: Vec<[u32; 3]> = self
+            .nodes
+            .par_iter()
+            .map(|n| match n.count {
+                0 => [NO_TAG; 3],
+                _ => {
+                    let items = &tags[n.begin as usize..n.end as usize];
+                    items[1..].iter().fold(items[0], |c, t| common(c, t))
+                }
+            })
+            .collect();
+        for i in (0..self.nodes.len()).rev() {
+            let n = &self.nodes[i];
+            if n.count == 0 {
+                let (l, r) = (n.start as usize, n.start as usize + 1);
+                shared[i] = common(shared[l], &shared[r]);
+            }
+        }
+        shared
+    }
+
     /// Adds to `found` what `test` keeps of the overlapping pairs with one item under
     /// node `a` and the other under node `b` (each pair once when `a == b`). Splits
     /// big nodes across threads, then walks small ones with [`Bvh::pairs_in_thread`].
-    fn pairs_under<T: Send>(
+    fn pairs_under<T: Send, F: Fn(usize, usize) -> Option<T> + Sync>(
         &self,
         a: usize,
         b: usize,
-        test: &(impl Fn(usize, usize) -> Option<T> + Sync),
+        test: &Walk<'_, F>,
         found: &mut Vec<T>,
     ) {
         let (na, nb) = (&self.nodes[a], &self.nodes[b]);
-        if !overlaps(&na.bounds, &nb.bounds) {
+        if !overlaps(&na.bounds, &nb.bounds) || test.share_a_tag(a, b) {
             return;
         }
         if (na.end - na.begin).max(nb.end - nb.begin) <= PARALLEL_ITEMS {
@@ -386,11 +436,11 @@ impl Bvh {
     }
 
     /// [`Bvh::pairs_under`] in this thread, with an explicit stack of node pairs.
-    fn pairs_in_thread<T>(
+    fn pairs_in_thread<T, F: Fn(usize, usize) -> Option<T>>(
         &self,
         a: usize,
         b: usize,
-        test: &impl Fn(usize, usize) -> Option<T>,
+        test: &Walk<'_, F>,
         found: &mut Vec<T>,
     ) {
         // Each step pushes at most 3 pairs and descends a level: a few times the depth.
@@ -398,11 +448,11 @@ impl Bvh {
         stack.push((a as u32, b as u32));
         while let Some((a, b)) = stack.pop() {
             let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
-            if !overlaps(&na.bounds, &nb.bounds) {
+            if !overlaps(&na.bounds, &nb.bounds) || test.share_a_tag(a as usize, b as usize) {
                 continue;
             }
             if na.count > 0 && nb.count > 0 {
-                self.leaf_pairs(na, nb, a == b, test, found);
+                self.leaf_pairs(na, nb, a == b, test.test, found);
             } else if a == b {
                 let (l, r) = (na.start, na.start + 1);
                 stack.extend([(l, r), (r, r), (l, l)]);
@@ -438,11 +488,11 @@ impl Bvh {
         }
     }
 
-    fn collect_pairs<T: Send>(
+    fn collect_pairs<T: Send, F: Fn(usize, usize) -> Option<T> + Sync>(
         &self,
         a: usize,
         b: usize,
-        test: &(impl Fn(usize, usize) -> Option<T> + Sync),
+        test: &Walk<'_, F>,
     ) -> Vec<T> {
         let mut found = Vec::new();
         self.pairs_under(a, b, test, &mut found);
@@ -530,13 +580,24 @@ mod tests {
             })
             .collect();
         let bvh = Bvh::new(boxes.iter().map(Box32::around).collect());
-        let pairs = bvh.overlapping_pairs(|a, b| Some((a.min(b), a.max(b))));
+        let pairs = bvh.overlapping_pairs(None, |a, b| Some((a.min(b), a.max(b))));
         let brute: Vec<(usize, usize)> = (0..boxes.len())
             .flat_map(|a| (a + 1..boxes.len()).map(move |b| (a, b)))
             .filter(|&(a, b)| overlap(&boxes[a], &boxes[b]))
             .collect();
         assert!(brute.len() > 10_000);
         assert!(pairs == brute, "{} pairs found, {} overlap", pairs.len(), brute.len());
+        // Tagged (runs of 100 items sharing a tag, as the triangles around a vertex of
+        // high degree do, and tags shared across runs), the pairs that share no tag are
+        // the same; some that share one are never visited.
+        let tags: Vec<[u32; 3]> =
+            (0..boxes.len() as u32).map(|i| [i / 100, 1000 + i % 3, NO_TAG]).collect();
+        let apart =
+            |&(a, b): &(usize, usize)| !tags[a].iter().any(|t| *t != NO_TAG && tags[b].contains(t));
+        let tagged = bvh.overlapping_pairs(Some(&tags), |a, b| Some((a.min(b), a.max(b))));
+        assert!(tagged.len() < pairs.len());
+        let kept = |p: &[(usize, usize)]| p.iter().copied().filter(apart).collect::<Vec<_>>();
+        assert_eq!(kept(&tagged), kept(&brute));
         // Queries, some reaching infinity (as rays' boxes do).
         let (inf, x) = (f64::INFINITY, 0.5);
         for q in [
@@ -590,13 +651,13 @@ mod tests {
         Bvh::new(vec![]).overlapping(&boxes[0], |_| none += 1);
         assert_eq!(none, 0);
         // Every overlapping pair exactly once.
-        let pairs = bvh.overlapping_pairs(|a, b| Some((a.min(b), a.max(b))));
+        let pairs = bvh.overlapping_pairs(None, |a, b| Some((a.min(b), a.max(b))));
         let brute: Vec<(usize, usize)> = (0..boxes.len())
             .flat_map(|a| (a + 1..boxes.len()).map(move |b| (a, b)))
             .filter(|&(a, b)| overlap(&boxes[a], &boxes[b]))
             .collect();
         assert_eq!(pairs, brute);
-        let mut pairs = spatial_bvh.overlapping_pairs(|a, b| {
+        let mut pairs = spatial_bvh.overlapping_pairs(None, |a, b| {
             let (a, b) = (order[a] as usize, order[b] as usize);
             Some((a.min(b), a.max(b)))
         });

@@ -3,10 +3,19 @@
 //!
 //! The triangles of faces with an interior (flat ones have none) are put in spatial
 //! order and a [`Bvh`] is built over their boxes; every pair of overlapping boxes whose
-//! triangles share no welded vertex (neighbours meet there by design) is tested with
-//! exact orientation predicates ([`predicates::triangles_cross`]). Touching is not
-//! crossing. Pairs within one shell are self-intersections; pairs from two shells make
-//! those shells overlap. The same triangles and hierarchy serve the nesting rays.
+//! triangles share no welded vertex (neighbours meet there by design) and come from two
+//! faces is tested with exact orientation predicates ([`predicates::triangles_cross`]).
+//! Touching is not crossing. Pairs within one shell are self-intersections; pairs from
+//! two shells make those shells overlap. The same triangles and hierarchy serve the
+//! nesting rays.
+//!
+//! A face of more than [`LARGE_FACE`] corners is cut into triangles by halving its
+//! corner range ([`balanced_triangle`]) instead of a fan: a fan's k − 2 triangles all
+//! meet at one corner, so their boxes all overlap and the search would test about k²/2
+//! pairs (41 s for a cone with a 3·10⁴-gon base); halving gives triangles that span
+//! k/2, k/4, ... consecutive corners, whose boxes overlap O(k log k) times for a convex
+//! face. For a plane face both cover the same region, so the crossings found are the
+//! same; smaller faces keep the fan the measurements use, corner for corner.
 
 use super::loops::Loops;
 use super::predicates;
@@ -35,6 +44,32 @@ impl Triangles<'_> {
     }
 }
 
+/// Faces with more corners than this are triangulated by halving, not as a fan.
+const LARGE_FACE: usize = 32;
+
+/// Triangle `t` (0 ≤ t < k − 2) of a k-gon cut by halving: the triangle (i, m, j) with
+/// m = ⌊(i + j)/2⌋ on the corner range [i, j] = [0, k − 1], then the same on [i, m] and
+/// on [m, j], numbered in that (pre-)order. Each triangle keeps the face's winding
+/// (i < m < j), and together they tile the polygon as a fan does. O(log k).
+fn balanced_triangle(k: usize, mut t: usize) -> [usize; 3] {
+    let (mut i, mut j) = (0, k - 1);
+    loop {
+        let m = (i + j) / 2;
+        if t == 0 {
+            return [i, m, j];
+        }
+        t -= 1;
+        // The range [i, m] holds m − i − 1 triangles.
+        let left = m - i - 1;
+        if t < left {
+            j = m;
+        } else {
+            t -= left;
+            i = m;
+        }
+    }
+}
+
 /// Whether two triangles share a vertex: nine comparisons without short-circuiting
 /// (most pairs tested are neighbours, in no predictable pattern).
 #[inline(always)]
@@ -49,7 +84,8 @@ pub(super) fn triangles_in_space<'a>(
     kept: &[bool],
     welded: &'a Welded,
 ) -> (Triangles<'a>, Bvh) {
-    // Each fan triangle as (face, corner of its second vertex).
+    // Each triangle as (face, corner): for a fan, the corner of its second vertex;
+    // for a large face, its number in the face's halving (plus the face's start + 1).
     let fans: Vec<(u32, u32)> = (0..kept.len())
         .into_par_iter()
         .filter(|&f| kept[f])
@@ -58,7 +94,15 @@ pub(super) fn triangles_in_space<'a>(
             (r.start + 1..r.end - 1).map(move |c| (f as u32, c as u32))
         })
         .collect();
-    let corners = |(f, c): (u32, u32)| [loops.start[f as usize], c as usize, c as usize + 1];
+    let corners = |(f, c): (u32, u32)| {
+        let r = loops.face(f as usize);
+        let c = c as usize;
+        if r.len() > LARGE_FACE {
+            balanced_triangle(r.len(), c - r.start - 1).map(|k| r.start + k)
+        } else {
+            [r.start, c, c + 1]
+        }
+    };
     // Ordered by the face's own corners (read in sequence), not the welded vertices.
     let centres: Vec<Point> = fans
         .par_iter()
@@ -91,10 +135,53 @@ pub(super) fn crossing_pairs(triangles: &Triangles, bvh: &Bvh) -> Vec<[usize; 2]
             return None; // neighbours meet at shared vertices by design
         }
         let (f, g) = (triangles.face[i] as usize, triangles.face[j] as usize);
+        if f == g {
+            return None; // a face's own triangles tile it (its validity is not a crossing)
+        }
         predicates::triangles_cross(triangles.points(i), triangles.points(j))
             .then_some([f.min(g), f.max(g)])
     };
-    bvh.overlapping_pairs(test)
+    // Triangles around one vertex never cross each other (they share it): tagged by
+    // their vertices, the walk skips them wholesale (a cone's apex, a polygon's corner).
+    bvh.overlapping_pairs(Some(&triangles.ids), test)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::balanced_triangle;
+
+    /// The halving's triangles tile a convex polygon: each keeps the winding, the
+    /// triangles are distinct, and their areas add up to the polygon's (shoelace).
+    #[test]
+    fn halving_tiles_the_polygon() {
+        for k in 3..200 {
+            let p: Vec<[f64; 2]> = (0..k)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / k as f64;
+                    [a.cos(), a.sin()]
+                })
+                .collect();
+            let area = |[a, b, c]: [usize; 3]| {
+                0.5 * ((p[b][0] - p[a][0]) * (p[c][1] - p[a][1])
+                    - (p[c][0] - p[a][0]) * (p[b][1] - p[a][1]))
+            };
+            let triangles: Vec<[usize; 3]> = (0..k - 2).map(|t| balanced_triangle(k, t)).collect();
+            let mut seen = triangles.clone();
+            seen.sort();
+            seen.dedup();
+            assert_eq!(seen.len(), k - 2);
+            assert!(triangles.iter().all(|&[i, m, j]| i < m && m < j && j < k));
+            let total: f64 = triangles.iter().map(|&t| area(t)).sum();
+            let shoelace: f64 = (0..k)
+                .map(|i| {
+                    let (a, b) = (p[i], p[(i + 1) % k]);
+                    0.5 * (a[0] * b[1] - b[0] * a[1])
+                })
+                .sum();
+            assert!((total - shoelace).abs() < 1e-12, "k = {k}");
+            assert!(triangles.iter().all(|&t| area(t) > 0.0));
+        }
+    }
 }
 
 /// What the crossing pairs say: crossing face pairs within shells and a few examples.
