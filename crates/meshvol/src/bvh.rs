@@ -374,7 +374,7 @@ impl Bvh {
                 0 => [NO_TAG; 3],
                 _ => {
                     let items = &tags[n.begin as usize..n.end as usize];
-                    items[1..].iter().fold(items[0], |c, t| common(c, t))
+                    items[1..].iter().fold(items[0], &common)
                 }
             })
             .collect();
