@@ -146,6 +146,43 @@ pub(super) fn crossing_pairs(triangles: &Triangles, bvh: &Bvh) -> Vec<[usize; 2]
     bvh.overlapping_pairs(Some(&triangles.ids), test)
 }
 
+/// What the crossing pairs say: crossing face pairs within shells and a few examples.
+pub(super) struct Crossings {
+    /// Crossing face pairs within a shell.
+    pub self_intersections: usize,
+    /// A few crossing face pairs, each once: within shells first, then between shells.
+    pub examples: Vec<[usize; 2]>,
+}
+
+/// Counts the crossing triangle `pairs` as face pairs, keeps up to `keep` of them,
+/// and adds the pairs of shells they make overlap to `overlapping_shells`.
+pub(super) fn face_pairs(
+    mut pairs: Vec<[usize; 2]>,
+    shell_of_face: &[u32],
+    keep: usize,
+    overlapping_shells: &mut BTreeSet<[usize; 2]>,
+) -> Crossings {
+    // Polygon faces fan into several triangles: count each crossing face pair once.
+    pairs.par_sort_unstable();
+    pairs.dedup();
+    let same_shell = |&[f, g]: &[usize; 2]| shell_of_face[f] == shell_of_face[g];
+    let mut within = 0;
+    for pair in &pairs {
+        if same_shell(pair) {
+            within += 1;
+        } else {
+            let (sf, sg) = (shell_of_face[pair[0]] as usize, shell_of_face[pair[1]] as usize);
+            overlapping_shells.insert([sf.min(sg), sf.max(sg)]);
+        }
+    }
+    // Self-intersections first, so that a count above zero always has an example.
+    let (mut examples, between): (Vec<[usize; 2]>, Vec<[usize; 2]>) =
+        pairs.iter().partition(|p| same_shell(p));
+    examples.extend(between);
+    examples.truncate(keep);
+    Crossings { self_intersections: within, examples }
+}
+
 #[cfg(test)]
 mod tests {
     use super::balanced_triangle;
@@ -182,41 +219,4 @@ mod tests {
             assert!(triangles.iter().all(|&t| area(t) > 0.0));
         }
     }
-}
-
-/// What the crossing pairs say: crossing face pairs within shells and a few examples.
-pub(super) struct Crossings {
-    /// Crossing face pairs within a shell.
-    pub self_intersections: usize,
-    /// A few crossing face pairs, each once: within shells first, then between shells.
-    pub examples: Vec<[usize; 2]>,
-}
-
-/// Counts the crossing triangle `pairs` as face pairs, keeps up to `keep` of them,
-/// and adds the pairs of shells they make overlap to `overlapping_shells`.
-pub(super) fn face_pairs(
-    mut pairs: Vec<[usize; 2]>,
-    shell_of_face: &[u32],
-    keep: usize,
-    overlapping_shells: &mut BTreeSet<[usize; 2]>,
-) -> Crossings {
-    // Polygon faces fan into several triangles: count each crossing face pair once.
-    pairs.par_sort_unstable();
-    pairs.dedup();
-    let same_shell = |&[f, g]: &[usize; 2]| shell_of_face[f] == shell_of_face[g];
-    let mut within = 0;
-    for pair in &pairs {
-        if same_shell(pair) {
-            within += 1;
-        } else {
-            let (sf, sg) = (shell_of_face[pair[0]] as usize, shell_of_face[pair[1]] as usize);
-            overlapping_shells.insert([sf.min(sg), sf.max(sg)]);
-        }
-    }
-    // Self-intersections first, so that a count above zero always has an example.
-    let (mut examples, between): (Vec<[usize; 2]>, Vec<[usize; 2]>) =
-        pairs.iter().partition(|p| same_shell(p));
-    examples.extend(between);
-    examples.truncate(keep);
-    Crossings { self_intersections: within, examples }
 }
