@@ -606,7 +606,7 @@ mod tests {
     /// Any chunking gives what one sequential pass gives.
     #[test]
     fn chunking_does_not_change_the_result() {
-        use crate::text::mutate::assert_chunking_invisible;
+        use crate::text::mutate::{assert_chunking_invisible, outcome};
         let mut file = String::from("# test\nv 0 0 0\nv 1 0 0\n");
         for i in 0..12 {
             file += &format!("v {i} 1 0 1 0 0\nf -1 -2 -3\nvt 0 0\nf 1/1 2//1 {} 3\n", i + 3);
@@ -638,11 +638,10 @@ mod tests {
             b"\ng group\n",
         ];
         let run = |bytes: &[u8], chunk: usize| {
-            let mut warnings = vec![];
-            let result = read_chunked(bytes, &mut warnings, chunk)
-                .map(|(m, objects)| (m.positions().to_vec(), m.faces().clone(), objects))
-                .map_err(|e| (e.location, e.message));
-            (result, warnings)
+            outcome(|w| {
+                read_chunked(bytes, w, chunk)
+                    .map(|(m, objects)| (m.positions().to_vec(), m.faces().clone(), objects))
+            })
         };
         let (ok, err) =
             assert_chunking_invisible(file.as_bytes(), pieces, 11, 3000, &[1, 20, 100], run);

@@ -223,6 +223,20 @@ fn read_text_ring(bytes: &[u8]) -> Result<Vec<Polygon>, ParseError> {
     Ok(vec![Polygon::new(exterior, rings.collect())])
 }
 
+/// A polygon reader: [`crate::wkt`]'s or [`crate::geojson`]'s.
+#[cfg(test)]
+type Reader = fn(&[u8], &mut Vec<String>) -> Result<Vec<PolygonFeature>, ParseError>;
+
+/// A polygon reader's features and warnings for `text`, for the readers' unit tests.
+#[cfg(test)]
+pub(crate) fn with_warnings(
+    read: Reader,
+    text: &str,
+) -> Result<(Vec<PolygonFeature>, Vec<String>), ParseError> {
+    let mut warnings = Vec::new();
+    read(text.as_bytes(), &mut warnings).map(|f| (f, warnings))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -175,6 +175,18 @@ pub fn starts_with_word(bytes: &[u8], word: &[u8]) -> bool {
 /// Deterministic mutations of test inputs (xorshift64*), for the readers' unit tests.
 #[cfg(test)]
 pub(crate) mod mutate {
+    use crate::error::{Location, ParseError};
+
+    /// A read's value or its error's place and message, and its warnings.
+    pub type Outcome<T> = (Result<T, (Option<Location>, String)>, Vec<String>);
+
+    /// What a read gave, in a form two reads can be compared in.
+    pub fn outcome<T>(read: impl FnOnce(&mut Vec<String>) -> Result<T, ParseError>) -> Outcome<T> {
+        let mut warnings = vec![];
+        let result = read(&mut warnings).map_err(|e| (e.location, e.message));
+        (result, warnings)
+    }
+
     pub struct Rng(pub u64);
 
     impl Rng {

@@ -23,7 +23,7 @@
 //! and item transforms (3 × 4 affine matrices, row-vector convention: a point
 //! `[x y z 1]` times the matrix). A mirroring transform (negative determinant) reverses
 //! the winding, so outward faces stay outward. Each build item is an
-//! [`Object`](crate::Object), named after its object's `name`, else the item's
+//! [`Object`], named after its object's `name`, else the item's
 //! `partnumber`, else `object ID`. Items whose object is of type `support`, `surface` or
 //! `other` hold no solid: skipped with a warning.
 //!

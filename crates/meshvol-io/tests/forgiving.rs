@@ -85,10 +85,10 @@ fn strip_header(format: &str) -> String {
 fn ply_tristrips_are_the_same_triangles_listed_as_faces() {
     let corners = box_corners(ORIGIN, SIZE);
     // The same triangles, listed as faces.
-    let mut faces = format!(
+    let mut faces = String::from(
         "ply\nformat ascii 1.0\nelement vertex 8\nproperty double x\nproperty double y\n\
          property double z\nelement face 12\nproperty list uchar int vertex_indices\n\
-         end_header\n"
+         end_header\n",
     );
     for p in &corners {
         faces += &format!("{} {} {}\n", p[0], p[1], p[2]);
@@ -153,21 +153,14 @@ fn ply_tristrips_are_the_same_triangles_listed_as_faces() {
 }
 
 fn box_off() -> String {
-    let mut s = String::from("OFF\n8 6 0\n");
-    for p in box_corners(ORIGIN, SIZE) {
-        s += &format!("{} {} {}\n", p[0], p[1], p[2]);
-    }
-    for q in BOX_QUADS {
-        s += &format!("4 {} {} {} {}\n", q[0], q[1], q[2], q[3]);
-    }
-    s
+    common::box_off("OFF\n8 6 0", ORIGIN, SIZE)
 }
 
 #[test]
 fn off_faces_may_continue_on_the_next_lines() {
     let clean = box_off();
     // Lines 11 to 16 are the faces: the second one split over three lines.
-    let split = clean.replacen("4 4 5 7 6\n", "4 4\n  5 # a comment between\n\n7 6\n", 1);
+    let split = clean.replacen("4 4 5 7 6 ", "4 4\n  5 # a comment between\n\n7 6 ", 1);
     let expected = read_as("clean.off", clean).unwrap();
     let loaded = read_as("split.off", split).unwrap();
     assert_eq!(triangles(&loaded.surface), triangles(&expected.surface));
@@ -212,8 +205,11 @@ fn faces_of_fewer_than_three_vertices_are_skipped_with_a_warning() {
     );
 
     // OFF: seven declared faces, one of two vertices (line 13).
-    let off =
-        box_off().replacen("8 6 0", "8 7 0", 1).replacen("4 0 1 5 4\n", "2 0 1\n4 0 1 5 4\n", 1);
+    let off = box_off().replacen("8 6 0", "8 7 0", 1).replacen(
+        "4 0 1 5 4 ",
+        "2 0 1 0.1 0.2 0.3 1.0\n4 0 1 5 4 ",
+        1,
+    );
     let loaded = read_as("dirty.off", off).unwrap();
     assert_eq!(
         triangles(&loaded.surface),
@@ -288,7 +284,7 @@ fn cr_line_ends_read_like_lf() {
     let bad_obj = obj.replacen("f 1 3 4 2", "f 1 3 4 9", 1);
     let line = 1 + bad_obj.lines().position(|l| l == "f 1 3 4 9").unwrap() as u64;
     assert_eq!(read_err("bad.obj", cr(&bad_obj)).location, Some(Location::Line(line)));
-    let bad_off = box_off().replacen("4 0 2 3 1", "4 0 2 3 x", 1);
+    let bad_off = box_off().replacen("4 0 2 3 1 ", "4 0 2 3 x ", 1);
     assert_eq!(read_err("bad.off", cr(&bad_off)).location, Some(Location::Line(11)));
 
     // Text points and polygons.

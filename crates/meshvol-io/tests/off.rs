@@ -11,14 +11,7 @@ const SIZE: [f64; 3] = [2.0, 3.0, 4.0];
 
 /// The box as OFF, with `header` as the first line(s) and colours on the faces.
 fn box_off(header: &str) -> String {
-    let mut s = format!("{header}\n");
-    for p in box_corners(ORIGIN, SIZE) {
-        s += &format!("{} {} {}\n", p[0], p[1], p[2]);
-    }
-    for q in BOX_QUADS {
-        s += &format!("4 {} {} {} {} 0.1 0.2 0.3 1.0\n", q[0], q[1], q[2], q[3]);
-    }
-    s
+    common::box_off(header, ORIGIN, SIZE)
 }
 
 #[test]

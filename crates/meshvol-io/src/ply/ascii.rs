@@ -453,12 +453,13 @@ mod tests {
     /// Any chunking of an ASCII body gives what one pass gives.
     #[test]
     fn ascii_chunking_does_not_change_the_result() {
-        use crate::text::mutate::assert_chunking_invisible;
+        use crate::text::mutate::{assert_chunking_invisible, outcome};
         let mut file = String::from(
             "ply\nformat ascii 1.0\nelement vertex 8\nproperty float y\nproperty list uchar \
              float uv\nproperty float x\nproperty double z\nelement face 6\nproperty list \
              uchar int vertex_indices\nproperty uchar flags\nelement edge 2\nproperty int a\n\
-             property int b\nend_header\n",
+             property int b\nelement tristrips 1\nproperty list uchar int vertex_indices\n\
+             end_header\n",
         );
         for i in 0..8 {
             file += &format!("{} 2 0.5 0.5 {} {}\n", i >> 1 & 1, i & 1, i >> 2 & 1);
@@ -468,19 +469,15 @@ mod tests {
         {
             file += &format!("4 {} {} {} {} 7\n", q[0], q[1], q[2], q[3]);
         }
-        file += "0 1\n\n1 2\n";
+        file += "0 1\n\n1 2\n6 0 1 2 -1 3 4\n";
         let pieces: &[&[u8]] =
             &[b"\n", b" ", b"3 ", b"2 0 1 0\n", b"-1", b"9", b"nan", b"1e999", b"x", b"\r\n"];
         let run = |bytes: &[u8], chunk: usize| {
-            let mut warnings = vec![];
-            let result = super::super::header::parse(bytes, &mut warnings)
-                .and_then(|h| {
-                    let l = super::super::layout(&h)?;
-                    read(bytes, &h, &l, &mut warnings, chunk)
-                })
-                .map(|b| (b.positions, b.faces, b.strips))
-                .map_err(|e| (e.location, e.message));
-            (result, warnings)
+            outcome(|w| {
+                let h = super::super::header::parse(bytes, w)?;
+                let l = super::super::layout(&h)?;
+                read(bytes, &h, &l, w, chunk).map(|b| (b.positions, b.faces, b.strips))
+            })
         };
         let (ok, err) =
             assert_chunking_invisible(file.as_bytes(), pieces, 5, 2000, &[1, 20, 60], run);

@@ -81,12 +81,14 @@ pub(super) fn read(
                 end
             }
             (_, Some((f, list)), _) if f == e => {
-                let (read, end) = binary_faces(bytes, pos, element, list, layout.vertices, big)?;
+                let indexed = Indexed { element, list, vertices: layout.vertices };
+                let (read, end) = binary_faces(bytes, pos, indexed, big)?;
                 faces = read;
                 end
             }
             (_, _, Some((s, list))) if s == e => {
-                binary_strips(bytes, pos, element, list, layout.vertices, big, &mut strips)?
+                let indexed = Indexed { element, list, vertices: layout.vertices };
+                binary_strips(bytes, pos, indexed, big, &mut strips)?
             }
             _ => skip_binary(bytes, pos, element, big)?,
         };
@@ -113,14 +115,22 @@ pub(super) fn read(
     Ok(Body { positions, faces, strips })
 }
 
+/// An element with a list of vertex indices (faces or strips).
+#[derive(Clone, Copy)]
+struct Indexed<'a> {
+    element: &'a Element,
+    /// The list property.
+    list: usize,
+    /// The vertex count, which every index must be below.
+    vertices: usize,
+}
+
 /// Reads the `tristrips` element into `strips` (see [`Body::strips`]); returns where
 /// it ends. Only -1 may stand between strips; any other index must name a vertex.
 fn binary_strips(
     bytes: &[u8],
     pos: usize,
-    element: &Element,
-    list: usize,
-    vertices: usize,
+    Indexed { element, list, vertices }: Indexed<'_>,
     big: bool,
     strips: &mut Vec<u32>,
 ) -> Result<usize, ParseError> {
@@ -129,13 +139,8 @@ fn binary_strips(
     };
     let mut at = pos;
     for instance in 0..element.count {
-        let mut span = (0, 0);
-        at = walk_record(bytes, at, element, instance, big, |p, offset, n| {
-            if p == list {
-                span = (offset, n);
-            }
-        })?;
-        let (offset, n) = span;
+        let (end, offset, n) = list_of_record(bytes, at, element, instance, big, list)?;
+        at = end;
         for j in 0..n {
             let at = offset + j * item.size();
             match read_int(bytes, at, item, big) {
@@ -242,6 +247,25 @@ fn walk_record(
         }
     }
     Ok(at)
+}
+
+/// Walks one record from `pos`; returns its end, and where the items of its list
+/// property `list` start and how many there are.
+fn list_of_record(
+    bytes: &[u8],
+    pos: usize,
+    element: &Element,
+    instance: u64,
+    big: bool,
+    list: usize,
+) -> Result<(usize, usize, usize), ParseError> {
+    let mut span = (0, 0);
+    let end = walk_record(bytes, pos, element, instance, big, |p, offset, n| {
+        if p == list {
+            span = (offset, n);
+        }
+    })?;
+    Ok((end, span.0, span.1))
 }
 
 /// Skips an element's records.
@@ -372,9 +396,7 @@ fn bad_index(face: u64, index: i64, vertices: usize, at: usize) -> ParseError {
 fn binary_faces(
     bytes: &[u8],
     pos: usize,
-    element: &Element,
-    list: usize,
-    vertices: usize,
+    Indexed { element, list, vertices }: Indexed<'_>,
     big: bool,
 ) -> Result<(BinaryFaces, usize), ParseError> {
     let Kind::List { count: count_type, item } = element.properties[list].kind else {
@@ -473,13 +495,8 @@ fn binary_faces(
     };
     let mut at = pos;
     for f in 0..element.count {
-        let mut span = (0, 0);
-        at = walk_record(bytes, at, element, f, big, |p, offset, n| {
-            if p == list {
-                span = (offset, n);
-            }
-        })?;
-        let (offset, n) = span;
+        let (end, offset, n) = list_of_record(bytes, at, element, f, big, list)?;
+        at = end;
         if n < 3 {
             faces.skipped += 1;
             faces.first_skipped.get_or_insert(f);

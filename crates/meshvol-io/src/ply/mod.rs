@@ -59,14 +59,11 @@
 //! counted in the file's lines first. Errors say where: the line (ASCII), or the byte and
 //! element instance (binary).
 //!
-//! # Speed
+//! # Files
 //!
-//! ASCII bodies are cut into chunks at line ends, the lines of each chunk counted (so
-//! each chunk knows which element its lines belong to), then parsed, both in parallel.
-//! A binary vertex element of fixed record size is read in parallel over fixed chunks of
-//! records. A binary face element is first read as if every face had the vertex count of
-//! the first one (a fixed record size, in parallel); when a face differs, it is read
-//! again record by record.
+//! This file: the layout (which elements hold the geometry), strips, and the mesh.
+//! `header.rs` reads the header; `ascii.rs` and `binary.rs` read the bodies, in parallel
+//! where the format allows (see each).
 
 mod ascii;
 mod binary;
