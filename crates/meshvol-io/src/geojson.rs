@@ -249,8 +249,7 @@ mod tests {
     use super::*;
 
     fn parse(s: &str) -> Result<(Vec<PolygonFeature>, Vec<String>), ParseError> {
-        let mut warnings = Vec::new();
-        read(s.as_bytes(), &mut warnings).map(|f| (f, warnings))
+        crate::polygons::with_warnings(read, s)
     }
 
     #[test]

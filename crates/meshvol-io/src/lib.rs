@@ -72,7 +72,7 @@ pub mod wkt;
 pub mod write;
 
 pub use error::{Location, ReadError};
-pub use points::{read_points, PointCloud, PointSource};
+pub use points::{read_points, read_points_bytes, PointCloud, PointSource};
 pub use polygons::{
     read_polygons, read_polygons_bytes, PolygonFeature, PolygonFile, PolygonFormat,
 };
@@ -347,6 +347,23 @@ impl Family {
     }
 }
 
+/// Whether the path's extension names a mesh format.
+fn has_mesh_extension(path: &Path) -> bool {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    ext.as_deref().and_then(Family::of_extension).is_some()
+}
+
+/// Whether the content is a mesh format [`read`] recognises (text with CR line ends
+/// included).
+fn is_mesh_content(bytes: &[u8]) -> bool {
+    sniff_lines(bytes, text::lf_line_ends(bytes).as_deref()).is_some()
+}
+
+/// [`sniff`], then, for text with CR line ends, `sniff` of `lf`, its copy with LF ones.
+fn sniff_lines(bytes: &[u8], lf: Option<&[u8]>) -> Option<Family> {
+    sniff(bytes).or_else(|| lf.and_then(sniff))
+}
+
 /// The object list's rule: two or more objects, else none.
 fn objects_if_several(objects: Vec<Object>) -> Vec<Object> {
     if objects.len() >= 2 {
@@ -361,8 +378,15 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let mut warnings = Vec::new();
     let by_extension = ext.as_deref().and_then(Family::of_extension);
-    let (family, format_source) = match (by_extension, sniff(&bytes)) {
-        (Some(named), Some(found)) if named != found && !named.accepts(&bytes) => {
+    // Text with CR line ends (old Mac files), as a copy with LF ones: the text readers and
+    // the sniffs of text formats split lines at LF.
+    let lf = text::lf_line_ends(&bytes);
+    let lines: &[u8] = lf.as_deref().unwrap_or(&bytes);
+    let found = sniff_lines(&bytes, lf.as_deref());
+    let (family, format_source) = match (by_extension, found) {
+        (Some(named), Some(found))
+            if named != found && !named.accepts(&bytes) && !named.accepts(lines) =>
+        {
             warnings.push(format!(
                 "the content is {}, not {} as the extension '.{}' says: read as {}",
                 found.name(),
@@ -400,21 +424,23 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
                 (Format::StlBinary, LoadedSurface::StlSoup(soup))
             }
             stl::Kind::Ascii => {
-                let (mesh, solids) = stl::read_ascii(&bytes, &mut warnings).map_err(with_path)?;
+                let (mesh, solids) = stl::read_ascii(lines, &mut warnings).map_err(with_path)?;
                 objects = solids;
                 (Format::StlAscii, LoadedSurface::Mesh(mesh))
             }
         },
         Family::Obj => {
-            let (mesh, groups) = obj::read(&bytes, &mut warnings).map_err(with_path)?;
+            let (mesh, groups) = obj::read(lines, &mut warnings).map_err(with_path)?;
             objects = groups;
             (Format::Obj, LoadedSurface::Mesh(mesh))
         }
         Family::Off => {
-            let mesh = off::read(&bytes, &mut warnings).map_err(with_path)?;
+            let mesh = off::read(lines, &mut warnings).map_err(with_path)?;
             (Format::Off, LoadedSurface::Mesh(mesh))
         }
         Family::Ply => {
+            // PLY minds CR line ends itself: a binary body must be read from the file's own
+            // bytes.
             let (encoding, mesh) = ply::read(&bytes, &mut warnings).map_err(with_path)?;
             let format = match encoding {
                 ply::Encoding::Ascii => Format::PlyAscii,

@@ -1,10 +1,11 @@
 //! Wavefront OBJ: the polygon geometry.
 //!
-//! Read, one statement per line (lines may end with CRLF; a line ending with `\\`
-//! continues on the next):
+//! Read, one statement per line (lines may end with LF, CRLF or CR alone, as old Mac
+//! files do; a line ending with `\\` continues on the next):
 //! - `v x y z [w | r g b ...]`: a vertex; the first three numbers are its position,
 //!   further columns (a weight, vertex colours) are allowed and not read.
-//! - `f i j k ...`: a face of three or more vertices. Each token is `v`, `v/vt`,
+//! - `f i j k ...`: a face of three or more vertices; a face of fewer holds no area and
+//!   is skipped, with a warning that counts them and names the first one's line. Each token is `v`, `v/vt`,
 //!   `v/vt/vn` or `v//vn`; only `v` is used. Indices start at 1; a negative index counts
 //!   back from the last vertex defined so far (-1 is the latest). A positive index may
 //!   name a vertex defined later in the file: ranges are checked after reading. Faces keep
@@ -20,8 +21,8 @@
 //! no volume, and other statements (free-form curves and surfaces).
 //!
 //! Errors, with the line: a `v` with fewer than three numbers, a NaN or infinite
-//! coordinate, index 0, an index out of range, a face with fewer than three vertices, a
-//! line that does not start with a statement keyword, more than `u32::MAX` vertices.
+//! coordinate, index 0, an index out of range, a line that does not start with a
+//! statement keyword, more than `u32::MAX` vertices.
 //!
 //! The parser works on bytes, with no allocation per line, in parallel: the file is cut
 //! into chunks at line ends; each chunk is parsed on its own, negative indices kept
@@ -181,6 +182,10 @@ struct Chunk {
     indices: Vec<i64>,
     /// End of each face in `indices`.
     face_ends: Vec<usize>,
+    /// The faces of fewer than three vertices, skipped: their places among the chunk's
+    /// `f` statements (ascending), and the offset of the first.
+    skipped: Vec<usize>,
+    first_skipped: Option<usize>,
     all_triangles: bool,
     lines: usize,
     points: usize,
@@ -248,6 +253,13 @@ fn read_chunked(
         ));
     }
     warn_ignored(&chunks, warnings);
+    let skipped: usize = chunks.iter().map(|c| c.skipped.len()).sum();
+    if let Some(at) = chunks.iter().find_map(|c| c.first_skipped) {
+        warnings.push(format!(
+            "skipped {skipped} faces with fewer than 3 vertices (the first at line {})",
+            crate::error::line_of(bytes, at)
+        ));
+    }
     let objects = objects(bytes, &chunks);
 
     // Where each chunk's vertices and indices start in the whole mesh.
@@ -290,7 +302,13 @@ fn read_chunked(
         .flatten();
     if let Some((k, at, message)) = bad {
         let chunk = &chunks[k];
-        let face = chunk.face_ends.partition_point(|&end| end <= at);
+        let mut face = chunk.face_ends.partition_point(|&end| end <= at);
+        // The kept face's place among the `f` statements, skipped ones included.
+        for &s in &chunk.skipped {
+            if s <= face {
+                face += 1;
+            }
+        }
         let offset = face_offset(bytes, bounds[k], bounds[k + 1], face);
         return Err(ParseError::at_offset(bytes, offset, message));
     }
@@ -379,25 +397,10 @@ fn warn_ignored(chunks: &[Chunk], warnings: &mut Vec<String>) {
 /// Chunk boundaries at line starts, about `target` bytes apart, never inside a
 /// continued line.
 fn line_boundaries(bytes: &[u8], start: usize, target: usize) -> Vec<usize> {
-    let mut bounds = vec![start];
-    let mut from = start.saturating_add(target);
-    while from < bytes.len() {
-        match memchr::memchr(b'\n', &bytes[from..]) {
-            Some(i) if from + i + 1 < bytes.len() => {
-                let nl = from + i;
-                let line_start = memchr::memrchr(b'\n', &bytes[..nl]).map_or(0, |j| j + 1);
-                if continues(&bytes[line_start..nl]) {
-                    from = nl + 1;
-                    continue;
-                }
-                bounds.push(nl + 1);
-                from = (nl + 1).saturating_add(target);
-            }
-            _ => break,
-        }
-    }
-    bounds.push(bytes.len());
-    bounds
+    text::line_boundaries(bytes, start, target, |nl| {
+        let line_start = memchr::memrchr(b'\n', &bytes[..nl]).map_or(0, |j| j + 1);
+        !continues(&bytes[line_start..nl])
+    })
 }
 
 /// The byte offset of the `face`-th face statement in `[start, end)`.
@@ -547,7 +550,9 @@ fn parse_face(
     let count = chunk.indices.len() - first;
     if count < 3 {
         chunk.indices.truncate(first);
-        return Err((s, format!("face has {count} vertices; a face needs at least 3")));
+        chunk.skipped.push(chunk.face_ends.len() + chunk.skipped.len());
+        chunk.first_skipped.get_or_insert(s);
+        return Ok(pos);
     }
     chunk.all_triangles &= count == 3;
     chunk.face_ends.push(chunk.indices.len());
@@ -601,7 +606,7 @@ mod tests {
     /// Any chunking gives what one sequential pass gives.
     #[test]
     fn chunking_does_not_change_the_result() {
-        use crate::text::mutate::assert_chunking_invisible;
+        use crate::text::mutate::{assert_chunking_invisible, outcome};
         let mut file = String::from("# test\nv 0 0 0\nv 1 0 0\n");
         for i in 0..12 {
             file += &format!("v {i} 1 0 1 0 0\nf -1 -2 -3\nvt 0 0\nf 1/1 2//1 {} 3\n", i + 3);
@@ -633,11 +638,10 @@ mod tests {
             b"\ng group\n",
         ];
         let run = |bytes: &[u8], chunk: usize| {
-            let mut warnings = vec![];
-            let result = read_chunked(bytes, &mut warnings, chunk)
-                .map(|(m, objects)| (m.positions().to_vec(), m.faces().clone(), objects))
-                .map_err(|e| (e.location, e.message));
-            (result, warnings)
+            outcome(|w| {
+                read_chunked(bytes, w, chunk)
+                    .map(|(m, objects)| (m.positions().to_vec(), m.faces().clone(), objects))
+            })
         };
         let (ok, err) =
             assert_chunking_invisible(file.as_bytes(), pieces, 11, 3000, &[1, 20, 100], run);

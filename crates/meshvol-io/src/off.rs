@@ -4,18 +4,23 @@
 //! OFF                 # optional keyword: OFF, COFF, NOFF, CNOFF (also STOFF and the like)
 //! nv nf [ne]          # may follow the keyword on its line: "OFF 8 6 12", even "OFF8 6 12"
 //! x y z [extra...]    # nv vertex lines: the first three numbers; normals, colours after
-//! k i1 .. ik [colour] # nf face lines: k ≥ 3 vertex indices counted from 0
+//! k i1 .. ik [colour] # nf face lines: k vertex indices counted from 0
 //! ```
 //!
-//! `#` starts a comment anywhere; blank lines are skipped. The edge count is not read.
+//! `#` starts a comment anywhere; blank lines are skipped; lines may end with LF, CRLF or
+//! CR alone (old Mac files). The edge count is not read. A face whose indices do not all
+//! fit its line continues on the next lines (OFF readers such as Geomview's and CGAL's
+//! read a stream of tokens); a warning counts such faces and names the first one's line.
+//! Faces of fewer than three vertices hold no area: skipped with a warning that counts
+//! them and names the first one's line.
 //! Counts are never trusted for allocation: at most what the remaining bytes could hold
 //! is reserved. Anything after the declared faces is ignored with a warning. Not read
 //! (errors): binary OFF, 4D (`4OFF`) and n-dimensional (`nOFF`) files.
 //!
 //! Errors name the line: a missing or bad count, a vertex with fewer than three numbers
-//! or a NaN / infinite one, a face with fewer than three vertices, fewer indices than it
-//! declares, or an index out of range, and a file that ends before the declared vertices
-//! or faces ("declared 8 vertices, file ends after 5").
+//! or a NaN / infinite one, a face index that is not a number or out of range, and a
+//! file that ends before the declared vertices, faces, or a face's indices ("declared 8
+//! vertices, file ends after 5").
 
 use meshvol::{Faces, Mesh, Point};
 
@@ -57,6 +62,20 @@ impl<'a> Lines<'a> {
 
     fn remaining(&self) -> usize {
         self.bytes.len().saturating_sub(self.pos)
+    }
+}
+
+/// How many faces had some property, and the line of the first.
+#[derive(Default)]
+struct Tally {
+    count: usize,
+    first: Option<u64>,
+}
+
+impl Tally {
+    fn add(&mut self, line: u64) {
+        self.count += 1;
+        self.first.get_or_insert(line);
     }
 }
 
@@ -131,6 +150,7 @@ pub(crate) fn read(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, Par
     offsets.push(0);
     let mut indices: Vec<u32> = Vec::with_capacity(nf.saturating_mul(3).min(lines.remaining() / 2));
     let mut all_triangles = true;
+    let (mut skipped, mut continued) = (Tally::default(), Tally::default());
     for done in 0..nf {
         let Some((no, line)) = lines.next() else {
             return Err(ParseError::line(
@@ -138,9 +158,30 @@ pub(crate) fn read(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Mesh, Par
                 format!("declared {nf} faces, file ends after {done}"),
             ));
         };
-        let k = face(line, no, nv, &mut indices)?;
+        let first = indices.len();
+        let (k, more_lines) = face(line, no, &mut lines, nv, &mut indices)?;
+        if more_lines {
+            continued.add(no);
+        }
+        if k < 3 {
+            indices.truncate(first);
+            skipped.add(no);
+            continue;
+        }
         all_triangles &= k == 3;
         offsets.push(indices.len());
+    }
+    if let Some(first) = skipped.first {
+        warnings.push(format!(
+            "skipped {} faces with fewer than 3 vertices (the first at line {first})",
+            skipped.count
+        ));
+    }
+    if let Some(first) = continued.first {
+        warnings.push(format!(
+            "{} faces continue on the next lines (the first at line {first})",
+            continued.count
+        ));
     }
 
     let mut extra = 0u64;
@@ -290,41 +331,45 @@ fn vertex(line: &[u8], no: u64) -> Result<Point, ParseError> {
     Ok(p)
 }
 
-/// Reads a face line into `indices`; returns its vertex count.
+/// Reads a face record that starts on `line` into `indices`: its vertex count, then that
+/// many indices, on the next lines when `line` ends first. Returns the vertex count and
+/// whether the record continued.
 fn face(
     line: &[u8],
     no: u64,
+    lines: &mut Lines<'_>,
     vertices: usize,
     indices: &mut Vec<u32>,
-) -> Result<usize, ParseError> {
+) -> Result<(usize, bool), ParseError> {
     let mut pos = 0;
     let k = count(line, &mut pos, no, "face's vertex count")?;
-    if k < 3 {
-        return Err(ParseError::line(
-            no,
-            format!("face has {k} vertices; a face needs at least 3"),
-        ));
-    }
     let first = indices.len();
+    let (mut line, mut line_no, mut continued) = (line, no, false);
     let mut found = 0u64;
     while found < k {
         pos = text::skip_blank(line, pos);
         if pos >= line.len() {
-            indices.truncate(first);
-            return Err(ParseError::line(
-                no,
-                format!("face declares {k} vertices but the line has {found} indices"),
-            ));
+            let Some((next_no, next)) = lines.next() else {
+                indices.truncate(first);
+                return Err(ParseError::line(
+                    no,
+                    format!("face declares {k} vertices but the file ends after {found} indices"),
+                ));
+            };
+            (line, line_no, pos, continued) = (next, next_no, 0, true);
+            continue;
         }
         let Some((index, end)) = integer(line, pos) else {
+            indices.truncate(first);
             return Err(ParseError::line(
-                no,
+                line_no,
                 format!("invalid vertex index '{}'", text::show_token(line, pos)),
             ));
         };
         if index < 0 || index as u64 >= vertices as u64 {
+            indices.truncate(first);
             return Err(ParseError::line(
-                no,
+                line_no,
                 format!("vertex index {index} is out of range: the file has {vertices} vertices"),
             ));
         }
@@ -332,7 +377,7 @@ fn face(
         pos = end;
         found += 1;
     }
-    Ok(k as usize)
+    Ok((k as usize, continued))
 }
 
 #[cfg(test)]

@@ -11,10 +11,14 @@
 //! comment; blank lines are skipped. A line with fewer than three numbers, or with a
 //! word after the header, is an error at its line.
 //!
+//! Lines may end with LF, CRLF or CR alone (old Mac files).
+//!
 //! # Mesh files
-//! Any other file is read with [`crate::read`] and its vertices are the points: a PLY
-//! with vertices and no faces (a scanned point cloud) included. A binary STL has no
-//! shared vertices: its points are its triangles' corners, repeated.
+//! A file with a mesh extension, or whose content is a mesh format (as [`crate::read`]
+//! recognises it), is read as a mesh and its vertices are the points: a PLY with
+//! vertices and no faces (a scanned point cloud) included. A binary STL has no shared
+//! vertices: its points are its triangles' corners, repeated. Any other file (standard
+//! input with `-` included) is read as text points.
 
 use std::path::{Path, PathBuf};
 
@@ -68,33 +72,53 @@ fn is_text_points(path: &Path) -> bool {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_points(path: &Path) -> Result<PointCloud, ReadError> {
-    if !is_text_points(path) {
-        let loaded = crate::read(path)?;
-        let points = match loaded.surface {
-            LoadedSurface::Mesh(mesh) => mesh.positions().to_vec(),
-            other => other
-                .into_mesh()
-                .map_err(|e| ReadError {
-                    path: path.to_path_buf(),
-                    location: None,
-                    message: e.to_string(),
-                })?
-                .positions()
-                .to_vec(),
-        };
-        return Ok(PointCloud {
-            source: PointSource::Mesh(loaded.format),
-            points,
-            warnings: loaded.warnings,
-        });
-    }
     let bytes = Bytes::open(path).map_err(|e| ReadError {
         path: path.to_path_buf(),
         location: None,
         message: e.to_string(),
     })?;
-    let points = read_text_points(&bytes).map_err(|e| e.with_path(PathBuf::from(path)))?;
-    Ok(PointCloud { source: PointSource::Text, points, warnings: Vec::new() })
+    points(path, bytes)
+}
+
+/// Reads points from bytes already in memory, as [`read_points`] would read a file at
+/// `path` with this content (`path` gives the extension and names the file in errors).
+/// Standard input is read with a path such as `-`: no extension, so the content decides.
+///
+/// ```
+/// let cloud = meshvol_io::read_points_bytes(std::path::Path::new("-"), b"0 0 0\n1 2 3\n".to_vec())?;
+/// assert_eq!(cloud.points, vec![[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]]);
+/// # Ok::<(), meshvol_io::ReadError>(())
+/// ```
+pub fn read_points_bytes(path: &Path, bytes: Vec<u8>) -> Result<PointCloud, ReadError> {
+    points(path, Bytes::Owned(bytes))
+}
+
+/// Text points for a text extension; else a mesh file for a mesh extension or content
+/// that is a mesh format; else (no extension, or another one) text points.
+fn points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadError> {
+    let mesh = !is_text_points(path)
+        && (crate::has_mesh_extension(path) || crate::is_mesh_content(&bytes));
+    if !mesh {
+        // Old Mac files end lines with CR alone; the lines are split at LF.
+        let lf = text::lf_line_ends(&bytes);
+        let points = read_text_points(lf.as_deref().unwrap_or(&bytes))
+            .map_err(|e| e.with_path(PathBuf::from(path)))?;
+        return Ok(PointCloud { source: PointSource::Text, points, warnings: Vec::new() });
+    }
+    let loaded = crate::load(path, bytes)?;
+    let points = match loaded.surface {
+        LoadedSurface::Mesh(mesh) => mesh.positions().to_vec(),
+        other => other
+            .into_mesh()
+            .map_err(|e| ReadError {
+                path: path.to_path_buf(),
+                location: None,
+                message: e.to_string(),
+            })?
+            .positions()
+            .to_vec(),
+    };
+    Ok(PointCloud { source: PointSource::Mesh(loaded.format), points, warnings: loaded.warnings })
 }
 
 /// The shortest point line, `0 0 0\n`, for bounding the reservation.

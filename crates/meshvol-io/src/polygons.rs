@@ -2,8 +2,9 @@
 //! and plain text rings.
 //!
 //! The format comes from the extension (`.wkt`; `.geojson` or `.json`; `.txt`, `.xy`,
-//! `.csv`), else from the content: `{` starts GeoJSON, a letter WKT, a number a text
-//! ring.
+//! `.csv`), else (standard input included) from the content: `{` starts GeoJSON, a
+//! geometry keyword followed by `(` or `EMPTY` WKT, a number or a header line a text
+//! ring. Lines may end with LF, CRLF or CR alone (old Mac files).
 //!
 //! # Text rings
 //! ```text
@@ -87,8 +88,13 @@ pub fn read_polygons(path: &Path) -> Result<PolygonFile, ReadError> {
 
 /// Reads polygons from bytes as [`read_polygons`] would read a file at `path` with this
 /// content (`path` gives the extension and names the file in errors).
+///
+/// Standard input is read with a path such as `-`: no extension, so the content decides.
 pub fn read_polygons_bytes(path: &Path, bytes: &[u8]) -> Result<PolygonFile, ReadError> {
     let with_path = |e: ParseError| e.with_path(PathBuf::from(path));
+    // Old Mac files end lines with CR alone; every reader here counts lines at LF.
+    let lf = text::lf_line_ends(bytes);
+    let bytes = lf.as_deref().unwrap_or(bytes);
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let format = match ext.as_deref() {
         Some("wkt") => PolygonFormat::Wkt,
@@ -98,8 +104,9 @@ pub fn read_polygons_bytes(path: &Path, bytes: &[u8]) -> Result<PolygonFile, Rea
             let start = text::skip_space(bytes, text::bom_len(bytes));
             match bytes.get(start) {
                 Some(b'{') => PolygonFormat::GeoJson,
-                Some(b) if b.is_ascii_alphabetic() => PolygonFormat::Wkt,
-                Some(b) if b.is_ascii_digit() || matches!(b, b'-' | b'+' | b'.' | b'#') => {
+                _ if looks_like_wkt(&bytes[start..]) => PolygonFormat::Wkt,
+                // A letter: a text ring's header line (`x,y`).
+                Some(b) if b.is_ascii_alphanumeric() || matches!(b, b'-' | b'+' | b'.' | b'#') => {
                     PolygonFormat::TextRing
                 }
                 _ => {
@@ -124,6 +131,29 @@ pub fn read_polygons_bytes(path: &Path, bytes: &[u8]) -> Result<PolygonFile, Rea
     }
     .map_err(with_path)?;
     Ok(PolygonFile { format, features, warnings })
+}
+
+/// Whether the text starts like a WKT geometry: `SRID=`, or a word, an optional `Z`,
+/// `M` or `ZM`, then `(` or `EMPTY` (any case).
+fn looks_like_wkt(bytes: &[u8]) -> bool {
+    let word = |at: usize| {
+        let at = text::skip_blank(bytes, at);
+        let end = at + bytes[at..].iter().take_while(|b| b.is_ascii_alphabetic()).count();
+        (at, end)
+    };
+    if bytes.len() >= 5 && bytes[..5].eq_ignore_ascii_case(b"SRID=") {
+        return true;
+    }
+    let (start, mut end) = word(0);
+    if start == end {
+        return false;
+    }
+    let (s, e) = word(end);
+    if matches!(bytes[s..e].to_ascii_uppercase().as_slice(), b"Z" | b"M" | b"ZM") {
+        end = e;
+    }
+    let (s, e) = word(end);
+    bytes[s..e].eq_ignore_ascii_case(b"EMPTY") || bytes.get(s) == Some(&b'(')
 }
 
 /// The numbers of a text line split at blanks, commas and semicolons, into `out`;
@@ -191,6 +221,20 @@ fn read_text_ring(bytes: &[u8]) -> Result<Vec<Polygon>, ParseError> {
         return Err(ParseError::new(None, "no vertices: expected lines of x y"));
     };
     Ok(vec![Polygon::new(exterior, rings.collect())])
+}
+
+/// A polygon reader: [`crate::wkt`]'s or [`crate::geojson`]'s.
+#[cfg(test)]
+type Reader = fn(&[u8], &mut Vec<String>) -> Result<Vec<PolygonFeature>, ParseError>;
+
+/// A polygon reader's features and warnings for `text`, for the readers' unit tests.
+#[cfg(test)]
+pub(crate) fn with_warnings(
+    read: Reader,
+    text: &str,
+) -> Result<(Vec<PolygonFeature>, Vec<String>), ParseError> {
+    let mut warnings = Vec::new();
+    read(text.as_bytes(), &mut warnings).map(|f| (f, warnings))
 }
 
 #[cfg(test)]

@@ -25,6 +25,21 @@ pub fn bom_len(bytes: &[u8]) -> usize {
     }
 }
 
+/// For a file whose lines end with CR alone (classic Mac OS): a copy with LF line ends,
+/// which every text reader splits at. `None` for any other file: its first line end is
+/// LF or CRLF, or it has no line end, or an LF comes later (mixed line ends are not
+/// guessed at). The copy has the same length, so byte offsets and line numbers agree.
+pub fn lf_line_ends(bytes: &[u8]) -> Option<Vec<u8>> {
+    let first = memchr::memchr2(b'\n', b'\r', bytes)?;
+    if bytes[first] != b'\r'
+        || bytes.get(first + 1) == Some(&b'\n')
+        || memchr::memchr(b'\n', &bytes[first..]).is_some()
+    {
+        return None;
+    }
+    Some(bytes.iter().map(|&b| if b == b'\r' { b'\n' } else { b }).collect())
+}
+
 /// The offset of the first byte after `start` that is not whitespace (newlines included),
 /// or `bytes.len()`.
 #[inline]
@@ -88,6 +103,36 @@ pub fn parse_f64(bytes: &[u8], pos: usize) -> Result<(f64, usize), NumberError> 
     }
 }
 
+/// Chunk boundaries for parsing in parallel: `start`, then line starts about `target`
+/// bytes apart, then `bytes.len()`. A chunk may start after the newline at `nl` only
+/// when `can_cut(nl)` (an OBJ line continued with `\` must stay whole); else the next
+/// newline is tried.
+pub fn line_boundaries(
+    bytes: &[u8],
+    start: usize,
+    target: usize,
+    can_cut: impl Fn(usize) -> bool,
+) -> Vec<usize> {
+    let mut bounds = vec![start];
+    let mut from = start.saturating_add(target);
+    while from < bytes.len() {
+        match memchr::memchr(b'\n', &bytes[from..]) {
+            Some(i) if from + i + 1 < bytes.len() => {
+                let nl = from + i;
+                if !can_cut(nl) {
+                    from = nl + 1;
+                    continue;
+                }
+                bounds.push(nl + 1);
+                from = (nl + 1).saturating_add(target);
+            }
+            _ => break,
+        }
+    }
+    bounds.push(bytes.len());
+    bounds
+}
+
 /// A piece of input for an error message: lossy UTF-8, shortened to 40 characters.
 pub fn show(token: &[u8]) -> String {
     const MAX: usize = 40;
@@ -130,6 +175,18 @@ pub fn starts_with_word(bytes: &[u8], word: &[u8]) -> bool {
 /// Deterministic mutations of test inputs (xorshift64*), for the readers' unit tests.
 #[cfg(test)]
 pub(crate) mod mutate {
+    use crate::error::{Location, ParseError};
+
+    /// A read's value or its error's place and message, and its warnings.
+    pub type Outcome<T> = (Result<T, (Option<Location>, String)>, Vec<String>);
+
+    /// What a read gave, in a form two reads can be compared in.
+    pub fn outcome<T>(read: impl FnOnce(&mut Vec<String>) -> Result<T, ParseError>) -> Outcome<T> {
+        let mut warnings = vec![];
+        let result = read(&mut warnings).map_err(|e| (e.location, e.message));
+        (result, warnings)
+    }
+
     pub struct Rng(pub u64);
 
     impl Rng {

@@ -16,12 +16,14 @@
 //! ```
 //!
 //! The model part is the target of the package's `3dmodel` relationship
-//! (`_rels/.rels`), or `3D/3dmodel.model`. Read: every build item, its object expanded
+//! (`_rels/.rels`), or `3D/3dmodel.model`; a zip archive with neither is "not a 3MF
+//! package". Any zip is recognised by content as 3MF, so that this is what a zip
+//! without the `.3mf` extension is told. Read: every build item, its object expanded
 //! through components (any depth), each mesh placed by the product of the component
 //! and item transforms (3 × 4 affine matrices, row-vector convention: a point
 //! `[x y z 1]` times the matrix). A mirroring transform (negative determinant) reverses
 //! the winding, so outward faces stay outward. Each build item is an
-//! [`Object`](crate::Object), named after its object's `name`, else the item's
+//! [`Object`], named after its object's `name`, else the item's
 //! `partnumber`, else `object ID`. Items whose object is of type `support`, `surface` or
 //! `other` hold no solid: skipped with a warning.
 //!
@@ -89,16 +91,22 @@ fn model_part(archive: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>) -> Result<S
         Ok(rels) => relationship_target(&rels),
         Err(_) => None,
     };
+    let named = target.is_some();
     let wanted = target.unwrap_or_else(|| DEFAULT_MODEL.to_string());
     let names: Vec<&str> = archive.file_names().collect();
     if names.contains(&wanted.as_str()) {
         return Ok(wanted);
     }
-    names
-        .iter()
-        .find(|n| n.eq_ignore_ascii_case(&wanted))
-        .map(|n| n.to_string())
-        .ok_or_else(|| ParseError::new(None, format!("the archive has no model part '{wanted}'")))
+    names.iter().find(|n| n.eq_ignore_ascii_case(&wanted)).map(|n| n.to_string()).ok_or_else(|| {
+        // No 3MF relationship and no default model part: any other zip (a zipped STL,
+        // an Office file) ends here.
+        let message = if named {
+            format!("the archive has no model part '{wanted}'")
+        } else {
+            format!("not a 3MF package (no {DEFAULT_MODEL})")
+        };
+        ParseError::new(None, message)
+    })
 }
 
 /// The target of the first relationship whose type ends in `/3dmodel`, without its

@@ -239,6 +239,19 @@ pub fn box_mesh(origin: Point, size: Point) -> meshvol::Mesh {
         .unwrap()
 }
 
+/// The box of [`box_corners`] as OFF under `header` (the keyword and counts lines),
+/// its quads with face colours.
+pub fn box_off(header: &str, origin: Point, size: Point) -> String {
+    let mut s = format!("{header}\n");
+    for p in box_corners(origin, size) {
+        s += &format!("{} {} {}\n", p[0], p[1], p[2]);
+    }
+    for q in BOX_QUADS {
+        s += &format!("4 {} {} {} {} 0.1 0.2 0.3 1.0\n", q[0], q[1], q[2], q[3]);
+    }
+    s
+}
+
 /// A 3MF package holding `model` as its model part, with the relationships and content
 /// types a 3MF needs.
 pub fn three_mf(model: &str) -> Vec<u8> {

@@ -15,12 +15,19 @@
 //! - **`.csv`**: `i,j,k,volume,fraction`, one row per non-empty cell (|volume| above
 //!   [`OCCUPANCY_TOLERANCE`] of a cell), numbers in shortest round-trip form.
 //! - **`.png`**: one slice of fractions, white (empty) to dark blue (full), red for
-//!   negative (inward-wound) fractions; scaled up to about 512 pixels (down to at most
-//!   4096), with cell borders where cells are at least 6 pixels wide. Image right is the slice's first in-plane
-//!   axis (x for a z slice, y for an x slice, x for a y slice) and up the second.
+//!   negative (inward-wound) fractions, cells drawn to scale with borders where they are
+//!   at least 6 pixels wide and high; a colour legend, the slice's coordinate, and the
+//!   in-plane axes' names and ranges (layout in `picture.rs`). Image right is the
+//!   slice's first in-plane axis (x for a z slice, y for an x slice, x for a y slice)
+//!   and up the second.
+
+mod font;
+mod picture;
 
 use meshvol::grid::{Grid, OCCUPANCY_TOLERANCE};
 use std::io::{self, Write};
+
+pub use picture::png;
 
 fn check_len(grid: &Grid, volumes: &[f64]) -> io::Result<()> {
     if volumes.len() != grid.cell_count() {
@@ -124,68 +131,6 @@ pub struct Slice {
     pub index: usize,
 }
 
-/// Largest picture side, in pixels.
-const MAX_SIDE: usize = 4096;
-
-/// A `.png` of the fractions in one slice (see the module docs for the colours).
-pub fn png(out: &mut impl Write, grid: &Grid, volumes: &[f64], slice: Slice) -> io::Result<()> {
-    check_len(grid, volumes)?;
-    let invalid = |m: String| io::Error::new(io::ErrorKind::InvalidInput, m);
-    if slice.axis > 2 || slice.index >= grid.counts[slice.axis.min(2)] {
-        let axis = ["x", "y", "z"].get(slice.axis).copied().unwrap_or("?");
-        return Err(invalid(format!(
-            "slice {axis}={} is outside the grid (0 to {})",
-            slice.index,
-            grid.counts[slice.axis.min(2)].saturating_sub(1)
-        )));
-    }
-    // In-plane axes: (u, v) = (y, z) for an x slice, (x, z) for y, (x, y) for z.
-    let (u, v) = match slice.axis {
-        0 => (1, 2),
-        1 => (0, 2),
-        _ => (0, 1),
-    };
-    let (nu, nv) = (grid.counts[u], grid.counts[v]);
-    // Pixels per cell for small slices; cells per pixel (nearest) for huge ones.
-    let side = nu.max(nv);
-    let scale = (512 / side).max(1);
-    let shrink = side.div_ceil(MAX_SIDE);
-    let (width, height) = ((nu * scale).div_ceil(shrink), (nv * scale).div_ceil(shrink));
-    let cell_volume = grid.cell_volume();
-    let fraction_at = |a: usize, b: usize| {
-        let mut ijk = [0; 3];
-        ijk[slice.axis] = slice.index;
-        ijk[u] = a;
-        ijk[v] = b;
-        volumes[grid.index(ijk)] / cell_volume
-    };
-    let mut pixels = vec![0u8; width * height * 3];
-    for y in 0..height {
-        let b = (height - 1 - y) * shrink / scale; // up is +v
-        for x in 0..width {
-            let a = x * shrink / scale;
-            let f = fraction_at(a.min(nu - 1), b.min(nv - 1));
-            let border = scale >= 6 && (x % scale == 0 || (height - 1 - y) % scale == 0);
-            let rgb = colour(f, border);
-            pixels[(y * width + x) * 3..][..3].copy_from_slice(&rgb);
-        }
-    }
-    let mut encoder = ::png::Encoder::new(out, width as u32, height as u32);
-    encoder.set_color(::png::ColorType::Rgb);
-    encoder.set_depth(::png::BitDepth::Eight);
-    let mut writer = encoder.write_header().map_err(io::Error::other)?;
-    writer.write_image_data(&pixels).map_err(io::Error::other)?;
-    writer.finish().map_err(io::Error::other)
-}
-
-/// White at 0, dark blue at 1, dark red at −1; borders slightly darker.
-fn colour(fraction: f64, border: bool) -> [u8; 3] {
-    let f = if fraction.is_finite() { fraction.clamp(-1.0, 1.0) } else { 0.0 };
-    let (target, t) = if f >= 0.0 { ([24.0, 64.0, 160.0], f) } else { ([170.0, 30.0, 30.0], -f) };
-    let shade = if border { 0.85 } else { 1.0 };
-    target.map(|c: f64| ((255.0 + (c - 255.0) * t) * shade).round() as u8)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -237,13 +182,16 @@ mod tests {
         assert_eq!(&out[..8], b"\x89PNG\r\n\x1a\n");
         let err = png(&mut Vec::new(), &g, &values(&g), Slice { axis: 2, index: 4 }).unwrap_err();
         assert!(err.to_string().contains("z=4 is outside the grid (0 to 3)"), "{err}");
-        // A slice wider than 4096 cells is shrunk to fit, not cut off.
+        // A slice wider than 4096 cells is shrunk to fit, not cut off: its plot (every
+        // cell full) is 4096 pixels wide, and the legend beside it.
         let wide = Grid::new([0.0; 3], [1.0; 3], [5000, 3, 1]).unwrap();
         let mut out = Vec::new();
         png(&mut out, &wide, &vec![1.0; 15000], Slice { axis: 2, index: 0 }).unwrap();
-        let width = u32::from_be_bytes(out[16..20].try_into().unwrap());
-        assert_eq!(width, 2500);
-        assert_eq!(colour(0.0, false), [255, 255, 255]);
-        assert_eq!(colour(1.0, false), [24, 64, 160]);
+        let image = picture::tests::Image::decode(&out);
+        let plot = image.plot_box();
+        assert_eq!(plot.2, 4096, "{plot:?}");
+        assert!(image.width > 4096 && image.width < 4096 + 200, "{}", image.width);
+        assert_eq!(picture::colour(0.0, false), [255, 255, 255]);
+        assert_eq!(picture::colour(1.0, false), [24, 64, 160]);
     }
 }
