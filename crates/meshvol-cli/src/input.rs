@@ -51,9 +51,7 @@ pub fn load_polygons(path: &Path) -> Result<PolygonFile, String> {
 /// Reads points from a file, or from standard input for `-`.
 pub fn load_points(path: &Path) -> Result<PointCloud, String> {
     if is_stdin(path) {
-        // TEMPORARY until meshvol_io::read_points_bytes lands (io-forgiving branch).
-        let _ = stdin_bytes()?;
-        return Err("-: not yet".into());
+        return meshvol_io::read_points_bytes(path, stdin_bytes()?).map_err(|e| e.to_string());
     }
     meshvol_io::read_points(path).map_err(|e| e.to_string())
 }

@@ -206,3 +206,16 @@ fn obj_groups_are_objects() {
     assert!(close(f(&objects[1]["volume"]), 8.0 / 6.0));
     assert!(close(f(&r["volume"]), 9.0 / 6.0));
 }
+
+#[test]
+fn hull_and_area_read_standard_input() {
+    // The corner tetrahedron of the unit cube: volume 1/6.
+    let v = json(&meshvol_stdin(&["hull", "-", "--json"], b"0 0 0\n1 0 0\n0 1 0\n0 0 1\n"));
+    assert_eq!((v["file"].as_str(), v["points"].as_u64()), (Some("-"), Some(4)));
+    assert!((f(&v["volume"]) - 1.0 / 6.0).abs() < 1e-15);
+    // A 3 × 2 rectangle with a 1 × 0.5 hole: area 5.5.
+    let wkt = b"POLYGON ((0 0, 3 0, 3 2, 0 2, 0 0), (1 1, 1 1.5, 2 1.5, 2 1, 1 1))";
+    let v = json(&meshvol_stdin(&["area", "-", "--json"], wkt));
+    assert_eq!((v["file"].as_str(), v["format"].as_str()), (Some("-"), Some("wkt")));
+    assert_eq!(f(&v["area"]), 5.5);
+}

@@ -22,7 +22,7 @@
 //! runs of the surface's faces, in file order, covering every face, each with its name.
 //! The list is empty when the file holds fewer than two objects: a single part, or a
 //! format without objects (binary STL, OFF, PLY). Measure one object with
-//! [`meshvol::FaceRange`].
+//! [`meshvol::surface::FaceRange`].
 //!
 //! # Units
 //!

@@ -118,7 +118,10 @@ fn known_facts() {
     assert_eq!(pyramids.objects.len(), 9, "{:?}", pyramids.objects);
     // Items 1..3 place the same object: equal volumes, different places.
     let v = |i: usize| {
-        volume(&meshvol::FaceRange::new(&pyramids.surface, pyramids.objects[i].faces.clone()))
+        volume(&meshvol::surface::FaceRange::new(
+            &pyramids.surface,
+            pyramids.objects[i].faces.clone(),
+        ))
     };
     assert_close(v(1), v(0), 1e-9 * v(0));
     // counterXP places five copies of one component with rotations: the same volume as
@@ -229,7 +232,7 @@ fn volumes_agree_with_trimesh() {
 /// across a vertex where two shells touch, as in featuretype.3MF) breaks this.
 #[test]
 fn bodies_add_up_to_the_solid() {
-    use meshvol::grid::FaceSubset;
+    use meshvol::surface::FaceSubset;
     use meshvol::topology::{check, CheckOptions};
     let Some(dir) = corpus() else { return };
     let mut files = vec![];

@@ -74,7 +74,7 @@ fn node_transforms_compose_down_the_tree() {
     let v: Vec<f64> = loaded
         .objects
         .iter()
-        .map(|o| volume(&meshvol::FaceRange::new(&loaded.surface, o.faces.clone())))
+        .map(|o| volume(&meshvol::surface::FaceRange::new(&loaded.surface, o.faces.clone())))
         .collect();
     assert_close(v[0], 8.0, 1e-12);
     assert_close(v[1], 1.0, 1e-12);
@@ -82,11 +82,20 @@ fn node_transforms_compose_down_the_tree() {
     // Where the corners went: "big" spans x in [10, 12]; the turned cube spans x in
     // [9, 10] (a quarter turn about z maps x to y, y to -x); the mirrored one, placed
     // in the turned frame at x in [4, 5] → y in [4, 5].
-    let t = triangles(&meshvol::FaceRange::new(&loaded.surface, loaded.objects[0].faces.clone()));
+    let t = triangles(&meshvol::surface::FaceRange::new(
+        &loaded.surface,
+        loaded.objects[0].faces.clone(),
+    ));
     assert!(t.iter().flatten().all(|p| (10.0..=12.0).contains(&p[0])));
-    let t = triangles(&meshvol::FaceRange::new(&loaded.surface, loaded.objects[1].faces.clone()));
+    let t = triangles(&meshvol::surface::FaceRange::new(
+        &loaded.surface,
+        loaded.objects[1].faces.clone(),
+    ));
     assert!(t.iter().flatten().all(|p| (9.0 - 1e-12..=10.0 + 1e-12).contains(&p[0])));
-    let t = triangles(&meshvol::FaceRange::new(&loaded.surface, loaded.objects[2].faces.clone()));
+    let t = triangles(&meshvol::surface::FaceRange::new(
+        &loaded.surface,
+        loaded.objects[2].faces.clone(),
+    ));
     assert!(t.iter().flatten().all(|p| (4.0 - 1e-12..=5.0 + 1e-12).contains(&p[1])), "{t:?}");
 }
 

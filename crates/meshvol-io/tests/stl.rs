@@ -182,7 +182,7 @@ fn ascii_several_solids_are_objects() {
     let objects: Vec<_> =
         loaded.objects.iter().map(|o| (o.name.as_str(), o.faces.clone())).collect();
     assert_eq!(objects, [("bodyA", 0..12), ("body B", 12..24)]);
-    let second = meshvol::FaceRange::new(&loaded.surface, loaded.objects[1].faces.clone());
+    let second = meshvol::surface::FaceRange::new(&loaded.surface, loaded.objects[1].faces.clone());
     assert_close(volume(&second), 1.0, 1e-12);
     // One solid: no object list.
     let one = read_as("one.stl", ascii_solid("only", &a, "\n")).unwrap();

@@ -3,7 +3,7 @@
 mod common;
 
 use common::*;
-use meshvol::FaceRange;
+use meshvol::surface::FaceRange;
 use meshvol_io::{Format, LengthUnit, Location};
 
 fn model(unit: &str, resources: &str, build: &str) -> String {

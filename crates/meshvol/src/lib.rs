@@ -42,8 +42,6 @@ mod vector;
 pub use exact::{exact_signed_volume, ExactError};
 pub use mesh::{Faces, Mesh, MeshError, Surface};
 pub use properties::{mass_properties, Bounds, MassProperties, Principal};
-/// Old path of [`surface::FaceRange`], kept until the other crates use the new one.
-pub use surface::FaceRange;
 
 /// A point or vector in 3D.
 pub type Point = [f64; 3];

@@ -6,8 +6,8 @@ mod common;
 
 use common::open_box;
 
-use meshvol::grid::FaceSubset;
 use meshvol::shapes::cuboid;
+use meshvol::surface::FaceSubset;
 use meshvol::topology::{check, CheckOptions};
 use meshvol::{mass_properties, Mesh};
 

@@ -35,9 +35,6 @@ mod clip;
 mod profile;
 mod union;
 
-/// Old paths of [`crate::surface::connected_parts`] and [`crate::surface::FaceSubset`],
-/// kept until the other crates use the new ones.
-pub use crate::surface::{connected_parts as shells, FaceSubset};
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
 pub use union::{
     union, union_cell_volumes, UnionError, UnionVolume, COPLANAR_TOLERANCE, MAX_DEPTH, STALL,
