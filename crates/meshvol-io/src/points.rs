@@ -147,7 +147,9 @@ fn read_text_points(bytes: &[u8]) -> Result<Vec<Point>, ParseError> {
                         format!("'{}' is not a finite number", text::show(token)),
                     ))
                 }
-                Err(_) if first_content => break,
+                // A header is words: a first line whose first token starts like a
+                // number ('0x1', '1,5') is a point line that does not parse.
+                Err(_) if first_content && count == 0 && !starts_like_a_number(token) => break,
                 Err(_) => {
                     return Err(ParseError::line(
                         index as u64 + 1,
@@ -169,6 +171,11 @@ fn read_text_points(bytes: &[u8]) -> Result<Vec<Point>, ParseError> {
         }
     }
     Ok(points)
+}
+
+/// Whether `token` starts as a number would: a digit, a sign or a point.
+fn starts_like_a_number(token: &[u8]) -> bool {
+    token.first().is_some_and(|c| c.is_ascii_digit() || matches!(c, b'+' | b'-' | b'.'))
 }
 
 #[cfg(test)]
@@ -197,5 +204,11 @@ mod tests {
         // A header that starts with a number is still checked as a point line.
         let e = read_text_points(b"3 points\n1 2 3\n").unwrap_err();
         assert_eq!(e.location, Some(crate::Location::Line(1)));
+        // So is one whose first number does not parse: it is not silently dropped.
+        let e = read_text_points(b"0x1 2 3\n4 5 6\n").unwrap_err();
+        assert_eq!(
+            (e.location, e.message.as_str()),
+            (Some(crate::Location::Line(1)), "expected numbers x y z, found '0x1'")
+        );
     }
 }

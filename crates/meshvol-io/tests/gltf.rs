@@ -217,7 +217,7 @@ fn sparse_and_quantized_positions() {
     for c in [0u16, 0, 65535, 0] {
         bin.extend_from_slice(&c.to_le_bytes()); // sparse value, padded
     }
-    let json = r#"{"asset":{"version":"2.0"},"nodes":[{"mesh":0}],
+    let json = r#"{"asset":{"version":"2.0"},"extensionsUsed":["KHR_mesh_quantization"],"nodes":[{"mesh":0}],
         "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
         "accessors":[{"bufferView":0,"componentType":5123,"normalized":true,"count":4,"type":"VEC3",
                       "sparse":{"count":1,"indices":{"bufferView":1,"componentType":5121},
@@ -231,6 +231,12 @@ fn sparse_and_quantized_positions() {
     }
     let loaded = read_as("q.glb", glb_container(json.as_bytes(), &bin)).unwrap();
     assert_eq!(volume(&loaded.surface), 1.0 / 6.0);
+    // Without the extension, integer positions are not glTF: an error, not numbers
+    // read as something they are not.
+    let plain = json.replace(r#""extensionsUsed":["KHR_mesh_quantization"],"#, "");
+    let e = read_as("q.glb", glb_container(plain.as_bytes(), &bin)).unwrap_err();
+    assert_eq!(e.location, Some(Location::Json("accessors[0]".into())));
+    assert!(e.message.contains("only FLOAT"), "{e}");
 }
 
 #[test]
@@ -279,4 +285,53 @@ fn errors_name_the_item() {
     let mut v1 = glb.clone();
     v1[4] = 1;
     assert!(read_err("e.glb", v1).message.contains("version 1"));
+}
+
+/// The cube's .gltf with its buffer in the file named by `uri` (written by the caller).
+fn cube_gltf_with_file(uri: &str) -> String {
+    let data_uri = cube_gltf(r#"[{"mesh":0}]"#, "");
+    let start = data_uri.find("data:application").unwrap();
+    let end = start + data_uri[start..].find('"').unwrap();
+    format!("{}{uri}{}", &data_uri[..start], &data_uri[end..])
+}
+
+#[test]
+fn buffers_are_read_from_the_gltf_folder_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let sub = dir.path().join("models/part");
+    std::fs::create_dir_all(&sub).unwrap();
+    let (bin, _) = cube_buffer();
+    // A file next to the glTF is read, and only byteLength bytes of it (the rest of a
+    // larger file is not read: 1 MiB of garbage after the cube's bytes).
+    let mut padded = bin.clone();
+    padded.resize(bin.len() + (1 << 20), 0xff);
+    std::fs::write(sub.join("cube data.bin"), &padded).unwrap();
+    std::fs::write(dir.path().join("secret.bin"), &bin).unwrap();
+    let gltf = sub.join("part.gltf");
+    std::fs::write(&gltf, cube_gltf_with_file("cube%20data.bin")).unwrap();
+    let loaded = meshvol_io::read(&gltf).unwrap();
+    assert_eq!(volume(&loaded.surface), 1.0);
+    // Out of the folder: parent steps (plain or percent-encoded), absolute paths,
+    // devices, and a symbolic link that leads out.
+    std::os::unix::fs::symlink(dir.path().join("secret.bin"), sub.join("link.bin")).unwrap();
+    for uri in [
+        "../../secret.bin",
+        "%2e%2e/%2e%2e/secret.bin",
+        "./../../secret.bin",
+        "/dev/zero",
+        "../../../../../../../../dev/zero",
+        "file:///etc/passwd",
+        "link.bin",
+    ] {
+        std::fs::write(&gltf, cube_gltf_with_file(uri)).unwrap();
+        let e = meshvol_io::read(&gltf).unwrap_err();
+        assert_eq!(e.location, Some(Location::Json("buffers[0]".into())), "{uri}: {e}");
+        assert!(
+            e.message.contains("folder") || e.message.contains("regular file"),
+            "{uri}: {e}"
+        );
+    }
+    // From standard input there is no folder to read from.
+    let e = read_as("-", cube_gltf_with_file("cube%20data.bin").into_bytes()).unwrap_err();
+    assert!(e.message.contains("standard input"), "{e}");
 }

@@ -2,7 +2,8 @@
 //! URIs, files beside the document), buffer views, and accessors decoded from them.
 
 use std::borrow::Cow;
-use std::path::Path;
+use std::io::Read;
+use std::path::{self, Path, PathBuf};
 
 use base64::Engine;
 use rayon::prelude::*;
@@ -132,6 +133,43 @@ pub(super) fn glb_chunks<'a>(
     let json = json.ok_or_else(|| byte(12, "the GLB has no JSON chunk".into()))?;
     Ok((json, bin))
 }
+/// The file a buffer's `uri` names, confined to the glTF's own folder: a relative path
+/// (percent-decoded) without `..`, that resolves (symbolic links followed) inside the
+/// folder, to a regular file. A glTF read from standard input has no folder: its
+/// buffers must be in the file (GLB) or in `data:` URIs. Anything else is refused, so a
+/// file cannot make meshvol read another file's bytes (`../../secret`, `%2e%2e/`) or a
+/// device (`/dev/zero`).
+fn confined_file(gltf: &Path, uri: &str) -> Result<PathBuf, String> {
+    let name = percent_decode(uri);
+    let relative = Path::new(&name);
+    let plain = relative
+        .components()
+        .all(|c| matches!(c, path::Component::Normal(_) | path::Component::CurDir));
+    if name.contains("://") || name.is_empty() || !plain {
+        return Err(format!(
+            "'{uri}' is not a file in the glTF's folder (buffers are read from there only)"
+        ));
+    }
+    if gltf.as_os_str() == "-" {
+        return Err(format!(
+            "'{uri}' names a file, but a glTF from standard input has no folder: use a GLB \
+             or data: URIs"
+        ));
+    }
+    let folder = gltf.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let cannot = |p: &Path, e: std::io::Error| format!("cannot read '{}': {e}", p.display());
+    let folder = folder.canonicalize().map_err(|e| cannot(folder, e))?;
+    let file = folder.join(relative);
+    let resolved = file.canonicalize().map_err(|e| cannot(&file, e))?;
+    if !resolved.starts_with(&folder) {
+        return Err(format!("'{uri}' leads out of the glTF's folder (a symbolic link)"));
+    }
+    if !resolved.metadata().map_err(|e| cannot(&file, e))?.is_file() {
+        return Err(format!("'{uri}' is not a regular file"));
+    }
+    Ok(resolved)
+}
+
 /// The buffers' bytes, loaded on first use.
 pub(super) struct Buffers<'a> {
     pub(super) doc: &'a Document,
@@ -170,14 +208,15 @@ impl<'a> Buffers<'a> {
                     })?)
                 }
                 Some(uri) => {
-                    let name = percent_decode(uri);
-                    if name.contains("://") || name.starts_with('/') {
-                        return Err(at(item, format!("'{uri}' is not a relative file name")));
-                    }
-                    let file = self.path.parent().unwrap_or(Path::new("")).join(&name);
-                    Cow::Owned(std::fs::read(&file).map_err(|e| {
-                        at(item.clone(), format!("cannot read '{}': {e}", file.display()))
-                    })?)
+                    let file = confined_file(self.path, uri).map_err(|e| at(item.clone(), e))?;
+                    let mut data = Vec::new();
+                    // Never more than byteLength bytes, whatever the file holds.
+                    std::fs::File::open(&file)
+                        .and_then(|f| f.take(buffer.byte_length).read_to_end(&mut data))
+                        .map_err(|e| {
+                            at(item.clone(), format!("cannot read '{}': {e}", file.display()))
+                        })?;
+                    Cow::Owned(data)
                 }
             };
             let length = usize::try_from(buffer.byte_length).unwrap_or(usize::MAX);

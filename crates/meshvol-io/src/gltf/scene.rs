@@ -11,6 +11,9 @@ use crate::error::ParseError;
 use crate::transform::{Affine, Placed};
 use crate::Object;
 
+/// glTF's componentType of 32-bit floats.
+const FLOAT: u64 = 5126;
+
 /// A node's own transform.
 pub(super) fn local(node: &Node) -> Affine {
     if let Some(m) = node.matrix {
@@ -218,6 +221,19 @@ pub(super) fn place(
                 .attributes
                 .position
                 .ok_or_else(|| at(item.clone(), "no POSITION attribute"))?;
+            // The core spec allows only FLOAT positions; integers need KHR_mesh_quantization
+            // (read as it says). Read as numbers without it, they would be silently wrong.
+            let quantized = doc.extensions_used.iter().any(|e| e == "KHR_mesh_quantization");
+            let kind = doc.accessors.get(position).map(|a| a.component_type);
+            if let Some(kind) = kind.filter(|&k| k != FLOAT && !quantized) {
+                return Err(at(
+                    format!("accessors[{position}]"),
+                    format!(
+                        "POSITION has componentType {kind}; glTF allows only FLOAT (5126) \
+                         without KHR_mesh_quantization in extensionsUsed"
+                    ),
+                ));
+            }
             let positions: Vec<Point> =
                 read_accessor(&mut buffers, position, "VEC3", 3, |data, at, c, normalized| {
                     match c {

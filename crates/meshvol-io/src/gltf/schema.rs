@@ -17,6 +17,8 @@ pub(super) struct Document {
     pub(super) buffers: Vec<Buffer>,
     #[serde(rename = "extensionsRequired")]
     pub(super) extensions_required: Vec<String>,
+    #[serde(rename = "extensionsUsed")]
+    pub(super) extensions_used: Vec<String>,
 }
 
 #[derive(Deserialize, Default)]
