@@ -6,7 +6,7 @@
 //! the input bytes done and names the current file and stage; warnings and results are
 //! printed around it. `--quiet` also silences warnings (errors are always printed).
 
-use std::io::{IsTerminal, Read};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -21,16 +21,12 @@ pub fn is_stdin(path: &Path) -> bool {
     path.as_os_str() == "-"
 }
 
-/// All of standard input.
+/// All of standard input, up to the stream limit (`MESHVOL_MAX_STREAM_BYTES`): an
+/// endless input is an error, not a process that fills memory.
 fn stdin_bytes() -> Result<Vec<u8>, String> {
-    let mut bytes = Vec::new();
-    std::io::stdin()
-        .lock()
-        .read_to_end(&mut bytes)
-        .map_err(|e| format!("-: cannot read standard input: {e}"))?;
-    Ok(bytes)
+    meshvol_io::read_stream(std::io::stdin().lock())
+        .map_err(|e| format!("-: cannot read standard input: {e}"))
 }
-
 /// Reads a mesh from a file, or from standard input for `-` (all of it, then the format
 /// from its content).
 pub fn load(path: &Path) -> Result<Loaded, String> {

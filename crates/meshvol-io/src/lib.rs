@@ -80,6 +80,7 @@ pub use stl::StlSoup;
 
 use error::ParseError;
 use source::Bytes;
+pub use source::{read_stream, stream_limit, STREAM_LIMIT_VARIABLE};
 
 /// A file format the readers know.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

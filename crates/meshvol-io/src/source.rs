@@ -1,5 +1,9 @@
 //! The bytes of a file: memory-mapped when the file can be mapped, read into memory
 //! otherwise (empty files, pipes), or handed over by the caller.
+//!
+//! Streams (pipes, standard input) have no size to check before reading, and may never
+//! end: they are read up to [`stream_limit`] bytes and refused beyond it. Devices
+//! (`/dev/zero`, `/dev/random`) are refused outright.
 
 use std::fs::File;
 use std::io::Read;
@@ -17,10 +21,18 @@ pub(crate) enum Bytes {
 impl Bytes {
     /// Maps the file at `path`, or reads it when mapping is not possible.
     pub fn open(path: &Path) -> std::io::Result<Bytes> {
-        let mut file = File::open(path)?;
+        let file = File::open(path)?;
         let meta = file.metadata()?;
         if meta.is_dir() {
             return Err(std::io::Error::other("is a directory, not a mesh file"));
+        }
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileTypeExt;
+            let kind = meta.file_type();
+            if kind.is_char_device() || kind.is_block_device() {
+                return Err(std::io::Error::other("is a device, not a mesh file"));
+            }
         }
         if meta.is_file() && meta.len() > 0 {
             // SAFETY: the map is read-only and lives as long as the returned value. As
@@ -31,10 +43,31 @@ impl Bytes {
                 return Ok(Bytes::Mapped(map));
             }
         }
-        let mut data = Vec::new();
-        file.read_to_end(&mut data)?;
-        Ok(Bytes::Owned(data))
+        Ok(Bytes::Owned(read_stream(file)?))
     }
+}
+
+/// The environment variable that sets [`stream_limit`], in bytes.
+pub const STREAM_LIMIT_VARIABLE: &str = "MESHVOL_MAX_STREAM_BYTES";
+
+/// The most bytes read from a stream (a pipe, standard input): 2 GiB, or what
+/// `MESHVOL_MAX_STREAM_BYTES` says. (A 40-million-triangle binary STL is 2 GB.)
+pub fn stream_limit() -> u64 {
+    std::env::var(STREAM_LIMIT_VARIABLE).ok().and_then(|v| v.trim().parse().ok()).unwrap_or(2 << 30)
+}
+
+/// All of a stream, refused beyond [`stream_limit`] bytes.
+pub fn read_stream(stream: impl Read) -> std::io::Result<Vec<u8>> {
+    let limit = stream_limit();
+    let mut data = Vec::new();
+    stream.take(limit.saturating_add(1)).read_to_end(&mut data)?;
+    if data.len() as u64 > limit {
+        return Err(std::io::Error::other(format!(
+            "the stream goes on past {limit} bytes: save it to a file, or raise \
+             {STREAM_LIMIT_VARIABLE}"
+        )));
+    }
+    Ok(data)
 }
 
 impl Deref for Bytes {

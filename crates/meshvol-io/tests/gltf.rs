@@ -326,10 +326,7 @@ fn buffers_are_read_from_the_gltf_folder_only() {
         std::fs::write(&gltf, cube_gltf_with_file(uri)).unwrap();
         let e = meshvol_io::read(&gltf).unwrap_err();
         assert_eq!(e.location, Some(Location::Json("buffers[0]".into())), "{uri}: {e}");
-        assert!(
-            e.message.contains("folder") || e.message.contains("regular file"),
-            "{uri}: {e}"
-        );
+        assert!(e.message.contains("folder") || e.message.contains("regular file"), "{uri}: {e}");
     }
     // From standard input there is no folder to read from.
     let e = read_as("-", cube_gltf_with_file("cube%20data.bin").into_bytes()).unwrap_err();
