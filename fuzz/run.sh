@@ -24,3 +24,13 @@ for t in "${targets[@]}"; do
         -artifact_prefix="$work/artifacts/$t/" 2>&1 |
         grep -E "^(stat::|Done|==|SUMMARY|INFO: (Loaded|seed))|panicked|ERROR|crash-|leak-|timeout-|oom-" || true
 done
+# Every crash or timeout becomes a regression input, read by every test run
+# (crates/meshvol-io/tests/regressions.rs): commit it with the fix.
+for t in "${targets[@]}"; do
+    for f in "$work/artifacts/$t"/crash-* "$work/artifacts/$t"/timeout-* "$work/artifacts/$t"/oom-*; do
+        [ -e "$f" ] || continue
+        mkdir -p "regressions/$t"
+        cp -n "$f" "regressions/$t/"
+        echo "kept $f as regressions/$t/$(basename "$f")"
+    done
+done
