@@ -332,3 +332,16 @@ fn buffers_are_read_from_the_gltf_folder_only() {
     let e = read_as("-", cube_gltf_with_file("cube%20data.bin").into_bytes()).unwrap_err();
     assert!(e.message.contains("standard input"), "{e}");
 }
+
+#[test]
+fn a_mesh_placed_by_many_nodes_is_decoded_once() {
+    // 10⁴ nodes place the unit cube side by side: volume 10⁴ exactly, one object each.
+    let n = 10_000;
+    let nodes: Vec<String> = (0..n)
+        .map(|i| format!(r#"{{"mesh":0,"translation":[{},{},0]}}"#, 2 * (i % 100), 2 * (i / 100)))
+        .collect();
+    let loaded = read_as("many.gltf", cube_gltf(&format!("[{}]", nodes.join(",")), "")).unwrap();
+    assert_eq!(loaded.objects.len(), n);
+    assert_eq!(loaded.face_count(), 12 * n);
+    assert_eq!(meshvol::exact_signed_volume(&loaded.surface).unwrap(), n as f64);
+}

@@ -163,3 +163,34 @@ fn build_expansion_is_bounded_before_allocating() {
     assert!(start.elapsed() < std::time::Duration::from_secs(2));
     assert!(e.message.contains("placed objects"), "{e}");
 }
+
+/// Components placing one tetrahedron `rows × columns` times (two levels of components),
+/// each copy moved by (2i, 2j, 0): the volume is exactly the copies' count over 6.
+#[test]
+fn many_placements_of_one_object_read_in_linear_time() {
+    let (rows, columns) = (100, 1000);
+    let mut model = String::from(
+        r#"<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>
+        <object id="1" type="model"><mesh><vertices>
+        <vertex x="0" y="0" z="0"/><vertex x="1" y="0" z="0"/><vertex x="0" y="1" z="0"/><vertex x="0" y="0" z="1"/>
+        </vertices><triangles><triangle v1="0" v2="2" v3="1"/><triangle v1="0" v2="1" v3="3"/>
+        <triangle v1="0" v2="3" v3="2"/><triangle v1="1" v2="2" v3="3"/></triangles></mesh></object>
+        <object id="2" type="model"><components>"#,
+    );
+    for i in 0..columns {
+        model +=
+            &format!(r#"<component objectid="1" transform="1 0 0 0 1 0 0 0 1 {} 0 0"/>"#, 2 * i);
+    }
+    model += r#"</components></object><object id="3" type="model"><components>"#;
+    for j in 0..rows {
+        model +=
+            &format!(r#"<component objectid="2" transform="1 0 0 0 1 0 0 0 1 0 {} 0"/>"#, 2 * j);
+    }
+    model += r#"</components></object></resources><build><item objectid="3"/></build></model>"#;
+    let loaded = read_as("many.3mf", three_mf(&model)).unwrap();
+    let copies = rows * columns;
+    assert_eq!(loaded.face_count(), 4 * copies);
+    // Exact: the correctly rounded volume of the whole is copies / 6 rounded once.
+    let exact = meshvol::exact_signed_volume(&loaded.surface).unwrap();
+    assert_eq!(exact, copies as f64 / 6.0);
+}

@@ -212,92 +212,25 @@ pub(super) fn place(
     let mut placed = Placed::with_capacity(vertices, triangles)
         .map_err(|message| ParseError::new(None, message))?;
 
+    // A mesh placed by several nodes is decoded once and placed from the copy; one
+    // placed once is decoded and moved in.
+    let mut uses = vec![0usize; doc.meshes.len()];
+    instances.iter().for_each(|i| uses[i.mesh] += 1);
+    let mut decoded: Vec<Option<Vec<Part>>> = (0..doc.meshes.len()).map(|_| None).collect();
     for instance in &instances {
         let first = placed.triangle_count();
-        for (p, primitive) in doc.meshes[instance.mesh].primitives.iter().enumerate() {
-            let item = format!("meshes[{}].primitives[{p}]", instance.mesh);
-            let Some(mode) = mode(primitive, &item)? else { continue };
-            let position = primitive
-                .attributes
-                .position
-                .ok_or_else(|| at(item.clone(), "no POSITION attribute"))?;
-            // The core spec allows only FLOAT positions; integers need KHR_mesh_quantization
-            // (read as it says). Read as numbers without it, they would be silently wrong.
-            let quantized = doc.extensions_used.iter().any(|e| e == "KHR_mesh_quantization");
-            let kind = doc.accessors.get(position).map(|a| a.component_type);
-            if let Some(kind) = kind.filter(|&k| k != FLOAT && !quantized) {
-                return Err(at(
-                    format!("accessors[{position}]"),
-                    format!(
-                        "POSITION has componentType {kind}; glTF allows only FLOAT (5126) \
-                         without KHR_mesh_quantization in extensionsUsed"
-                    ),
-                ));
+        let m = instance.mesh;
+        if uses[m] == 1 {
+            for (positions, tris) in decode_mesh(doc, &mut buffers, m)? {
+                placed.add_owned(positions, tris, &instance.placement);
             }
-            let positions: Vec<Point> =
-                read_accessor(&mut buffers, position, "VEC3", 3, |data, at, c, normalized| {
-                    match c {
-                        // The common case, without a type dispatch per coordinate.
-                        Component::F32 => [0, 4, 8].map(|k| {
-                            let b = [
-                                data[at + k],
-                                data[at + k + 1],
-                                data[at + k + 2],
-                                data[at + k + 3],
-                            ];
-                            f64::from(f32::from_le_bytes(b))
-                        }),
-                        _ => [0, 1, 2].map(|k| c.read(data, at + k * c.size(), normalized)),
-                    }
-                })?;
-            let bad = positions.par_iter().position_first(|p| p.iter().any(|c| !c.is_finite()));
-            if let Some(bad) = bad {
-                return Err(at(
-                    format!("accessors[{position}]"),
-                    format!("element {bad} is not finite"),
-                ));
+        } else {
+            if decoded[m].is_none() {
+                decoded[m] = Some(decode_mesh(doc, &mut buffers, m)?);
             }
-            let n = positions.len();
-            if let (Mode::Triangles, Some(a)) = (mode, primitive.indices) {
-                if let Some(tris) = packed_triangles(&buffers, a, n)? {
-                    placed.add_owned(positions, tris, &instance.placement);
-                    continue;
-                }
+            for (positions, tris) in decoded[m].iter().flatten() {
+                placed.add(positions, tris, &instance.placement);
             }
-            let listed: Vec<u32> = match primitive.indices {
-                Some(a) => {
-                    let item = format!("accessors[{a}]");
-                    let ty = doc.accessors.get(a).map_or(0, |a| a.component_type);
-                    if !matches!(ty, 5121 | 5123 | 5125) {
-                        return Err(at(item, "indices must be unsigned byte, short or int"));
-                    }
-                    let values = read_accessor(&mut buffers, a, "SCALAR", 1, |data, at, c, _| {
-                        c.index(data, at)
-                    })?;
-                    if let Some((k, &v)) =
-                        values.par_iter().enumerate().find_first(|(_, &v)| v as usize >= n)
-                    {
-                        return Err(at(
-                            item,
-                            format!(
-                                "index {v} (element {k}) is out of range: POSITION has {n} \
-                                 elements"
-                            ),
-                        ));
-                    }
-                    values
-                }
-                None => {
-                    let n32 = u32::try_from(n).map_err(|_| {
-                        at(item.clone(), format!("{n} vertices do not fit 32-bit indices"))
-                    })?;
-                    (0..n32).collect()
-                }
-            };
-            let count = mode.triangles(listed.len());
-            let tris: Vec<[u32; 3]> =
-                (0..count).into_par_iter().map(|t| mode.corners(t).map(|k| listed[k])).collect();
-            placed.add_owned(positions, tris, &instance.placement);
         }
         let node = &doc.nodes[instance.node];
         let name = node
@@ -309,6 +242,100 @@ pub(super) fn place(
     }
     placed.finish().map_err(|e| ParseError::new(None, e.to_string()))
 }
+
+/// The triangle primitives of mesh `mesh`, decoded: each its positions and its
+/// triangles (indexing them).
+fn decode_mesh(
+    doc: &Document,
+    buffers: &mut Buffers<'_>,
+    mesh: usize,
+) -> Result<Vec<Part>, ParseError> {
+    let mut parts = Vec::new();
+    for (p, primitive) in doc.meshes[mesh].primitives.iter().enumerate() {
+        let item = format!("meshes[{mesh}].primitives[{p}]");
+        let Some(mode) = mode(primitive, &item)? else { continue };
+        let position = primitive
+            .attributes
+            .position
+            .ok_or_else(|| at(item.clone(), "no POSITION attribute"))?;
+        // The core spec allows only FLOAT positions; integers need KHR_mesh_quantization
+        // (read as it says). Read as numbers without it, they would be silently wrong.
+        let quantized = doc.extensions_used.iter().any(|e| e == "KHR_mesh_quantization");
+        let kind = doc.accessors.get(position).map(|a| a.component_type);
+        if let Some(kind) = kind.filter(|&k| k != FLOAT && !quantized) {
+            return Err(at(
+                format!("accessors[{position}]"),
+                format!(
+                    "POSITION has componentType {kind}; glTF allows only FLOAT (5126) \
+                     without KHR_mesh_quantization in extensionsUsed"
+                ),
+            ));
+        }
+        let positions: Vec<Point> =
+            read_accessor(buffers, position, "VEC3", 3, |data, at, c, normalized| {
+                match c {
+                    // The common case, without a type dispatch per coordinate.
+                    Component::F32 => [0, 4, 8].map(|k| {
+                        let b =
+                            [data[at + k], data[at + k + 1], data[at + k + 2], data[at + k + 3]];
+                        f64::from(f32::from_le_bytes(b))
+                    }),
+                    _ => [0, 1, 2].map(|k| c.read(data, at + k * c.size(), normalized)),
+                }
+            })?;
+        let bad = positions.par_iter().position_first(|p| p.iter().any(|c| !c.is_finite()));
+        if let Some(bad) = bad {
+            return Err(at(
+                format!("accessors[{position}]"),
+                format!("element {bad} is not finite"),
+            ));
+        }
+        let n = positions.len();
+        if let (Mode::Triangles, Some(a)) = (mode, primitive.indices) {
+            if let Some(tris) = packed_triangles(buffers, a, n)? {
+                parts.push((positions, tris));
+                continue;
+            }
+        }
+        let listed: Vec<u32> = match primitive.indices {
+            Some(a) => {
+                let item = format!("accessors[{a}]");
+                let ty = doc.accessors.get(a).map_or(0, |a| a.component_type);
+                if !matches!(ty, 5121 | 5123 | 5125) {
+                    return Err(at(item, "indices must be unsigned byte, short or int"));
+                }
+                let values =
+                    read_accessor(buffers, a, "SCALAR", 1, |data, at, c, _| c.index(data, at))?;
+                if let Some((k, &v)) =
+                    values.par_iter().enumerate().find_first(|(_, &v)| v as usize >= n)
+                {
+                    return Err(at(
+                        item,
+                        format!(
+                            "index {v} (element {k}) is out of range: POSITION has {n} \
+                             elements"
+                        ),
+                    ));
+                }
+                values
+            }
+            None => {
+                let n32 = u32::try_from(n).map_err(|_| {
+                    at(item.clone(), format!("{n} vertices do not fit 32-bit indices"))
+                })?;
+                (0..n32).collect()
+            }
+        };
+        let count = mode.triangles(listed.len());
+        let tris: Vec<[u32; 3]> =
+            (0..count).into_par_iter().map(|t| mode.corners(t).map(|k| listed[k])).collect();
+        parts.push((positions, tris));
+    }
+    Ok(parts)
+}
+
+/// One primitive: positions, and triangles indexing them.
+type Part = (Vec<Point>, Vec<[u32; 3]>);
 
 #[cfg(test)]
 mod tests {
