@@ -1,11 +1,13 @@
 //! `meshvol volume`: mass properties of each file's solid.
 
-use crate::driver::{self, Output};
+use crate::driver::{self, Driver, Output};
+use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
-use clap::Args;
+use clap::{Args, ValueEnum};
+use meshvol_report::inertial::{inertial, RobotFormat};
 use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Args)]
@@ -14,9 +16,14 @@ pub struct VolumeArgs {
     /// standard input (format from the content).
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
-    /// Print one JSON object per file, one per line.
-    #[arg(long)]
+    /// Print one JSON object per file, one per line (`--format json`).
+    #[arg(long, conflicts_with = "format")]
     json: bool,
+    /// What to print: `text` (the default), `json`, or the `<inertial>` element of a
+    /// robot description, `urdf`, `sdf` or `mjcf` (mass, centre of mass and inertia in
+    /// SI units: give --units FILE:m and --density in kg/m³).
+    #[arg(long, value_enum)]
+    format: Option<Format>,
     /// Density, in mass per reported volume unit; scales `mass` and `inertia`.
     #[arg(long, default_value_t = 1.0, value_parser = crate::positive_finite, allow_hyphen_values = true)]
     density: f64,
@@ -38,13 +45,47 @@ pub struct VolumeArgs {
     solid: SolidArgs,
 }
 
+/// What `volume` prints.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Format {
+    Text,
+    Json,
+    Urdf,
+    Sdf,
+    Mjcf,
+}
+
 /// Runs the command.
 pub fn run(args: VolumeArgs, quiet: bool) -> ExitCode {
     let options = VolumeOptions { density: args.density, units: args.units, exact: args.exact };
     let check = args.solid.check();
-    driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
+    let measure = |path: &Path, progress: &Progress| {
         let input = solid::read(path, check, progress)?;
         progress.stage("measuring", path);
         volume(&input.subject(), &options)
-    })
+    };
+    let robot = match args.format {
+        Some(Format::Urdf) => RobotFormat::Urdf,
+        Some(Format::Sdf) => RobotFormat::Sdf,
+        Some(Format::Mjcf) => RobotFormat::Mjcf,
+        format => {
+            let json = args.json || format == Some(Format::Json);
+            return driver::each(&args.files, Output { json, quiet }, measure);
+        }
+    };
+    // One element per file, after a comment naming it.
+    let mut driver = Driver::new(&args.files, Output { json: false, quiet });
+    for path in &args.files {
+        let name = path.display().to_string();
+        let printed = measure(path, &driver.progress).and_then(|report| {
+            let element = inertial(&report, robot)?;
+            Ok((report, format!("<!-- {} -->\n{element}", name.replace("--", "- -"))))
+        });
+        driver.progress.done(path);
+        match printed {
+            Ok((report, element)) => driver.print(&report, &element),
+            Err(e) => driver.fail(&name, &e),
+        }
+    }
+    driver.finish()
 }

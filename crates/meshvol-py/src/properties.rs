@@ -4,6 +4,7 @@ use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::PyMesh;
 use meshvol::topology::Check;
+use meshvol_report::inertial::{inertial, RobotFormat};
 use meshvol_report::subject::Subject;
 use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions, VolumeReport, NO_FACES};
@@ -32,6 +33,10 @@ pub struct PyMassProperties {
 }
 
 impl PyMassProperties {
+    fn inertial(&self, format: RobotFormat) -> PyResult<String> {
+        inertial(&self.report, format).map_err(bad_argument)
+    }
+
     pub fn new(report: VolumeReport) -> PyResult<Self> {
         Ok(PyMassProperties { fields: Fields::new(&report)?, report })
     }
@@ -106,6 +111,23 @@ impl PyMassProperties {
     fn bounds<'py>(&self, py: Python<'py>) -> Option<Corners<'py>> {
         let b = self.report.bounds.as_ref()?;
         Some((PyArray1::from_slice(py, &b.min), PyArray1::from_slice(py, &b.max)))
+    }
+
+    /// The `<inertial>` element of a URDF link: mass, centre of mass and inertia tensor.
+    /// The report must be in metres (units="mm:m", or a file declaring metres) and the
+    /// density in kg/m³.
+    fn to_urdf(&self) -> PyResult<String> {
+        self.inertial(RobotFormat::Urdf)
+    }
+
+    /// The `<inertial>` element of an SDF link (as to_urdf, in SDF's form).
+    fn to_sdf(&self) -> PyResult<String> {
+        self.inertial(RobotFormat::Sdf)
+    }
+
+    /// MuJoCo's `<inertial pos mass fullinertia>` element (as to_urdf, in MJCF's form).
+    fn to_mjcf(&self) -> PyResult<String> {
+        self.inertial(RobotFormat::Mjcf)
     }
 
     fn __repr__(&self) -> String {

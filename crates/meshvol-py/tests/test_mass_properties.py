@@ -189,3 +189,21 @@ def test_overflowing_moments_are_an_error_as_in_the_command():
     mp = small.mass_properties(units="um:m")
     assert mp.volume == pytest.approx(1e162, rel=1e-12)
     assert mp.to_dict()["units"]["volume"] == "m^3"
+
+
+def test_inertial_elements_of_a_steel_cube():
+    # A 10 mm steel cube: m = 7850 kg/m³ · 1e-6 m³, ixx = m (b² + c²) / 12.
+    vertices, faces = box((0, 0, 0), (10, 10, 10))
+    mp = meshvol.Mesh(vertices, faces).mass_properties(density=7850.0, units="mm:m")
+    m = 7850.0 * 1e-6
+    i = m * (0.01**2 + 0.01**2) / 12
+    urdf = mp.to_urdf()
+    assert f'<mass value="{mp.mass!r}"/>' in urdf
+    assert mp.mass == pytest.approx(m, rel=1e-14)
+    ixx = float(urdf.split('ixx="')[1].split('"')[0])
+    assert ixx == pytest.approx(i, rel=1e-12)
+    assert 'xyz="0.005 0.005 0.005"' in urdf
+    assert "<ixx>" in mp.to_sdf() and "fullinertia=" in mp.to_mjcf()
+    # Not in metres: refused, saying how.
+    with pytest.raises(ValueError, match="units"):
+        meshvol.Mesh(vertices, faces).mass_properties(density=7850.0).to_urdf()

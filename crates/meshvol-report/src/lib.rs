@@ -34,6 +34,7 @@ pub mod area;
 pub mod check;
 pub mod grid;
 pub mod hull;
+pub mod inertial;
 pub mod number;
 pub mod profile;
 pub mod repair;

@@ -179,6 +179,12 @@ class MassProperties(_CheckFacts):
     @property
     def bounds(self) -> Optional[Tuple[_F64, _F64]]:
         """(min, max) corners of the vertices' bounding box."""
+    def to_urdf(self) -> str:
+        """URDF's <inertial> element (report in metres: units="mm:m"; density in kg/m³)."""
+    def to_sdf(self) -> str:
+        """SDF's <inertial> element."""
+    def to_mjcf(self) -> str:
+        """MuJoCo's <inertial pos mass fullinertia> element."""
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol volume --json`."""
 
