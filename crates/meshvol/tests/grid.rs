@@ -378,6 +378,13 @@ fn bad_grids_are_refused_before_allocating() {
         Err(e @ GridError::TooManyCells { .. }) => assert!(e.to_string().contains("EiB"), "{e}"),
         other => panic!("{other:?}"),
     }
+    // A pitch so fine that one axis alone has 5·10³⁰⁰ cells: named, not a saturated count.
+    match Grid::with_pitch([0.0; 3], [5.0, 1.0, 1.0], [1e-300; 3]) {
+        Err(e @ GridError::PitchTooFine { axis: 'x', .. }) => {
+            assert!(e.to_string().contains("larger pitch"), "{e}")
+        }
+        other => panic!("{other:?}"),
+    }
     let huge = Grid::new([0.0; 3], [1.0; 3], [1_000_000; 3]).unwrap();
     match cell_volumes(&cuboid([0.0; 3], [1.0; 3]), &huge) {
         Err(e @ GridError::OutOfMemory { .. }) => assert!(e.to_string().contains("6.9 EiB"), "{e}"),

@@ -69,6 +69,8 @@ pub enum GridError {
     TooManyCells { counts: [usize; 3], cells: u128, bytes: u128 },
     #[error("could not allocate {} for the cell volumes", bytes_text(*.bytes))]
     OutOfMemory { bytes: u128 },
+    #[error("a pitch of {pitch:e} along {axis} across {extent:e} gives about {:.1e} cells on that axis alone: use a larger pitch", extent / pitch)]
+    PitchTooFine { axis: char, pitch: f64, extent: f64 },
 }
 
 /// `bytes` in binary units: `512 B`, `1.5 GiB`, `8.0 EiB`.
@@ -145,19 +147,13 @@ impl Grid {
         }) {
             return Err(GridError::EmptyBounds { axis: AXES[a], min: min[a], max: max[a] });
         }
-        let counts = [0, 1, 2].map(|a| {
-            let n = ((max[a] - min[a]) / pitch[a]).ceil().max(1.0);
-            if n < usize::MAX as f64 {
-                n as usize
-            } else {
-                usize::MAX
-            }
-        });
-        if counts.contains(&usize::MAX) {
-            let cells = u128::MAX / 8;
-            return Err(GridError::TooManyCells { counts, cells, bytes: u128::MAX });
+        let counts = [0, 1, 2].map(|a| ((max[a] - min[a]) / pitch[a]).ceil().max(1.0));
+        // Counts that do not fit an index are named by axis, not printed saturated.
+        if let Some(a) = (0..3).find(|&a| counts[a] >= u32::MAX as f64) {
+            let (pitch, extent) = (pitch[a], max[a] - min[a]);
+            return Err(GridError::PitchTooFine { axis: AXES[a], pitch, extent });
         }
-        Grid::new(min, pitch, counts)
+        Grid::new(min, pitch, counts.map(|n| n as usize))
     }
 
     /// The number of cells.
