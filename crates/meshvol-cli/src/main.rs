@@ -5,6 +5,7 @@
 //! measured (and, for `check`, bounds a volume), 1 when any failed, 2 on a usage error.
 
 mod area;
+mod below;
 mod check;
 mod driver;
 mod grid;
@@ -67,6 +68,9 @@ enum Command {
     /// The volume of the union of overlapping bodies (files, or one file's shells) as a
     /// certified interval, without a boolean mesh.
     Union(union::UnionArgs),
+    /// The part of the solid below a plane: volume, centroid (centre of buoyancy),
+    /// wetted area, section (waterplane); or the level that holds a given volume.
+    Below(below::BelowArgs),
 }
 
 fn non_negative_finite(s: &str) -> Result<f64, String> {
@@ -149,5 +153,6 @@ fn main() -> ExitCode {
         Command::Grid(args) => grid::run(args, cli.quiet),
         Command::Profile(args) => profile::run(args, cli.quiet),
         Command::Union(args) => union::run(args, cli.quiet),
+        Command::Below(args) => below::run(args, cli.quiet),
     }
 }

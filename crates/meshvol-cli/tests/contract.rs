@@ -53,6 +53,7 @@ fn every_json_line_has_file_and_warnings() {
         vec!["profile", p(&obj), "--levels", "2"],
         vec!["union", p(&obj)],
         vec!["section", p(&obj), "--plane", "z=0.5"],
+        vec!["below", p(&obj), "--plane", "0,0,1,0.5"],
         vec!["area", p(&wkt)],
         vec!["hull", p(&xyz)],
         vec!["repair", p(&obj), "-o", p(&repaired)],
@@ -85,6 +86,7 @@ fn a_failed_file_is_a_json_line_with_its_error() {
         vec!["profile", p(&missing), "--levels", "2"],
         vec!["union", p(&missing)],
         vec!["section", p(&missing), "--plane", "z=0"],
+        vec!["below", p(&missing), "--volume", "1"],
         vec!["area", p(&bad_wkt)],
         vec!["hull", p(&missing)],
     ];

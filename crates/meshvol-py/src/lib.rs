@@ -13,6 +13,7 @@
 //! - Every computation runs with the GIL released (`Python::detach`).
 //! - Every error is a Python exception with the command's message: [`errors`].
 
+mod below;
 mod check;
 mod convert;
 mod dict;
@@ -41,6 +42,7 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<grid::PyUnion>()?;
     m.add_class::<polygon::PyAreaProperties>()?;
     m.add_class::<hull::PyHull>()?;
+    m.add_class::<below::PyBelow>()?;
     m.add_function(wrap_pyfunction!(mesh::load, m)?)?;
     m.add_function(wrap_pyfunction!(grid::union, m)?)?;
     m.add_function(wrap_pyfunction!(polygon::polygon_area, m)?)?;

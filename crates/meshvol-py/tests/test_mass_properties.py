@@ -207,3 +207,16 @@ def test_inertial_elements_of_a_steel_cube():
     # Not in metres: refused, saying how.
     with pytest.raises(ValueError, match="units"):
         meshvol.Mesh(vertices, faces).mass_properties(density=7850.0).to_urdf()
+
+
+def test_below_a_plane_of_the_unit_cube():
+    # x + z <= 1: a prism of volume 1/2 and centroid (1/3, 1/2, 1/3); waterplane √2.
+    cube = meshvol.Mesh(*box())
+    b = cube.below(plane=(1.0, 0.0, 1.0, 1.0))
+    assert b.volume == pytest.approx(0.5, rel=1e-15)
+    assert b.centroid == pytest.approx([1 / 3, 0.5, 1 / 3], rel=1e-14)
+    assert b.section_area == pytest.approx(2**0.5, rel=1e-14)
+    # The level of z that holds 0.3.
+    assert cube.below(volume=0.3).level == pytest.approx(0.3, rel=1e-14)
+    with pytest.raises(ValueError, match="not both"):
+        cube.below(plane=(0, 0, 1, 0.5), volume=0.3)

@@ -30,6 +30,7 @@ def samples():
         "Union": meshvol.union(mesh),
         "Hull": meshvol.convex_hull(mesh.vertices),
         "AreaProperties": meshvol.polygon_area(square),
+        "Below": mesh.below(volume=0.5),
     }
 
 

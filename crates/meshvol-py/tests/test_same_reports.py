@@ -83,3 +83,9 @@ def test_area(tmp_path):
         k: v for k, v in theirs.items() if k not in source
     }
     assert ours["area"] == 11.0
+
+
+def test_below(two_boxes):
+    with pytest.warns(meshvol.MeshWarning):
+        ours = meshvol.load(two_boxes).below(volume=5.0, heel=10.0).to_dict()
+    assert ours == command("below", str(two_boxes), "--volume", "5", "--heel", "10")

@@ -31,6 +31,7 @@ macro_rules! file_and_warnings {
 pub(crate) use file_and_warnings;
 
 pub mod area;
+pub mod below;
 pub mod check;
 pub mod grid;
 pub mod hull;

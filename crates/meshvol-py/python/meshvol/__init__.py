@@ -29,6 +29,7 @@ release the GIL, so threads measure in parallel.
 
 from ._meshvol import (
     AreaProperties,
+    Below,
     Check,
     Hull,
     InvalidMeshError,
@@ -50,6 +51,7 @@ from ._meshvol import (
 
 __all__ = [
     "AreaProperties",
+    "Below",
     "Check",
     "Hull",
     "InvalidMeshError",

@@ -106,6 +106,16 @@ class Mesh:
         check: bool = True,
     ) -> Profile:
         """Volume below each level along an axis (`meshvol profile`)."""
+    def below(
+        self,
+        plane: Optional[Tuple[float, float, float, float]] = None,
+        volume: Optional[float] = None,
+        direction: Tuple[float, float, float] = (0.0, 0.0, 1.0),
+        heel: float = 0.0,
+        trim: float = 0.0,
+        check: bool = True,
+    ) -> Below:
+        """The solid below a plane, or below the level holding `volume` (`meshvol below`)."""
     def triangulated(self) -> Mesh:
         """Every face replaced by its fan of triangles."""
     def flipped(self) -> Mesh:
@@ -289,6 +299,21 @@ class AreaProperties:
     @property
     def principal_moments(self) -> _F64:
         """Shape (2,), larger first."""
+
+class Below:
+    """The part of a solid below a plane (`meshvol below --json`'s keys)."""
+
+    file: Optional[str]
+    normal: list[float]
+    level: float
+    volume: float
+    centroid: Optional[list[float]]
+    wetted_area: float
+    section_area: float
+    section_centroid: Optional[list[float]]
+    warnings: list[str]
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol below --json`."""
 
 class Hull:
     """A convex hull (`meshvol hull --json`'s keys) and its mesh."""

@@ -1,0 +1,66 @@
+//! `meshvol below`: the part of each file's solid under a plane: displaced volume,
+//! centre of buoyancy, wetted area, waterplane; or the level that holds a volume.
+
+use crate::driver::{self, Output};
+use crate::solid::{self, SolidArgs};
+use clap::Args;
+use meshvol_report::below::{below, BelowOptions, Waterline};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Args)]
+pub struct BelowArgs {
+    /// Mesh files.
+    #[arg(required = true, value_name = "FILE")]
+    files: Vec<PathBuf>,
+    /// The plane n·x = D: the part where n·x ≤ D is measured.
+    #[arg(long, value_name = "NX,NY,NZ,D", value_parser = parse_numbers::<4>, allow_hyphen_values = true, required_unless_present = "volume", conflicts_with = "volume")]
+    plane: Option<[f64; 4]>,
+    /// The volume to hold below: finds the level D along --direction (a draft).
+    #[arg(long, value_name = "V", value_parser = crate::positive_finite, allow_hyphen_values = true)]
+    volume: Option<f64>,
+    /// The direction the level is taken along, with --volume (default: z).
+    #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_numbers::<3>, allow_hyphen_values = true, requires = "volume")]
+    direction: Option<[f64; 3]>,
+    /// Heel: the plane's normal turned by DEG degrees about x.
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
+    heel: f64,
+    /// Trim: the plane's normal turned by DEG degrees about y (after the heel).
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
+    trim: f64,
+    /// Print one JSON object per file, one per line.
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    solid: SolidArgs,
+}
+
+fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| format!("'{s}': expected {N} comma-separated numbers"))?;
+    v.try_into().map_err(|_| format!("'{s}': expected {N} comma-separated numbers"))
+}
+
+/// Runs the command.
+pub fn run(args: BelowArgs, quiet: bool) -> ExitCode {
+    let waterline = match (args.plane, args.volume) {
+        (Some([nx, ny, nz, d]), _) => Waterline::Plane { normal: [nx, ny, nz], d },
+        (None, Some(volume)) => {
+            Waterline::Volume { direction: args.direction.unwrap_or([0.0, 0.0, 1.0]), volume }
+        }
+        (None, None) => {
+            eprintln!("meshvol: error: give --plane NX,NY,NZ,D or --volume V");
+            return ExitCode::from(2);
+        }
+    };
+    let options = BelowOptions { waterline, heel: args.heel, trim: args.trim };
+    let check = args.solid.check();
+    driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
+        let input = solid::read(path, check, progress)?;
+        progress.stage("measuring", path);
+        below(&input.subject(), &options)
+    })
+}

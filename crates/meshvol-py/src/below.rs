@@ -1,0 +1,65 @@
+//! `Mesh.below`: the part of the solid under a plane (what `meshvol below` reports).
+
+use crate::dict::Fields;
+use crate::errors::{bad_argument, mesh_error};
+use crate::mesh::PyMesh;
+use crate::properties::require_faces;
+use meshvol_report::below::{below, BelowOptions, BelowReport, Waterline};
+use pyo3::prelude::*;
+
+/// The part of a solid under a plane: the report of `meshvol below --json`, whose keys
+/// are its attributes and the keys of to_dict(): normal and level (the part is where
+/// normal·x <= level), volume, centroid (centre of buoyancy), wetted_area, section_area
+/// and section_centroid (the waterplane), warnings.
+#[pyclass(module = "meshvol", name = "Below", frozen)]
+pub struct PyBelow {
+    report: BelowReport,
+    fields: Fields,
+}
+
+#[pymethods]
+impl PyBelow {
+    fn __repr__(&self) -> String {
+        format!("Below(level={:?}, volume={:?})", self.report.level, self.report.volume)
+    }
+}
+
+crate::dict::report_methods!(PyBelow, "Below");
+
+#[pymethods]
+impl PyMesh {
+    /// The part of the solid below a plane (`meshvol below`): plane=(nx, ny, nz, d) for
+    /// the part where n·x <= d; or volume=V for the level along direction (default z)
+    /// that holds V below it (a draft). heel and trim turn the normal by that many
+    /// degrees about x, then about y. check=True (the default) measures the checked
+    /// solid, as every command does.
+    #[pyo3(signature = (plane = None, volume = None, direction = (0.0, 0.0, 1.0), heel = 0.0, trim = 0.0, check = true))]
+    #[allow(clippy::too_many_arguments)]
+    fn below(
+        &self,
+        py: Python<'_>,
+        plane: Option<[f64; 4]>,
+        volume: Option<f64>,
+        direction: (f64, f64, f64),
+        heel: f64,
+        trim: f64,
+        check: bool,
+    ) -> PyResult<PyBelow> {
+        require_faces(&self.mesh)?;
+        let waterline = match (plane, volume) {
+            (Some([nx, ny, nz, d]), None) => Waterline::Plane { normal: [nx, ny, nz], d },
+            (None, Some(volume)) => {
+                Waterline::Volume { direction: [direction.0, direction.1, direction.2], volume }
+            }
+            _ => return Err(bad_argument("give plane=(nx, ny, nz, d) or volume=V, not both")),
+        };
+        if ![heel, trim].iter().all(|x| x.is_finite()) {
+            return Err(bad_argument("heel and trim must be finite numbers of degrees"));
+        }
+        let options = BelowOptions { waterline, heel, trim };
+        let subject = self.subject(py, check)?;
+        let report = py.detach(|| below(&subject, &options)).map_err(mesh_error)?;
+        self.warn(py, &report.warnings)?;
+        Ok(PyBelow { fields: Fields::new(&report)?, report })
+    }
+}
