@@ -5,6 +5,7 @@ use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::PyMesh;
 use crate::properties::require_faces;
 use meshvol_report::below::{below, BelowOptions, BelowReport, Waterline};
+use numpy::PyArray1;
 use pyo3::prelude::*;
 
 /// The part of a solid under a plane: the report of `meshvol below --json`, whose keys
@@ -19,6 +20,24 @@ pub struct PyBelow {
 
 #[pymethods]
 impl PyBelow {
+    /// The plane's unit normal, a float64 array of 3.
+    #[getter]
+    fn normal<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.report.normal)
+    }
+
+    /// The part's centroid (centre of buoyancy), a float64 array of 3, or None.
+    #[getter]
+    fn centroid<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.report.centroid.map(|c| PyArray1::from_slice(py, &c))
+    }
+
+    /// The section's centroid, a float64 array of 3, or None.
+    #[getter]
+    fn section_centroid<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.report.section_centroid.map(|c| PyArray1::from_slice(py, &c))
+    }
+
     fn __repr__(&self) -> String {
         format!("Below(level={:?}, volume={:?})", self.report.level, self.report.volume)
     }

@@ -304,14 +304,20 @@ class Below:
     """The part of a solid below a plane (`meshvol below --json`'s keys)."""
 
     file: Optional[str]
-    normal: list[float]
     level: float
     volume: float
-    centroid: Optional[list[float]]
     wetted_area: float
     section_area: float
-    section_centroid: Optional[list[float]]
     warnings: list[str]
+    @property
+    def normal(self) -> _F64:
+        """Shape (3,): the plane's unit normal."""
+    @property
+    def centroid(self) -> Optional[_F64]:
+        """Shape (3,): the centre of buoyancy; None without volume."""
+    @property
+    def section_centroid(self) -> Optional[_F64]:
+        """Shape (3,): the waterplane's centroid; None without a section."""
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol below --json`."""
 
