@@ -36,8 +36,9 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
         progress.stage("reading", path);
         let loaded = input::load(path)?;
         progress.stage("checking", path);
-        let c = meshvol::topology::check(&loaded.surface, &options)
-            .map_err(|e| format!("{name}: {e}"))?;
+        let c =
+            meshvol::topology::check_assembled(&loaded.surface, loaded.assembly.as_ref(), &options)
+                .map_err(|e| format!("{name}: {e}"))?;
         Ok(check(&Source::of(&name, &loaded), &c))
     })
 }

@@ -85,7 +85,8 @@ pub fn read(
         Some(options) => {
             progress.stage("checking", path);
             let check =
-                topology::check(&loaded.surface, &options).map_err(|e| format!("{name}: {e}"))?;
+                topology::check_assembled(&loaded.surface, loaded.assembly.as_ref(), &options)
+                    .map_err(|e| format!("{name}: {e}"))?;
             Some(check)
         }
     };

@@ -2,7 +2,7 @@
 //! standard input, format detection and `--quiet`, through the built binary.
 
 mod common;
-use common::{f, meshvol, write};
+use common::{f, meshvol, three_mf, write};
 
 use serde_json::Value;
 use std::io::Write;
@@ -53,14 +53,6 @@ fn box_mesh_xml(x: f64, a: f64, b: f64, c: f64) -> String {
         }
     }
     s + "</triangles></mesh>"
-}
-
-fn three_mf(model: &str) -> Vec<u8> {
-    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    let options = zip::write::SimpleFileOptions::default();
-    zip.start_file("3D/3dmodel.model", options).unwrap();
-    zip.write_all(model.as_bytes()).unwrap();
-    zip.finish().unwrap().into_inner()
 }
 
 /// Two boxes (volumes 6 and 1) in inches.

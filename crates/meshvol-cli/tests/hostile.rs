@@ -2,7 +2,8 @@
 //! bounded memory; absurd settings are refused or capped with a message.
 
 mod common;
-use common::meshvol;
+use common::{f, meshvol, three_mf, write};
+use serde_json::Value;
 use std::io::Write;
 use std::process::{Command, Stdio};
 
@@ -54,4 +55,54 @@ fn negative_settings_say_what_they_must_be() {
     assert!(stderr.contains("--density") && stderr.contains("must be a positive number"));
     let out = meshvol(&["union", "x.stl", "--tolerance", "-1e-6"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("must be a positive number"));
+}
+
+/// A 3MF placing a tetrahedron of volume 1/8 `n`×`n` times (two levels of components,
+/// copies 2 apart along x and y), the second level mirrored in x every other row when
+/// `mirror`: about 2 KB for 10⁶ copies.
+fn placed_tetrahedra(n: usize, mirror: bool) -> String {
+    let mut model = String::from(
+        r#"<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>
+        <object id="1" type="model"><mesh><vertices>
+        <vertex x="0" y="0" z="0"/><vertex x="1" y="0" z="0"/><vertex x="0" y="1" z="0"/><vertex x="0" y="0" z="0.75"/>
+        </vertices><triangles><triangle v1="0" v2="2" v3="1"/><triangle v1="0" v2="1" v3="3"/>
+        <triangle v1="0" v2="3" v3="2"/><triangle v1="1" v2="2" v3="3"/></triangles></mesh></object>
+        <object id="2" type="model"><components>"#,
+    );
+    for i in 0..n {
+        model +=
+            &format!(r#"<component objectid="1" transform="1 0 0 0 1 0 0 0 1 {} 0 0"/>"#, 2 * i);
+    }
+    model += r#"</components></object><object id="3" type="model"><components>"#;
+    for j in 0..n {
+        let sx = if mirror && j % 2 == 1 { -1 } else { 1 };
+        let x = if sx < 0 { 2 * n } else { 0 };
+        model += &format!(
+            r#"<component objectid="2" transform="{sx} 0 0 0 1 0 0 0 1 {x} {} 0"/>"#,
+            2 * j
+        );
+    }
+    model + r#"</components></object></resources><build><item objectid="3"/></build></model>"#
+}
+
+/// 10⁶ placed copies are checked from their one part: the checked volume is exactly
+/// 10⁶ × 1/8, every copy a closed shell, and `check` agrees.
+#[test]
+fn a_million_placements_are_measured_from_their_part() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "tets.3mf", three_mf(&placed_tetrahedra(1000, true)));
+    let out = meshvol(&["volume", "--json", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(f(&r["volume"]), 125000.0);
+    assert_eq!(r["shells"].as_u64(), Some(1_000_000));
+    assert_eq!((r["closed"].as_bool(), r["bounds_a_volume"].as_bool()), (Some(true), Some(true)));
+    let out = meshvol(&["check", "--json", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let c: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((f(&c["solid_volume"]), c["orientation"].as_str()), (125000.0, Some("outward")));
+    assert_eq!(
+        (c["edges"].as_u64(), c["euler_characteristic"].as_i64()),
+        (Some(6_000_000), Some(2_000_000))
+    );
 }

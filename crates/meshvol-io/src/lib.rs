@@ -263,6 +263,10 @@ pub struct Loaded {
     /// The length unit the file declares, if its format declares one.
     pub unit: Option<LengthUnit>,
     pub warnings: Vec<String>,
+    /// How the surface was assembled from copies of parts, when the file places a part
+    /// more than once (3MF components and items, glTF nodes): lets the check check each
+    /// part once ([`meshvol::topology::check_assembled`]).
+    pub assembly: Option<meshvol::assembly::Assembly>,
 }
 
 impl Loaded {
@@ -417,6 +421,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
     };
     let mut objects = Vec::new();
     let mut unit = None;
+    let mut assembly = None;
     let (format, surface) = match family {
         Family::Stl => match stl::classify(&bytes).map_err(with_path)? {
             stl::Kind::Binary { triangles, trailing } => {
@@ -454,12 +459,14 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
             let model = threemf::read(&bytes, &mut warnings).map_err(with_path)?;
             objects = model.objects;
             unit = Some(model.unit);
+            assembly = model.assembly;
             (Format::ThreeMf, LoadedSurface::Mesh(model.mesh))
         }
         Family::Gltf => {
             let scene = gltf::read(path, &bytes, &mut warnings).map_err(with_path)?;
             objects = scene.objects;
             unit = Some(LengthUnit::Metre);
+            assembly = scene.assembly;
             let format = if scene.binary { Format::Glb } else { Format::Gltf };
             (format, LoadedSurface::Mesh(scene.mesh))
         }
@@ -471,6 +478,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
         objects: objects_if_several(objects),
         unit,
         warnings,
+        assembly,
     })
 }
 

@@ -47,8 +47,9 @@ use quick_xml::name::ResolveResult;
 use quick_xml::NsReader;
 
 use crate::error::{line_of, Location, ParseError};
-use crate::transform::{Affine, Placed};
+use crate::transform::Placed;
 use crate::{LengthUnit, Object};
+use meshvol::assembly::{Affine, Assembly};
 
 /// The 3MF core namespace.
 const CORE: &[u8] = b"http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
@@ -64,6 +65,8 @@ pub(crate) struct Model {
     pub mesh: Mesh,
     pub objects: Vec<Object>,
     pub unit: LengthUnit,
+    /// Which object each placed copy is, when an object is placed more than once.
+    pub assembly: Option<Assembly>,
 }
 
 /// Whether the bytes start like a zip archive.
@@ -446,12 +449,14 @@ fn parse_model(xml: &[u8]) -> Result<Parsed, XmlError> {
     Ok(parsed)
 }
 
-/// What an object expands to: vertices, triangles and placements (itself included).
+/// What an object expands to: vertices, triangles, placements (itself included) and
+/// copies of meshes.
 #[derive(Clone, Copy, Default)]
 struct Size {
     vertices: u64,
     triangles: u64,
     placements: u64,
+    meshes: u64,
 }
 
 /// The expanded size of object `root` (referenced at byte `at`) and of every object
@@ -491,6 +496,7 @@ fn size(
                         vertices: positions.len() as u64,
                         triangles: triangles.len() as u64,
                         placements: 1,
+                        meshes: 1,
                     };
                     sizes.insert(id, Some(size));
                     stack.pop();
@@ -512,6 +518,7 @@ fn size(
             sum.vertices = sum.vertices.saturating_add(s.vertices);
             sum.triangles = sum.triangles.saturating_add(s.triangles);
             sum.placements = sum.placements.saturating_add(s.placements);
+            sum.meshes = sum.meshes.saturating_add(s.meshes);
         }
         sizes.insert(id, Some(sum));
         stack.pop();
@@ -540,6 +547,7 @@ fn build(
         total.vertices = total.vertices.saturating_add(s.vertices);
         total.triangles = total.triangles.saturating_add(s.triangles);
         total.placements = total.placements.saturating_add(s.placements);
+        total.meshes = total.meshes.saturating_add(s.meshes);
         measured.push(item);
     }
     if !skipped.is_empty() {
@@ -558,7 +566,10 @@ fn build(
             ),
         ));
     }
-    let mut placed = Placed::with_capacity(total.vertices, total.triangles)
+    let mesh_objects =
+        parsed.objects.values().filter(|o| matches!(o.content, Content::Mesh { .. })).count();
+    let copies = (total.meshes > mesh_objects as u64).then_some(total.meshes);
+    let mut placed = Placed::with_capacity(total.vertices, total.triangles, copies)
         .map_err(|m| ParseError::new(None, m))?;
     for item in measured {
         let first = placed.triangle_count();
@@ -568,7 +579,7 @@ fn build(
             let Some(object) = parsed.objects.get(&id) else { continue };
             match &object.content {
                 Content::Mesh { positions, triangles } => {
-                    placed.add(positions, triangles, &placement)
+                    placed.add((id, 0), positions, triangles, &placement)
                 }
                 Content::Components(list) => {
                     for c in list.iter().rev() {
@@ -585,6 +596,7 @@ fn build(
             .unwrap_or_else(|| format!("object {}", item.object));
         placed.close_object(name, first);
     }
-    let (mesh, objects) = placed.finish().map_err(|e| ParseError::new(None, e.to_string()))?;
-    Ok(Model { mesh, objects, unit: parsed.unit })
+    let (mesh, objects, assembly) =
+        placed.finish().map_err(|e| ParseError::new(None, e.to_string()))?;
+    Ok(Model { mesh, objects, unit: parsed.unit, assembly })
 }

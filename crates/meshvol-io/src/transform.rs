@@ -1,51 +1,13 @@
-//! Affine transforms of points, as 3MF components and glTF nodes place their meshes, and
-//! the triangle mesh that the placed copies are gathered into.
+//! The triangle mesh that copies placed by affine transforms (3MF components, glTF
+//! nodes) are gathered into, and the [`Assembly`] that says which part each copy is.
 
+use std::collections::HashMap;
+
+use meshvol::assembly::{Affine, Assembly, Placement};
 use meshvol::{Mesh, Point};
 use rayon::prelude::*;
 
 use crate::Object;
-
-/// `p ↦ L·p + t`, stored as rows `[L₀ t₀], [L₁ t₁], [L₂ t₂]`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Affine(pub [[f64; 4]; 3]);
-
-impl Affine {
-    pub const IDENTITY: Affine =
-        Affine([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]);
-
-    #[inline]
-    pub fn apply(&self, p: Point) -> Point {
-        let m = &self.0;
-        [0, 1, 2].map(|r| m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] + m[r][3])
-    }
-
-    /// `outer ∘ self`: this transform first, then `outer`.
-    pub fn then(&self, outer: &Affine) -> Affine {
-        let (a, b) = (&outer.0, &self.0);
-        let mut out = [[0.0; 4]; 3];
-        for r in 0..3 {
-            for c in 0..4 {
-                out[r][c] = a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c];
-            }
-            out[r][3] += a[r][3];
-        }
-        Affine(out)
-    }
-
-    /// The determinant of the linear part: negative for a mirroring transform, which
-    /// turns outward-wound faces inward.
-    pub fn determinant(&self) -> f64 {
-        let m = &self.0;
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    }
-
-    pub fn is_finite(&self) -> bool {
-        self.0.iter().flatten().all(|x| x.is_finite())
-    }
-}
 
 /// Triangle meshes placed by transforms, gathered into one mesh, with one [`Object`] per
 /// placed part.
@@ -53,7 +15,14 @@ pub(crate) struct Placed {
     positions: Vec<Point>,
     triangles: Vec<[u32; 3]>,
     objects: Vec<Object>,
+    /// The parts and copies, when the reader asked for them.
+    assembly: Option<Assembly>,
+    /// The reader's name of each part recorded in `assembly`, and its index there.
+    part_index: HashMap<PartKey, u32>,
 }
+
+/// What a reader calls a part: a 3MF object id, a glTF (mesh, primitive) pair.
+pub(crate) type PartKey = (u64, u64);
 
 /// Parts with fewer vertices and triangles than this are placed in one thread.
 const PARALLEL_PART: usize = 1 << 14;
@@ -61,14 +30,26 @@ const PARALLEL_PART: usize = 1 << 14;
 impl Placed {
     /// Reserves room for the totals, which the caller computes from what the file holds
     /// (never from unchecked counts): an error when they exceed 32-bit indices or memory.
-    pub fn with_capacity(vertices: u64, triangles: u64) -> Result<Placed, String> {
+    /// With `copies` (how many part copies will be added), the parts and copies are
+    /// recorded too: for files that place a part more than once, whose check can then be
+    /// one check of each part.
+    pub fn with_capacity(
+        vertices: u64,
+        triangles: u64,
+        copies: Option<u64>,
+    ) -> Result<Placed, String> {
         if vertices > u64::from(u32::MAX) {
             return Err(format!(
                 "the placed parts have {vertices} vertices in all, more than 32-bit indices hold"
             ));
         }
-        let mut placed =
-            Placed { positions: Vec::new(), triangles: Vec::new(), objects: Vec::new() };
+        let mut placed = Placed {
+            positions: Vec::new(),
+            triangles: Vec::new(),
+            objects: Vec::new(),
+            assembly: None,
+            part_index: HashMap::new(),
+        };
         let cannot = |what: &str, n: u64| format!("cannot allocate memory for {n} {what}");
         placed
             .positions
@@ -76,13 +57,26 @@ impl Placed {
             .map_err(|_| cannot("vertices", vertices))?;
         let t = usize::try_from(triangles).map_err(|_| cannot("triangles", triangles))?;
         placed.triangles.try_reserve_exact(t).map_err(|_| cannot("triangles", triangles))?;
+        if let Some(copies) = copies {
+            let mut assembly = Assembly::default();
+            let n = usize::try_from(copies).map_err(|_| cannot("placements", copies))?;
+            assembly.placements.try_reserve_exact(n).map_err(|_| cannot("placements", copies))?;
+            placed.assembly = Some(assembly);
+        }
         Ok(placed)
     }
 
-    /// Adds a part: `positions` moved by `placement`, and `triangles` indexing them
-    /// (checked by the caller), wound the other way when `placement` mirrors, so that
-    /// outward faces stay outward.
-    pub fn add(&mut self, positions: &[Point], triangles: &[[u32; 3]], placement: &Affine) {
+    /// Adds a copy of part `part`: `positions` moved by `placement`, and `triangles`
+    /// indexing them (checked by the caller), wound the other way when `placement`
+    /// mirrors, so that outward faces stay outward.
+    pub fn add(
+        &mut self,
+        part: PartKey,
+        positions: &[Point],
+        triangles: &[[u32; 3]],
+        placement: &Affine,
+    ) {
+        self.record(part, positions, triangles, placement);
         let base = self.positions.len() as u32;
         let mirrored = placement.determinant() < 0.0;
         let corners = |&[a, b, c]: &[u32; 3]| {
@@ -111,17 +105,44 @@ impl Placed {
     /// is not moved, is taken without a copy.
     pub fn add_owned(
         &mut self,
+        part: PartKey,
         positions: Vec<Point>,
         triangles: Vec<[u32; 3]>,
         placement: &Affine,
     ) {
         if self.positions.is_empty() && self.triangles.is_empty() && *placement == Affine::IDENTITY
         {
+            self.record(part, &positions, &triangles, placement);
             self.positions = positions;
             self.triangles = triangles;
         } else {
-            self.add(&positions, &triangles, placement);
+            self.add(part, &positions, &triangles, placement);
         }
+    }
+
+    /// Records a copy of `part` in the assembly, the part itself the first time.
+    fn record(
+        &mut self,
+        part: PartKey,
+        positions: &[Point],
+        triangles: &[[u32; 3]],
+        placement: &Affine,
+    ) {
+        let Some(assembly) = &mut self.assembly else { return };
+        let index = match self.part_index.get(&part) {
+            Some(&index) => index,
+            None => match Mesh::from_triangles(positions.to_vec(), triangles.to_vec()) {
+                Ok(mesh) => {
+                    assembly.parts.push(mesh);
+                    let index = assembly.parts.len() as u32 - 1;
+                    self.part_index.insert(part, index);
+                    index
+                }
+                // A part the whole mesh will refuse too: no assembly to speak of.
+                Err(_) => return self.assembly = None,
+            },
+        };
+        assembly.placements.push(Placement { part: index, transform: *placement });
     }
 
     /// The number of triangles added so far.
@@ -137,26 +158,10 @@ impl Placed {
         }
     }
 
-    /// The mesh and its objects.
-    pub fn finish(self) -> Result<(Mesh, Vec<Object>), meshvol::MeshError> {
-        Ok((Mesh::from_triangles(self.positions, self.triangles)?, self.objects))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn compose_apply_and_mirror() {
-        let scale = Affine([[2.0, 0.0, 0.0, 0.0], [0.0, 2.0, 0.0, 0.0], [0.0, 0.0, 2.0, 0.0]]);
-        let shift = Affine([[1.0, 0.0, 0.0, 5.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]);
-        // Scale first, then shift.
-        assert_eq!(scale.then(&shift).apply([1.0, 1.0, 1.0]), [7.0, 2.0, 2.0]);
-        assert_eq!(shift.then(&scale).apply([1.0, 1.0, 1.0]), [12.0, 2.0, 2.0]);
-        assert_eq!(scale.determinant(), 8.0);
-        let mirror = Affine([[-1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]);
-        assert_eq!(mirror.determinant(), -1.0);
-        assert_eq!(Affine::IDENTITY.then(&shift), shift);
+    /// The mesh, its objects, and its assembly when one was asked for and a part is
+    /// placed more than once.
+    pub fn finish(self) -> Result<(Mesh, Vec<Object>, Option<Assembly>), meshvol::MeshError> {
+        let assembly = self.assembly.filter(Assembly::repeats_parts);
+        Ok((Mesh::from_triangles(self.positions, self.triangles)?, self.objects, assembly))
     }
 }

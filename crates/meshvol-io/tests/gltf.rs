@@ -344,4 +344,20 @@ fn a_mesh_placed_by_many_nodes_is_decoded_once() {
     assert_eq!(loaded.objects.len(), n);
     assert_eq!(loaded.face_count(), 12 * n);
     assert_eq!(meshvol::exact_signed_volume(&loaded.surface).unwrap(), n as f64);
+    // The assembly names the one primitive and its 10⁴ placements, and checking from it
+    // finds what checking every copy finds.
+    let assembly = loaded.assembly.as_ref().expect("a mesh placed many times");
+    assert_eq!((assembly.parts.len(), assembly.placements.len()), (1, n));
+    use meshvol::topology::{check, check_assembled, CheckOptions};
+    let options = CheckOptions::default();
+    let whole = check(&loaded.surface, &options).unwrap();
+    let parts = check_assembled(&loaded.surface, Some(assembly), &options).unwrap();
+    let facts = |c: &meshvol::topology::Check| {
+        (c.shells.len(), c.vertices, c.edges, c.closed, c.orientation, c.volume)
+    };
+    assert_eq!(facts(&parts), facts(&whole));
+    assert_eq!(
+        facts(&whole),
+        (n, 8 * n, 18 * n, true, Some(meshvol::topology::Orientation::Outward), n as f64)
+    );
 }

@@ -4,7 +4,7 @@ use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::PyMesh;
 use crate::properties::{self, PyMassProperties};
-use meshvol::topology::{self, Check, CheckOptions, Weld};
+use meshvol::topology::{Check, CheckOptions, Weld};
 use meshvol_report::check::{CheckReport, ShellReport};
 use pyo3::prelude::*;
 
@@ -70,7 +70,7 @@ pub fn check(
     };
     let options = CheckOptions { weld, intersections, ..CheckOptions::default() };
     let m = mesh.get();
-    let c = mesh.py().detach(|| topology::check(&m.mesh, &options)).map_err(mesh_error)?;
+    let c = mesh.py().detach(|| m.check_with(&options)).map_err(mesh_error)?;
     let report = meshvol_report::check::check(&m.source, &c);
     Ok(PyCheck { fields: Fields::new(&report)?, report, check: c, mesh: mesh.clone().unbind() })
 }

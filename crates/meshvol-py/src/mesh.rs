@@ -5,7 +5,8 @@ use crate::convert;
 use crate::errors::{invalid, mesh_error, read_error};
 use crate::grid::{self, PyProfile};
 use crate::properties::{self, PyMassProperties};
-use meshvol::topology::{self, Check, CheckOptions};
+use meshvol::assembly::Assembly;
+use meshvol::topology::{self, Check, CheckError, CheckOptions};
 use meshvol::{Faces, Mesh, MeshError};
 use meshvol_report::subject::{Source, Subject};
 use numpy::ndarray::ArrayView2;
@@ -14,7 +15,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 /// A surface mesh: float64 vertices and faces (triangles, or polygons of any size) that
 /// index them.
@@ -33,6 +34,8 @@ pub struct PyMesh {
     pub(crate) mesh: Mesh,
     /// Where it came from: a file (as the readers found it), or arrays.
     pub(crate) source: Source,
+    /// How the file assembled it from placed parts, when it repeats a part.
+    pub(crate) assembly: Option<Arc<Assembly>>,
     /// The check with default options, made on first use and kept: every measurement
     /// of the solid starts from it.
     checked: OnceLock<Check>,
@@ -41,7 +44,7 @@ pub struct PyMesh {
 impl From<Mesh> for PyMesh {
     fn from(mesh: Mesh) -> Self {
         let source = Source::arrays(mesh.vertex_count());
-        PyMesh { mesh, source, checked: OnceLock::new() }
+        PyMesh { mesh, source, assembly: None, checked: OnceLock::new() }
     }
 }
 
@@ -52,9 +55,14 @@ impl PyMesh {
             return Ok(c);
         }
         let c = py
-            .detach(|| topology::check(&self.mesh, &CheckOptions::default()))
+            .detach(|| self.check_with(&CheckOptions::default()))
             .map_err(crate::errors::mesh_error)?;
         Ok(self.checked.get_or_init(|| c))
+    }
+
+    /// The check of this mesh with `options` (from its parts when it is an assembly).
+    pub(crate) fn check_with(&self, options: &CheckOptions) -> Result<Check, CheckError> {
+        topology::check_assembled(&self.mesh, self.assembly.as_deref(), options)
     }
 
     /// What a measurement is taken of: with `check`, the solid the surface bounds (as
@@ -138,6 +146,7 @@ impl PyMesh {
             return Ok(PyMesh {
                 mesh: other.get().mesh.clone(),
                 source: other.get().source.clone(),
+                assembly: other.get().assembly.clone(),
                 checked: other.get().checked.clone(),
             });
         }
@@ -347,10 +356,11 @@ impl PyMesh {
 pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyMesh> {
     let loaded = py.detach(|| meshvol_io::read(&path)).map_err(|e| read_error(py, &e))?;
     let source = Source::of(&path.display().to_string(), &loaded);
+    let assembly = loaded.assembly.map(Arc::new);
     let surface = loaded.surface;
     let mesh = py.detach(|| surface.into_mesh()).map_err(|e| {
         let error = meshvol_io::ReadError { path, location: None, message: e.to_string() };
         read_error(py, &error)
     })?;
-    Ok(PyMesh { mesh, source, checked: OnceLock::new() })
+    Ok(PyMesh { mesh, source, assembly, checked: OnceLock::new() })
 }

@@ -81,6 +81,41 @@ def test_3mf_declares_its_unit(tmp_path):
     assert mesh.mass_properties().volume == 6000.0
 
 
+def test_3mf_copies_are_checked_from_their_part(tmp_path):
+    # A block placed 100 × 100 times by components, 20 apart: every copy a closed shell,
+    # the volume exactly 10⁴ × 6000, as for the same copies given as arrays.
+    vertices, faces = box((0, 0, 0), (10, 20, 30))
+    xml_vertices = "".join(f'<vertex x="{x}" y="{y}" z="{z}"/>' for x, y, z in vertices.tolist())
+    xml_triangles = "".join(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in faces.tolist())
+    row = "".join(
+        f'<component objectid="1" transform="1 0 0 0 1 0 0 0 1 {20 * i} 0 0"/>' for i in range(100)
+    )
+    grid = "".join(
+        f'<component objectid="2" transform="1 0 0 0 1 0 0 0 1 0 {40 * j} 0"/>' for j in range(100)
+    )
+    model = (
+        '<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
+        f'<resources><object id="1" type="model"><mesh><vertices>{xml_vertices}'
+        f"</vertices><triangles>{xml_triangles}</triangles></mesh></object>"
+        f'<object id="2" type="model"><components>{row}</components></object>'
+        f'<object id="3" type="model"><components>{grid}</components></object></resources>'
+        '<build><item objectid="3"/></build></model>'
+    )
+    path = tmp_path / "blocks.3mf"
+    with zipfile.ZipFile(path, "w") as archive:
+        archive.writestr("3D/3dmodel.model", model)
+    mesh = meshvol.load(path)
+    check = mesh.check()
+    assert (check.shells, check.closed, check.solid_volume) == (10_000, True, 6000.0 * 10_000)
+    assert mesh.mass_properties().volume == 6000.0 * 10_000
+    arrays = meshvol.Mesh(mesh.vertices, mesh.faces).check()
+    assert (arrays.shells, arrays.edges, arrays.euler_characteristic) == (
+        check.shells,
+        check.edges,
+        check.euler_characteristic,
+    )
+
+
 def test_loaded_and_built_meshes_measure_alike(tmp_path):
     vertices, faces = box((0.25, 0.5, 0.75), (1.25, 2.5, 3.75))
     path = tmp_path / "box.stl"

@@ -24,6 +24,7 @@ use crate::buckets::Buckets;
 use crate::properties::Bounds;
 use crate::Point;
 use rayon::prelude::*;
+use std::ops::ControlFlow;
 use wide::f32x8;
 
 /// Interleaves the low 21 bits of x, y and z: x in bits 0, 3, 6, …
@@ -443,16 +444,61 @@ impl Bvh {
         test: &Walk<'_, F>,
         found: &mut Vec<T>,
     ) {
+        let skip = |a, b| test.share_a_tag(a, b);
+        let _: ControlFlow<()> = self.walk_pairs(a, b, skip, |i, j| {
+            found.extend((test.test)(i, j));
+            ControlFlow::Continue(())
+        });
+    }
+
+    /// The first pair of distinct items whose boxes overlap (perhaps missing by less
+    /// than an f32 rounding) that `test` accepts, in one thread; `None` when no pair
+    /// is accepted. Stops at the first, so a crowd of overlaps costs no more than one.
+    pub fn first_overlapping_pair(
+        &self,
+        test: impl Fn(usize, usize) -> bool,
+    ) -> Option<(usize, usize)> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let found = self.walk_pairs(
+            0,
+            0,
+            |_, _| false,
+            |i, j| {
+                if test(i, j) {
+                    ControlFlow::Break((i, j))
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        );
+        match found {
+            ControlFlow::Break(pair) => Some(pair),
+            ControlFlow::Continue(()) => None,
+        }
+    }
+
+    /// Visits the overlapping pairs with one item under node `a` and the other under
+    /// node `b` (each pair once when `a == b`), skipping node pairs `skip` rejects,
+    /// until `visit` breaks.
+    fn walk_pairs<B>(
+        &self,
+        a: usize,
+        b: usize,
+        skip: impl Fn(usize, usize) -> bool,
+        mut visit: impl FnMut(usize, usize) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
         // Each step pushes at most 3 pairs and descends a level: a few times the depth.
         let mut stack: Vec<(u32, u32)> = Vec::with_capacity(4 * STACK);
         stack.push((a as u32, b as u32));
         while let Some((a, b)) = stack.pop() {
             let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
-            if !overlaps(&na.bounds, &nb.bounds) || test.share_a_tag(a as usize, b as usize) {
+            if !overlaps(&na.bounds, &nb.bounds) || skip(a as usize, b as usize) {
                 continue;
             }
             if na.count > 0 && nb.count > 0 {
-                self.leaf_pairs(na, nb, a == b, test.test, found);
+                self.leaf_pairs(na, nb, a == b, &mut visit)?;
             } else if a == b {
                 let (l, r) = (na.start, na.start + 1);
                 stack.extend([(l, r), (r, r), (l, l)]);
@@ -462,18 +508,18 @@ impl Bvh {
                 stack.extend([(keep as u32, first + 1), (keep as u32, first)]);
             }
         }
+        ControlFlow::Continue(())
     }
 
     /// The pairs of two leaves (of one leaf with itself, when `same`).
     #[inline]
-    fn leaf_pairs<T>(
+    fn leaf_pairs<B>(
         &self,
         na: &Node,
         nb: &Node,
         same: bool,
-        test: &impl Fn(usize, usize) -> Option<T>,
-        found: &mut Vec<T>,
-    ) {
+        visit: &mut impl FnMut(usize, usize) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
         let (a, b) = (&self.leaves[na.start as usize], &self.leaves[nb.start as usize]);
         // Only items that reach the other leaf's box can be in a pair.
         let reaching = a.overlapping(&nb.bounds) & na.lanes();
@@ -483,9 +529,10 @@ impl Bvh {
                 partners &= !((2 << i) - 1); // later items only: each pair once
             }
             for j in bits(partners) {
-                found.extend(test((na.begin + i) as usize, (nb.begin + j) as usize));
+                visit((na.begin + i) as usize, (nb.begin + j) as usize)?;
             }
         }
+        ControlFlow::Continue(())
     }
 
     fn collect_pairs<T: Send, F: Fn(usize, usize) -> Option<T> + Sync>(

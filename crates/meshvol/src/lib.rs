@@ -20,6 +20,7 @@
 //! Threads come from the caller's rayon pool (`ThreadPool::install`).
 
 pub mod accumulate;
+pub mod assembly;
 pub mod below;
 mod buckets;
 mod bvh;

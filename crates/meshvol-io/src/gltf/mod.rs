@@ -52,6 +52,8 @@ pub(crate) struct Scene {
     pub objects: Vec<Object>,
     /// Whether it was a GLB container.
     pub binary: bool,
+    /// Which primitive each placed copy is, when a mesh is placed more than once.
+    pub assembly: Option<meshvol::assembly::Assembly>,
 }
 
 /// Whether the bytes start with the GLB magic.
@@ -105,6 +107,6 @@ pub(crate) fn read(
         }
     }
     let buffers = Buffers { doc: &doc, path, bin, loaded: Vec::new(), file_bytes: bytes.len() };
-    let (mesh, objects) = place(&doc, buffers, warnings)?;
-    Ok(Scene { mesh, objects, binary })
+    let (mesh, objects, assembly) = place(&doc, buffers, warnings)?;
+    Ok(Scene { mesh, objects, binary, assembly })
 }

@@ -8,8 +8,9 @@ use super::at;
 use super::buffers::{packed_triangles, read_accessor, strided, Buffers, Component};
 use super::schema::{Document, Node, Primitive};
 use crate::error::ParseError;
-use crate::transform::{Affine, Placed};
+use crate::transform::Placed;
 use crate::Object;
+use meshvol::assembly::{Affine, Assembly};
 
 /// glTF's componentType of 32-bit floats.
 const FLOAT: u64 = 5126;
@@ -185,7 +186,7 @@ pub(super) fn place(
     doc: &Document,
     mut buffers: Buffers<'_>,
     warnings: &mut Vec<String>,
-) -> Result<(Mesh, Vec<Object>), ParseError> {
+) -> Result<(Mesh, Vec<Object>, Option<Assembly>), ParseError> {
     let instances = instances(doc)?;
 
     // Totals first: an accessor's count is checked against its data when it is read,
@@ -209,27 +210,31 @@ pub(super) fn place(
     if skipped > 0 {
         warnings.push(format!("skipped {skipped} point and line primitives (no volume)"));
     }
-    let mut placed = Placed::with_capacity(vertices, triangles)
-        .map_err(|message| ParseError::new(None, message))?;
-
     // A mesh placed by several nodes is decoded once and placed from the copy; one
     // placed once is decoded and moved in.
     let mut uses = vec![0usize; doc.meshes.len()];
     instances.iter().for_each(|i| uses[i.mesh] += 1);
+    let copies = uses.iter().any(|&n| n > 1).then(|| {
+        let primitives = |m: usize| doc.meshes[m].primitives.len() as u64;
+        instances.iter().map(|i| primitives(i.mesh)).sum()
+    });
+    let mut placed = Placed::with_capacity(vertices, triangles, copies)
+        .map_err(|message| ParseError::new(None, message))?;
     let mut decoded: Vec<Option<Vec<Part>>> = (0..doc.meshes.len()).map(|_| None).collect();
     for instance in &instances {
         let first = placed.triangle_count();
         let m = instance.mesh;
         if uses[m] == 1 {
-            for (positions, tris) in decode_mesh(doc, &mut buffers, m)? {
-                placed.add_owned(positions, tris, &instance.placement);
+            for (p, (positions, tris)) in decode_mesh(doc, &mut buffers, m)?.into_iter().enumerate()
+            {
+                placed.add_owned((m as u64, p as u64), positions, tris, &instance.placement);
             }
         } else {
             if decoded[m].is_none() {
                 decoded[m] = Some(decode_mesh(doc, &mut buffers, m)?);
             }
-            for (positions, tris) in decoded[m].iter().flatten() {
-                placed.add(positions, tris, &instance.placement);
+            for (p, (positions, tris)) in decoded[m].iter().flatten().enumerate() {
+                placed.add((m as u64, p as u64), positions, tris, &instance.placement);
             }
         }
         let node = &doc.nodes[instance.node];

@@ -63,12 +63,14 @@
 //! | 8. Euler | χ and genus per shell | `euler.rs` |
 //! | | exact orientation predicates for stages 6 and 7 | `predicates.rs` |
 //! | | the solid as a surface or a mesh | `solid.rs` |
+//! | | the check of an assembly of placed parts, from one check per part | `assembled.rs` |
 //! | | the verdict, doubts and warnings in words | `verdict.rs` |
 //!
 //! [`Check::solid`] gives a [`Surface`] of the solid: shells turned outward (cavities
 //! inward), collapsed and duplicate faces dropped (flat ones kept), holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
+mod assembled;
 mod crossings;
 mod edges;
 mod euler;
@@ -82,6 +84,7 @@ mod solid;
 mod verdict;
 mod weld;
 
+pub use assembled::check_assembled;
 pub use solid::{Measured, Solid, SolidView};
 pub use verdict::volume_warnings;
 

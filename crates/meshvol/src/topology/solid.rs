@@ -2,6 +2,7 @@
 //! kept or dropped, each possibly reversed, plus cap triangles over holes), or as a
 //! welded [`Mesh`] to write out.
 
+use crate::assembly::Placement;
 use crate::{Mesh, Point, Surface};
 use rayon::prelude::*;
 
@@ -102,6 +103,67 @@ impl Solid {
         }
         Mesh::new(positions, crate::Faces::Polygons { offsets, indices })
             .expect("kept faces and caps index welded vertices")
+    }
+
+    /// The solid of an assembly whose copies are apart: each copy's part solid moved
+    /// into place. `parts[i]` is part i's solid and `shells[i]` its shell count; copies
+    /// follow one another in the expanded surface's faces, vertices and shells. A
+    /// mirrored copy's triangles are reversed, as the reader reversed them.
+    pub(crate) fn assembled(parts: &[&Solid], shells: &[usize], placements: &[Placement]) -> Solid {
+        // Room for the totals first: growing arrays of millions of copies by doubling
+        // costs more (copies and fresh pages) than filling them.
+        let total = |size: fn(&Solid) -> usize| -> usize {
+            placements.iter().map(|p| size(parts[p.part as usize])).sum()
+        };
+        let (faces, caps) = (total(|s| s.faces.len()), total(|s| s.caps.len()));
+        let mut whole = Solid {
+            faces: Vec::with_capacity(faces),
+            caps: Vec::with_capacity(caps),
+            shell: Vec::with_capacity(faces + caps),
+            vertices: Vec::with_capacity(total(|s| s.vertices.len())),
+            corners: Vec::with_capacity(total(|s| s.corners.len())),
+            start: Vec::with_capacity(total(|s| s.start.len() - 1) + 1),
+            cap_ids: Vec::with_capacity(caps),
+            ..Solid::default()
+        };
+        whole.start.push(0);
+        let mut cap_shell = Vec::with_capacity(caps);
+        let mut shell_offset = 0u32;
+        for placement in placements {
+            let part = parts[placement.part as usize];
+            let transform = &placement.transform;
+            let mirrored = transform.determinant() < 0.0;
+            let face_offset = whole.start.len() - 1;
+            let vertex_offset = whole.vertices.len() as u32;
+            let corner_offset = whole.corners.len();
+            whole.faces.extend(part.faces.iter().map(|&(f, r)| (f + face_offset, r)));
+            whole.shell.extend(part.shell[..part.faces.len()].iter().map(|&s| s + shell_offset));
+            cap_shell.extend(part.shell[part.faces.len()..].iter().map(|&s| s + shell_offset));
+            whole
+                .caps
+                .extend(part.caps.iter().map(|c| turn(c.map(|p| transform.apply(p)), mirrored)));
+            whole
+                .cap_ids
+                .extend(part.cap_ids.iter().map(|c| turn(c.map(|v| v + vertex_offset), mirrored)));
+            whole.vertices.extend(part.vertices.iter().map(|&p| transform.apply(p)));
+            whole.start.extend(part.start[1..].iter().map(|&s| s + corner_offset));
+            for f in 0..part.start.len() - 1 {
+                let corners = &part.corners[part.start[f]..part.start[f + 1]];
+                match corners.split_first() {
+                    // The reader writes a mirrored copy of face (a, b, c, …) as (a, …, c, b).
+                    Some((&first, rest)) if mirrored => {
+                        whole.corners.push(first + vertex_offset);
+                        whole.corners.extend(rest.iter().rev().map(|&v| v + vertex_offset));
+                    }
+                    _ => whole.corners.extend(corners.iter().map(|&v| v + vertex_offset)),
+                }
+            }
+            whole.flipped += part.flipped;
+            whole.dropped += part.dropped;
+            shell_offset += shells[placement.part as usize] as u32;
+        }
+        whole.shell.extend(cap_shell);
+        whole
     }
 
     pub(crate) fn view<'a, S: Surface + ?Sized>(&'a self, surface: &'a S) -> SolidView<'a, S> {
