@@ -188,8 +188,15 @@ fn bad_inputs_are_errors_that_name_the_file() {
     let empty = write(dir.path(), "empty.stl", "solid empty\nendsolid empty\n");
     let nan = write(dir.path(), "nan.obj", "v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     let degenerate = write(dir.path(), "line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    let huge = write(
+        dir.path(),
+        "huge.obj",
+        "v -1e300 -1e300 0\nv 1e300 -1e300 1e300\nv 1e300 1e300 0\nv -1e300 1e300 -1e300\n\
+         f 1 2 3\nf 1 3 4\n",
+    );
     let missing = dir.path().join("missing.obj");
     for (args, name) in [
+        (vec!["cutfill", p(&huge), "--level", "0"], "huge.obj"),
         (vec!["cutfill", p(&folded), "--level", "0"], "folded.obj"),
         (vec!["cutfill", p(&flat), "--design", p(&folded)], "folded.obj"),
         (vec!["cutfill", p(&empty), "--level", "0"], "empty.stl"),

@@ -30,11 +30,12 @@ pub(crate) fn boxes_overlap(a: &PlanBox, b: &PlanBox) -> bool {
     a[0][0] <= b[1][0] && b[0][0] <= a[1][0] && a[0][1] <= b[1][1] && b[0][1] <= a[1][1]
 }
 
-/// A grid of buckets over a box.
+/// A grid of buckets over a box. Coordinates are halved before they are compared, so
+/// that a box wider than f64 (from −1e308 to 1e308) still has a width.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BucketGrid {
-    origin: [f64; 2],
-    size: [f64; 2],
+    half_origin: [f64; 2],
+    half_size: [f64; 2],
     counts: [usize; 2],
 }
 
@@ -42,17 +43,17 @@ impl BucketGrid {
     /// About `items` square-ish buckets over `bounds` (which must have a positive
     /// extent along both axes).
     pub fn new(bounds: PlanBox, items: usize) -> BucketGrid {
-        let [w, h] = [0, 1].map(|a| bounds[1][a] - bounds[0][a]);
+        let half_origin = bounds[0].map(|x| 0.5 * x);
+        let [w, h] = [0, 1].map(|a| 0.5 * bounds[1][a] - half_origin[a]);
         let target = items.clamp(1, MAX_BUCKETS) as f64;
-        let nx = (target * w / h).sqrt().round().clamp(1.0, target);
+        let nx = (target * (w / h)).sqrt().round().clamp(1.0, target);
         let ny = (target / nx).ceil().clamp(1.0, target);
-        let counts = [nx as usize, ny as usize];
-        let size = [w / nx, h / ny];
+        let half_size = [w / nx, h / ny];
         // A box too thin for its buckets' sizes to be numbers is one bucket.
-        if !(size[0] > 0.0 && size[1] > 0.0 && size.iter().all(|s| s.is_finite())) {
-            return BucketGrid { origin: bounds[0], size: [f64::INFINITY; 2], counts: [1, 1] };
+        if !(half_size.iter().all(|s| s.is_finite() && *s > 0.0)) {
+            return BucketGrid { half_origin, half_size: [f64::INFINITY; 2], counts: [1, 1] };
         }
-        BucketGrid { origin: bounds[0], size, counts }
+        BucketGrid { half_origin, half_size, counts: [nx as usize, ny as usize] }
     }
 
     pub fn len(&self) -> usize {
@@ -61,7 +62,7 @@ impl BucketGrid {
 
     /// The bucket column or row of coordinate `x` along `axis`, clamped to the grid.
     fn index(&self, axis: usize, x: f64) -> usize {
-        let i = ((x - self.origin[axis]) / self.size[axis]).floor();
+        let i = ((0.5 * x - self.half_origin[axis]) / self.half_size[axis]).floor();
         if i.is_nan() {
             return 0;
         }
