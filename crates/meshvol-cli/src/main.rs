@@ -7,6 +7,7 @@
 mod area;
 mod below;
 mod check;
+mod cutfill;
 mod driver;
 mod grid;
 mod hull;
@@ -71,6 +72,9 @@ enum Command {
     /// The part of the solid below a plane: volume, centroid (centre of buoyancy),
     /// wetted area, section (waterplane); or the level that holds a given volume.
     Below(below::BelowArgs),
+    /// Cut and fill between an existing surface and a design surface or level
+    /// (earthwork volumes), exactly; per plan cell with --cells or --pitch.
+    Cutfill(cutfill::CutFillArgs),
 }
 
 fn non_negative_finite(s: &str) -> Result<f64, String> {
@@ -154,5 +158,6 @@ fn main() -> ExitCode {
         Command::Profile(args) => profile::run(args, cli.quiet),
         Command::Union(args) => union::run(args, cli.quiet),
         Command::Below(args) => below::run(args, cli.quiet),
+        Command::Cutfill(args) => cutfill::run(args, cli.quiet),
     }
 }

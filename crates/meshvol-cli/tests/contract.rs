@@ -87,6 +87,7 @@ fn a_failed_file_is_a_json_line_with_its_error() {
         vec!["union", p(&missing)],
         vec!["section", p(&missing), "--plane", "z=0"],
         vec!["below", p(&missing), "--volume", "1"],
+        vec!["cutfill", p(&missing), "--level", "1"],
         vec!["area", p(&bad_wkt)],
         vec!["hull", p(&missing)],
     ];

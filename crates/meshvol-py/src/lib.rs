@@ -16,6 +16,7 @@
 mod below;
 mod check;
 mod convert;
+mod cutfill;
 mod dict;
 mod errors;
 mod grid;
@@ -43,10 +44,12 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<polygon::PyAreaProperties>()?;
     m.add_class::<hull::PyHull>()?;
     m.add_class::<below::PyBelow>()?;
+    m.add_class::<cutfill::PyCutFill>()?;
     m.add_function(wrap_pyfunction!(mesh::load, m)?)?;
     m.add_function(wrap_pyfunction!(grid::union, m)?)?;
     m.add_function(wrap_pyfunction!(polygon::polygon_area, m)?)?;
     m.add_function(wrap_pyfunction!(hull::convex_hull, m)?)?;
     m.add_function(wrap_pyfunction!(hull::hull_volume, m)?)?;
+    m.add_function(wrap_pyfunction!(cutfill::cutfill, m)?)?;
     Ok(())
 }

@@ -17,6 +17,12 @@ def public_members(cls):
     return [name for name, _ in inspect.getmembers(cls) if not name.startswith("_")]
 
 
+def sheet():
+    """The unit square rising from z = 0 at y = 0 to z = 1 at y = 1 (a terrain)."""
+    vertices = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 1.0], [0.0, 1.0, 1.0]])
+    return meshvol.Mesh(vertices, np.array([[0, 1, 2], [0, 2, 3]]))
+
+
 def samples():
     """One instance of each result class: their attributes are their reports' keys, which
     only instances list (in dir())."""
@@ -31,6 +37,7 @@ def samples():
         "Hull": meshvol.convex_hull(mesh.vertices),
         "AreaProperties": meshvol.polygon_area(square),
         "Below": mesh.below(volume=0.5),
+        "CutFill": meshvol.cutfill(sheet(), level=0.5, cells=(2, 2)),
     }
 
 

@@ -89,3 +89,26 @@ def test_below(two_boxes):
     with pytest.warns(meshvol.MeshWarning):
         ours = meshvol.load(two_boxes).below(volume=5.0, heel=10.0).to_dict()
     assert ours == command("below", str(two_boxes), "--volume", "5", "--heel", "10")
+
+
+def test_cutfill(tmp_path):
+    # A bumpy terrain against a tilted design of another triangulation, in cells.
+    def sheet(path, n, z):
+        xs = np.linspace(0.0, 2.0, n + 1)
+        vertices = np.array([[x, y, z(x, y)] for x in xs for y in xs])
+        at = lambda i, j: i * (n + 1) + j
+        faces = np.array(
+            [f for i in range(n) for j in range(n)
+             for f in ([at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                       [at(i, j), at(i + 1, j + 1), at(i, j + 1)])]
+        )
+        write_obj(path, vertices, faces)
+    existing, design = tmp_path / "land.obj", tmp_path / "road.obj"
+    sheet(existing, 9, lambda x, y: np.sin(3 * x) * np.cos(2 * y))
+    sheet(design, 4, lambda x, y: 0.1 * x - 0.2 * y)
+    ours = meshvol.cutfill(str(existing), design=str(design), cells=(3, 2))
+    assert ours.to_dict() == command("cutfill", str(existing), "--design", str(design), "--cells", "3,2")
+    assert abs(ours.cut_cells.sum() - ours.cut) < 1e-12
+    ours = meshvol.cutfill(meshvol.load(existing), level=0.1)
+    theirs = command("cutfill", str(existing), "--level", "0.1")
+    assert ours.to_dict() == theirs

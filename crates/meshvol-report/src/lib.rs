@@ -3,7 +3,7 @@
 //! Each command's report is a struct here ([`volume::VolumeReport`],
 //! [`check::CheckReport`], [`grid::GridReport`], [`profile::ProfileReport`],
 //! [`union::UnionReport`], [`section::SectionReport`], [`area::AreaReport`],
-//! [`hull::HullReport`], [`repair::RepairReport`]): built from the kernels' results by
+//! [`hull::HullReport`], [`repair::RepairReport`], [`cutfill::CutFillReport`]): built from the kernels' results by
 //! one function, serialized by serde into the JSON the `meshvol` command prints (field
 //! names are the keys: a public contract, see docs/json.md) and into the dicts of the
 //! Python bindings' `to_dict()`, and rendered as text by the [`Report`] trait. Unit
@@ -33,6 +33,7 @@ pub(crate) use file_and_warnings;
 pub mod area;
 pub mod below;
 pub mod check;
+pub mod cutfill;
 pub mod grid;
 pub mod hull;
 pub mod inertial;

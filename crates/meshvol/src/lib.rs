@@ -15,7 +15,9 @@
 //!   read as surfaces of their own, and the connected parts of a surface;
 //! - [`grid::cell_volumes`], [`grid::profile`] and [`grid::union`]: the exact volume in
 //!   each cell of a grid, volume below each level along an axis, and the volume of a union
-//!   of overlapping bodies as a certified interval.
+//!   of overlapping bodies as a certified interval;
+//! - [`cutfill::cut_fill`]: cut and fill volumes between two height-field surfaces (or a
+//!   surface and a level), exact for triangulations, in total and per plan cell.
 //!
 //! Threads come from the caller's rayon pool (`ThreadPool::install`).
 
@@ -24,6 +26,7 @@ pub mod assembly;
 pub mod below;
 mod buckets;
 mod bvh;
+pub mod cutfill;
 mod eigen;
 pub mod exact;
 pub mod grid;

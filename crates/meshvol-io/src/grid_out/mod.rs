@@ -19,7 +19,8 @@
 //!   at least 6 pixels wide and high; a colour legend, the slice's coordinate, and the
 //!   in-plane axes' names and ranges (layout in `picture.rs`). Image right is the
 //!   slice's first in-plane axis (x for a z slice, y for an x slice, x for a y slice)
-//!   and up the second.
+//!   and up the second. [`png_map`] draws any values the same way, with a title and
+//!   legend of the caller's (a map of cut and fill).
 
 mod font;
 mod picture;
@@ -27,7 +28,7 @@ mod picture;
 use meshvol::grid::{Grid, OCCUPANCY_TOLERANCE};
 use std::io::{self, Write};
 
-pub use picture::png;
+pub use picture::{png, png_map, Legend};
 
 fn check_len(grid: &Grid, volumes: &[f64]) -> io::Result<()> {
     if volumes.len() != grid.cell_count() {
@@ -55,9 +56,29 @@ fn write_f64s(out: &mut impl Write, values: impl Iterator<Item = f64>) -> io::Re
 /// A `.npy` file of the cell volumes, or of the fractions with `fraction`.
 pub fn npy(out: &mut impl Write, grid: &Grid, volumes: &[f64], fraction: bool) -> io::Result<()> {
     check_len(grid, volumes)?;
-    let [nx, ny, nz] = grid.counts;
-    let mut header =
-        format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({nx}, {ny}, {nz}), }}");
+    let scale = if fraction { 1.0 / grid.cell_volume() } else { 1.0 };
+    let values = volumes.iter().map(|v| if fraction { v * scale } else { *v });
+    npy_array(out, &grid.counts, values)
+}
+
+/// A `.npy` file of float64 `values` in C order, of shape `shape` (their number must be
+/// the product of its sizes).
+pub fn npy_array(
+    out: &mut impl Write,
+    shape: &[usize],
+    values: impl ExactSizeIterator<Item = f64>,
+) -> io::Result<()> {
+    if shape.iter().try_fold(1usize, |n, &k| n.checked_mul(k)) != Some(values.len()) {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{} values for an array of shape {shape:?}", values.len()),
+        ));
+    }
+    let sizes: Vec<String> = shape.iter().map(|k| format!("{k}, ")).collect();
+    let sizes = sizes.concat();
+    // A 1-tuple keeps its comma, "(5,)"; longer ones drop the last: "(2, 3)".
+    let sizes = if shape.len() == 1 { sizes.trim_end() } else { sizes.trim_end_matches(", ") };
+    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({sizes}), }}");
     // Magic (6) + version (2) + length (2) + header, padded with spaces to a multiple of
     // 64 bytes and ended by a newline.
     let unpadded = 10 + header.len() + 1;
@@ -66,8 +87,7 @@ pub fn npy(out: &mut impl Write, grid: &Grid, volumes: &[f64], fraction: bool) -
     out.write_all(b"\x93NUMPY\x01\x00")?;
     out.write_all(&(header.len() as u16).to_le_bytes())?;
     out.write_all(header.as_bytes())?;
-    let scale = if fraction { 1.0 / grid.cell_volume() } else { 1.0 };
-    write_f64s(out, volumes.iter().map(|v| if fraction { v * scale } else { *v }))
+    write_f64s(out, values)
 }
 
 /// A `.vti` file with cell arrays `volume` and `fraction`.
@@ -162,6 +182,11 @@ mod tests {
         npy(&mut out, &g, &values(&g), true).unwrap();
         let data = &out[10 + header_len..];
         assert_eq!(f64::from_le_bytes(data[8..16].try_into().unwrap()), 8.0 / 256.0);
+        // Any shape: a 1-tuple keeps its comma, as Python writes it.
+        let mut out = Vec::new();
+        npy_array(&mut out, &[3], [1.0, 2.0, 3.0].into_iter()).unwrap();
+        assert!(String::from_utf8_lossy(&out).contains("'shape': (3,)"));
+        assert!(npy_array(&mut Vec::new(), &[2, 2], [1.0].into_iter()).is_err());
     }
 
     #[test]
@@ -192,6 +217,16 @@ mod tests {
         assert_eq!(plot.2, 4096, "{plot:?}");
         assert!(image.width > 4096 && image.width < 4096 + 200, "{}", image.width);
         assert_eq!(picture::colour(0.0, false), [255, 255, 255]);
+        // A map of values: coloured as fractions of `full`, any title and legend.
+        let plan = Grid::new([0.0; 3], [1.0; 3], [2, 1, 1]).unwrap();
+        let legend =
+            Legend { title: "cut (+) and fill (-)".into(), name: "depth".into(), full: 4.0 };
+        let mut out = Vec::new();
+        png_map(&mut out, &plan, &[4.0, -2.0], Slice { axis: 2, index: 0 }, &legend).unwrap();
+        let image = picture::tests::Image::decode(&out);
+        let (x, y, w, h) = image.plot_box();
+        assert_eq!(image.at(x + w / 2, y + h / 2), picture::colour(1.0, false));
+        assert_eq!(image.at(x + w + w / 2, y + h / 2), picture::colour(-0.5, false));
         assert_eq!(picture::colour(1.0, false), [24, 64, 160]);
     }
 }

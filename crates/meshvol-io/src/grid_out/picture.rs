@@ -131,19 +131,70 @@ fn plot_size(w: f64, h: f64, du: f64, dv: f64) -> (usize, usize) {
     (side(w), side(h))
 }
 
+/// What a picture of values says about them: the title above the plot, the legend's
+/// name, and the value drawn in full colour (its negative in full red).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Legend {
+    pub title: String,
+    pub name: String,
+    pub full: f64,
+}
+
 /// A `.png` of the fractions in one slice (see the module docs of [`super`] for the
 /// colours, and of this file for the layout).
 pub fn png(out: &mut impl Write, grid: &Grid, volumes: &[f64], slice: Slice) -> io::Result<()> {
+    check_slice(grid, volumes, slice)?;
+    let centre = grid.origin[slice.axis] + (slice.index as f64 + 0.5) * grid.cell[slice.axis];
+    let title = format!(
+        "{} = {} ({} = {})",
+        AXES[slice.axis],
+        number(centre),
+        INDICES[slice.axis],
+        slice.index
+    );
+    let legend = Legend { title, name: "fraction".to_string(), full: grid.cell_volume() };
+    draw(out, grid, volumes, slice, &legend, 1.0)
+}
+
+/// A `.png` of any `values` in one slice, coloured as fractions of `legend.full`, its
+/// legend's ticks labelled in the values' units.
+pub fn png_map(
+    out: &mut impl Write,
+    grid: &Grid,
+    values: &[f64],
+    slice: Slice,
+    legend: &Legend,
+) -> io::Result<()> {
+    check_slice(grid, values, slice)?;
+    draw(out, grid, values, slice, legend, legend.full)
+}
+
+fn check_slice(grid: &Grid, volumes: &[f64], slice: Slice) -> io::Result<()> {
     check_len(grid, volumes)?;
-    let invalid = |m: String| io::Error::new(io::ErrorKind::InvalidInput, m);
     if slice.axis > 2 || slice.index >= grid.counts[slice.axis.min(2)] {
         let axis = AXES.get(slice.axis).copied().unwrap_or("?");
-        return Err(invalid(format!(
-            "slice {axis}={} is outside the grid (0 to {})",
-            slice.index,
-            grid.counts[slice.axis.min(2)].saturating_sub(1)
-        )));
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "slice {axis}={} is outside the grid (0 to {})",
+                slice.index,
+                grid.counts[slice.axis.min(2)].saturating_sub(1)
+            ),
+        ));
     }
+    Ok(())
+}
+
+/// The picture: cells coloured by value / `legend.full`, the legend's ticks (at −1, 0
+/// and 1 of the ramp, or 0, 1/2 and 1) labelled times `tick_unit`.
+fn draw(
+    out: &mut impl Write,
+    grid: &Grid,
+    values: &[f64],
+    slice: Slice,
+    legend: &Legend,
+    tick_unit: f64,
+) -> io::Result<()> {
     // In-plane axes: (u, v) = (y, z) for an x slice, (x, z) for y, (x, y) for z.
     let (u, v) = match slice.axis {
         0 => (1, 2),
@@ -153,30 +204,22 @@ pub fn png(out: &mut impl Write, grid: &Grid, volumes: &[f64], slice: Slice) -> 
     let (nu, nv) = (grid.counts[u], grid.counts[v]);
     let (du, dv) = (grid.cell[u], grid.cell[v]);
     let (pw, ph) = plot_size(nu as f64 * du, nv as f64 * dv, du, dv);
-    let cell_volume = grid.cell_volume();
     let fraction_at = |a: usize, b: usize| {
         let mut ijk = [0; 3];
         ijk[slice.axis] = slice.index;
         ijk[u] = a;
         ijk[v] = b;
-        volumes[grid.index(ijk)] / cell_volume
+        values[grid.index(ijk)] / legend.full
     };
     let negative = (0..nu).any(|a| (0..nv).any(|b| fraction_at(a, b) < 0.0));
     let low = if negative { -1.0 } else { 0.0 };
 
     // Labels.
-    let centre = grid.origin[slice.axis] + (slice.index as f64 + 0.5) * grid.cell[slice.axis];
-    let title = format!(
-        "{} = {} ({} = {})",
-        AXES[slice.axis],
-        number(centre),
-        INDICES[slice.axis],
-        slice.index
-    );
+    let title = &legend.title;
     let (u_low, u_high) = (number(grid.origin[u]), number(grid.origin[u] + nu as f64 * du));
     let (v_low, v_high) = (number(grid.origin[v]), number(grid.origin[v] + nv as f64 * dv));
     let ticks: Vec<f64> = if negative { vec![-1.0, 0.0, 1.0] } else { vec![0.0, 0.5, 1.0] };
-    let tick_labels: Vec<String> = ticks.iter().map(|&t| number(t)).collect();
+    let tick_labels: Vec<String> = ticks.iter().map(|&t| number(t * tick_unit)).collect();
 
     // Layout, left to right: the v axis name, its range, the plot, the legend.
     let v_labels = text_width(&v_low).max(text_width(&v_high));
@@ -186,8 +229,8 @@ pub fn png(out: &mut impl Write, grid: &Grid, volumes: &[f64], slice: Slice) -> 
     let bar_left = left + pw.max(text_width(&u_low) + text_width(&u_high) + GAP) + 4 * GAP;
     let legend_labels = tick_labels.iter().map(|l| text_width(l)).max().unwrap_or(0);
     let width = (bar_left + BAR_WIDTH + GAP + legend_labels)
-        .max(bar_left + text_width("fraction"))
-        .max(left + text_width(&title))
+        .max(bar_left + text_width(&legend.name))
+        .max(left + text_width(title))
         + MARGIN;
     let below = top + ph + GAP;
     let height = (below + 2 * TEXT_HEIGHT + GAP).max(top + bar_height + TEXT_HEIGHT) + MARGIN;
@@ -211,7 +254,7 @@ pub fn png(out: &mut impl Write, grid: &Grid, volumes: &[f64], slice: Slice) -> 
     canvas.frame(left, top, pw, ph);
 
     // The title, and the axes: names and ranges.
-    canvas.text(left, MARGIN, &title);
+    canvas.text(left, MARGIN, title);
     canvas.text(left, below, &u_low);
     canvas.text(left + pw.saturating_sub(text_width(&u_high)), below, &u_high);
     canvas.text(left + pw / 2, below + TEXT_HEIGHT + GAP, AXES[u]);
@@ -229,7 +272,7 @@ pub fn png(out: &mut impl Write, grid: &Grid, volumes: &[f64], slice: Slice) -> 
         }
     }
     canvas.frame(bar_left, top, BAR_WIDTH, bar_height);
-    canvas.text(bar_left, MARGIN, "fraction");
+    canvas.text(bar_left, MARGIN, &legend.name);
     for (&t, label) in ticks.iter().zip(&tick_labels) {
         let y = level(t);
         for x in 0..GAP / 2 {

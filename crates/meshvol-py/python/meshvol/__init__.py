@@ -18,8 +18,9 @@ trimesh.Trimesh), or read one with load(); then measure it:
 The answers and names are those of the meshvol command: Mesh.mass_properties() is
 `meshvol volume`, Mesh.check() is `meshvol check`, Mesh.grid() is `meshvol grid`,
 Mesh.profile() is `meshvol profile`, union() is `meshvol union`, polygon_area() is
-`meshvol area` and convex_hull() is `meshvol hull`. Like the commands, every measure
-of a mesh takes the checked solid (welded, shells turned outward, cavities subtracted,
+`meshvol area`, convex_hull() is `meshvol hull` and cutfill() is `meshvol cutfill`
+(which reads surfaces as terrains, not solids). Like the commands, every measure of a
+solid takes the checked solid (welded, shells turned outward, cavities subtracted,
 holes capped) and issues a MeshWarning naming why that solid may not be the one
 meant; check=False measures the surface as wound (`--no-check`). Errors raise
 MeshError (a ValueError) or one of its subclasses, ReadError and InvalidMeshError,
@@ -31,6 +32,7 @@ from ._meshvol import (
     AreaProperties,
     Below,
     Check,
+    CutFill,
     Hull,
     InvalidMeshError,
     MassProperties,
@@ -43,6 +45,7 @@ from ._meshvol import (
     Union,
     __version__,
     convex_hull,
+    cutfill,
     hull_volume,
     load,
     polygon_area,
@@ -53,6 +56,7 @@ __all__ = [
     "AreaProperties",
     "Below",
     "Check",
+    "CutFill",
     "Hull",
     "InvalidMeshError",
     "MassProperties",
@@ -65,6 +69,7 @@ __all__ = [
     "Union",
     "__version__",
     "convex_hull",
+    "cutfill",
     "hull_volume",
     "load",
     "polygon_area",

@@ -321,6 +321,32 @@ class Below:
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol below --json`."""
 
+class CutFill:
+    """Cut and fill between two surfaces (`meshvol cutfill --json`'s keys)."""
+
+    file: Optional[str]
+    design: str
+    level: Optional[float]
+    cut: float
+    fill: float
+    net: float
+    area_cut: float
+    area_fill: float
+    footprint_area: float
+    footprint_bounds: Optional[list[list[float]]]
+    existing_area: float
+    design_area: Optional[float]
+    grid: Optional[dict[str, list[Any]]]
+    warnings: list[str]
+    @property
+    def cut_cells(self) -> Optional[_F64]:
+        """Shape (nx, ny): cut volume per plan cell; None without cells or pitch."""
+    @property
+    def fill_cells(self) -> Optional[_F64]:
+        """Shape (nx, ny): fill volume per plan cell; None without cells or pitch."""
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol cutfill --json`."""
+
 class Hull:
     """A convex hull (`meshvol hull --json`'s keys) and its mesh."""
 
@@ -359,3 +385,12 @@ def convex_hull(points: _ArrayLike) -> Hull:
 
 def hull_volume(points: _ArrayLike) -> float:
     """The volume of the convex hull of an (n, 3) point array."""
+
+def cutfill(
+    existing: _Union[str, "os.PathLike[str]", Any],
+    design: _Union[str, "os.PathLike[str]", Any, None] = None,
+    level: Optional[float] = None,
+    cells: Optional[Tuple[int, int]] = None,
+    pitch: Optional[float] = None,
+) -> CutFill:
+    """Cut and fill between an existing surface and a design or level (`meshvol cutfill`)."""

@@ -1,0 +1,130 @@
+//! `meshvol.cutfill`: cut and fill between an existing surface and a design surface or
+//! level (what `meshvol cutfill` reports), with per-cell arrays on request.
+
+use crate::dict::Fields;
+use crate::errors::{bad_argument, mesh_error, warn_all};
+use crate::mesh::{load, mesh_of, PyMesh};
+use meshvol::cutfill::CellCutFill;
+use meshvol_report::cutfill::{cutfill as report, Against, CutFillReport, Spacing};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray2};
+use pyo3::prelude::*;
+use std::path::PathBuf;
+
+/// Cut and fill between two surfaces: the report of `meshvol cutfill --json`, whose keys
+/// are its attributes and the keys of to_dict(): design and level, cut, fill, net,
+/// area_cut, area_fill, footprint_area, footprint_bounds, existing_area, design_area,
+/// grid (counts, origin and cell of the plan grid, or None), warnings. With cells or
+/// pitch, cut_cells and fill_cells are the per-cell volumes.
+#[pyclass(module = "meshvol", name = "CutFill", frozen)]
+pub struct PyCutFill {
+    report: CutFillReport,
+    fields: Fields,
+    cells: Option<CellCutFill>,
+}
+
+impl PyCutFill {
+    /// One of the per-cell arrays as an (nx, ny) array.
+    fn cells<'py>(
+        &self,
+        py: Python<'py>,
+        pick: impl Fn(&CellCutFill) -> &Vec<f64>,
+    ) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+        let (Some(cells), Some(grid)) = (&self.cells, &self.report.grid) else {
+            return Ok(None);
+        };
+        let shape = (grid.counts[0], grid.counts[1]);
+        let array = Array2::from_shape_vec(shape, pick(cells).clone()).map_err(mesh_error)?;
+        Ok(Some(array.into_pyarray(py)))
+    }
+}
+
+#[pymethods]
+impl PyCutFill {
+    /// The cut volume in each plan cell, an (nx, ny) float64 array (cell (i, j) spans
+    /// origin + (i, j)·cell to origin + (i+1, j+1)·cell); None without cells or pitch.
+    #[getter]
+    fn cut_cells<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+        self.cells(py, |c| &c.cut)
+    }
+
+    /// The fill volume in each plan cell, as cut_cells.
+    #[getter]
+    fn fill_cells<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+        self.cells(py, |c| &c.fill)
+    }
+
+    fn __repr__(&self) -> String {
+        let r = &self.report;
+        format!("CutFill(cut={:?}, fill={:?}, net={:?})", r.cut, r.fill, r.net)
+    }
+}
+
+crate::dict::report_methods!(PyCutFill, "CutFill");
+
+/// A surface given as a path (read, as `meshvol.load` does) or as a mesh; whether it was
+/// read here (its reader's warnings not yet given).
+fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)> {
+    if obj.cast::<PyMesh>().is_err() {
+        if let Ok(path) = obj.extract::<PathBuf>() {
+            return Ok((Bound::new(obj.py(), load(obj.py(), path)?)?, true));
+        }
+    }
+    Ok((mesh_of(obj)?, false))
+}
+
+/// Cut and fill between an existing surface and a design (`meshvol cutfill`).
+///
+/// existing and design are height fields z = f(x, y) (terrains), each a path or a mesh
+/// (meshvol.Mesh, or an object with .vertices and .faces); give design, or level=Z for
+/// the plane z = Z. cells=(nx, ny) or pitch=p adds per-cell volumes over the common
+/// footprint's box (cut_cells, fill_cells). A surface that folds over itself in plan
+/// raises MeshError naming its faces.
+#[pyfunction]
+#[pyo3(signature = (existing, design = None, level = None, cells = None, pitch = None))]
+pub fn cutfill(
+    py: Python<'_>,
+    existing: &Bound<'_, PyAny>,
+    design: Option<&Bound<'_, PyAny>>,
+    level: Option<f64>,
+    cells: Option<[i64; 2]>,
+    pitch: Option<f64>,
+) -> PyResult<PyCutFill> {
+    let spacing = match (cells, pitch) {
+        (Some(_), Some(_)) => return Err(bad_argument("give cells=(nx, ny) or pitch=p, not both")),
+        (Some(counts), None) => {
+            if counts.iter().any(|&n| n < 1) {
+                return Err(bad_argument(format!(
+                    "cells must be at least 1 along x and y; got {counts:?}"
+                )));
+            }
+            let counts = counts.map(|n| usize::try_from(n).unwrap_or(usize::MAX));
+            Some(Spacing::Cells(counts))
+        }
+        (None, Some(p)) if !(p.is_finite() && p > 0.0) => {
+            return Err(bad_argument(format!("pitch must be a positive number; got {p}")));
+        }
+        (None, Some(p)) => Some(Spacing::Pitch(p)),
+        (None, None) => None,
+    };
+    let (existing, read_here) = surface(existing)?;
+    let design = design.map(surface).transpose()?;
+    let existing = existing.get();
+    let design_mesh = design.as_ref().map(|(d, _)| d.get());
+    let against = match (design_mesh, level) {
+        (Some(d), None) => Against::Surface { source: &d.source, surface: &d.mesh },
+        (None, Some(z)) => Against::Level(z),
+        _ => return Err(bad_argument("give design=SURFACE or level=Z, not both")),
+    };
+    let (report, cells) = py
+        .detach(|| report(&existing.source, &existing.mesh, against, spacing))
+        .map_err(mesh_error)?;
+    // The reader's warnings of a mesh loaded before were given then.
+    let new: Vec<String> = if read_here {
+        report.warnings.clone()
+    } else {
+        report.warnings.iter().filter(|w| !existing.source.warnings.contains(w)).cloned().collect()
+    };
+    warn_all(py, &new)?;
+    Ok(PyCutFill { fields: Fields::new(&report)?, report, cells })
+}

@@ -1,0 +1,229 @@
+//! A surface read as a height field z = f(x, y): its triangles in plan, and the check
+//! that no two of them overlap there.
+//!
+//! Each fan triangle is projected on the xy plane and turned counter-clockwise there if
+//! it was not (a surface may face up or down, or be wound either way in places: only
+//! the plan matters). A triangle with no area in plan (exactly, by `orient2d`) carries
+//! none of the integrals: vertical ones (some area in space) are left out and listed,
+//! degenerate ones left out silently.
+//!
+//! The surface is a height field when the interiors of its triangles' projections are
+//! disjoint. A fold or an overhang makes two triangles overlap in plan, however they
+//! are wound, so the check is the overlay of the surface with itself, cut short: the
+//! candidate pairs of [`super::pairs`], each tested with exact predicates. Two
+//! triangles (convex) have disjoint interiors exactly when one of their six edge lines
+//! has the other triangle wholly on its outer side, touching allowed (a separating axis
+//! along an edge); `orient2d` decides each side exactly, so neighbours sharing an edge
+//! or a corner are never taken for an overlap, however thin they are.
+
+use super::pairs::{boxes_overlap, facet_box, BucketGrid, PlanBox};
+use crate::accumulate::{ordered_reduce, CompensatedSum};
+use crate::vector::{cross, norm, sub};
+use crate::{Point, Surface};
+use rayon::prelude::*;
+
+/// One triangle of a terrain: its corners in plan, counter-clockwise, their heights,
+/// and the face it comes from.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Facet {
+    pub xy: [[f64; 2]; 3],
+    pub z: [f64; 3],
+    pub face: usize,
+}
+
+/// Why a surface is not a height field.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum TerrainError {
+    #[error(
+        "faces {first} and {second} overlap in plan: the surface is not a height field \
+         z = f(x, y) (it folds over, or has an overhang or a second layer there)"
+    )]
+    Overlap { first: usize, second: usize },
+    #[error("face {face} has a coordinate that is not a finite number")]
+    NotFinite { face: usize },
+    #[error("the surface has {triangles} triangles; at most 2^32 − 1 can be compared")]
+    TooManyTriangles { triangles: usize },
+}
+
+/// A surface prepared as a height field: its triangles in plan, checked not to overlap.
+#[derive(Clone, Debug)]
+pub struct Terrain {
+    pub(crate) facets: Vec<Facet>,
+    bounds: Option<PlanBox>,
+    area: f64,
+    vertical: Vec<usize>,
+}
+
+/// Faces per parallel task when reading a surface's triangles.
+const FACE_CHUNK: usize = 4096;
+/// Buckets per parallel task in the overlap check.
+const BUCKET_CHUNK: usize = 256;
+
+fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    let coord = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
+    robust::orient2d(coord(a), coord(b), coord(c))
+}
+
+/// The triangles of faces `faces`, and the vertical faces among them.
+fn read_faces<S: Surface + ?Sized>(
+    surface: &S,
+    faces: std::ops::Range<usize>,
+) -> Result<(Vec<Facet>, Vec<usize>), TerrainError> {
+    let mut facets = Vec::new();
+    let mut vertical = Vec::new();
+    for face in faces {
+        let mut error = None;
+        let mut upright = false;
+        surface.fan(face, |a: Point, b: Point, c: Point| {
+            if ![a, b, c].iter().flatten().all(|x| x.is_finite()) {
+                error = Some(TerrainError::NotFinite { face });
+                return;
+            }
+            let xy = [a, b, c].map(|p| [p[0], p[1]]);
+            let z = [a[2], b[2], c[2]];
+            let turn = orient2d(xy[0], xy[1], xy[2]);
+            if turn == 0.0 {
+                upright |= norm(cross(sub(b, a), sub(c, a))) > 0.0;
+            } else if turn > 0.0 {
+                facets.push(Facet { xy, z, face });
+            } else {
+                facets.push(Facet { xy: [xy[0], xy[2], xy[1]], z: [z[0], z[2], z[1]], face });
+            }
+        });
+        if let Some(e) = error {
+            return Err(e);
+        }
+        if upright {
+            vertical.push(face);
+        }
+    }
+    Ok((facets, vertical))
+}
+
+/// Whether the interiors of two counter-clockwise triangles overlap (see the module
+/// docs: no edge line of either has the other on its outer side).
+fn interiors_overlap(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
+    let separates = |t: &[[f64; 2]; 3], other: &[[f64; 2]; 3]| {
+        (0..3).any(|i| {
+            let (p, q) = (t[i], t[(i + 1) % 3]);
+            other.iter().all(|&x| orient2d(p, q, x) <= 0.0)
+        })
+    };
+    !separates(a, b) && !separates(b, a)
+}
+
+impl Terrain {
+    /// Reads `surface` as a height field; an error names the first face (in face
+    /// order) that is not finite, or the first pair of faces that overlap in plan.
+    pub fn new<S: Surface + ?Sized>(surface: &S) -> Result<Terrain, TerrainError> {
+        let parts: Vec<_> = (0..surface.face_count().div_ceil(FACE_CHUNK))
+            .into_par_iter()
+            .map(|i| {
+                let end = ((i + 1) * FACE_CHUNK).min(surface.face_count());
+                read_faces(surface, i * FACE_CHUNK..end)
+            })
+            .collect();
+        let mut facets = Vec::new();
+        let mut vertical = Vec::new();
+        for part in parts {
+            let (f, v) = part?;
+            facets.extend(f);
+            vertical.extend(v);
+        }
+        if u32::try_from(facets.len()).is_err() {
+            return Err(TerrainError::TooManyTriangles { triangles: facets.len() });
+        }
+        let bounds = facets.iter().map(facet_box).reduce(|a, b| {
+            [
+                [a[0][0].min(b[0][0]), a[0][1].min(b[0][1])],
+                [a[1][0].max(b[1][0]), a[1][1].max(b[1][1])],
+            ]
+        });
+        let mut area = CompensatedSum::default();
+        for f in &facets {
+            let [a, b, c] = f.xy;
+            area.add(0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])));
+        }
+        let terrain = Terrain { facets, bounds, area: area.value(), vertical };
+        match terrain.first_overlap() {
+            Some((first, second)) => Err(TerrainError::Overlap { first, second }),
+            None => Ok(terrain),
+        }
+    }
+
+    /// The pair of faces that overlap in plan that comes first (by the smaller face,
+    /// then the larger), if any.
+    fn first_overlap(&self) -> Option<(usize, usize)> {
+        let bounds = self.bounds?;
+        let grid = BucketGrid::new(bounds, self.facets.len());
+        let buckets = grid.buckets(&self.facets, &bounds);
+        let found = ordered_reduce(
+            grid.len(),
+            BUCKET_CHUNK,
+            |range| {
+                let mut first: Option<(usize, usize)> = None;
+                for bucket in range {
+                    let list = buckets.get(bucket);
+                    for (k, &a) in list.iter().enumerate() {
+                        let fa = &self.facets[a as usize];
+                        let ba = facet_box(fa);
+                        for &b in &list[k + 1..] {
+                            let fb = &self.facets[b as usize];
+                            let bb = facet_box(fb);
+                            if boxes_overlap(&ba, &bb)
+                                && grid.owns(bucket, &ba, &bb)
+                                && interiors_overlap(&fa.xy, &fb.xy)
+                            {
+                                let pair = (fa.face.min(fb.face), fa.face.max(fb.face));
+                                first = Some(first.map_or(pair, |f| f.min(pair)));
+                            }
+                        }
+                    }
+                }
+                first
+            },
+            |a, b| *a = (*a).into_iter().chain(b).min(),
+        );
+        found.flatten()
+    }
+
+    /// The box of the surface's plan: [min, max] of x and y; `None` without area.
+    pub fn plan_bounds(&self) -> Option<[[f64; 2]; 2]> {
+        self.bounds
+    }
+
+    /// The area of the surface's plan.
+    pub fn plan_area(&self) -> f64 {
+        self.area
+    }
+
+    /// The faces left out because they stand vertical (no area in plan), in order.
+    pub fn vertical_faces(&self) -> &[usize] {
+        &self.vertical
+    }
+
+    /// The number of triangles with area in plan.
+    pub fn triangle_count(&self) -> usize {
+        self.facets.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn neighbours_touch_and_overlaps_are_found() {
+        let a = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let b = [[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        assert!(!interiors_overlap(&a, &b));
+        let corner = [[1.0, 1.0], [2.0, 1.0], [1.0, 2.0]];
+        assert!(!interiors_overlap(&a, &corner));
+        let inside = [[0.1, 0.1], [0.3, 0.1], [0.1, 0.3]];
+        assert!(interiors_overlap(&a, &inside) && interiors_overlap(&inside, &a));
+        // A star of David: no corner of either inside the other, yet they overlap.
+        let up = [[0.0, 0.0], [2.0, 0.0], [1.0, 1.8]];
+        let down = [[0.0, 1.2], [1.0, -0.6], [2.0, 1.2]];
+        assert!(interiors_overlap(&up, &down));
+    }
+}
