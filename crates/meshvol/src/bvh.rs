@@ -454,17 +454,21 @@ impl Bvh {
     /// The first pair of distinct items whose boxes overlap (perhaps missing by less
     /// than an f32 rounding) that `test` accepts, in one thread; `None` when no pair
     /// is accepted. Stops at the first, so a crowd of overlaps costs no more than one.
+    /// `tags` skip node pairs as in [`Bvh::overlapping_pairs`].
     pub fn first_overlapping_pair(
         &self,
+        tags: Option<&[[u32; 3]]>,
         test: impl Fn(usize, usize) -> bool,
     ) -> Option<(usize, usize)> {
         if self.nodes.is_empty() {
             return None;
         }
+        let shared = tags.map(|tags| self.shared_tags(tags));
+        let walk = Walk { shared: shared.as_deref(), test: &() };
         let found = self.walk_pairs(
             0,
             0,
-            |_, _| false,
+            |a, b| walk.share_a_tag(a, b),
             |i, j| {
                 if test(i, j) {
                     ControlFlow::Break((i, j))

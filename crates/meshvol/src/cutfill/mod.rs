@@ -43,6 +43,7 @@
 //! ```
 
 mod cells;
+mod overlaps;
 mod pairs;
 mod piece;
 mod terrain;

@@ -9,15 +9,11 @@
 //!
 //! The surface is a height field when the interiors of its triangles' projections are
 //! disjoint. A fold or an overhang makes two triangles overlap in plan, however they
-//! are wound, so the check is the overlay of the surface with itself, cut short: the
-//! candidate pairs of [`super::pairs`], each tested with exact predicates. Two
-//! triangles (convex) have disjoint interiors exactly when one of their six edge lines
-//! has the other triangle wholly on its outer side, touching allowed (a separating axis
-//! along an edge); `orient2d` decides each side exactly, so neighbours sharing an edge
-//! or a corner are never taken for an overlap, however thin they are.
+//! are wound: [`super::overlaps`] finds the first such pair, exactly and in
+//! n log n time.
 
-use super::pairs::{boxes_overlap, facet_box, BucketGrid, PlanBox};
-use crate::accumulate::{ordered_reduce, CompensatedSum};
+use super::pairs::{facet_box, PlanBox};
+use crate::accumulate::CompensatedSum;
 use crate::vector::{cross, norm, sub};
 use crate::{Point, Surface};
 use rayon::prelude::*;
@@ -56,8 +52,6 @@ pub struct Terrain {
 
 /// Faces per parallel task when reading a surface's triangles.
 const FACE_CHUNK: usize = 4096;
-/// Buckets per parallel task in the overlap check.
-const BUCKET_CHUNK: usize = 256;
 
 fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     let coord = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
@@ -100,18 +94,6 @@ fn read_faces<S: Surface + ?Sized>(
     Ok((facets, vertical))
 }
 
-/// Whether the interiors of two counter-clockwise triangles overlap (see the module
-/// docs: no edge line of either has the other on its outer side).
-fn interiors_overlap(a: &[[f64; 2]; 3], b: &[[f64; 2]; 3]) -> bool {
-    let separates = |t: &[[f64; 2]; 3], other: &[[f64; 2]; 3]| {
-        (0..3).any(|i| {
-            let (p, q) = (t[i], t[(i + 1) % 3]);
-            other.iter().all(|&x| orient2d(p, q, x) <= 0.0)
-        })
-    };
-    !separates(a, b) && !separates(b, a)
-}
-
 impl Terrain {
     /// Reads `surface` as a height field; an error names the first face (in face
     /// order) that is not finite, or the first pair of faces that overlap in plan.
@@ -145,46 +127,10 @@ impl Terrain {
             area.add(0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])));
         }
         let terrain = Terrain { facets, bounds, area: area.value(), vertical };
-        match terrain.first_overlap() {
+        match super::overlaps::first_overlap(&terrain.facets) {
             Some((first, second)) => Err(TerrainError::Overlap { first, second }),
             None => Ok(terrain),
         }
-    }
-
-    /// The pair of faces that overlap in plan that comes first (by the smaller face,
-    /// then the larger), if any.
-    fn first_overlap(&self) -> Option<(usize, usize)> {
-        let bounds = self.bounds?;
-        let grid = BucketGrid::new(bounds, self.facets.len());
-        let buckets = grid.buckets(&self.facets, &bounds);
-        let found = ordered_reduce(
-            grid.len(),
-            BUCKET_CHUNK,
-            |range| {
-                let mut first: Option<(usize, usize)> = None;
-                for bucket in range {
-                    let list = buckets.get(bucket);
-                    for (k, &a) in list.iter().enumerate() {
-                        let fa = &self.facets[a as usize];
-                        let ba = facet_box(fa);
-                        for &b in &list[k + 1..] {
-                            let fb = &self.facets[b as usize];
-                            let bb = facet_box(fb);
-                            if boxes_overlap(&ba, &bb)
-                                && grid.owns(bucket, &ba, &bb)
-                                && interiors_overlap(&fa.xy, &fb.xy)
-                            {
-                                let pair = (fa.face.min(fb.face), fa.face.max(fb.face));
-                                first = Some(first.map_or(pair, |f| f.min(pair)));
-                            }
-                        }
-                    }
-                }
-                first
-            },
-            |a, b| *a = (*a).into_iter().chain(b).min(),
-        );
-        found.flatten()
     }
 
     /// The box of the surface's plan: [min, max] of x and y; `None` without area.
@@ -205,25 +151,5 @@ impl Terrain {
     /// The number of triangles with area in plan.
     pub fn triangle_count(&self) -> usize {
         self.facets.len()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn neighbours_touch_and_overlaps_are_found() {
-        let a = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let b = [[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        assert!(!interiors_overlap(&a, &b));
-        let corner = [[1.0, 1.0], [2.0, 1.0], [1.0, 2.0]];
-        assert!(!interiors_overlap(&a, &corner));
-        let inside = [[0.1, 0.1], [0.3, 0.1], [0.1, 0.3]];
-        assert!(interiors_overlap(&a, &inside) && interiors_overlap(&inside, &a));
-        // A star of David: no corner of either inside the other, yet they overlap.
-        let up = [[0.0, 0.0], [2.0, 0.0], [1.0, 1.8]];
-        let down = [[0.0, 1.2], [1.0, -0.6], [2.0, 1.2]];
-        assert!(interiors_overlap(&up, &down));
     }
 }

@@ -80,7 +80,7 @@ fn copies_apart(assembly: &Assembly) -> bool {
         let (a, b) = (&boxes[order[i] as usize], &boxes[order[j] as usize]);
         (0..3).all(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k])
     };
-    bvh.first_overlapping_pair(meet).is_none()
+    bvh.first_overlapping_pair(None, meet).is_none()
 }
 
 /// The copies' facts side by side.
