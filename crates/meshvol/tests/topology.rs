@@ -427,3 +427,45 @@ fn double_sided_internal_triangle_cancels() {
     assert_eq!((c.duplicate_faces, c.double_wall_faces), (2, 2));
     assert_eq!(c.self_intersections, Some(0));
 }
+
+/// Scattered boxes, some overlapping, some inside others: the overlapping pairs and the
+/// cavities against every pair of boxes compared directly.
+#[test]
+fn scattered_boxes_against_all_pairs() {
+    let mut rng = common::XorShift::new(0x51_7cc1_b727_220a);
+    let mut boxes: Vec<([f64; 3], [f64; 3])> = (0..400)
+        .map(|_| {
+            let min = [0, 1, 2].map(|_| rng.unit() * 20.0);
+            let size = 0.2 + rng.unit() * 1.5;
+            (min, min.map(|x| x + size))
+        })
+        .collect();
+    // A box inside the first (a cavity), and one inside that (an island).
+    let corner = boxes[0].0;
+    boxes.push((corner.map(|x| x + 0.02), corner.map(|x| x + 0.18)));
+    boxes.push((corner.map(|x| x + 0.05), corner.map(|x| x + 0.15)));
+    let mesh = Mesh::concatenate(&boxes.iter().map(|&(a, b)| cuboid(a, b)).collect::<Vec<_>>());
+    let c = checked(&mesh);
+    let inside = |a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])| {
+        (0..3).all(|k| b.0[k] < a.0[k] && a.1[k] < b.1[k])
+    };
+    let meet = |a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])| {
+        (0..3).all(|k| a.0[k] < b.1[k] && b.0[k] < a.1[k])
+    };
+    let mut overlapping = Vec::new();
+    for i in 0..boxes.len() {
+        for j in i + 1..boxes.len() {
+            let (a, b) = (&boxes[i], &boxes[j]);
+            if meet(a, b) && !inside(a, b) && !inside(b, a) {
+                overlapping.push([i, j]);
+            }
+        }
+    }
+    assert!(!overlapping.is_empty());
+    assert_eq!(c.overlapping_shells, overlapping);
+    let nested = (0..boxes.len())
+        .filter(|&i| (0..boxes.len()).filter(|&j| inside(&boxes[i], &boxes[j])).count() % 2 == 1)
+        .count();
+    assert!(nested > 0);
+    assert_eq!(c.cavities, nested);
+}
