@@ -147,7 +147,7 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
     };
     let (grid, bounds_from) = choose(args.bounds, mp.bounds, spacing, "--bounds")?;
     // The cell array, and with --union four more per-cell arrays.
-    check_memory(&grid, if args.union { 5 } else { 1 })?;
+    check_memory(grid.counts, if args.union { 5 } else { 1 }, "grid")?;
     progress.stage_all("computing cell volumes");
     let start = Instant::now();
     let (volumes, columns_unresolved) = if args.union {

@@ -56,18 +56,20 @@ fn available_memory() -> Option<u128> {
     Some(kib * 1024)
 }
 
-/// Refuses a grid whose arrays (`arrays` f64 values per cell) would not fit in the
-/// memory available, naming what it would need: an allocation the system overcommits
-/// would kill the process later instead.
-pub fn check_memory(grid: &Grid, arrays: u128) -> Result<(), String> {
-    let need = grid.array_bytes() * arrays;
+/// Refuses `counts` cells held in memory at once (`arrays` f64 values per cell) where
+/// they would not fit in the memory available, naming what they would need: an
+/// allocation the system overcommits would kill the process later instead. `what` names
+/// the cells: `grid`, `block`, or a `chunk row` of a grid written chunk by chunk.
+pub fn check_memory(counts: [usize; 3], arrays: u128, what: &str) -> Result<(), String> {
+    let cells = counts.iter().map(|&n| n as u128).product::<u128>();
+    let need = cells * 8 * arrays;
     match available_memory() {
         Some(available) if need > available => {
-            let [nx, ny, nz] = grid.counts;
-            let cells = nx as u128 * ny as u128 * nz as u128;
+            let [nx, ny, nz] = counts;
+            let advice = if what == "grid" { "use fewer cells" } else { "use smaller chunks" };
             Err(format!(
-                "a {nx}×{ny}×{nz} grid has {cells} cells and would need {} of memory; {} is \
-                 available: use fewer cells",
+                "a {nx}×{ny}×{nz} {what} has {cells} cells and would need {} of memory; {} is \
+                 available: {advice}",
                 bytes_text(need),
                 bytes_text(available)
             ))
