@@ -3,7 +3,7 @@
 
 use crate::number::{count, num, vector};
 use crate::Report;
-use meshvol::grid::{bytes_text, occupancy, Grid, GridError};
+use meshvol::grid::{bytes_text, occupancy, Grid, GridError, Occupancy};
 use meshvol::{Bounds, Point};
 use serde::Serialize;
 use std::fmt::Write;
@@ -116,6 +116,8 @@ pub struct GridRun {
     /// Seconds spent computing the cell volumes.
     pub seconds: f64,
     pub out: Option<String>,
+    /// The chunk shape of a `.zarr` output (written chunk row by chunk row), else `None`.
+    pub chunks: Option<[usize; 3]>,
     /// Whether `out` holds fractions (volume / cell volume) instead of volumes.
     pub fraction: bool,
     pub png: Option<String>,
@@ -135,11 +137,36 @@ pub struct GridReport {
     pub run: GridRun,
 }
 
+/// The total and occupancy of a grid's cells, taken in runs of cells in C order (a
+/// grid written chunk row by chunk row never holds all of them): the same total as of
+/// the whole array at once.
+#[derive(Clone, Debug, Default)]
+pub struct CellTally {
+    total: meshvol::accumulate::CompensatedSum,
+    occupied: Occupancy,
+}
+
+impl CellTally {
+    /// Adds the next run of cells of `grid`.
+    pub fn add(&mut self, grid: &Grid, volumes: &[f64]) {
+        let o = occupancy(volumes, grid.cell_volume());
+        self.occupied.empty += o.empty;
+        self.occupied.partial += o.partial;
+        self.occupied.full += o.full;
+        volumes.iter().for_each(|&v| self.total.add(v));
+    }
+}
+
 /// The summary of `volumes`, the cells of `grid`.
 pub fn summary(grid: &Grid, volumes: &[f64], run: GridRun) -> GridReport {
-    let occupied = occupancy(volumes, grid.cell_volume());
-    let mut total = meshvol::accumulate::CompensatedSum::default();
-    volumes.iter().for_each(|&v| total.add(v));
+    let mut tally = CellTally::default();
+    tally.add(grid, volumes);
+    tallied_summary(grid, &tally, run)
+}
+
+/// The summary of the cells of `grid` tallied in `tally`.
+pub fn tallied_summary(grid: &Grid, tally: &CellTally, run: GridRun) -> GridReport {
+    let (total, occupied) = (&tally.total, tally.occupied);
     GridReport {
         file: run.files.join(", "),
         cells: CellSummary {
@@ -213,6 +240,13 @@ impl Report for GridReport {
                 ),
                 Some(e) if e.eq_ignore_ascii_case("vti") => {
                     "VTK image data, cell arrays volume and fraction".to_string()
+                }
+                Some(e) if e.eq_ignore_ascii_case("zarr") => {
+                    let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
+                    format!(
+                        "Zarr v3 float64 {}, shape ({nx}, {ny}, {nz}), chunks ({cx}, {cy}, {cz})",
+                        if r.fraction { "fractions" } else { "volumes" }
+                    )
                 }
                 _ => "i,j,k,volume,fraction of the non-empty cells".to_string(),
             };
