@@ -91,6 +91,9 @@ def grid(
     cuts its columns' faces through every layer anyway (the layers above it hand their
     areas down): chunks split along z repeat that work.
     """
+    counts = tuple(int(n) for n in cells)
+    if len(counts) != 3 or min(counts) < 1:
+        raise ValueError(f"cells must be three positive whole numbers; got {cells}")
     if isinstance(source, Mesh):
         mesh: Optional[Mesh] = source
         where: Union[Mesh, Tuple[str, Tuple[int, int]]] = source
@@ -108,9 +111,6 @@ def grid(
             raise MeshError("no vertices: there is no surface to measure")
         bounds = found
     fixed = (tuple(map(float, bounds[0])), tuple(map(float, bounds[1])))
-    counts = tuple(int(n) for n in cells)
-    if len(counts) != 3 or min(counts) < 1:
-        raise ValueError(f"cells must be three positive whole numbers; got {cells}")
     chunks = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
 
     # One graph key holds the mesh (or its path): each worker receives it once.
