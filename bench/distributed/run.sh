@@ -44,19 +44,23 @@ field() { grep -F "$2" "$work/$1.time" | sed 's/.*: //'; }
 key() { "$python" -c "import json,sys; print(json.load(open('$work/$1.json'))['$2'])"; }
 
 df -h "$work" | tail -1
+load=$(cut -d' ' -f1-3 /proc/loadavg)
 store=$work/cells.zarr
 rm -rf "$store"
+sync
+# In memory first: the Zarr run leaves gigabytes of dirty pages that the kernel writes
+# back for a while after it ends.
+timed memory grid "$mesh" --cells 512,512,512
 timed zarr grid "$mesh" --cells "$cells,$cells,$cells" --chunks "$chunks" --out "$store"
 stored=$(du -sb "$store" | cut -f1)
 chunk_files=$(find "$store/c" -type f | wc -l)
-timed memory grid "$mesh" --cells 512,512,512
 [ "${KEEP:-0}" = 1 ] || rm -rf "$store"
 
 cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
 threads=$(nproc)
-"$python" - "$work" "$cells" "$chunks" "$stored" "$chunk_files" "$cpu" "$threads" <<'EOF' | tee bench/distributed/RESULTS.md
+"$python" - "$work" "$cells" "$chunks" "$stored" "$chunk_files" "$cpu" "$threads" "$load" <<'EOF' | tee bench/distributed/RESULTS.md
 import json, re, sys
-work, cells, chunks, stored, chunk_files, cpu, threads = sys.argv[1:]
+work, cells, chunks, stored, chunk_files, cpu, threads, load = sys.argv[1:]
 cells, stored, chunk_files = int(cells), int(stored), int(chunk_files)
 
 def run(name):
@@ -75,8 +79,9 @@ cx, cy, cz = (int(c) for c in chunks.split(","))
 total_chunks = -(-cells // cx) * -(-cells // cy) * -(-cells // cz)
 print(f"""# A grid larger than memory: `meshvol grid --out cells.zarr`
 
-Made by `bench/distributed/run.sh` on {cpu}, {threads} threads. The mesh: a UV sphere of
-radius 100 with 1M triangles (binary STL), its bounding box as the grid's bounds.
+Made by `bench/distributed/run.sh` on {cpu}, {threads} threads (load average {load} when
+it started: other work shared the machine). The mesh: a UV sphere of radius 100 with 1M
+triangles (binary STL), its bounding box as the grid's bounds.
 
 | run | cells | wall time | cell volumes computed in | peak memory (RSS) | cells/s (computing) |
 |---|---|---|---|---|---|
@@ -90,7 +95,8 @@ radius 100 with 1M triangles (binary STL), its bounding box as the grid's bounds
   not the grid: the in-memory 512³ run, an eighth of the cells, needs its whole
   {512**3 * 8 / 2**20:,.0f} MiB array.
 - Wall time includes reading and checking the mesh; for the Zarr run, also writing the
-  chunks (`seconds` in the JSON counts the cell volumes only).
+  chunks, uncompressed, which is most of it here (`seconds` in the JSON counts the cell
+  volumes only).
 - Σ cells: {z['total']!r} (1024³) and {m['total']!r} (512³) against the mesh's volume
   {z['mesh_volume']!r}.
 """)
