@@ -25,6 +25,14 @@
 //! scratch array of `(columns)·(nz + 1)` areas. Every cell therefore receives the same
 //! terms in the same order for any tile size and any number of threads: the result is
 //! the same bits.
+//!
+//! # Blocks
+//! The kernel computes a [`Block`] of the grid: its columns are numbered within the
+//! block, its layers' integrals are kept, and the areas of every layer from the block's
+//! first to the grid's top are accumulated, so that [`finish_column`] runs the same
+//! suffix sum from the top of the grid down. The pieces come from the same sweeps (from
+//! the triangle's first strip, column and layer), so a cell gets the same terms in the
+//! same order in any block; the whole grid is the block of all cells.
 
 use super::clip::Polygon;
 use super::{Grid, GridError};
