@@ -16,6 +16,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+mod zarr;
+
 #[derive(Args)]
 pub struct GridArgs {
     /// Mesh files; several are measured together (their cell volumes add up), or with
@@ -32,10 +34,15 @@ pub struct GridArgs {
     #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", value_parser = parse_bounds, allow_hyphen_values = true)]
     bounds: Option<(Point, Point)>,
     /// Where to write the cell values: .npy (float64, shape (NX, NY, NZ), C order), .vti
-    /// (VTK image data, cell arrays `volume` and `fraction`) or .csv (non-empty cells).
+    /// (VTK image data, cell arrays `volume` and `fraction`), .csv (non-empty cells), or
+    /// .zarr (a Zarr v3 array, written chunk by chunk: for grids larger than memory).
     #[arg(long, short, value_name = "OUT", value_parser = parse_out)]
     out: Option<PathBuf>,
-    /// Store volume / cell volume in .npy instead of volumes.
+    /// The chunk shape of a .zarr output (default 64 cells along each axis, at most the
+    /// grid's): memory holds one slab of CX × NY × NZ cells at a time.
+    #[arg(long, value_name = "CX,CY,CZ", value_parser = parse_cells)]
+    chunks: Option<[usize; 3]>,
+    /// Store volume / cell volume in .npy or .zarr instead of volumes.
     #[arg(long)]
     fraction: bool,
     /// Write a PNG picture of the fractions in one slice (with --slice).
@@ -96,8 +103,8 @@ fn parse_bounds(s: &str) -> Result<(Point, Point), String> {
 fn parse_out(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
     match extension(&path).as_deref() {
-        Some("npy" | "vti" | "csv") => Ok(path),
-        _ => Err(format!("'{s}': the output must end in .npy, .vti or .csv")),
+        Some("npy" | "vti" | "csv" | "zarr") => Ok(path),
+        _ => Err(format!("'{s}': the output must end in .npy, .vti, .csv or .zarr")),
     }
 }
 
@@ -146,8 +153,39 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         (None, None) => return Err("give --cells NX,NY,NZ or --pitch H".into()),
     };
     let (grid, bounds_from) = choose(args.bounds, mp.bounds, spacing, "--bounds")?;
+    let mesh_volume = if args.union {
+        bodies.iter().map(|b| mass_properties(b).signed_volume.abs()).sum()
+    } else {
+        mp.signed_volume
+    };
+    let mut run = GridRun {
+        files: args.files.iter().map(|p| p.display().to_string()).collect(),
+        bounds_from,
+        mesh_volume,
+        union: args.union,
+        bodies: bodies.len(),
+        columns_unresolved: 0,
+        seconds: 0.0,
+        out: args.out.as_ref().map(|p| p.display().to_string()),
+        chunks: None,
+        fraction: args.fraction,
+        png: args.png.as_ref().map(|p| p.display().to_string()),
+        warnings,
+    };
+    let zarr = args.out.as_deref().filter(|out| extension(out).as_deref() == Some("zarr"));
+    if let Some(out) = zarr {
+        if args.union || args.png.is_some() {
+            return Err("--union and --png need the whole grid in memory: write .npy, .vti or \
+                        .csv with them, not .zarr"
+                .into());
+        }
+        return zarr::write(&together, &grid, out, args.chunks, run, progress);
+    }
+    if args.chunks.is_some() {
+        return Err("--chunks is for a .zarr output (--out cells.zarr)".into());
+    }
     // The cell array, and with --union four more per-cell arrays.
-    check_memory(&grid, if args.union { 5 } else { 1 })?;
+    check_memory(grid.counts, if args.union { 5 } else { 1 }, "grid")?;
     progress.stage_all("computing cell volumes");
     let start = Instant::now();
     let (volumes, columns_unresolved) = if args.union {
@@ -155,12 +193,8 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
     } else {
         (cell_volumes(&together, &grid).map_err(|e| e.to_string())?, 0)
     };
-    let seconds = start.elapsed().as_secs_f64();
-    let mesh_volume = if args.union {
-        bodies.iter().map(|b| mass_properties(b).signed_volume.abs()).sum()
-    } else {
-        mp.signed_volume
-    };
+    run.seconds = start.elapsed().as_secs_f64();
+    run.columns_unresolved = columns_unresolved;
 
     if let Some(out) = &args.out {
         let file = std::fs::File::create(out)
@@ -178,18 +212,5 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         grid_out::png(&mut bytes, &grid, &volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
-    let run = GridRun {
-        files: args.files.iter().map(|p| p.display().to_string()).collect(),
-        bounds_from,
-        mesh_volume,
-        union: args.union,
-        bodies: bodies.len(),
-        columns_unresolved,
-        seconds,
-        out: args.out.as_ref().map(|p| p.display().to_string()),
-        fraction: args.fraction,
-        png: args.png.as_ref().map(|p| p.display().to_string()),
-        warnings,
-    };
     Ok(summary(&grid, &volumes, run))
 }

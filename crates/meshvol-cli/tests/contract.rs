@@ -97,7 +97,8 @@ fn a_failed_file_is_a_json_line_with_its_error() {
         assert_eq!(out.status.code(), Some(1), "{args:?}");
         let lines = lines(&out);
         assert_eq!(lines.len(), 1, "{args:?}");
-        let keys: Vec<&String> = lines[0].as_object().unwrap().keys().collect();
+        let mut keys: Vec<&String> = lines[0].as_object().unwrap().keys().collect();
+        keys.sort();
         assert_eq!(keys, ["error", "file"], "{args:?}");
         assert_eq!(lines[0]["file"], args[1]);
         assert!(String::from_utf8_lossy(&out.stderr).contains("meshvol: error:"));

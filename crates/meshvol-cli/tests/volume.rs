@@ -189,7 +189,8 @@ fn errors_name_the_file_and_place_and_set_the_exit_status() {
     assert_eq!(lines.len(), 4, "{stdout}");
     assert_eq!(lines[0]["volume"], 1.0);
     for (line, path) in lines[1..].iter().zip([&broken, &empty, &missing]) {
-        let keys: Vec<&String> = line.as_object().unwrap().keys().collect();
+        let mut keys: Vec<&String> = line.as_object().unwrap().keys().collect();
+        keys.sort();
         assert_eq!(keys, ["error", "file"]);
         assert_eq!(line["file"], path.to_str().unwrap());
         assert!(line["error"].as_str().unwrap().contains(path.to_str().unwrap()));

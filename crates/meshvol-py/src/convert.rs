@@ -27,10 +27,16 @@ fn shape_text(shape: &[usize]) -> String {
     }
 }
 
-/// `obj` as a NumPy array: itself, or `numpy.asarray(obj)`.
+/// `obj` as an aligned NumPy array: itself, an aligned copy of it (ndarray views need
+/// aligned data; pickle protocol 5 buffers, as Dask sends arrays, and `frombuffer` at an
+/// odd offset give unaligned ones), or `numpy.asarray(obj)`.
 fn as_ndarray<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Bound<'py, PyUntypedArray>> {
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        return Ok(array.clone());
+        if array.getattr("flags")?.getattr("aligned")?.extract::<bool>()? {
+            return Ok(array.clone());
+        }
+        let copy = obj.py().import("numpy")?.call_method1("array", (array,))?;
+        return copy.cast_into::<PyUntypedArray>().map_err(|e| invalid(format!("{what}: {e}")));
     }
     let converted = obj
         .py()
@@ -213,7 +219,7 @@ pub fn faces(obj: &Bound<'_, PyAny>, vertices: usize) -> PyResult<Faces> {
         if array.ndim() == 1 && array.dtype().kind() == b'O' {
             return faces_of_polygons(obj, vertices); // NumPy's ragged arrays
         }
-        return faces_of_array(array, vertices);
+        return faces_of_array(&as_ndarray(obj, "faces")?, vertices);
     }
     let sequence = obj.cast::<PyList>().is_ok() || obj.cast::<PyTuple>().is_ok();
     if sequence && obj.len()? == 0 {

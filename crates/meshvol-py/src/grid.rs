@@ -4,7 +4,7 @@
 use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::{mesh_of, PyMesh};
-use meshvol::grid::{self, Axis, Levels};
+use meshvol::grid::{self, Axis, Levels, Region};
 use meshvol::{mass_properties, Mesh, Surface};
 use meshvol_report::grid::{check_memory, choose, Spacing};
 use meshvol_report::profile::ProfileReport;
@@ -31,8 +31,25 @@ fn pitch_of(pitch: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
     Ok(sizes)
 }
 
+/// `region` as cell ranges: three (start, end) pairs of whole numbers ≥ 0 (the core
+/// checks them against the grid).
+fn region_of(region: [(i64, i64); 3]) -> PyResult<Region> {
+    let mut ranges = [0..0, 0..0, 0..0];
+    for (a, &(start, end)) in region.iter().enumerate() {
+        let (Ok(s), Ok(e)) = (usize::try_from(start), usize::try_from(end)) else {
+            return Err(bad_argument(format!(
+                "region must be ((i0, i1), (j0, j1), (k0, k1)) of cell indices ≥ 0; got \
+                 ({start}, {end}) along {}",
+                ["x", "y", "z"][a]
+            )));
+        };
+        ranges[a] = s..e;
+    }
+    Ok(ranges)
+}
+
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
-/// arguments describe.
+/// arguments describe, or of the block `region` of it.
 pub fn cell_volumes<'py, S: Surface>(
     py: Python<'py>,
     mesh: &S,
@@ -40,6 +57,7 @@ pub fn cell_volumes<'py, S: Surface>(
     bounds: Option<([f64; 3], [f64; 3])>,
     fraction: bool,
     pitch: Option<&Bound<'py, PyAny>>,
+    region: Option<[(i64, i64); 3]>,
 ) -> PyResult<Bound<'py, PyArray3<f64>>> {
     let spacing = match (cells, pitch) {
         (Some(_), Some(_)) => return Err(bad_argument("give cells or pitch, not both")),
@@ -60,13 +78,24 @@ pub fn cell_volumes<'py, S: Surface>(
         None => py.detach(|| mass_properties(mesh)).bounds,
     };
     let (grid, _) = choose(bounds, mesh_bounds, spacing, "bounds").map_err(mesh_error)?;
-    check_memory(&grid, 1).map_err(mesh_error)?;
-    let mut volumes = py.detach(|| grid::cell_volumes(mesh, &grid)).map_err(mesh_error)?;
+    let region = region.map(region_of).transpose()?;
+    let (mut volumes, shape) = match region {
+        None => {
+            check_memory(grid.counts, 1, "grid").map_err(mesh_error)?;
+            (py.detach(|| grid::cell_volumes(mesh, &grid)).map_err(mesh_error)?, grid.counts)
+        }
+        Some(region) => {
+            let shape = region.clone().map(|r| r.len());
+            check_memory(shape, 1, "block").map_err(mesh_error)?;
+            let volumes = py.detach(|| grid::cell_volumes_region(mesh, &grid, &region));
+            (volumes.map_err(mesh_error)?, shape)
+        }
+    };
     if fraction {
         let cell = grid.cell_volume();
         volumes.iter_mut().for_each(|v| *v /= cell);
     }
-    let array = Array3::from_shape_vec(grid.counts, volumes).map_err(mesh_error)?;
+    let array = Array3::from_shape_vec(shape, volumes).map_err(mesh_error)?;
     Ok(array.into_pyarray(py))
 }
 

@@ -13,7 +13,7 @@ use numpy::ndarray::ArrayView2;
 use numpy::{Element, PyArray2, PyArray3};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyTuple};
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
@@ -289,9 +289,15 @@ impl PyMesh {
     /// lower bound, enough of them to cover the upper one. fraction=True divides each
     /// cell's volume by the cell's.
     ///
+    /// region=((i0, i1), (j0, j1), (k0, k1)) returns only the block of cells i0 <= i <
+    /// i1, j0 <= j < j1, k0 <= k < k1 of that grid: the same bits as the whole grid's
+    /// [i0:i1, j0:j1, k0:k1], computed from the faces over the block's columns alone
+    /// (meshvol.dask spreads a grid's blocks over workers this way).
+    ///
     /// check=True (the default) measures the checked solid, as `meshvol grid` does;
     /// check=False the surface as wound.
-    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true))]
+    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None))]
+    #[allow(clippy::too_many_arguments)]
     fn grid<'py>(
         &self,
         py: Python<'py>,
@@ -300,11 +306,22 @@ impl PyMesh {
         fraction: bool,
         pitch: Option<&Bound<'py, PyAny>>,
         check: bool,
+        region: Option<[(i64, i64); 3]>,
     ) -> PyResult<Bound<'py, PyArray3<f64>>> {
         properties::require_faces(&self.mesh)?;
         let subject = self.subject(py, check)?;
         self.warn(py, &subject.warnings())?;
-        grid::cell_volumes(py, &subject.measured(), cells, bounds, fraction, pitch)
+        grid::cell_volumes(py, &subject.measured(), cells, bounds, fraction, pitch, region)
+    }
+
+    /// Pickling (multiprocessing, Dask): a Mesh travels as its vertex and face arrays and
+    /// is rebuilt as Mesh(vertices, faces), so where it was read from (file, format,
+    /// warnings, objects) stays behind; every measurement is the same.
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let arrays = (Self::vertices(slf)?, Self::faces(slf)?).into_pyobject(slf.py())?;
+        Ok((slf.get_type().into_any(), arrays))
     }
 
     /// The volume below each level along an axis (a strapping table): levels=N gives N

@@ -119,3 +119,15 @@ def test_meshes_from_arrays_have_no_file_facts():
     mesh = meshvol.Mesh(*box())
     assert (mesh.format, mesh.unit, mesh.warnings, mesh.objects) == (None, None, [], [])
     assert repr(mesh) == "Mesh(vertices=8, faces=12, triangles=12)"
+
+
+def test_unaligned_arrays_are_copied_not_refused():
+    # Pickle protocol 5 buffers (how Dask sends arrays) and frombuffer at an odd offset
+    # give arrays whose data is not aligned to their dtype.
+    vertices, faces = box((0, 0, 0), (2, 1, 1))
+    raw = b"\0" + vertices.astype("<f8").tobytes()
+    odd_vertices = np.frombuffer(raw, dtype="<f8", offset=1).reshape(-1, 3)
+    raw = b"\0" + faces.astype("<u4").tobytes()
+    odd_faces = np.frombuffer(raw, dtype="<u4", offset=1).reshape(-1, 3)
+    assert not odd_vertices.flags.aligned and not odd_faces.flags.aligned
+    assert meshvol.Mesh(odd_vertices, odd_faces).mass_properties().volume == 2.0

@@ -108,3 +108,28 @@ def test_union_accepts_mesh_like_objects():
     bodies = [MeshLike(*box((0, 0, 0), (1, 1, 1))), MeshLike(*box((0.5, 0, 0), (1.5, 1, 1)))]
     u = meshvol.union(bodies)
     assert u.lower <= 1.5 <= u.upper
+
+
+def test_a_region_is_the_same_bits_as_the_whole_grid():
+    mesh = meshvol.Mesh(*uv_sphere(radius=1.0, rings=24, segments=48))
+    whole = mesh.grid(cells=(9, 8, 11))
+    rng = np.random.default_rng(18)
+    for _ in range(20):
+        region = []
+        for n in (9, 8, 11):
+            start = int(rng.integers(0, n))
+            region.append((start, int(rng.integers(start + 1, n + 1))))
+        block = mesh.grid(cells=(9, 8, 11), region=region)
+        expected = whole[tuple(slice(a, b) for a, b in region)]
+        assert block.shape == expected.shape
+        assert np.array_equal(block.view(np.uint64), expected.view(np.uint64)), region
+
+
+def test_bad_regions_are_refused():
+    mesh = meshvol.Mesh(*box())
+    with pytest.raises(meshvol.MeshError, match="the region is empty along y"):
+        mesh.grid(cells=(4, 4, 4), region=((0, 4), (2, 2), (0, 4)))
+    with pytest.raises(meshvol.MeshError, match="beyond the grid's 4 cells"):
+        mesh.grid(cells=(4, 4, 4), region=((0, 4), (0, 4), (1, 5)))
+    with pytest.raises(ValueError, match="cell indices ≥ 0"):
+        mesh.grid(cells=(4, 4, 4), region=((-1, 4), (0, 4), (0, 4)))

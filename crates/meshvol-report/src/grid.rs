@@ -3,7 +3,7 @@
 
 use crate::number::{count, num, vector};
 use crate::Report;
-use meshvol::grid::{bytes_text, occupancy, Grid, GridError};
+use meshvol::grid::{bytes_text, occupancy, Grid, GridError, Occupancy};
 use meshvol::{Bounds, Point};
 use serde::Serialize;
 use std::fmt::Write;
@@ -56,18 +56,20 @@ fn available_memory() -> Option<u128> {
     Some(kib * 1024)
 }
 
-/// Refuses a grid whose arrays (`arrays` f64 values per cell) would not fit in the
-/// memory available, naming what it would need: an allocation the system overcommits
-/// would kill the process later instead.
-pub fn check_memory(grid: &Grid, arrays: u128) -> Result<(), String> {
-    let need = grid.array_bytes() * arrays;
+/// Refuses `counts` cells held in memory at once (`arrays` f64 values per cell) where
+/// they would not fit in the memory available, naming what they would need: an
+/// allocation the system overcommits would kill the process later instead. `what` names
+/// the cells: `grid`, `block`, or a `chunk row` of a grid written chunk by chunk.
+pub fn check_memory(counts: [usize; 3], arrays: u128, what: &str) -> Result<(), String> {
+    let cells = counts.iter().map(|&n| n as u128).product::<u128>();
+    let need = cells * 8 * arrays;
     match available_memory() {
         Some(available) if need > available => {
-            let [nx, ny, nz] = grid.counts;
-            let cells = nx as u128 * ny as u128 * nz as u128;
+            let [nx, ny, nz] = counts;
+            let advice = if what == "grid" { "use fewer cells" } else { "use smaller chunks" };
             Err(format!(
-                "a {nx}×{ny}×{nz} grid has {cells} cells and would need {} of memory; {} is \
-                 available: use fewer cells",
+                "a {nx}×{ny}×{nz} {what} has {cells} cells and would need {} of memory; {} is \
+                 available: {advice}",
                 bytes_text(need),
                 bytes_text(available)
             ))
@@ -114,6 +116,8 @@ pub struct GridRun {
     /// Seconds spent computing the cell volumes.
     pub seconds: f64,
     pub out: Option<String>,
+    /// The chunk shape of a `.zarr` output (written chunk row by chunk row), else `None`.
+    pub chunks: Option<[usize; 3]>,
     /// Whether `out` holds fractions (volume / cell volume) instead of volumes.
     pub fraction: bool,
     pub png: Option<String>,
@@ -133,11 +137,36 @@ pub struct GridReport {
     pub run: GridRun,
 }
 
+/// The total and occupancy of a grid's cells, taken in runs of cells in C order (a
+/// grid written chunk row by chunk row never holds all of them): the same total as of
+/// the whole array at once.
+#[derive(Clone, Debug, Default)]
+pub struct CellTally {
+    total: meshvol::accumulate::CompensatedSum,
+    occupied: Occupancy,
+}
+
+impl CellTally {
+    /// Adds the next run of cells of `grid`.
+    pub fn add(&mut self, grid: &Grid, volumes: &[f64]) {
+        let o = occupancy(volumes, grid.cell_volume());
+        self.occupied.empty += o.empty;
+        self.occupied.partial += o.partial;
+        self.occupied.full += o.full;
+        volumes.iter().for_each(|&v| self.total.add(v));
+    }
+}
+
 /// The summary of `volumes`, the cells of `grid`.
 pub fn summary(grid: &Grid, volumes: &[f64], run: GridRun) -> GridReport {
-    let occupied = occupancy(volumes, grid.cell_volume());
-    let mut total = meshvol::accumulate::CompensatedSum::default();
-    volumes.iter().for_each(|&v| total.add(v));
+    let mut tally = CellTally::default();
+    tally.add(grid, volumes);
+    tallied_summary(grid, &tally, run)
+}
+
+/// The summary of the cells of `grid` tallied in `tally`.
+pub fn tallied_summary(grid: &Grid, tally: &CellTally, run: GridRun) -> GridReport {
+    let (total, occupied) = (&tally.total, tally.occupied);
     GridReport {
         file: run.files.join(", "),
         cells: CellSummary {
@@ -211,6 +240,13 @@ impl Report for GridReport {
                 ),
                 Some(e) if e.eq_ignore_ascii_case("vti") => {
                     "VTK image data, cell arrays volume and fraction".to_string()
+                }
+                Some(e) if e.eq_ignore_ascii_case("zarr") => {
+                    let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
+                    format!(
+                        "Zarr v3 float64 {}, shape ({nx}, {ny}, {nz}), chunks ({cx}, {cy}, {cz})",
+                        if r.fraction { "fractions" } else { "volumes" }
+                    )
                 }
                 _ => "i,j,k,volume,fraction of the non-empty cells".to_string(),
             };

@@ -71,7 +71,15 @@ pub fn json_line(report: &impl Serialize) -> Result<String, String> {
     serde_json::to_string(report).map(|s| s + "\n").map_err(|e| e.to_string())
 }
 
-/// The JSON line of an input that failed: `{"file": ..., "error": ...}`.
+/// The JSON line of an input that failed: `{"file": ..., "error": ...}`, in that order
+/// whatever serde_json's features (a `json!` map's order is sorted, or the order written
+/// where a dependency such as zarrs turns on `preserve_order`).
 pub fn error_line(file: &str, error: &str) -> String {
-    serde_json::json!({ "file": file, "error": error }).to_string() + "\n"
+    #[derive(Serialize)]
+    struct ErrorLine<'a> {
+        file: &'a str,
+        error: &'a str,
+    }
+    let line = ErrorLine { file, error };
+    serde_json::to_string(&line).unwrap_or_default() + "\n"
 }

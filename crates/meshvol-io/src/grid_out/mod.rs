@@ -14,6 +14,8 @@
 //!   `UInt64` byte counts: ParaView, VisIt and `vtk` read it.
 //! - **`.csv`**: `i,j,k,volume,fraction`, one row per non-empty cell (|volume| above
 //!   [`OCCUPANCY_TOLERANCE`] of a cell), numbers in shortest round-trip form.
+//! - **`.zarr`** (feature `zarr`): a Zarr v3 array written chunk by chunk, for grids
+//!   larger than memory (the `zarr` module).
 //! - **`.png`**: one slice of fractions, white (empty) to dark blue (full), red for
 //!   negative (inward-wound) fractions, cells drawn to scale with borders where they are
 //!   at least 6 pixels wide and high; a colour legend, the slice's coordinate, and the
@@ -24,6 +26,8 @@
 
 mod font;
 mod picture;
+#[cfg(feature = "zarr")]
+pub mod zarr;
 
 use meshvol::grid::{Grid, OCCUPANCY_TOLERANCE};
 use std::io::{self, Write};

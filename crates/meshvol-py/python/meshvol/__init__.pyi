@@ -96,8 +96,10 @@ class Mesh:
         fraction: bool = False,
         pitch: _Union[float, Tuple[float, float, float], None] = None,
         check: bool = True,
+        region: Optional[Tuple[Tuple[int, int], Tuple[int, int], Tuple[int, int]]] = None,
     ) -> npt.NDArray[np.float64]:
-        """The solid's volume in each cell: an (nx, ny, nz) array (`meshvol grid`)."""
+        """The solid's volume in each cell: an (nx, ny, nz) array (`meshvol grid`), or
+        the block `region` of it."""
     def profile(
         self,
         axis: str = "z",

@@ -25,6 +25,14 @@
 //! scratch array of `(columns)·(nz + 1)` areas. Every cell therefore receives the same
 //! terms in the same order for any tile size and any number of threads: the result is
 //! the same bits.
+//!
+//! # Blocks
+//! The kernel computes a [`Block`] of the grid: its columns are numbered within the
+//! block, its layers' integrals are kept, and the areas of every layer from the block's
+//! first to the grid's top are accumulated, so that [`finish_column`] runs the same
+//! suffix sum from the top of the grid down. The pieces come from the same sweeps (from
+//! the triangle's first strip, column and layer), so a cell gets the same terms in the
+//! same order in any block; the whole grid is the block of all cells.
 
 use super::clip::Polygon;
 use super::{Grid, GridError};
@@ -196,20 +204,33 @@ impl Units {
     }
 }
 
-/// Adds a column's parts: `direct[k] += ∫ (z − k) dA` of parts in layer k, and
-/// `area[k] += A` of those parts (and `area[nz]` of parts above the grid), for the
-/// suffix sum that credits every layer below a part with its area.
+/// Adds a column's parts: `direct[k − first] += ∫ (z − k) dA` of parts in layer k, and
+/// `area[k − first] += A` of those parts (and `area[nz − first]` of parts above the
+/// grid), for the suffix sum that credits every layer below a part with its area.
+///
+/// `direct` holds the layers `first..first + direct.len()` of a region; `area` every
+/// layer from `first` up, since the layers above the region hand their areas down into
+/// it. Parts below `first` only add to layers below the region and are dropped. Parts
+/// above the region add their area alone, the same bits as `area_and_moment`'s.
 pub(crate) struct ColumnSink<'a> {
     pub(crate) direct: &'a mut [f64],
     pub(crate) area: &'a mut [f64],
+    pub(crate) first: usize,
 }
 
 impl LayerSink for ColumnSink<'_> {
     #[inline(always)]
     fn slab<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) {
-        let (area, moment) = part.area_and_moment(layer as f64);
-        self.direct[layer] += moment;
-        self.area[layer] += area;
+        let Some(local) = layer.checked_sub(self.first) else {
+            return;
+        };
+        if local < self.direct.len() {
+            let (area, moment) = part.area_and_moment(layer as f64);
+            self.direct[local] += moment;
+            self.area[local] += area;
+        } else {
+            self.area[local] += part.area();
+        }
     }
 
     #[inline(always)]
@@ -220,29 +241,69 @@ impl LayerSink for ColumnSink<'_> {
 }
 
 /// Finishes a column: `cell[k] = (direct[k] + Σ_{m > k} area[m]) · scale`, the running
-/// sum compensated (TwoSum).
+/// sum compensated (TwoSum) and taken from the top of the grid down.
+///
+/// `area` runs from the region's first layer to the grid's top (`nz − first + 1`
+/// entries) and `direct` over the region's layers: the running sum passes through the
+/// layers above the region without writing them, so a region's cells are the same
+/// operations on the same terms as the whole column's.
 pub(crate) fn finish_column(direct: &mut [f64], area: &[f64], scale: f64) {
     let (mut sum, mut compensation) = (0.0, 0.0);
-    for k in (0..direct.len()).rev() {
+    for k in (0..area.len() - 1).rev() {
         let (s, e) = two_sum(sum, area[k + 1]);
         sum = s;
         compensation += e;
-        direct[k] = (direct[k] + (sum + compensation)) * scale;
+        if let Some(cell) = direct.get_mut(k) {
+            *cell = (*cell + (sum + compensation)) * scale;
+        }
     }
 }
 
-/// Column pieces of one triangle (grid units) within a run of columns: calls
+/// A region of a grid as the kernel walks it: the grid's counts and the cell ranges
+/// along each axis. Its columns are numbered `c = (i − x.start)·width + (j − y.start)`
+/// (`width` = the region's y count), so a run of them is a contiguous slice of the
+/// region's cells in C order.
+#[derive(Clone, Debug)]
+pub(crate) struct Block {
+    pub(crate) counts: [usize; 3],
+    pub(crate) region: [Range<usize>; 3],
+}
+
+impl Block {
+    pub(crate) fn whole(counts: [usize; 3]) -> Block {
+        Block { counts, region: counts.map(|n| 0..n) }
+    }
+
+    /// Cells along each axis.
+    pub(crate) fn shape(&self) -> [usize; 3] {
+        [0, 1, 2].map(|a| self.region[a].len())
+    }
+
+    pub(crate) fn columns(&self) -> usize {
+        self.region[0].len() * self.region[1].len()
+    }
+
+    /// Area accumulators per column: the region's layers and every one above them.
+    pub(crate) fn areas(&self) -> usize {
+        self.counts[2] + 1 - self.region[2].start
+    }
+}
+
+/// Column pieces of one triangle (grid units) within a run of `block`'s columns: calls
 /// `piece(column − first column, piece)` for each column of `columns` the triangle
-/// overlaps.
+/// overlaps. The strips and pieces are cut from the triangle's first row and column
+/// whichever run asks, so they are the same bits for any block.
 #[inline(always)]
 pub(crate) fn for_each_piece(
     triangle: &Piece,
-    [nx, ny]: [usize; 2],
+    block: &Block,
     columns: &Range<usize>,
     closed: bool,
     mut piece: impl FnMut(usize, &Piece),
 ) {
-    let (first_row, last_row) = (columns.start / ny, (columns.end - 1) / ny);
+    let [nx, ny, _] = block.counts;
+    let (x0, y0, width) = (block.region[0].start, block.region[1].start, block.region[1].len());
+    let (first_row, last_row) = (x0 + columns.start / width, x0 + (columns.end - 1) / width);
     let x = triangle.range(0);
     sweep_axis(triangle, 0, x, cover(x.0, x.1, nx, closed), closed, |i, strip| {
         if i < first_row {
@@ -251,8 +312,9 @@ pub(crate) fn for_each_piece(
         if i > last_row {
             return false;
         }
-        let j_lo = if i == first_row { columns.start % ny } else { 0 };
-        let j_hi = if i == last_row { (columns.end - 1) % ny + 1 } else { ny };
+        let j_lo = y0 + if i == first_row { columns.start % width } else { 0 };
+        let j_hi = y0 + if i == last_row { (columns.end - 1) % width + 1 } else { width };
+        let row = (i - x0) * width;
         let y = strip.range(1);
         sweep_axis(strip, 1, y, cover(y.0, y.1, ny, closed), closed, |j, part| {
             if j < j_lo {
@@ -261,7 +323,7 @@ pub(crate) fn for_each_piece(
             if j >= j_hi {
                 return false;
             }
-            piece(i * ny + j - columns.start, part);
+            piece(row + j - y0 - columns.start, part);
             true
         });
         true
@@ -276,14 +338,13 @@ pub(crate) struct Tiling {
 }
 
 impl Tiling {
-    /// At least eight tiles per thread where the grid allows, and at most 2²⁰ scratch
+    /// At least eight tiles per thread where the block allows, and at most 2²⁰ scratch
     /// areas (8 MiB) per tile. The result does not depend on the choice.
-    pub(crate) fn new(grid: &Grid) -> Tiling {
-        let [nx, ny, nz] = grid.counts;
-        let columns = nx * ny;
+    pub(crate) fn new(block: &Block) -> Tiling {
+        let columns = block.columns();
         let threads = rayon::current_num_threads().max(1);
         let by_threads = columns.div_ceil(8 * threads);
-        let by_memory = ((1usize << 20) / (nz + 1)).max(1);
+        let by_memory = ((1usize << 20) / block.areas()).max(1);
         Tiling { columns, per_tile: by_threads.min(by_memory).max(1) }
     }
 
@@ -304,7 +365,8 @@ struct ChunkBins {
     faces: Vec<u32>,
 }
 
-/// Faces binned by the tiles their xy bounding box meets.
+/// Faces binned by the tiles their xy bounding box meets (faces over no column of the
+/// block are in no tile, and are never cut).
 pub(crate) struct Bins {
     chunks: Vec<ChunkBins>,
 }
@@ -313,15 +375,19 @@ impl Bins {
     pub(crate) fn new<S: Surface + ?Sized>(
         surface: &S,
         grid: &Grid,
+        block: &Block,
         tiling: &Tiling,
         closed: bool,
     ) -> Bins {
         let units = Units::new(grid);
         let [nx, ny, _] = grid.counts;
+        let [x, y, _] = &block.region;
+        let width = y.len();
         let faces = surface.face_count();
         let tiles = tiling.tiles();
         let per_tile = tiling.per_tile;
-        // The rows and columns face `f`'s bounding box meets.
+        // The block's rows and columns face `f`'s bounding box meets, counted from the
+        // block's first.
         let cover_of = |f: usize| {
             let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
             surface.fan(f, |a, b, c| {
@@ -335,10 +401,12 @@ impl Bins {
             });
             let (i0, i1) = cover(lo[0], hi[0], nx, closed);
             let (j0, j1) = cover(lo[1], hi[1], ny, closed);
-            if j0 >= j1 {
+            let (i0, i1) = (i0.max(x.start), i1.min(x.end));
+            let (j0, j1) = (j0.max(y.start), j1.min(y.end));
+            if i0 >= i1 || j0 >= j1 {
                 (0, 0, 0, 0)
             } else {
-                (i0, i1, j0, j1)
+                (i0 - x.start, i1 - x.start, j0 - y.start, j1 - y.start)
             }
         };
         // Calls `add(tile)` once for each tile that rows i0..i1 × columns j0..j1 meet, in
@@ -347,8 +415,8 @@ impl Bins {
                         add: &mut dyn FnMut(usize)| {
             let mut next = 0;
             for i in i0..i1 {
-                let first = ((i * ny + j0) / per_tile).max(next);
-                let last = (i * ny + j1 - 1) / per_tile;
+                let first = ((i * width + j0) / per_tile).max(next);
+                let last = (i * width + j1 - 1) / per_tile;
                 for t in first..=last {
                     add(t);
                 }
@@ -403,22 +471,25 @@ pub(crate) fn zeroed<T: Clone + Default>(len: usize) -> Result<Vec<T>, GridError
     Ok(vec![T::default(); len])
 }
 
-/// Adds the column pieces of `faces` that fall in `columns` (a run of columns of
-/// `grid`) to `cells` (the run's cells) and `area` (`nz + 1` per column), in face
-/// order; call [`finish_column`] after the last face. With `CLOSED`, also marks in
-/// `touched` every cell whose closed box a triangle meets (degenerate pieces on cell
-/// faces included); `touched` is not used otherwise.
+/// Adds the column pieces of `faces` that fall in `columns` (a run of `block`'s
+/// columns) to `cells` (the run's cells) and `area` ([`Block::areas`] per column), in
+/// face order; call [`finish_column`] after the last face. With `CLOSED`, also marks in
+/// `touched` every cell of the run whose closed box a triangle meets (degenerate pieces
+/// on cell faces included); `touched` is not used otherwise.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn add_faces<S: Surface + ?Sized, const CLOSED: bool>(
     surface: &S,
     faces: impl Iterator<Item = usize>,
     units: &Units,
-    [nx, ny, nz]: [usize; 3],
+    block: &Block,
     columns: &Range<usize>,
     cells: &mut [f64],
     area: &mut [f64],
     touched: &mut [u8],
 ) {
+    let nz = block.counts[2];
+    let layers = &block.region[2];
+    let (depth, areas) = (layers.len(), block.areas());
     for face in faces {
         surface.fan(face, |a, b, c| {
             let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
@@ -426,16 +497,21 @@ pub(crate) fn add_faces<S: Surface + ?Sized, const CLOSED: bool>(
             if flat && !CLOSED {
                 return; // edge-on: no projected area, nothing to add
             }
-            for_each_piece(&t, [nx, ny], columns, CLOSED, |column, piece| {
+            for_each_piece(&t, block, columns, CLOSED, |column, piece| {
                 let z = piece.range(2);
                 if CLOSED {
                     let (k0, k1) = cover(z.0, z.1, nz, true);
-                    touched[column * nz + k0..column * nz + k1].fill(1);
+                    let (k0, k1) = (k0.max(layers.start), k1.min(layers.end));
+                    if k0 < k1 {
+                        let first = column * depth;
+                        touched[first + k0 - layers.start..first + k1 - layers.start].fill(1);
+                    }
                 }
                 if !flat {
                     let mut sink = ColumnSink {
-                        direct: &mut cells[column * nz..(column + 1) * nz],
-                        area: &mut area[column * (nz + 1)..(column + 1) * (nz + 1)],
+                        direct: &mut cells[column * depth..(column + 1) * depth],
+                        area: &mut area[column * areas..(column + 1) * areas],
+                        first: layers.start,
                     };
                     sweep_layers(piece, z, nz, &mut sink);
                 }
@@ -444,30 +520,35 @@ pub(crate) fn add_faces<S: Surface + ?Sized, const CLOSED: bool>(
     }
 }
 
-/// Per-cell volumes (the [module docs](super)) of a validated `grid`; with `touched`
-/// (one entry per cell), also marks the cells the surface meets (closed boxes).
+/// Per-cell volumes (the [module docs](super)) of `block` of a validated `grid`, in C
+/// order within the block; with `touched` (one entry per cell of the block), also marks
+/// the cells the surface meets (closed boxes).
+///
+/// The whole grid is the block of all its cells: every block runs this one path, and a
+/// cell receives the same terms in the same order whichever block holds it.
 pub(crate) fn cell_volumes<S: Surface + ?Sized>(
     surface: &S,
     grid: &Grid,
+    block: &Block,
     touched: Option<&mut [u8]>,
 ) -> Result<Vec<f64>, GridError> {
-    let nz = grid.counts[2];
-    let mut out = zeroed(grid.cell_count())?;
-    let tiling = Tiling::new(grid);
-    let bins = Bins::new(surface, grid, &tiling, touched.is_some());
+    let [_, _, depth] = block.shape();
+    let mut out = zeroed(block.columns() * depth)?;
+    let tiling = Tiling::new(block);
+    let bins = Bins::new(surface, grid, block, &tiling, touched.is_some());
     let units = Units::new(grid);
     let scale = grid.cell_volume();
-    let tile_cells = tiling.per_tile * nz;
+    let (tile_cells, areas) = (tiling.per_tile * depth, block.areas());
     let run = |tile: usize, cells: &mut [f64], touched: &mut [u8], closed: bool| {
         let columns = tiling.range(tile);
-        let mut area = vec![0.0; columns.len() * (nz + 1)];
+        let mut area = vec![0.0; columns.len() * areas];
         let faces = bins.faces(tile);
         // One call for both kinds of tile: the kernel is compiled for each.
         type Add<'s, S, I> =
-            fn(&'s S, I, &Units, [usize; 3], &Range<usize>, &mut [f64], &mut [f64], &mut [u8]);
+            fn(&'s S, I, &Units, &Block, &Range<usize>, &mut [f64], &mut [f64], &mut [u8]);
         let add: Add<S, _> = if closed { add_faces::<S, true> } else { add_faces::<S, false> };
-        add(surface, faces, &units, grid.counts, &columns, cells, &mut area, touched);
-        for (direct, area) in cells.chunks_mut(nz).zip(area.chunks(nz + 1)) {
+        add(surface, faces, &units, block, &columns, cells, &mut area, touched);
+        for (direct, area) in cells.chunks_mut(depth).zip(area.chunks(areas)) {
             finish_column(direct, area, scale);
         }
     };

@@ -27,7 +27,8 @@
 //! rounding. Parts of the surface outside the grid's columns are dropped and parts above
 //! or below it are clamped, so only the solid inside the grid counts.
 //!
-//! See [`cell_volumes`] (the grid), [`profile()`] (one column along any axis: volume below
+//! See [`cell_volumes`] (the grid), [`cell_volumes_region`] (a block of it, the same
+//! bits), [`profile()`] (one column along any axis: volume below
 //! each level, slab volumes, section areas) and [`union()`] (several bodies).
 
 mod cells;
@@ -41,6 +42,7 @@ pub use union::{
 };
 
 use crate::Point;
+use std::ops::Range;
 
 /// A regular grid: `counts[a]` cells of size `cell[a]` along axis `a`, starting at
 /// `origin`. Cell `(i, j, k)` spans `origin + (i, j, k)·cell` to `origin + (i+1, j+1,
@@ -71,6 +73,10 @@ pub enum GridError {
     OutOfMemory { bytes: u128 },
     #[error("a pitch of {pitch:e} along {axis} across {extent:e} gives about {:.1e} cells on that axis alone: use a larger pitch", extent / pitch)]
     PitchTooFine { axis: char, pitch: f64, extent: f64 },
+    #[error("the region is empty along {axis} (cells {start}..{end}): give start < end")]
+    EmptyRegion { axis: char, start: usize, end: usize },
+    #[error("the region's cells {start}..{end} along {axis} reach beyond the grid's {cells} cells on that axis")]
+    RegionOutsideGrid { axis: char, start: usize, end: usize, cells: usize },
 }
 
 /// `bytes` in binary units: `512 B`, `1.5 GiB`, `8.0 EiB`.
@@ -213,7 +219,57 @@ pub fn cell_volumes<S: crate::Surface + ?Sized>(
     grid: &Grid,
 ) -> Result<Vec<f64>, GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
-    cells::cell_volumes(surface, &grid, None)
+    cells::cell_volumes(surface, &grid, &cells::Block::whole(grid.counts), None)
+}
+
+/// The cells `x × y × z` of a grid (ranges of cell indices along each axis): a block of
+/// it, as [`cell_volumes_region`] computes it.
+pub type Region = [Range<usize>; 3];
+
+/// The volume of the solid in each cell of `region` of `grid`, in C order within the
+/// region (shape `region[a].len()` along axis `a`): the same bits as those cells of
+/// [`cell_volumes`] over the whole grid.
+///
+/// A cell's volume takes the areas of the surface above it, so a region's columns are
+/// cut through the grid's full height (the layers above the region hand their areas
+/// down, in the same order as for the whole grid); only faces whose xy bounding box
+/// meets the region's columns are cut. Blocks of one grid are therefore independent:
+/// threads, processes or machines can each compute some and the cells agree exactly.
+///
+/// ```
+/// use meshvol::grid::{cell_volumes, cell_volumes_region, Grid};
+/// use meshvol::shapes::cuboid;
+/// let grid = Grid::new([0.0; 3], [0.5; 3], [4, 4, 4]).unwrap();
+/// let cube = cuboid([0.1; 3], [1.7, 1.3, 1.9]);
+/// let all = cell_volumes(&cube, &grid).unwrap();
+/// let block = cell_volumes_region(&cube, &grid, &[1..3, 2..4, 3..4]).unwrap();
+/// assert_eq!(block, [all[grid.index([1, 2, 3])], all[grid.index([1, 3, 3])],
+///                    all[grid.index([2, 2, 3])], all[grid.index([2, 3, 3])]]);
+/// assert!(cell_volumes_region(&cube, &grid, &[0..5, 0..4, 0..4]).is_err());
+/// ```
+pub fn cell_volumes_region<S: crate::Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    region: &Region,
+) -> Result<Vec<f64>, GridError> {
+    let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
+    check_region(&grid, region)?;
+    let block = cells::Block { counts: grid.counts, region: region.clone() };
+    cells::cell_volumes(surface, &grid, &block, None)
+}
+
+/// A region inside the grid with at least one cell along each axis.
+fn check_region(grid: &Grid, region: &Region) -> Result<(), GridError> {
+    for (a, range) in region.iter().enumerate() {
+        let (axis, start, end, cells) = (AXES[a], range.start, range.end, grid.counts[a]);
+        if start >= end {
+            return Err(GridError::EmptyRegion { axis, start, end });
+        }
+        if end > cells {
+            return Err(GridError::RegionOutsideGrid { axis, start, end, cells });
+        }
+    }
+    Ok(())
 }
 
 /// How many cells are empty, partial or full.

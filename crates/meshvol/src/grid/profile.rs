@@ -197,7 +197,8 @@ pub fn profile<S: Surface + ?Sized>(
                     if z0 == z1 && z0.fract() == 0.0 && (0.0..=n as f64).contains(&z0) {
                         sums.flat[z0 as usize] += t.area();
                     }
-                    let mut sink = ColumnSink { direct: &mut sums.direct, area: &mut sums.area };
+                    let mut sink =
+                        ColumnSink { direct: &mut sums.direct, area: &mut sums.area, first: 0 };
                     sweep_layers(&t, (z0, z1), n, &mut sink);
                 });
             }

@@ -6,7 +6,7 @@
 //! Each body's faces are also binned by the columns their boxes meet, for the later
 //! stages.
 
-use crate::grid::cells::{cell_volumes, cover, for_each_piece, zeroed, Piece, Units};
+use crate::grid::cells::{cell_volumes, cover, for_each_piece, zeroed, Block, Piece, Units};
 use crate::grid::{Grid, GridError};
 use crate::surface::Oriented;
 use crate::{Point, Surface};
@@ -154,7 +154,7 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
         let slack = SOLID_SLACK * cell_volume;
         for (b, body) in bodies.iter().enumerate() {
             touched.fill(0);
-            let v = cell_volumes(body, &grid, Some(&mut touched))?;
+            let v = cell_volumes(body, &grid, &Block::whole(grid.counts), Some(&mut touched))?;
             if v.iter().any(|&x| !(-slack..=cell_volume + slack).contains(&x)) {
                 not_solid.push(b);
             }
@@ -173,14 +173,15 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
 
     /// For column `c`: which bodies touch each layer (`touch[b * nz + k]`).
     pub fn column_touches(&self, c: usize) -> Vec<bool> {
-        let [nx, ny, nz] = self.grid.counts;
+        let nz = self.grid.counts[2];
+        let whole = Block::whole(self.grid.counts);
         let mut touch = vec![false; self.bodies.len() * nz];
         for (b, body) in self.bodies.iter().enumerate() {
             for &f in self.bins[b].column(c) {
                 body.fan(f as usize, |p, q, r| {
                     let t =
                         Piece::triangle(self.units.map(p), self.units.map(q), self.units.map(r));
-                    for_each_piece(&t, [nx, ny], &(c..c + 1), true, |_, piece| {
+                    for_each_piece(&t, &whole, &(c..c + 1), true, |_, piece| {
                         let z = piece.range(2);
                         let (k0, k1) = cover(z.0, z.1, nz, true);
                         touch[b * nz + k0..b * nz + k1].fill(true);

@@ -6,7 +6,7 @@
 
 use super::bounds::{face_box, Cell, Tally};
 use super::STALL;
-use crate::grid::cells::{add_faces, finish_column, Units};
+use crate::grid::cells::{add_faces, finish_column, Block, Units};
 use crate::grid::{Grid, GridError};
 use crate::surface::Oriented;
 use crate::{Point, Surface};
@@ -73,7 +73,7 @@ pub(super) fn refine<S: Surface + ?Sized>(
                 &bodies[*b],
                 faces,
                 &units,
-                [2, 2, 2],
+                &Block::whole([2, 2, 2]),
                 &(0..4),
                 &mut cells,
                 &mut area,

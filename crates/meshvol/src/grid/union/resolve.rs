@@ -6,7 +6,7 @@
 //! a coplanar face shared the same way round with a later body.
 
 use super::bounds::{Bodies, Cell};
-use crate::grid::cells::{finish_column, for_each_piece, sweep_layers, LayerSink, Piece};
+use crate::grid::cells::{finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece};
 use crate::grid::clip::Polygon;
 use crate::{Point, Surface};
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -19,7 +19,8 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
     /// many open cells that resolved; `None` where a piece needed more than [`SUB`]
     /// sides or a resolved value falls outside its cell's bounds.
     pub(super) fn exact_column(&self, c: usize) -> Option<(Vec<f64>, usize)> {
-        let [nx, ny, nz] = self.grid.counts;
+        let [_, ny, nz] = self.grid.counts;
+        let whole = Block::whole(self.grid.counts);
         let (i, j) = (c / ny, c % ny);
         let touch = self.column_touches(c);
         let m = self.bodies.len();
@@ -83,7 +84,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                     if t.area() == 0.0 {
                         return;
                     }
-                    for_each_piece(&t, [nx, ny], &(c..c + 1), false, |_, piece| {
+                    for_each_piece(&t, &whole, &(c..c + 1), false, |_, piece| {
                         let mut sink = KeptSink {
                             owner: self,
                             column: c,

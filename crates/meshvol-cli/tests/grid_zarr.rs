@@ -1,0 +1,161 @@
+//! `meshvol grid --out cells.zarr`: the Zarr v3 array read here by hand (its zarr.json
+//! and raw little-endian chunks) against the `.npy` the command writes for the same
+//! grid, and against a box's closed-form volume.
+
+mod common;
+use common::{f, meshvol, p, write};
+
+use serde_json::Value;
+use std::path::Path;
+
+/// OBJ text of a tetrahedron-fan octahedron: centre `c`, half-diagonal `r`; volume
+/// 4r³/3, and its faces lie on no grid plane below.
+fn octahedron(c: [f64; 3], r: f64) -> String {
+    let mut s = String::new();
+    for (a, sign) in [(0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0), (2, 1.0), (2, -1.0)] {
+        let mut v = c;
+        v[a] += sign * r;
+        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    // Vertices: 1 +x, 2 −x, 3 +y, 4 −y, 5 +z, 6 −z; faces wound outward.
+    for t in
+        [[1, 3, 5], [3, 2, 5], [2, 4, 5], [4, 1, 5], [3, 1, 6], [2, 3, 6], [4, 2, 6], [1, 4, 6]]
+    {
+        s += &format!("f {} {} {}\n", t[0], t[1], t[2]);
+    }
+    s
+}
+
+/// The values of a `.npy` file of float64 (its header checked) and its shape.
+fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+    let n = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let header = std::str::from_utf8(&bytes[10..10 + n]).unwrap();
+    assert!(header.contains("'descr': '<f8'") && header.contains("'fortran_order': False"));
+    let shape = header.split("'shape': (").nth(1).unwrap().split(')').next().unwrap();
+    let shape = shape.split(',').filter(|s| !s.trim().is_empty());
+    let values = bytes[10 + n..].chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap()));
+    (shape.map(|s| s.trim().parse().unwrap()).collect(), values.collect())
+}
+
+fn numbers(v: &Value) -> Vec<usize> {
+    v.as_array().unwrap().iter().map(|x| x.as_u64().unwrap() as usize).collect()
+}
+
+/// The whole array of a Zarr v3 store with the `bytes` codec, chunk by chunk: a missing
+/// chunk is the fill value, edge chunks are whole (padded).
+fn read_zarr(path: &Path) -> (Value, Vec<f64>) {
+    let meta: Value =
+        serde_json::from_slice(&std::fs::read(path.join("zarr.json")).unwrap()).unwrap();
+    assert_eq!(meta["zarr_format"], 3);
+    assert_eq!(meta["node_type"], "array");
+    assert_eq!(meta["data_type"], "float64");
+    assert_eq!(meta["chunk_grid"]["name"], "regular");
+    assert_eq!(meta["chunk_key_encoding"]["configuration"]["separator"], "/");
+    assert_eq!(
+        meta["codecs"],
+        serde_json::json!([{"name": "bytes", "configuration": {"endian": "little"}}])
+    );
+    let fill = f(&meta["fill_value"]);
+    let shape = numbers(&meta["shape"]);
+    let chunk = numbers(&meta["chunk_grid"]["configuration"]["chunk_shape"]);
+    let mut out = vec![f64::NAN; shape.iter().product()];
+    let blocks: Vec<usize> = (0..3).map(|a| shape[a].div_ceil(chunk[a])).collect();
+    for bi in 0..blocks[0] {
+        for bj in 0..blocks[1] {
+            for bk in 0..blocks[2] {
+                let file = path.join(format!("c/{bi}/{bj}/{bk}"));
+                let values: Vec<f64> = match std::fs::read(&file) {
+                    Ok(bytes) => {
+                        assert_eq!(bytes.len(), chunk.iter().product::<usize>() * 8, "{file:?}");
+                        let v = bytes.chunks_exact(8);
+                        v.map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
+                    }
+                    Err(_) => vec![fill; chunk.iter().product()],
+                };
+                for (n, &v) in values.iter().enumerate() {
+                    let local = [n / (chunk[1] * chunk[2]), n / chunk[2] % chunk[1], n % chunk[2]];
+                    let at = [bi * chunk[0], bj * chunk[1], bk * chunk[2]];
+                    let g: Vec<usize> = (0..3).map(|a| at[a] + local[a]).collect();
+                    if (0..3).all(|a| g[a] < shape[a]) {
+                        out[(g[0] * shape[1] + g[1]) * shape[2] + g[2]] = v;
+                    }
+                }
+            }
+        }
+    }
+    (meta, out)
+}
+
+fn json(args: &[&str]) -> Value {
+    let out = meshvol(args);
+    assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+#[test]
+fn zarr_chunks_hold_the_npy_cells() {
+    let dir = tempfile::tempdir().unwrap();
+    let (centre, r) = ([0.31, -0.17, 0.23], 1.1);
+    let mesh = write(dir.path(), "octahedron.obj", octahedron(centre, r));
+    let (npy, store) = (dir.path().join("c.npy"), dir.path().join("c.zarr"));
+    let bounds = "-1.2,-1.4,-1.1,1.6,1.3,1.5";
+    let grid = ["grid", p(&mesh), "--cells", "11,9,13", "--bounds", bounds, "--json"];
+    let from_npy = json(&[&grid[..], &["--out", p(&npy)]].concat());
+    let from_zarr = json(&[&grid[..], &["--out", p(&store), "--chunks", "4,5,6"]].concat());
+
+    let (meta, cells) = read_zarr(&store);
+    assert_eq!(numbers(&meta["shape"]), [11, 9, 13]);
+    assert_eq!(numbers(&meta["chunk_grid"]["configuration"]["chunk_shape"]), [4, 5, 6]);
+    assert_eq!(meta["dimension_names"], serde_json::json!(["x", "y", "z"]));
+    assert_eq!(meta["attributes"]["origin"], serde_json::json!([-1.2, -1.4, -1.1]));
+    assert_eq!(meta["attributes"]["values"], "volume");
+    let (shape, values) = read_npy(&npy);
+    assert_eq!(shape, [11, 9, 13]);
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&cells), bits(&values));
+    // Independent of both: the octahedron's volume, and the same summary either way.
+    let volume = 4.0 * r * r * r / 3.0;
+    assert!((cells.iter().sum::<f64>() - volume).abs() < 1e-13);
+    for key in ["total", "cells_full", "cells_partial", "cells_empty"] {
+        assert_eq!(from_zarr[key], from_npy[key], "{key}");
+    }
+    assert_eq!(from_zarr["chunks"], serde_json::json!([4, 5, 6]));
+    assert_eq!(from_npy["chunks"], Value::Null);
+    // A corner chunk wholly outside the octahedron (its nearest corner (0.84, 0.1, 1.3)
+    // is 1.87 from the centre in the 1-norm) holds only zeros and is not stored.
+    assert!(!store.join("c/2/1/2").exists() && store.join("c/1/1/1").exists());
+
+    // Written again over itself with other chunks and as fractions: nothing stale.
+    json(&[&grid[..], &["--out", p(&store), "--chunks", "11,2,13", "--fraction"]].concat());
+    let (meta, fractions) = read_zarr(&store);
+    assert_eq!(meta["attributes"]["values"], "fraction");
+    let cell = (2.8 / 11.0) * (2.7 / 9.0) * (2.6 / 13.0);
+    for (fraction, v) in fractions.iter().zip(&values) {
+        assert!((fraction - v / cell).abs() <= 1e-15, "{fraction} vs {}", v / cell);
+    }
+}
+
+#[test]
+fn zarr_misuse_is_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = write(dir.path(), "o.obj", octahedron([0.0; 3], 1.0));
+    let file = write(dir.path(), "taken.zarr", "not a directory");
+    let run = |extra: &[&str]| {
+        let out = meshvol(&[&["grid", p(&mesh), "--cells", "4,4,4"][..], extra].concat());
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (code, err) = run(&["--out", p(&file)]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("taken.zarr: is a file"), "{err}");
+    let (code, err) = run(&["--chunks", "2,2,2"]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("--chunks is for a .zarr output"), "{err}");
+    let store = dir.path().join("u.zarr");
+    let (code, err) = run(&["--out", p(&store), "--union"]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("need the whole grid in memory"), "{err}");
+    let (code, _) = run(&["--out", p(&store), "--chunks", "0,2,2"]);
+    assert_eq!(code, Some(2));
+}

@@ -1,0 +1,131 @@
+"""Grids beyond one machine: the cell volumes of Mesh.grid as a Dask array, each chunk
+computed by a worker, exactly.
+
+A block of the column-clamp grid is independent of the others once its columns get the
+areas of the surface above it, and Mesh.grid(region=...) computes a block that way:
+bit for bit the same cells as the whole grid. So
+
+>>> import meshvol.dask                                         # doctest: +SKIP
+>>> cells = meshvol.dask.grid("part.stl", cells=(1024, 1024, 1024), chunks=(128, 128, -1))
+>>> cells.to_zarr("part-cells.zarr")                            # written chunk by chunk
+
+computes the same array as load("part.stl").grid(cells=(1024, 1024, 1024)) on any
+scheduler: threads, processes, or a dask.distributed cluster. The grid's bounds are
+fixed once, on the client, so every chunk belongs to the same grid.
+
+Needs the `dask` extra: pip install "meshvol[dask]" (dask[array], distributed, zarr).
+
+There is no meshvol.dask.union: the union's cells are refined until the gap summed over
+the whole grid is below a tolerance, a budget shared by every cell, so its blocks are
+not independent (see docs/distributed.md).
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import warnings
+from typing import Optional, Sequence, Tuple, Union
+
+import dask
+import dask.array as da
+import numpy as np
+
+from . import Mesh, MeshError, MeshWarning, load
+
+__all__ = ["grid"]
+
+Bounds = Tuple[Sequence[float], Sequence[float]]
+
+
+@functools.lru_cache(maxsize=4)
+def _load(path: str, mtime_ns: int, size: int) -> Mesh:
+    """The mesh in `path`, read once per worker process and kept (keyed by the file's
+    modification time and size as the client saw them, so a changed file is read again)."""
+    return load(path)
+
+
+def _mesh_at(path: str, stamp: Tuple[int, int]) -> Mesh:
+    """The mesh in `path` if the file is the one the client planned the grid with."""
+    info = os.stat(path)
+    if (info.st_mtime_ns, info.st_size) != stamp:
+        raise MeshError(f"{path}: the file changed after the grid was planned; plan it again")
+    return _load(path, *stamp)
+
+
+def _block(
+    source: Union[Mesh, Tuple[str, Tuple[int, int]]],
+    cells: Tuple[int, int, int],
+    bounds: Tuple[Tuple[float, ...], Tuple[float, ...]],
+    fraction: bool,
+    check: bool,
+    region: Tuple[Tuple[int, int], ...],
+) -> np.ndarray:
+    """One chunk, on a worker."""
+    mesh = source if isinstance(source, Mesh) else _mesh_at(*source)
+    with warnings.catch_warnings():
+        # The client issued the mesh's warnings once, when it fixed the bounds.
+        warnings.simplefilter("ignore", MeshWarning)
+        return mesh.grid(cells=cells, bounds=bounds, fraction=fraction, check=check, region=region)
+
+
+def grid(
+    source: Union[str, "os.PathLike[str]", Mesh],
+    cells: Tuple[int, int, int],
+    bounds: Optional[Bounds] = None,
+    chunks: Union[str, int, Sequence] = ("auto", "auto", -1),
+    check: bool = True,
+    fraction: bool = False,
+) -> da.Array:
+    """The volume of the solid in each cell of a grid as a lazy (nx, ny, nz) float64
+    dask.array: Mesh.grid(cells, bounds, fraction=fraction, check=check), bit for bit,
+    computed chunk by chunk with Mesh.grid(region=...).
+
+    source: a mesh file's path (each worker reads it once and keeps it; the file must be
+    at that path on every worker, as on shared storage) or a Mesh (sent to each worker
+    once, as its arrays).
+    bounds: the grid's box ((x0, y0, z0), (x1, y1, z1)); by default the solid's bounding
+    box, as Mesh.grid's, found here on the client (reading the file once) so that every
+    chunk belongs to one grid.
+    chunks: as dask.array takes them. The default spans the whole height, since a chunk
+    cuts its columns' faces through every layer anyway (the layers above it hand their
+    areas down): chunks split along z repeat that work.
+    """
+    counts = tuple(int(n) for n in cells)
+    if len(counts) != 3 or min(counts) < 1:
+        raise ValueError(f"cells must be three positive whole numbers; got {cells}")
+    if isinstance(source, Mesh):
+        mesh: Optional[Mesh] = source
+        where: Union[Mesh, Tuple[str, Tuple[int, int]]] = source
+    else:
+        path = os.fspath(source)
+        info = os.stat(path)
+        stamp = (info.st_mtime_ns, info.st_size)
+        mesh = _load(path, *stamp) if bounds is None else None
+        where = (path, stamp)
+    if bounds is None:
+        assert mesh is not None
+        # The measured solid's box: the bounds Mesh.grid takes by default.
+        found = mesh.mass_properties(check=check).bounds
+        if found is None:
+            raise MeshError("no vertices: there is no surface to measure")
+        bounds = found
+    fixed = (tuple(map(float, bounds[0])), tuple(map(float, bounds[1])))
+    chunks = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
+
+    # One graph key holds the mesh (or its path): each worker receives it once.
+    source_key = dask.delayed(where, pure=True, traverse=False)
+    block = dask.delayed(_block, pure=True)
+    starts = [np.cumsum((0,) + c)[:-1].tolist() for c in chunks]
+    rows = []
+    for i0, bx in zip(starts[0], chunks[0]):
+        plane = []
+        for j0, by in zip(starts[1], chunks[1]):
+            line = []
+            for k0, bz in zip(starts[2], chunks[2]):
+                region = ((i0, i0 + bx), (j0, j0 + by), (k0, k0 + bz))
+                values = block(source_key, counts, fixed, fraction, check, region)
+                line.append(da.from_delayed(values, (bx, by, bz), dtype=np.float64))
+            plane.append(line)
+        rows.append(plane)
+    return da.block(rows)

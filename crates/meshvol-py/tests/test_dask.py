@@ -1,0 +1,123 @@
+"""meshvol.dask on a two-process dask.distributed cluster: the chunked grid against the
+single-process Mesh.grid (bit for bit), its Zarr copy read back with zarr-python, and
+the sum of the cells against a tilted box's volume in closed form. Also the CLI's Zarr
+output against its own .npy (where MESHVOL_BIN names the command)."""
+
+import os
+import pickle
+import subprocess
+
+import numpy as np
+import pytest
+
+import meshvol
+from solids import box, uv_sphere
+
+dask = pytest.importorskip("dask")
+distributed = pytest.importorskip("distributed")
+zarr = pytest.importorskip("zarr")
+import meshvol.dask  # noqa: E402  (needs the optional dependencies above)
+
+
+def same_bits(a, b):
+    a, b = np.asarray(a), np.asarray(b)
+    return a.shape == b.shape and np.array_equal(a.view(np.uint64), b.view(np.uint64))
+
+
+def write_obj(path, vertices, faces):
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in vertices.tolist()]
+    lines += ["f " + " ".join(str(i + 1) for i in face) for face in faces.tolist()]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def tilted_box(size):
+    """A box with edges `size`, turned about two axes: its volume is the product of the
+    edges, and no face lies on a grid plane."""
+    vertices, faces = box((0, 0, 0), size)
+    a, b = 0.4, 0.25
+    rz = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+    rx = np.array([[1, 0, 0], [0, np.cos(b), -np.sin(b)], [0, np.sin(b), np.cos(b)]])
+    return vertices @ (rx @ rz).T + [0.3, -0.2, 0.1], faces
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, memory_limit="1GB", processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        yield client
+
+
+@pytest.fixture(scope="module")
+def sphere_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("dask") / "sphere.obj"
+    write_obj(path, *uv_sphere(radius=1.0, rings=24, segments=48, centre=(0.1, -0.2, 0.3)))
+    return path
+
+
+def test_chunks_from_a_file_are_the_single_process_grid(client, sphere_file):
+    whole = meshvol.load(str(sphere_file)).grid(cells=(20, 17, 23))
+    cells = meshvol.dask.grid(sphere_file, cells=(20, 17, 23), chunks=(6, 5, -1))
+    assert cells.numblocks == (4, 4, 1)
+    assert same_bits(cells.compute(), whole)
+    # Chunks split along z too, and fractions.
+    split = meshvol.dask.grid(sphere_file, cells=(20, 17, 23), chunks=(7, 17, 8), fraction=True)
+    expected = meshvol.load(str(sphere_file)).grid(cells=(20, 17, 23), fraction=True)
+    assert same_bits(split.compute(), expected)
+
+
+def test_chunks_from_a_mesh_with_given_bounds(client):
+    mesh = meshvol.Mesh(*uv_sphere(radius=1.0, rings=16, segments=32))
+    bounds = ((-1.2, -0.9, -1.1), (0.8, 1.3, 0.7))
+    whole = mesh.grid(cells=(9, 12, 10), bounds=bounds, check=False)
+    cells = meshvol.dask.grid(mesh, cells=(9, 12, 10), bounds=bounds, chunks=4, check=False)
+    assert same_bits(cells.compute(), whole)
+
+
+def test_zarr_copy_and_the_closed_form_volume(client, tmp_path):
+    size = (1.3, 0.7, 0.9)
+    mesh = meshvol.Mesh(*tilted_box(size))
+    cells = meshvol.dask.grid(mesh, cells=(16, 14, 12), chunks=(5, 7, 12))
+    target = tmp_path / "cells.zarr"
+    cells.to_zarr(str(target))
+    stored = zarr.open_array(str(target), mode="r")
+    assert stored.shape == (16, 14, 12) and stored.chunks == (5, 7, 12)
+    whole = mesh.grid(cells=(16, 14, 12))
+    assert same_bits(stored[...], whole)
+    assert float(cells.sum().compute()) == pytest.approx(np.prod(size), rel=1e-13)
+
+
+def test_a_mesh_pickles_as_its_arrays():
+    mesh = meshvol.Mesh(*box((0, 0, 0), (2, 1, 1)))
+    again = pickle.loads(pickle.dumps(mesh))
+    assert same_bits(again.vertices, mesh.vertices)
+    assert np.array_equal(again.faces, mesh.faces)
+    assert again.mass_properties().volume == 2.0
+
+
+def test_a_changed_file_is_refused(tmp_path):
+    path = tmp_path / "box.obj"
+    write_obj(path, *box())
+    cells = meshvol.dask.grid(path, cells=(2, 2, 2), chunks=1)
+    write_obj(path, *box((0, 0, 0), (2, 2, 2)))
+    os.utime(path, ns=(1, 1))
+    with pytest.raises(meshvol.MeshError, match="box.obj: the file changed"):
+        cells.compute(scheduler="sync")
+
+
+COMMAND = os.environ.get("MESHVOL_BIN")
+
+
+@pytest.mark.skipif(not COMMAND, reason="MESHVOL_BIN names no meshvol command to compare with")
+def test_the_commands_zarr_is_its_npy(sphere_file, tmp_path):
+    npy, store = tmp_path / "cells.npy", tmp_path / "cells.zarr"
+    for out, extra in ((npy, []), (store, ["--chunks", "4,5,6"])):
+        run = subprocess.run(
+            [COMMAND, "grid", str(sphere_file), "--cells", "9,10,11", "--out", str(out), *extra],
+            capture_output=True,
+            text=True,
+        )
+        assert run.returncode == 0, run.stderr
+    stored = zarr.open_array(str(store), mode="r")
+    assert stored.shape == (9, 10, 11) and stored.chunks == (4, 5, 6)
+    assert same_bits(stored[...], np.load(npy))
