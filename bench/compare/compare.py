@@ -113,7 +113,7 @@ def mesh_file(kind, n, fmt) -> dict:
 def plan_files(sizes: list[int], quick: bool) -> tuple[list[dict], str]:
     """The end-to-end files and the name of the main one (chart; every tool runs on it).
 
-    Binary STL: spheres (and, unless --quick, tori) of every size, the far sphere and the
+    Binary STL: spheres of every size (and, unless --quick, tori up to 5M), the far sphere and the
     cubes at the middle size. Binary PLY: spheres up to 1M. ASCII STL and OBJ: the sphere
     of the largest size up to 1M (text files of 5M are GBs).
     """
@@ -121,7 +121,7 @@ def plan_files(sizes: list[int], quick: bool) -> tuple[list[dict], str]:
     files = []
     for n in sorted(sizes):
         files.append(mesh_file("sphere", n, "stl"))
-        if not quick:
+        if not quick and n <= 5_000_000:  # 10M and more: the sphere only (time, disk)
             files.append(mesh_file("torus", n, "stl"))
     files.append(mesh_file("sphere_far", mid, "stl"))
     files.append(mesh_file("cubes", mid, "stl"))
@@ -865,7 +865,7 @@ def build_parser():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     g = ap.add_argument_group("what to run")
     g.add_argument("--quick", action="store_true",
-                   help="small sizes and short budgets (< 3 min): for checking the harness")
+                   help="small sizes and short budgets (< 4 min): for checking the harness")
     g.add_argument("--only", help="comma-separated sections to run: " + ",".join(SECTIONS) +
                    " (scaling runs only when named here)")
     g.add_argument("--skip", help="comma-separated sections to leave out")
@@ -899,7 +899,7 @@ def build_parser():
     s.add_argument("--scaling-cells", type=int, help="grid n (n³ cells) timed in the scaling section (128)")
     t = ap.add_argument_group("time")
     t.add_argument("--time-budget", type=float,
-                   help="minutes for the whole run, shared among the sections (13.5; quick 2.25)")
+                   help="minutes for the whole run, shared among the sections (13.5; quick 3)")
     t.add_argument("--peer-timeout", type=float,
                    help="a peer's run is cut off after this many seconds and reported as '> N s' "
                         "(30; quick 3)")
@@ -936,7 +936,7 @@ def main(argv=None):
         inproc = sorted({parse_size(s) for s in args.inprocess_sizes.split(",") if s.strip()})
     else:
         inproc = [100_000] if q else [100_000, 1_000_000]
-    defaults = dict(time_budget=2.25 if q else 13.5, peer_timeout=3.0 if q else 30.0,
+    defaults = dict(time_budget=3.0 if q else 13.5, peer_timeout=3.0 if q else 30.0,
                     runs=3 if q else 5, cell_seconds=1.0 if q else 2.5,
                     main_cell_seconds=2.0 if q else 10.0)
     for k, v in defaults.items():
