@@ -60,8 +60,9 @@ PEERS = {
     "vtk": ("vtkmodules.vtkFiltersCore", "vtk", "volume (end-to-end, in-process)"),
     "scipy": ("scipy.spatial", "scipy", "convex hull (qhull)"),
     "shapely": ("shapely", "shapely", "2D area"),
-    "trueform": ("trueform", "trueform", "volume (end-to-end), check, union"),
-    "meshlib": ("meshlib.mrmeshpy", "meshlib", "volume (end-to-end), check, union, profile"),
+    "trueform": ("trueform", "trueform", "volume (end-to-end, in-process), check, union"),
+    "meshlib": ("meshlib.mrmeshpy", "meshlib", "volume (end-to-end, in-process), check, union, "
+                "profile"),
     # not a peer: meshvol's own Python binding, for a measured meshvol row in-process
     "meshvol-py": ("meshvol", "meshvol", "meshvol's in-process row (optional: "
                    "`pip install ./crates/meshvol-py`, which builds it with maturin)"),
@@ -79,7 +80,8 @@ E2E_TOOLS = {
 IMPORT_ONLY = {"trimesh": "trimesh", "numpy-stl": "stl.mesh", "open3d": "open3d",
                "pymeshlab": "pymeshlab", "vtk": "vtkmodules.vtkFiltersCore",
                "trueform": "trueform", "meshlib": "meshlib.mrmeshpy"}
-INPROCESS_TOOLS = ("meshvol-py", "trimesh", "manifold3d", "numpy-stl", "open3d", "pymeshlab", "vtk")
+INPROCESS_TOOLS = ("meshvol-py", "trimesh", "manifold3d", "numpy-stl", "open3d", "pymeshlab", "vtk",
+                   "trueform", "meshlib")
 NO_VERDICT = "(no verdict)"
 SECTIONS = ["volume", "inprocess", "check", "grid", "union", "profile", "hull", "area", "scaling"]
 # run only when named in --only: the scaling section is meshvol alone on spheres up to 20M
