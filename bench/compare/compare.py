@@ -60,6 +60,9 @@ PEERS = {
     "vtk": ("vtkmodules.vtkFiltersCore", "vtk", "volume (end-to-end, in-process)"),
     "scipy": ("scipy.spatial", "scipy", "convex hull (qhull)"),
     "shapely": ("shapely", "shapely", "2D area"),
+    "trueform": ("trueform", "trueform", "volume (end-to-end, in-process), check, union"),
+    "meshlib": ("meshlib.mrmeshpy", "meshlib", "volume (end-to-end, in-process), check, union, "
+                "profile"),
     # not a peer: meshvol's own Python binding, for a measured meshvol row in-process
     "meshvol-py": ("meshvol", "meshvol", "meshvol's in-process row (optional: "
                    "`pip install ./crates/meshvol-py`, which builds it with maturin)"),
@@ -71,17 +74,25 @@ E2E_TOOLS = {
     "open3d": ("open3d_file.py", ("stl", "stl-ascii", "obj", "ply")),
     "pymeshlab": ("pymeshlab_file.py", ("stl", "stl-ascii", "obj", "ply")),
     "vtk": ("vtk_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "trueform": ("trueform_file.py", ("stl", "stl-ascii", "obj")),
+    "meshlib": ("meshlib_file.py", ("stl", "stl-ascii", "obj", "ply")),
 }
 IMPORT_ONLY = {"trimesh": "trimesh", "numpy-stl": "stl.mesh", "open3d": "open3d",
-               "pymeshlab": "pymeshlab", "vtk": "vtkmodules.vtkFiltersCore"}
-INPROCESS_TOOLS = ("meshvol-py", "trimesh", "manifold3d", "numpy-stl", "open3d", "pymeshlab", "vtk")
+               "pymeshlab": "pymeshlab", "vtk": "vtkmodules.vtkFiltersCore",
+               "trueform": "trueform", "meshlib": "meshlib.mrmeshpy"}
+INPROCESS_TOOLS = ("meshvol-py", "trimesh", "manifold3d", "numpy-stl", "open3d", "pymeshlab", "vtk",
+                   "trueform", "meshlib")
 NO_VERDICT = "(no verdict)"
-SECTIONS = ["volume", "inprocess", "check", "grid", "union", "hull", "area"]
+SECTIONS = ["volume", "inprocess", "check", "grid", "union", "profile", "hull", "area", "scaling"]
+# run only when named in --only: the scaling section is meshvol alone on spheres up to 20M
+# triangles (about 1 GB of STL to write), not a comparison
+DEFAULT_OFF = {"scaling"}
 WEIGHTS = {"volume": 0.38, "inprocess": 0.09, "check": 0.17, "grid": 0.11, "union": 0.04,
-           "hull": 0.11, "area": 0.10}
+           "profile": 0.03, "hull": 0.11, "area": 0.10, "scaling": 0.5}
 SECTION_TITLE = {"volume": "mesh volume, end-to-end", "inprocess": "mesh volume, in-process",
                  "check": "topology check", "grid": "grid", "union": "union",
-                 "hull": "convex hull", "area": "2D area"}
+                 "profile": "profile (volume below levels)", "hull": "convex hull",
+                 "area": "2D area", "scaling": "scaling (meshvol alone)"}
 
 
 # --------------------------------------------------------------------------- planning
@@ -104,7 +115,7 @@ def mesh_file(kind, n, fmt) -> dict:
 def plan_files(sizes: list[int], quick: bool) -> tuple[list[dict], str]:
     """The end-to-end files and the name of the main one (chart; every tool runs on it).
 
-    Binary STL: spheres (and, unless --quick, tori) of every size, the far sphere and the
+    Binary STL: spheres of every size (and, unless --quick, tori up to 5M), the far sphere and the
     cubes at the middle size. Binary PLY: spheres up to 1M. ASCII STL and OBJ: the sphere
     of the largest size up to 1M (text files of 5M are GBs).
     """
@@ -112,7 +123,7 @@ def plan_files(sizes: list[int], quick: bool) -> tuple[list[dict], str]:
     files = []
     for n in sorted(sizes):
         files.append(mesh_file("sphere", n, "stl"))
-        if not quick:
+        if not quick and n <= 5_000_000:  # 10M and more: the sphere only (time, disk)
             files.append(mesh_file("torus", n, "stl"))
     files.append(mesh_file("sphere_far", mid, "stl"))
     files.append(mesh_file("cubes", mid, "stl"))
@@ -670,6 +681,12 @@ def write_report(path: Path, res: dict, files, info, vers, peers, args, started,
     if res.get("grid_file"):
         reports["grid"] = sections.report_grid(res.get("grid", []), res["grid_file"], res["params"])
     reports["union"] = sections.report_union(res.get("union", []))
+    if res.get("profile_file"):
+        reports["profile"] = sections.report_profile(res.get("profile", []), res["profile_file"])
+    reports["scaling"] = sections.report_scaling(res.get("scaling", []), res.get("scaling_files", []))
+    if res.get("scaling_chart"):
+        reports["scaling"][0].append(f"![meshvol time and memory against triangles]"
+                                     f"({os.path.relpath(res['scaling_chart'], path.parent)})\n")
     reports["hull"] = sections.report_hull(res.get("hull", []), res.get("hull_clouds", []))
     reports["area"] = sections.report_area(res.get("area", []), res.get("area_files", []))
 
@@ -682,6 +699,9 @@ def write_report(path: Path, res: dict, files, info, vers, peers, args, started,
             L.append(f"- {SECTION_TITLE[s]}: not run (not selected).")
             continue
         lines, behind = reports.get(s, ([], []))
+        if s == "scaling":
+            L.append(f"- {SECTION_TITLE[s]}: no peers, no verdict; see its table.")
+            continue
         if NO_VERDICT in behind:
             L.append(f"- {SECTION_TITLE[s]}: no verdict (no meshvol figure of a matching size in "
                      "this run or in target/criterion/).")
@@ -794,7 +814,7 @@ def write_chart(path: Path, res: dict, main_name) -> bool:
                             s[0], r["tool"].startswith("meshvol") or r["tool"] == "cat"))
     if pts:
         panels.append((f"volume, end-to-end: {main_name}", pts))
-    for s in ("check", "grid", "union", "hull", "area"):
+    for s in ("check", "grid", "union", "profile", "hull", "area"):
         c = sections.chart_items(s, res.get(s, []))
         if c:
             panels.append(c)
@@ -847,8 +867,9 @@ def build_parser():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     g = ap.add_argument_group("what to run")
     g.add_argument("--quick", action="store_true",
-                   help="small sizes and short budgets (< 3 min): for checking the harness")
-    g.add_argument("--only", help="comma-separated sections to run: " + ",".join(SECTIONS))
+                   help="small sizes and short budgets (< 4 min): for checking the harness")
+    g.add_argument("--only", help="comma-separated sections to run: " + ",".join(SECTIONS) +
+                   " (scaling runs only when named here)")
     g.add_argument("--skip", help="comma-separated sections to leave out")
     g.add_argument("--tools", help="comma-separated peers to run (default: all installed): " +
                    ",".join(PEERS))
@@ -859,8 +880,8 @@ def build_parser():
     g.add_argument("--no-inprocess", action="store_true", help="same as --skip inprocess")
     g.add_argument("--no-end-to-end", action="store_true", help="same as --skip volume")
     s = ap.add_argument_group("sizes")
-    s.add_argument("--sizes", help="mesh sizes in triangles for the volume section, e.g. 100k,1m,5m "
-                   "(default; --quick: 100k)")
+    s.add_argument("--sizes", help="mesh sizes in triangles for the volume section, e.g. "
+                   "100k,1m,5m,10m (default; --quick: 100k)")
     s.add_argument("--inprocess-sizes", help="in-process sphere sizes (default 100k,1m; --quick 100k)")
     s.add_argument("--check-size", type=parse_size,
                    help="triangles of the check and grid meshes (default 1m; --quick 100k)")
@@ -873,9 +894,14 @@ def build_parser():
                    help="vertices of the big polygon (1m; quick 100k)")
     s.add_argument("--area-polygons", type=parse_size,
                    help="number of small polygons (100k; quick 10k)")
+    s.add_argument("--profile-levels", type=int,
+                   help="slabs of the profile section, on the --check-size sphere (100; quick 20)")
+    s.add_argument("--scaling-sizes", help="sphere sizes of the scaling section (only run when "
+                   "named in --only), e.g. 100k,1m,5m,10m,20m (default; quick 100k,1m)")
+    s.add_argument("--scaling-cells", type=int, help="grid n (n³ cells) timed in the scaling section (128)")
     t = ap.add_argument_group("time")
     t.add_argument("--time-budget", type=float,
-                   help="minutes for the whole run, shared among the sections (13.5; quick 2.25)")
+                   help="minutes for the whole run, shared among the sections (13.5; quick 3)")
     t.add_argument("--peer-timeout", type=float,
                    help="a peer's run is cut off after this many seconds and reported as '> N s' "
                         "(30; quick 3)")
@@ -907,19 +933,20 @@ def main(argv=None):
     if args.sizes:
         sizes = sorted({parse_size(s) for s in args.sizes.split(",") if s.strip()})
     else:
-        sizes = [100_000] if q else [100_000, 1_000_000, 5_000_000]
+        sizes = [100_000] if q else [100_000, 1_000_000, 5_000_000, 10_000_000]
     if args.inprocess_sizes:
         inproc = sorted({parse_size(s) for s in args.inprocess_sizes.split(",") if s.strip()})
     else:
         inproc = [100_000] if q else [100_000, 1_000_000]
-    defaults = dict(time_budget=2.25 if q else 13.5, peer_timeout=3.0 if q else 30.0,
+    defaults = dict(time_budget=3.0 if q else 13.5, peer_timeout=3.0 if q else 30.0,
                     runs=3 if q else 5, cell_seconds=1.0 if q else 2.5,
                     main_cell_seconds=2.0 if q else 10.0)
     for k, v in defaults.items():
         if getattr(args, k) is None:
             setattr(args, k, v)
     args.tools = set(args.tools.split(",")) if args.tools else None
-    chosen = [s.strip() for s in args.only.split(",")] if args.only else list(SECTIONS)
+    chosen = ([s.strip() for s in args.only.split(",")] if args.only
+              else [s for s in SECTIONS if s not in DEFAULT_OFF])
     skip = {s.strip() for s in (args.skip or "").split(",") if s.strip()}
     if args.no_inprocess:
         skip.add("inprocess")
@@ -952,9 +979,9 @@ def main(argv=None):
     if main_name is None:
         main_name = f"sphere_{size_label(p['check_size'])}.stl"
     extra = []
-    if "check" in args.sections or "grid" in args.sections:
+    if "check" in args.sections or "grid" in args.sections or "profile" in args.sections:
         have = {f["name"] for f in files}
-        for kind in ("sphere", "torus", "cubes"):
+        for kind in (("sphere", "torus", "cubes") if "check" in args.sections else ("sphere",)):
             f = mesh_file(kind, p["check_size"], "stl")
             if f["name"] not in have:
                 extra.append(f)
@@ -984,6 +1011,11 @@ def main(argv=None):
             res["grid"] = sections.run_grid(ctx, res["grid_file"], p)
         elif s == "union":
             res["union"] = sections.run_union(ctx, p)
+        elif s == "profile":
+            res["profile_file"] = byname[f"sphere_{size_label(p['check_size'])}.stl"]
+            res["profile"] = sections.run_profile(ctx, res["profile_file"], p)
+        elif s == "scaling":
+            res["scaling"], res["scaling_files"] = sections.run_scaling(ctx, p)
         elif s == "hull":
             res["hull"], res["hull_clouds"] = sections.run_hull(ctx, p)
         elif s == "area":
@@ -1013,6 +1045,9 @@ def main(argv=None):
            "results": clean(res)}
     (OUT / "results.json").write_text(json.dumps(raw, indent=1, default=str))
     chart_ok = write_chart(args.chart, res, main_name)
+    scaling_chart = args.chart.with_name(args.chart.stem + "-scaling" + args.chart.suffix)
+    res["scaling_chart"] = scaling_chart if sections.write_scaling_chart(
+        scaling_chart, res.get("scaling", [])) else None
     duration = clock.elapsed()
     write_report(args.results, res, files + extra, info, vers, peers, args, started, main_name,
                  chart_ok, duration, clock)

@@ -184,6 +184,52 @@ def write_obj(path, verts, faces, q, chunk=200_000):
         _write_formatted(fh, "f %d %d %d\n", faces + 1, chunk)
 
 
+def write_sphere_stl_stream(path, target_tris, radius=100.0, q=10, rows_per_chunk=None):
+    """The binary STL of uv_sphere(target_tris), byte for byte, written a band block at a time.
+
+    Only the vertices (V = 2k(k-1) + 2 rows of float64, 240 MB at 20M triangles) are held
+    whole; faces and corner coordinates are made per block of latitude rows (about 1M
+    triangles), so a 20M-triangle file needs well under 1 GB of memory.
+    """
+    k = max(3, int(round((1.0 + math.sqrt(1.0 + target_tris)) / 2.0)))
+    nu = 2 * k
+    theta = np.pi * np.arange(1, k) / k
+    phi = 2.0 * np.pi * np.arange(nu) / nu
+    st, ct = np.sin(theta)[:, None], np.cos(theta)[:, None]
+    ring = np.stack(
+        [st * np.cos(phi)[None, :], st * np.sin(phi)[None, :], np.broadcast_to(ct, (k - 1, nu))],
+        axis=-1,
+    ).reshape(-1, 3)
+    verts = _snap(np.concatenate([[[0.0, 0.0, 1.0]], ring, [[0.0, 0.0, -1.0]]]) * radius, q)
+    del ring
+    north, south = 0, 1 + (k - 1) * nu
+    j = np.arange(nu)
+    ntri = 4 * k * (k - 1)
+    rows = rows_per_chunk or max(1, (1 << 20) // nu)
+
+    def idx(i, jj):
+        return 1 + i * nu + (jj % nu)
+
+    def emit(fh, faces):
+        tri = verts[faces]
+        rec = np.zeros(len(tri), dtype=STL_DTYPE)
+        rec["normal"] = face_normals(tri)
+        rec["v"] = tri
+        fh.write(rec.tobytes())
+
+    with open(path, "wb") as fh:
+        fh.write(b"meshvol bench/compare test mesh".ljust(80, b" "))
+        fh.write(np.uint32(ntri).tobytes())
+        emit(fh, np.stack([np.full(nu, north), idx(0, j), idx(0, j + 1)], axis=1))
+        for second in (False, True):  # uv_sphere's order: every (a, b, c), then every (a, c, d)
+            for i0 in range(0, k - 2, rows):
+                i = np.arange(i0, min(k - 2, i0 + rows))[:, None]
+                a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+                emit(fh, np.stack([a, c, d] if second else [a, b, c], -1).reshape(-1, 3))
+        emit(fh, np.stack([np.full(nu, south), idx(k - 2, j + 1), idx(k - 2, j)], axis=1))
+    return ntri
+
+
 PLY_FACE_DTYPE = np.dtype([("n", "u1"), ("v", "<i4", (3,))])
 assert PLY_FACE_DTYPE.itemsize == 13
 
@@ -348,6 +394,11 @@ def selftest(verbose=True):
         write_ply_binary(path, v, f, chunk=333)
         v2, f2 = read_ply_binary(path)
         assert np.array_equal(v, v2) and np.array_equal(f, f2), "PLY round trip"
+        v, f, _ = make("sphere", 5000)
+        a, b = os.path.join(td, "a.stl"), os.path.join(td, "b.stl")
+        write_stl_binary(a, v, f)
+        assert write_sphere_stl_stream(b, 5000, rows_per_chunk=7) == len(f)
+        assert open(a, "rb").read() == open(b, "rb").read(), "streamed sphere STL differs"
     if verbose:
         print(f"meshgen selftest: {len(cases)} exact-volume cases agree with Fractions")
 

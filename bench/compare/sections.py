@@ -42,7 +42,17 @@ def params(args) -> dict:
         "hull_points": 10_000 if q else 100_000,
         "area_vertices": 100_000 if q else 1_000_000,
         "area_polygons": 10_000 if q else 100_000,
+        "profile_levels": 20 if q else 100,
+        "scaling_sizes": [100_000, 1_000_000] if q else
+                         [100_000, 1_000_000, 5_000_000, 10_000_000, 20_000_000],
+        "scaling_cells": 128,
     }
+    if args.profile_levels:
+        p["profile_levels"] = args.profile_levels
+    if args.scaling_sizes:
+        p["scaling_sizes"] = sorted({_parse_size(x) for x in args.scaling_sizes.split(",") if x.strip()})
+    if args.scaling_cells:
+        p["scaling_cells"] = args.scaling_cells
     if args.check_size:
         p["check_size"] = args.check_size
     if args.grid_cells:
@@ -59,6 +69,12 @@ def params(args) -> dict:
     if args.area_polygons:
         p["area_polygons"] = args.area_polygons
     return p
+
+
+def _parse_size(s: str) -> int:
+    s = s.strip().lower().replace("_", "")
+    mult = {"k": 1_000, "m": 1_000_000}.get(s[-1:], 1)
+    return int(float(s[:-1] if mult > 1 else s) * mult)
 
 
 def gen_stamp() -> str:
@@ -181,6 +197,12 @@ CHECK_PEERS = [  # (tool, mode, meshvol row compared with, what it answers)
      "read + remove_duplicated_vertices + is_watertight() (includes an all-pairs self-intersection test)"),
     ("pymeshlab", "pymeshlab", "meshvol check --no-intersections",
      "load_new_mesh + get_topological_measures (two-manifold, boundary edges, components)"),
+    ("trueform", "trueform", "meshvol check",
+     "read_stl + Mesh + is_closed + is_manifold + has_self_intersections (exact, stops at the "
+     "first contact) + label_connected_components(manifold_edge_link)"),
+    ("meshlib", "meshlib", "meshvol check",
+     "loadMesh + topology.findNumHoles + findSelfCollidingTriangles (any pair) + "
+     "MeshComponents.getNumComponents"),
 ]
 
 
@@ -227,7 +249,9 @@ def report_check(rows, files) -> tuple[list[str], list[str]]:
              + ". Each peer is compared with the meshvol row that answers at least as much: "
                "peers without a self-intersection test against `meshvol check --no-intersections`, "
                "Open3D's `is_watertight()` against the full `meshvol check`. Self-intersections: "
-               "meshvol gives a count, Open3D only inside `is_watertight()`.\n")
+               "meshvol gives a count, trueform and MeshLib yes/no, Open3D only inside "
+               "`is_watertight()`; trueform, MeshLib and those with a self-intersection test are "
+               "compared with the full `meshvol check`.\n")
     L.append("| file | tool | median s | runs | kernel s | ratio to meshvol | peak MB | closed | "
              "consistent winding | bodies | self-intersections | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|---|---|--:|--:|---|")
@@ -393,11 +417,15 @@ def run_union(ctx, p) -> list[dict]:
     r = base_row("union", item, "meshvol")
     rows.append(ctx.run(r, ctx.meshvol + ["union"] + [str(x) for x in paths] +
                         ["--tolerance", "1e-6", "--json"], meshvol=True, parse_keys=("lower",)))
-    if ctx.wants("manifold3d"):
-        r = base_row("union", item, "manifold3d")
-        rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "union_peer.py")] + [str(x) for x in paths],
-                            key=("union", "manifold3d"), size=1))
+    for tool in UNION_PEERS:
+        if ctx.wants(tool):
+            r = base_row("union", item, tool)
+            rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "union_peer.py"), tool] +
+                                [str(x) for x in paths], key=("union", tool), size=1))
     return rows
+
+
+UNION_PEERS = ("manifold3d", "trueform", "meshlib")
 
 
 def report_union(rows) -> tuple[list[str], list[str]]:
@@ -408,9 +436,13 @@ def report_union(rows) -> tuple[list[str], list[str]]:
              "lifted by 30), one binary STL each; fresh process per run, reading included. "
              "`meshvol union FILES --tolerance 1e-6 --json` gives a certified interval [lower, "
              "upper] for the volume of the union without building a boolean mesh; **manifold3d** "
-             "builds each `Manifold`, `batch_boolean(..., OpType.Add)` and `volume()` (kernel s: "
-             "those calls after reading). No exact reference exists; the check is whether "
-             "manifold3d's volume lies inside meshvol's certified interval.\n")
+             "builds each `Manifold`, `batch_boolean(..., OpType.Add)` and `volume()`; **trueform** "
+             "`boolean_union` folded over the bodies two at a time, then `signed_volume`; "
+             "**MeshLib** `boolean(A, B, BooleanOperation.Union)` folded the same way, then "
+             "`Mesh.volume()` (kernel s: those calls after reading). No exact reference exists; the check is whether "
+             "each peer's volume lies inside meshvol's certified interval (trueform's "
+             "signed_volume sums in float32, about 1e-6 relative, so its result can fall "
+             "outside an interval of width ~1e-10 without its boolean being wrong).\n")
     L.append("| bodies | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume | check | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|--:|---|---|")
     verdicts = Verdicts("union")
@@ -425,8 +457,11 @@ def report_union(rows) -> tuple[list[str], list[str]]:
         elif "volume" in out:
             vol = f"{out['volume']:.12g}"
             if mvo:
-                check = ("inside meshvol's interval" if mvo["lower"] <= out["volume"] <= mvo["upper"]
-                         else "**outside** meshvol's interval")
+                if mvo["lower"] <= out["volume"] <= mvo["upper"]:
+                    check = "inside meshvol's interval"
+                else:
+                    gap = min(abs(out["volume"] - mvo["lower"]), abs(out["volume"] - mvo["upper"]))
+                    check = f"**outside** meshvol's interval (by {gap / mvo['lower']:.1e} relative)"
         check = failure_note(r) or check
         is_mv = r["tool"] == "meshvol"
         mv_s = mv["median_s"] if mv else None
@@ -664,7 +699,7 @@ def chart_items(section, rows) -> tuple[str, list[tuple[str, float, bool]]] | No
             continue
         label = r["tool"] + (" (>)" if s[1] else "")
         pts.append((label, s[0], r["tool"].startswith("meshvol")))
-    titles = {"check": "topology check", "grid": "grid", "union": "union", "hull": "convex hull",
+    titles = {"check": "topology check", "grid": "grid", "union": "union", "profile": "profile", "hull": "convex hull",
               "area": "2D area"}
     if section == "grid":  # kernel times: manifold3d's is extrapolated to all partial cells
         pts = [(r["tool"] + (" (extrapolated)" if r["tool"] == "manifold3d" else ""), kernel_of(r),
@@ -672,3 +707,183 @@ def chart_items(section, rows) -> tuple[str, list[tuple[str, float, bool]]] | No
                if r["item"] == item and r.get("output") and kernel_of(r) is not None]
         return (f"grid: {item}", pts, "kernel seconds (log; lower is better)") if pts else None
     return (f"{titles.get(section, section)}: {item}", pts) if pts else None
+
+
+# --------------------------------------------------------------------------- profile
+
+
+def run_profile(ctx, f: dict, p: dict) -> list[dict]:
+    """`meshvol profile FILE --axis z --levels N --json` (checked, and --no-check) against
+    MeshLib's computeBasinVolume at the same N + 1 levels (tools/profile_peer.py)."""
+    path, n = str(f["path"]), p["profile_levels"]
+    item = f"{f['name']} @ {n} levels"
+    rows = []
+    for tool, extra in (("meshvol", []), ("meshvol --no-check", ["--no-check"])):
+        r = base_row("profile", item, tool, triangles=f["triangles"], levels=n)
+        rows.append(ctx.run(r, ctx.meshvol + ["profile", path, "--axis", "z", "--levels", str(n),
+                                               "--json"] + extra, meshvol=True,
+                            parse_keys=("volume_below",)))
+    if ctx.wants("meshlib"):
+        r = base_row("profile", item, "meshlib", triangles=f["triangles"], levels=n)
+        rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "profile_peer.py"), "meshlib", path, str(n)],
+                            key=("profile", "meshlib"), size=f["triangles"],
+                            parse_keys=("volume_below", "refused")))
+    return rows
+
+
+def report_profile(rows, f) -> tuple[list[str], list[str]]:
+    L = ["## Profile: volume below each level (strapping table)\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    n = rows[0].get("levels")
+    L.append(f"The sphere `{f['name']}` ({f['triangles']:,} triangles), {n} slabs along z (N + 1 "
+             "equally spaced levels from its lowest to its highest point). Fresh process per run, "
+             f"reading included. `meshvol profile FILE --axis z --levels {n} --json` (checked, "
+             "and `--no-check`) gives the volume below every level, slab volumes and section "
+             "areas; **MeshLib**: `loadMesh`, then `computeBasinVolume(mesh, all faces, level)` "
+             "per level (the volume between the surface and the water plane; minus the solid's "
+             "volume below the level on a closed outward solid, so the sign is flipped; kernel s: "
+             "those calls after loading). The peer is compared with the checked `meshvol` row. "
+             "Difference: the largest |peer − meshvol| over the levels, relative to the total "
+             "volume.\n")
+    L.append("| mesh | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume below the top level | largest difference from meshvol | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|--:|--:|---|")
+    verdicts = Verdicts("profile")
+    mv = mv_row(rows, rows[0]["item"])
+    mvb = ((mv or {}).get("output") or {}).get("volume_below")
+    for r in rows:
+        out = r.get("output") or {}
+        vb = out.get("volume_below")
+        top = f"{vb[-1]:.12g}" if vb else md_cell(failure_note(r))
+        diff = ""
+        if vb and mvb and len(vb) == len(mvb) and r is not mv:
+            diff = fmt_err(max(abs(a - b) for a, b in zip(vb, mvb)) / abs(mvb[-1]))
+        elif vb and mvb and len(vb) != len(mvb):
+            diff = f"{len(vb)} levels vs meshvol's {len(mvb)}"
+        is_mv = r["tool"].startswith("meshvol")
+        mv_s = mv["median_s"] if mv else None
+        ahead = "" if is_mv else verdicts.cell(r, mv, f"{r['tool']} on {r['item']}")
+        L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | "
+                 f"{'' if is_mv else fmt_s(kernel_of(r))} | "
+                 f"{'' if r is mv else ratio_cell(r, mv_s)} | {fmt_mb(r.get('peak_mb'))} | {top} | "
+                 f"{diff} | {ahead} |")
+    L.extend(verdicts.sentences())
+    return L, verdicts.not_ahead()
+
+
+# --------------------------------------------------------------------------- scaling
+
+
+SCALING_COMMANDS = [  # (label, argv after `meshvol`, with {path} and {n})
+    ("volume", ["volume", "{path}", "--json"]),
+    ("volume --no-check", ["volume", "{path}", "--json", "--no-check"]),
+    ("check", ["check", "{path}", "--json"]),
+    ("grid {n}³", ["grid", "{path}", "--cells", "{n},{n},{n}", "--bounds",
+                   "-100,-100,-100,100,100,100", "--json"]),
+]
+
+
+def prepare_scaling(sizes) -> list[dict]:
+    """Spheres of each size, streamed to binary STL (the same bytes as meshgen.make + the STL
+    writer, but without the whole face array in memory): DATA/scaling/sphere_N.stl."""
+    cache = Cache("scaling")
+    out = []
+    for n in sizes:
+        name = f"sphere_{size_label(n)}.stl"
+        if not cache.fresh(name):
+            import time as _time
+
+            t0 = _time.perf_counter()
+            tris = meshgen.write_sphere_stl_stream(cache.dir / name, n)
+            cache.done(name, triangles=int(tris))
+            print(f"[compare] wrote scaling/{name} ({(cache.dir / name).stat().st_size / 1e6:.0f} MB, "
+                  f"{_time.perf_counter() - t0:.1f} s)", flush=True)
+        out.append({"name": name, "path": cache.dir / name, "target": n,
+                    "triangles": cache.meta(name)["triangles"]})
+    return out
+
+
+def run_scaling(ctx, p) -> tuple[list[dict], list[dict]]:
+    files = prepare_scaling(p["scaling_sizes"])
+    cells = p["scaling_cells"]
+    rows = []
+    for label, argv in SCALING_COMMANDS:
+        label = label.format(n=cells)
+        for f in files:
+            a = [x.format(path=str(f["path"]), n=cells) for x in argv]
+            r = base_row("scaling", f["name"], label, triangles=f["triangles"])
+            rows.append(ctx.run(r, ctx.meshvol + a, meshvol=True, parse_keys=None, ok_codes=(0, 1)))
+    return rows, files
+
+
+def report_scaling(rows, files) -> tuple[list[str], list[str]]:
+    L = ["## Scaling: meshvol's time and memory against triangle count\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    L.append("UV spheres (radius 100) of " + ", ".join(f"{f['triangles']:,}" for f in files) +
+             " triangles, binary STL (written a block at a time). meshvol only, fresh process per "
+             "run, reading included: `volume` (checked), `volume --no-check`, `check` (with the "
+             "self-intersection search) and `grid` on a fixed grid over [-100, 100]³. Peak MB is "
+             "the process's maximum resident set; bytes per triangle = peak / triangles (the "
+             "binary STL itself is 50 bytes per triangle). **Step** = (time / previous size's "
+             "time) / (triangles / previous size's triangles): 1 is linear, above 1 worse than "
+             "linear; at small sizes process start-up makes it fall below 1.\n")
+    L.append("| command | triangles | median s | runs | peak MB | bytes per triangle | ns per triangle | step (time ratio / size ratio) |")
+    L.append("|---|--:|--:|--:|--:|--:|--:|--:|")
+    for label in dict.fromkeys(r["tool"] for r in rows):
+        prev = None
+        for r in (x for x in rows if x["tool"] == label):
+            t, n = r.get("median_s"), r["triangles"]
+            bpt = f"{r['peak_mb'] * 2**20 / n:.0f}" if r.get("peak_mb") else ""
+            ns = f"{t / n * 1e9:.0f}" if t else ""
+            step = ""
+            if t and prev and prev.get("median_s"):
+                step = f"{(t / prev['median_s']) / (n / prev['triangles']):.2f}"
+            note = "" if t else md_cell(failure_note(r) or r.get("error", "failed"))
+            L.append(f"| `meshvol {label}` | {n:,} | {time_cell(r) if t else note} | {runs_cell(r)} | "
+                     f"{fmt_mb(r.get('peak_mb'))} | {bpt} | {ns} | {step} |")
+            prev = r
+    L.append("")
+    return L, []
+
+
+def write_scaling_chart(path, rows) -> bool:
+    """Log-log time and peak memory against triangles, one line per command."""
+    if not rows:
+        return False
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return False
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.8))
+    for label in dict.fromkeys(r["tool"] for r in rows):
+        rs = [r for r in rows if r["tool"] == label and r.get("median_s")]
+        if not rs:
+            continue
+        n = [r["triangles"] for r in rs]
+        ax1.plot(n, [r["median_s"] for r in rs], "o-", label=f"meshvol {label}")
+        mem = [(r["triangles"], r["peak_mb"]) for r in rs if r.get("peak_mb")]
+        if mem:
+            ax2.plot([m[0] for m in mem], [m[1] for m in mem], "o-", label=f"meshvol {label}")
+    ns = sorted({r["triangles"] for r in rows})
+    for ax, what in ((ax1, "seconds, whole process, median"), (ax2, "peak MB (max RSS)")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("triangles (log)")
+        ax.set_ylabel(what + " (log)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    if len(ns) > 1 and any(r.get("median_s") for r in rows):  # a linear reference line
+        t0 = max(r["median_s"] for r in rows if r["triangles"] == ns[-1] and r.get("median_s"))
+        ax1.plot(ns, [t0 * n / ns[-1] for n in ns], "k:", label="linear (slope 1)")
+        ax1.legend(fontsize=8)
+    ax1.set_title("time against triangles")
+    ax2.set_title("peak memory against triangles")
+    fig.suptitle("meshvol scaling on UV spheres (bench/compare --only scaling)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return True

@@ -9,6 +9,11 @@ Usage: check_peer.py MODE FILE, MODE one of
                      self-intersection test
   pymeshlab          load_new_mesh + get_topological_measures (two-manifold, boundary edges,
                      connected components)
+  trueform           read_stl (indexed) + Mesh + is_closed, is_manifold, has_self_intersections
+                     (exact, stops at the first contact), label_connected_components over the
+                     mesh's manifold_edge_link
+  meshlib            mrmeshpy.loadMesh (half-edge topology) + topology.findNumHoles,
+                     findSelfCollidingTriangles (any pair), MeshComponents.getNumComponents
 Prints one JSON object: watertight, winding_consistent, bodies, self_intersecting (null
 where the tool does not answer), kernel_s (the checks alone, after loading).
 """
@@ -53,6 +58,28 @@ elif mode == "pymeshlab":
     g = ms.get_topological_measures()
     out.update(watertight=bool(g["is_mesh_two_manifold"] and g["boundary_edges"] == 0),
                bodies=int(g["connected_components_number"]))
+elif mode == "trueform":
+    import trueform as tf
+
+    if path.lower().endswith(".obj"):
+        faces, points = tf.read_obj(path, ngon=3)
+    else:
+        faces, points = tf.read_stl(path)
+    t0 = time.perf_counter()
+    mesh = tf.Mesh(faces, points)
+    closed, manifold = bool(tf.is_closed(mesh)), bool(tf.is_manifold(mesh))
+    bodies, _ = tf.label_connected_components(mesh.manifold_edge_link)
+    out.update(watertight=closed and manifold, bodies=int(bodies),
+               self_intersecting=bool(tf.has_self_intersections(mesh)))
+elif mode == "meshlib":
+    from meshlib import mrmeshpy as mr
+
+    mesh = mr.loadMesh(path)
+    t0 = time.perf_counter()
+    holes = int(mesh.topology.findNumHoles())
+    si = bool(mr.findSelfCollidingTriangles(mr.MeshPart(mesh), None))
+    out.update(watertight=holes == 0, bodies=int(mr.MeshComponents.getNumComponents(mesh)),
+               self_intersecting=si)
 else:
     sys.exit(f"unknown mode {mode}")
 out["kernel_s"] = time.perf_counter() - t0

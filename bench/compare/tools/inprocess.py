@@ -1,7 +1,7 @@
 """In-process timing of one peer tool's mass properties on arrays already in memory.
 
 Usage: inprocess.py TOOL KIND TRIANGLES RUNS BUDGET_S
-  TOOL: meshvol-py | trimesh | numpy-stl | manifold3d | open3d | pymeshlab | vtk
+  TOOL: meshvol-py | trimesh | numpy-stl | manifold3d | open3d | pymeshlab | vtk | trueform | meshlib
   KIND: sphere | torus | ...  (see meshgen.make)
 
 Builds the mesh with meshgen (the same arrays as the files), then times one warm-up and
@@ -179,8 +179,45 @@ def meshvol_case(v, f):
     )
 
 
+def trueform_case(v, f):
+    import trueform as tf
+
+    vf = np.ascontiguousarray(v, dtype=np.float64)  # trueform takes float32 or float64 points
+    ff = np.ascontiguousarray(f, dtype=np.int32)
+
+    def setup():
+        return tf.Mesh(ff, vf)
+
+    def measure(mesh):
+        return float(tf.signed_volume(mesh)), None, None
+
+    return setup, measure, (
+        "trueform.Mesh(f, float64 v) outside the timer; timed: signed_volume(mesh) (no centroid "
+        "or inertia)"
+    )
+
+
+def meshlib_case(v, f):
+    from meshlib import mrmeshnumpy as mn
+
+    vf = np.ascontiguousarray(v, dtype=np.float32)  # MeshLib's points are float32
+    ff = np.ascontiguousarray(f, dtype=np.int32)
+
+    def setup():
+        return mn.meshFromFacesVerts(ff, vf)
+
+    def measure(mesh):
+        return float(mesh.volume()), None, None
+
+    return setup, measure, (
+        "mrmeshnumpy.meshFromFacesVerts(f, float32 v) (its half-edge build) outside the timer; "
+        "timed: Mesh.volume() (no centroid or inertia)"
+    )
+
+
 CASES = {"meshvol-py": meshvol_case, "trimesh": trimesh_case, "numpy-stl": numpystl_case, "manifold3d": manifold_case,
-         "open3d": open3d_case, "pymeshlab": pymeshlab_case, "vtk": vtk_case}
+         "open3d": open3d_case, "pymeshlab": pymeshlab_case, "vtk": vtk_case,
+         "trueform": trueform_case, "meshlib": meshlib_case}
 
 
 def peak_rss_mb():
