@@ -36,9 +36,13 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
         progress.stage("reading", path);
         let loaded = input::load(path)?;
         progress.stage("checking", path);
-        let c =
-            meshvol::topology::check_assembled(&loaded.surface, loaded.assembly.as_ref(), &options)
-                .map_err(|e| format!("{name}: {e}"))?;
+        let c = meshvol::topology::check_assembled(
+            &loaded.surface,
+            loaded.assembly.as_ref(),
+            &options,
+            &|s| progress.stage_in("checking", path, s),
+        )
+        .map_err(|e| format!("{name}: {e}"))?;
         Ok(check(&Source::of(&name, &loaded), &c))
     })
 }

@@ -84,6 +84,13 @@ impl Progress {
         }
     }
 
+    /// Says what is being done to which file, and at which stage of it.
+    pub fn stage_in(&self, what: &str, path: &Path, stage: &str) {
+        if let Some(bar) = &self.bar {
+            bar.set_message(format!("{what} {}: {stage}", path.display()));
+        }
+    }
+
     /// Says what is being done to all the inputs together.
     pub fn stage_all(&self, what: &str) {
         if let Some(bar) = &self.bar {

@@ -84,9 +84,13 @@ pub fn read(
         None => None,
         Some(options) => {
             progress.stage("checking", path);
-            let check =
-                topology::check_assembled(&loaded.surface, loaded.assembly.as_ref(), &options)
-                    .map_err(|e| format!("{name}: {e}"))?;
+            let check = topology::check_assembled(
+                &loaded.surface,
+                loaded.assembly.as_ref(),
+                &options,
+                &|s| progress.stage_in("checking", path, s),
+            )
+            .map_err(|e| format!("{name}: {e}"))?;
             Some(check)
         }
     };

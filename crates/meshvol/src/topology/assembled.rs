@@ -14,7 +14,10 @@
 //! tolerance), a degenerate or non-finite transform, or an assembly that does not
 //! describe the surface's faces.
 
-use super::{check, solid::Solid, Check, CheckError, CheckOptions, Orientation, Weld};
+use super::{
+    check, check_in_stages, solid::Solid, Check, CheckError, CheckOptions, Orientation,
+    StageReport, Weld,
+};
 use crate::assembly::{part_bounds, Assembly};
 use crate::bvh::{Box32, Bvh};
 use crate::{Bounds, Surface};
@@ -23,17 +26,20 @@ use rayon::prelude::*;
 /// [`check`] of `surface`, from one check of each part of `assembly` when it describes
 /// how `surface` was assembled, repeats parts, and its copies are apart (see the module
 /// docs); the same facts either way, at the cost of the parts instead of the copies.
+/// `stage` is called as each stage starts, as in [`super::check_in_stages`].
 pub fn check_assembled<S: Surface + ?Sized>(
     surface: &S,
     assembly: Option<&Assembly>,
     options: &CheckOptions,
+    stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
     if let Some(assembly) = assembly.filter(|a| a.repeats_parts()) {
+        stage("checking each placed part once");
         if let Some(whole) = from_parts(assembly, surface.face_count(), options)? {
             return Ok(whole);
         }
     }
-    check(surface, options)
+    check_in_stages(surface, options, stage)
 }
 
 /// The whole's check from its parts', or `None` when it must be checked whole.
@@ -296,7 +302,7 @@ mod tests {
             let assembly = Assembly { parts: vec![cube.clone()], placements };
             let mesh = expand(&assembly);
             assert!(from_parts(&assembly, mesh.face_count(), &options).unwrap().is_none());
-            let c = check_assembled(&mesh, Some(&assembly), &options).unwrap();
+            let c = check_assembled(&mesh, Some(&assembly), &options, &|_| {}).unwrap();
             assert_same(&c, &check(&mesh, &options).unwrap(), &mesh);
         }
         // A degenerate transform, and an assembly that is not this surface's.

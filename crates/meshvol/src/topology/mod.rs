@@ -344,15 +344,29 @@ pub fn check<S: Surface + ?Sized>(
     surface: &S,
     options: &CheckOptions,
 ) -> Result<Check, CheckError> {
+    check_in_stages(surface, options, &|_| {})
+}
+
+/// What a long check is doing, for a progress display: called with the name of each
+/// stage as it starts (`welding`, `finding edges, shells and crossings`, ...).
+pub type StageReport<'a> = &'a (dyn Fn(&'static str) + Sync);
+
+/// [`check`], calling `stage` as each stage starts.
+pub fn check_in_stages<S: Surface + ?Sized>(
+    surface: &S,
+    options: &CheckOptions,
+    stage: StageReport<'_>,
+) -> Result<Check, CheckError> {
+    stage("gathering faces");
     let loops = Loops::of(surface);
     if u32::try_from(loops.corners.len()).is_err() {
         return Err(CheckError::TooLarge { corners: loops.corners.len() });
     }
     Ok(match options.weld {
-        Weld::Exact => analyse(surface, &loops, None, options),
-        Weld::Tolerance(t) => analyse(surface, &loops, Some(t), options),
+        Weld::Exact => analyse(surface, &loops, None, options, stage),
+        Weld::Tolerance(t) => analyse(surface, &loops, Some(t), options, stage),
         Weld::Auto => {
-            let exact = analyse(surface, &loops, None, options);
+            let exact = analyse(surface, &loops, None, options, stage);
             let diagonal = match loops.corners.first() {
                 None => 0.0,
                 Some(&first) => {
@@ -370,7 +384,8 @@ pub fn check<S: Surface + ?Sized>(
             if exact.boundary_edges == 0 || diagonal == 0.0 {
                 exact
             } else {
-                let welded = analyse(surface, &loops, Some(AUTO_WELD * diagonal), options);
+                stage("welding again within a tolerance");
+                let welded = analyse(surface, &loops, Some(AUTO_WELD * diagonal), options, stage);
                 if welded.boundary_edges < exact.boundary_edges {
                     welded
                 } else {
@@ -387,15 +402,23 @@ fn analyse<S: Surface + ?Sized>(
     loops: &Loops,
     tolerance: Option<f64>,
     options: &CheckOptions,
+    stage: StageReport<'_>,
 ) -> Check {
     let faces = surface.face_count();
+    stage("welding");
     let welded = weld::weld(&loops.corners, tolerance);
+    stage("sorting out degenerate and duplicate faces");
     let classes = faces::classify(loops, &welded);
     let kept = &classes.kept;
 
     // The crossing search (parallel, and the longest part) runs beside the connectivity
     // analysis (mostly sequential walks over edges and shells), so that on few cores
     // neither leaves one idle.
+    stage(if options.intersections {
+        "finding edges, shells and crossings"
+    } else {
+        "finding edges and shells"
+    });
     let (space, connected) = rayon::join(
         || {
             options.intersections.then(|| {
@@ -420,6 +443,7 @@ fn analyse<S: Surface + ?Sized>(
         None => (crossings::Triangles::default(), Bvh::default(), None),
     };
     let mut overlapping_shells = BTreeSet::new();
+    stage("nesting shells");
     let containers =
         nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
     let crossings = crossing.map(|pairs| {
