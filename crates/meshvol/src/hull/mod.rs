@@ -2,37 +2,57 @@
 //! area and centroid.
 //!
 //! # Method
-//! 1. Degenerate sets are recognised exactly before any hull is attempted: no points,
-//!    all points equal, all on one line, all in one plane. Each is decided with exact
-//!    predicates (Shewchuk's orientation tests, `robust` crate): a point set is flat
-//!    when every point has orientation exactly 0 against three points that span the
-//!    plane. Such sets have volume 0, and say why.
-//! 2. The points are translated by the first point r (`x − r` is exact for points
-//!    within a factor of two of r, as a cloud far from the origin is), and hulled with
-//!    parry3d-f64's quickhull (`try_convex_hull`), which works in coordinates
-//!    normalised to the cloud's box.
-//! 3. The hull mesh is measured with [`crate::mass_properties`] (compensated sums about
-//!    a vertex), and translated back.
+//! | stage | what | where |
+//! |---|---|---|
+//! | 1 | degenerate sets: no points, all equal, all on a line, all in a plane | [`degeneracy`] |
+//! | 2 | a fixed-seed random insertion order; the first tetrahedron in it | `incremental` |
+//! | 3 | every point on the conflict list of one tetrahedron face it sees (parallel) | `incremental` |
+//! | 4 | insert each point still outside, in order; move the conflicts of removed faces | `incremental` |
+//! | 5 | vertices that are not corners (coplanar input): hull the corners again | `incremental` |
+//! | 6 | measure with [`crate::mass_properties`] about a hull vertex | [`convex_hull`] |
 //!
-//! # Why parry, and why behind a feature
-//! parry3d-f64 is maintained, pure Rust, and its quickhull is the one the Rust geometry
-//! ecosystem tests most; the qhull crate needs libclang at build time. But parry and its
-//! math stack take about 90 s to compile against a few seconds for the rest of this
-//! crate, so the hull is behind the `hull` cargo feature (off by default; the `meshvol`
-//! command turns it on). Its floating-point quickhull can fail on sets that are flat to
-//! within its tolerance without being exactly flat; that is reported as
-//! [`HullError::NearlyFlat`], never a panic.
+//! 1. Degenerate sets are recognised exactly before any hull is attempted. Each is
+//!    decided with exact predicates (Shewchuk's orientation tests, `robust` crate): a
+//!    point set is flat when every point has orientation exactly 0 against three points
+//!    that span the plane. Such sets have volume 0, and say why.
+//! 2. The hull is built by randomized incremental construction (Clarkson and Shor
+//!    1989; de Berg et al., *Computational Geometry*, ch. 11). Points go in in a random
+//!    order, fixed by a seed, so the hull is the same on every run and thread count.
+//! 3. Each point not yet inserted is on the conflict list of one hull face that it
+//!    sees, i.e. whose plane it is strictly outside; a point that sees no face is inside
+//!    and is dropped for good.
+//! 4. Inserting p: the faces p sees are found by a walk from its conflict face over
+//!    neighbours; they form a disc whose boundary (the horizon) is one cycle of edges,
+//!    and each horizon edge (u, w) gets the new face (u, w, p). A point that saw a
+//!    removed face either sees one of the new faces or is inside the new hull (the
+//!    segment from it into a removed face leaves the new hull through the new part), so
+//!    the removed faces' conflicts are tested against the new faces only.
+//! 5. Coplanar points: a point exactly on a face's plane does not see that face, so a
+//!    point on the boundary of the hull built so far is never inserted. But a point
+//!    inserted early can end up inside a flat face or on an edge once later points
+//!    flatten its neighbourhood; such a vertex has all its triangles in one or two
+//!    planes (a corner's span three or more). When there are any, the hull's corners are
+//!    hulled again, and then every input point is a corner. So the result's vertices are
+//!    exactly the hull's corners (its extreme points); a flat face with more than three
+//!    corners is split into triangles, coplanar with their neighbours.
+//! 6. The mesh is measured with [`crate::mass_properties`] (compensated sums) in
+//!    coordinates relative to a hull vertex, and translated back.
+//!
+//! # Predicates
+//! Every decision is the sign of an orientation determinant, exact: a face caches its
+//! rounded outward normal (b − a) × (c − a) and the absolute values of its terms, and
+//! the test `normal · (q − a)` is trusted when it exceeds 10⁻¹⁵ times the same sum over
+//! absolute values (each term passes through at most 8 roundings: γ₈ < 8.9·10⁻¹⁶);
+//! otherwise Shewchuk's adaptive orient3d decides exactly. So the hull is the exact
+//! convex hull of the input for every input, cospherical, coplanar, duplicated or
+//! gridded alike.
 //!
 //! # Cost
-//! parry clears a workspace the size of its input for every point it adds to the hull,
-//! so it costs about n·h. Hulling fixed chunks of 16 384 points first (in parallel) and
-//! keeping only their hull vertices makes that n·(a chunk's h) + (candidates)·h: a
-//! million points in a ball take 0.7 s of CPU time, text parsing included (release
-//! build). Sets whose points are nearly all hull vertices (points on a sphere) stay
-//! n·h: 100 000 of them take 1.7 s, a million would take minutes.
+//! Expected O(n log n) time for every input (the expectation is over the insertion
+//! order, not over the points), and O(n) memory: ~100 bytes a hull face, 12 a point.
+//! COST-TABLE
 
-use parry3d_f64::math::Vector3;
-use parry3d_f64::transformation::try_convex_hull;
+mod incremental;
 
 use crate::vector::{add, sub};
 use crate::{mass_properties, MassProperties, Mesh, Point};
@@ -66,11 +86,6 @@ impl std::fmt::Display for Degeneracy {
 pub enum HullError {
     #[error("point {index} has a non-finite coordinate ({value})")]
     NonFinite { index: usize, value: f64 },
-    #[error(
-        "the points are not exactly flat, but too close to a plane or line for the hull \
-         algorithm ({0}); their volume is negligible next to their extent"
-    )]
-    NearlyFlat(String),
     #[error("{0} points do not fit 32-bit indices")]
     TooManyPoints(usize),
     #[error("the hull algorithm returned an invalid mesh: {0}")]
@@ -130,39 +145,6 @@ fn degeneracy(points: &[Point]) -> Option<Degeneracy> {
     None
 }
 
-/// Points per chunk of the first pass of [`candidates`].
-const CHUNK_POINTS: usize = 1 << 14;
-
-/// parry's hull, with a panic inside it (an internal assertion on some input nobody has
-/// tried) turned into an error rather than taking the caller down.
-fn hull_of(points: &[Vector3]) -> Result<(Vec<Vector3>, Vec<[u32; 3]>), HullError> {
-    std::panic::catch_unwind(|| try_convex_hull(points))
-        .map_err(|_| HullError::InvalidResult("the hull algorithm failed on this input".into()))?
-        .map_err(|e| HullError::NearlyFlat(e.to_string()))
-}
-
-/// The points that can be vertices of the hull. parry's quickhull clears a workspace the
-/// size of its input for every point it adds, so its cost grows as n·h; hulling fixed
-/// chunks first (in parallel, deterministically) and keeping only each chunk's hull
-/// vertices (a point inside its chunk's hull is inside the whole hull) cuts a million
-/// points in a ball to about 20 000 candidates. A chunk parry cannot hull keeps all its
-/// points.
-fn candidates(points: &[Vector3]) -> Vec<Vector3> {
-    if points.len() <= 2 * CHUNK_POINTS {
-        return points.to_vec();
-    }
-    crate::accumulate::ordered_reduce(
-        points.len(),
-        CHUNK_POINTS,
-        |range| match hull_of(&points[range.clone()]) {
-            Ok((vertices, _)) => vertices,
-            Err(_) => points[range].to_vec(),
-        },
-        |all, part| all.extend(part),
-    )
-    .unwrap_or_default()
-}
-
 /// The convex hull of `points`.
 ///
 /// ```
@@ -196,33 +178,42 @@ pub fn convex_hull(points: &[Point]) -> Result<Hull, HullError> {
     if let Some(d) = degeneracy(points) {
         return Ok(Hull { mesh: None, properties: MassProperties::empty(0), degeneracy: Some(d) });
     }
-    let reference = points[0];
-    let local: Vec<Vector3> = points
-        .iter()
-        .map(|&p| {
-            let [x, y, z] = sub(p, reference);
-            Vector3::new(x, y, z)
-        })
-        .collect();
-    let candidates = candidates(&local);
-    drop(local);
-    let (vertices, mut triangles) = hull_of(&candidates)?;
-    let positions: Vec<Point> = vertices.iter().map(|v| [v.x, v.y, v.z]).collect();
+    let (vertices, triangles) = compact(points, &incremental::hull_triangles(points));
+    // Measured about a hull vertex: x − r is exact for points within a factor of two of
+    // r, as a cloud far from the origin is, so the sums keep their precision.
+    let reference = points[vertices[0] as usize];
+    let local = vertices.iter().map(|&v| sub(points[v as usize], reference)).collect();
     let invalid = |e: crate::MeshError| HullError::InvalidResult(e.to_string());
-    let local_mesh = Mesh::from_triangles(positions, triangles.clone()).map_err(invalid)?;
-    let mut properties = mass_properties(&local_mesh);
-    if properties.centroid.is_none() {
-        return Err(HullError::NearlyFlat("the hull it built encloses no volume".into()));
-    }
-    if properties.signed_volume < 0.0 {
-        triangles.iter_mut().for_each(|t| t.swap(1, 2));
-        properties = mass_properties(&local_mesh.flipped());
-    }
+    let mut properties =
+        mass_properties(&Mesh::from_triangles(local, triangles.clone()).map_err(invalid)?);
     properties.centroid = properties.centroid.map(|c| add(c, reference));
     properties.bounds = properties
         .bounds
         .map(|b| crate::Bounds { min: add(b.min, reference), max: add(b.max, reference) });
-    let world = local_mesh.positions().iter().map(|&p| add(p, reference)).collect();
+    let world = vertices.iter().map(|&v| points[v as usize]).collect();
     let mesh = Mesh::from_triangles(world, triangles).map_err(invalid)?;
     Ok(Hull { mesh: Some(mesh), properties, degeneracy: None })
 }
+
+/// The hull's vertices in order of first use (indices into `points`), and its
+/// triangles over them.
+fn compact(points: &[Point], triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<[u32; 3]>) {
+    let mut index = vec![u32::MAX; points.len()];
+    let mut vertices = Vec::new();
+    let compacted = triangles
+        .iter()
+        .map(|t| {
+            t.map(|v| {
+                if index[v as usize] == u32::MAX {
+                    index[v as usize] = vertices.len() as u32;
+                    vertices.push(v);
+                }
+                index[v as usize]
+            })
+        })
+        .collect();
+    (vertices, compacted)
+}
+
+#[cfg(test)]
+mod tests;
