@@ -13,8 +13,9 @@ const NONE: u32 = u32::MAX;
 /// against its permanent (the same expression over absolute values): each of its terms
 /// passes through at most 8 roundings (three differences, two products, the cross
 /// product's difference, the dot product's two sums), so the error is at most
-/// γ₈ = 8u/(1 − 8u) < 8.9·10⁻¹⁶ times the permanent; 10⁻¹⁵ leaves room for the
-/// permanent's own rounding.
+/// γ₈ = 8u/(1 − 8u) < 8.9·10⁻¹⁶ times the permanent. The test bounds the permanent
+/// Σₖ mₖ|dₖ| (mₖ: component k's two terms in absolute value) by max(mₖ)·Σₖ|dₖ|, one
+/// number a face; 10⁻¹⁵ leaves room for the bound's own rounding.
 const FILTER_BOUND: f64 = 1.0e-15;
 /// Below this permanent, products may have underflowed, and the relative bound no
 /// longer holds: the exact test decides.
@@ -25,16 +26,49 @@ struct Face {
     vertices: [u32; 3],
     /// `neighbours[i]` is the face across the edge `vertices[i] → vertices[i + 1]`.
     neighbours: [u32; 3],
-    /// The rounded outward normal (b − a) × (c − a) and the absolute values of its
-    /// terms, for the filtered plane test.
-    normal: Point,
-    normal_magnitude: Point,
     /// This face's conflict list in [`Builder::lists`], or [`NONE`] while it has none.
     conflicts: u32,
     /// The insertion at which this face's visibility was last decided, and the answer.
     decided_at: u32,
     visible: bool,
     alive: bool,
+}
+
+/// A face's plane, for the filtered plane test: its vertices, the first one's
+/// coordinates, the rounded outward normal (b − a) × (c − a), and the largest sum of
+/// the absolute values of a normal component's two terms. Computed when needed rather
+/// than stored, which would double a face's size: the faces a walk tests share
+/// vertices with the last, in cache, and the new faces' planes are computed once for
+/// all the points they take over.
+struct Plane {
+    vertices: [u32; 3],
+    origin: Point,
+    normal: Point,
+    magnitude: f64,
+}
+
+impl Plane {
+    fn of(points: &[Point], vertices: [u32; 3]) -> Plane {
+        let [a, b, c] = vertices.map(|v| points[v as usize]);
+        let (ab, ac) = (sub(b, a), sub(c, a));
+        let magnitude = ((ab[1] * ac[2]).abs() + (ab[2] * ac[1]).abs())
+            .max((ab[2] * ac[0]).abs() + (ab[0] * ac[2]).abs())
+            .max((ab[0] * ac[1]).abs() + (ab[1] * ac[0]).abs());
+        Plane { vertices, origin: a, normal: cross(ab, ac), magnitude }
+    }
+
+    /// Whether `q` lies strictly outside, on, or inside the plane: +1, 0 or −1, exactly.
+    fn side(&self, points: &[Point], q: Point) -> f64 {
+        let d = sub(q, self.origin);
+        let value = dot(self.normal, d);
+        let permanent = self.magnitude * (d[0].abs() + d[1].abs() + d[2].abs());
+        if permanent > FILTER_FLOOR && value.abs() > FILTER_BOUND * permanent {
+            return value.signum();
+        }
+        let [a, b, c] = self.vertices.map(|v| points[v as usize]);
+        // orient3d is positive when q is on the side the normal points away from.
+        -sign(super::orient3d(a, b, c, q))
+    }
 }
 
 /// The hull under construction.
@@ -69,41 +103,20 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
+    fn plane(&self, f: u32) -> Plane {
+        Plane::of(self.points, self.faces[f as usize].vertices)
+    }
+
     /// Whether `q` lies strictly outside, on, or inside the plane of face `f`: +1, 0 or
     /// −1, exactly.
     fn side(&self, f: u32, q: Point) -> f64 {
-        let face = &self.faces[f as usize];
-        let d = sub(q, self.points[face.vertices[0] as usize]);
-        let value = dot(face.normal, d);
-        let permanent = face.normal_magnitude[0] * d[0].abs()
-            + face.normal_magnitude[1] * d[1].abs()
-            + face.normal_magnitude[2] * d[2].abs();
-        let bound = FILTER_BOUND * permanent;
-        if permanent > FILTER_FLOOR && value.abs() > bound {
-            return value.signum();
-        }
-        let [a, b, c] = face.vertices.map(|v| self.points[v as usize]);
-        // orient3d is positive when q is on the side the normal points away from.
-        -sign(super::orient3d(a, b, c, q))
-    }
-
-    fn sees(&self, f: u32, q: Point) -> bool {
-        self.side(f, q) > 0.0
+        self.plane(f).side(self.points, q)
     }
 
     fn new_face(&mut self, vertices: [u32; 3], neighbours: [u32; 3]) -> u32 {
-        let [a, b, c] = vertices.map(|v| self.points[v as usize]);
-        let (ab, ac) = (sub(b, a), sub(c, a));
-        let normal_magnitude = [
-            (ab[1] * ac[2]).abs() + (ab[2] * ac[1]).abs(),
-            (ab[2] * ac[0]).abs() + (ab[0] * ac[2]).abs(),
-            (ab[0] * ac[1]).abs() + (ab[1] * ac[0]).abs(),
-        ];
         let face = Face {
             vertices,
             neighbours,
-            normal: cross(ab, ac),
-            normal_magnitude,
             conflicts: NONE,
             decided_at: 0,
             visible: false,
@@ -153,13 +166,18 @@ impl Builder<'_> {
                 self.faces[f].neighbours[i] = g.expect("a tetrahedron is closed") as u32;
             }
         }
+        let planes: Vec<Plane> = (0..4).map(|f| self.plane(f)).collect();
         let first_seen: Vec<u32> = (0..self.points.len() as u32)
             .into_par_iter()
             .map(|q| {
                 if corners.contains(&q) {
                     return NONE;
                 }
-                (0..4).find(|&f| self.sees(f, self.points[q as usize])).unwrap_or(NONE)
+                let q = self.points[q as usize];
+                planes
+                    .iter()
+                    .position(|plane| plane.side(self.points, q) > 0.0)
+                    .map_or(NONE, |f| f as u32)
             })
             .collect();
         for (q, f) in first_seen.into_iter().enumerate() {
@@ -244,10 +262,14 @@ impl Builder<'_> {
         // the new hull through the part that is not the old one, which new faces bound.
         let displaced = std::mem::take(&mut self.displaced);
         let new_faces = std::mem::take(&mut self.new_faces);
+        let planes: Vec<Plane> = new_faces.iter().map(|&f| self.plane(f)).collect();
         // Counted first, so that each new list is allocated once at its size.
         let mut targets = std::mem::take(&mut self.targets);
         targets.extend(displaced.iter().map(|&(at, _)| {
-            new_faces.iter().position(|&f| self.sees(f, at)).map_or(NONE, |i| i as u32)
+            planes
+                .iter()
+                .position(|plane| plane.side(self.points, at) > 0.0)
+                .map_or(NONE, |i| i as u32)
         }));
         let mut counts = vec![0; new_faces.len()];
         targets.iter().filter(|&&i| i != NONE).for_each(|&i| counts[i as usize] += 1);
