@@ -265,12 +265,16 @@ impl Builder<'_> {
         let planes: Vec<Plane> = new_faces.iter().map(|&f| self.plane(f)).collect();
         // Counted first, so that each new list is allocated once at its size.
         let mut targets = std::mem::take(&mut self.targets);
-        targets.extend(displaced.iter().map(|&(at, _)| {
-            planes
-                .iter()
-                .position(|plane| plane.side(self.points, at) > 0.0)
-                .map_or(NONE, |i| i as u32)
-        }));
+        let target = |&(at, _): &(Point, u32)| {
+            let sees = |plane: &Plane| plane.side(self.points, at) > 0.0;
+            planes.iter().position(sees).map_or(NONE, |i| i as u32)
+        };
+        // The first insertions move most of the points: those are shared among threads.
+        if displaced.len() >= PARALLEL_DISPLACED {
+            targets.par_extend(displaced.par_iter().map(target));
+        } else {
+            targets.extend(displaced.iter().map(target));
+        }
         let mut counts = vec![0; new_faces.len()];
         targets.iter().filter(|&&i| i != NONE).for_each(|&i| counts[i as usize] += 1);
         for (&f, &count) in new_faces.iter().zip(&counts).filter(|(_, &c)| c > 0) {
@@ -391,6 +395,9 @@ fn shuffled(n: usize) -> Vec<u32> {
 
 /// Conflict lists with more room than this (in points) are freed when emptied.
 const KEPT_LIST_CAPACITY: usize = 256;
+
+/// Displaced points from which their new faces are found in parallel.
+const PARALLEL_DISPLACED: usize = 1 << 15;
 
 /// Rounds of the insertion order smaller than this stay in random order.
 const SMALLEST_SORTED_ROUND: usize = 64;

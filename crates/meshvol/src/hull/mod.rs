@@ -5,7 +5,7 @@
 //! | stage | what | where |
 //! |---|---|---|
 //! | 1 | degenerate sets: no points, all equal, all on a line, all in a plane | [`degeneracy`] |
-//! | 2 | a fixed-seed random insertion order; the first tetrahedron in it | `incremental` |
+//! | 2 | a fixed-seed biased random insertion order; the first tetrahedron in it | `incremental` |
 //! | 3 | every point on the conflict list of one tetrahedron face it sees (parallel) | `incremental` |
 //! | 4 | insert each point still outside, in order; move the conflicts of removed faces | `incremental` |
 //! | 5 | vertices that are not corners (coplanar input): hull the corners again | `incremental` |
@@ -17,7 +17,10 @@
 //!    that span the plane. Such sets have volume 0, and say why.
 //! 2. The hull is built by randomized incremental construction (Clarkson and Shor
 //!    1989; de Berg et al., *Computational Geometry*, ch. 11). Points go in in a random
-//!    order, fixed by a seed, so the hull is the same on every run and thread count.
+//!    order, fixed by a seed, so the hull is the same on every run and thread count; the
+//!    order is a biased randomized one (Amenta, Choi and Rote 2003): rounds of doubling
+//!    size, each a random sample, each sorted along a Morton curve, which keeps the
+//!    expected bound and lets consecutive insertions work on faces still in cache.
 //! 3. Each point not yet inserted is on the conflict list of one hull face that it
 //!    sees, i.e. whose plane it is strictly outside; a point that sees no face is inside
 //!    and is dropped for good.
@@ -39,13 +42,16 @@
 //!    coordinates relative to a hull vertex, and translated back.
 //!
 //! # Predicates
-//! Every decision is the sign of an orientation determinant, exact: a face caches its
-//! rounded outward normal (b − a) × (c − a) and the absolute values of its terms, and
-//! the test `normal · (q − a)` is trusted when it exceeds 10⁻¹⁵ times the same sum over
-//! absolute values (each term passes through at most 8 roundings: γ₈ < 8.9·10⁻¹⁶);
-//! otherwise Shewchuk's adaptive orient3d decides exactly. So the hull is the exact
-//! convex hull of the input for every input, cospherical, coplanar, duplicated or
-//! gridded alike.
+//! Every decision is the sign of an orientation determinant, exact. For face (a, b, c)
+//! and point q, the rounded `((b − a) × (c − a)) · (q − a)` is trusted when it exceeds
+//! 10⁻¹⁵ · max(mₖ) · Σ|qₖ − aₖ|, mₖ being the absolute values of the normal component
+//! k's two terms summed: that bounds the same expression over absolute values, and each
+//! of its terms passes through at most 8 roundings (γ₈ < 8.9·10⁻¹⁶). Otherwise (nearly or
+//! exactly coplanar points, or products near underflow) Shewchuk's adaptive orient3d
+//! decides. So the hull is the exact convex hull of the input for every input,
+//! cospherical, coplanar, duplicated or gridded alike. Points exactly on a face's plane
+//! do not see it (the hull never grows by a flat step), which is also why duplicates need
+//! no special case.
 //!
 //! # Cost
 //! Expected O(n log n) time for every input (the expectation is over the insertion
