@@ -47,7 +47,8 @@ fn lattice_hulls_keep_full_precision_far_from_the_origin() {
         assert_eq!(hull.properties.centroid, Some([offset + 4.5, offset + 4.5, offset + 2.25]));
         assert!(hull.properties.signed_volume > 0.0);
     }
-    // 40³ lattice points: hulled in chunks first, each chunk a slab with coplanar faces.
+    // 40³ lattice points: many inserted early end inside a face or on an edge, so the
+    // corners are hulled again.
     let points: Vec<Point> = (0..64_000)
         .map(|i| [1e7 + (i % 40) as f64, (i / 40 % 40) as f64, (i / 1600) as f64])
         .collect();
@@ -60,7 +61,6 @@ fn random_clouds_far_away_match_the_same_cloud_at_the_origin() {
     // at 0, so the volumes must agree to rounding.
     let mut rng = XorShift::new(0x853c49e6748fea9b);
     let grid = |x: f64| (x * 1048576.0).round() / 1048576.0;
-    // More than two chunks of the first pass, so that pass is exercised.
     let cloud: Vec<Point> =
         (0..50_000).map(|_| [0.0; 3].map(|_: f64| grid(rng.unit() * 10.0))).collect();
     let near = convex_hull(&cloud).unwrap();

@@ -151,6 +151,50 @@ fn degeneracy(points: &[Point]) -> Option<Degeneracy> {
     None
 }
 
+/// Points per chunk of [`candidates`].
+const CHUNK_POINTS: usize = 1 << 14;
+
+/// Above this share of its points kept as corners, the first chunk says the points
+/// are mostly on the hull (as on a sphere), and chunks would not pay.
+const KEPT_SHARE_TO_SKIP_CHUNKS: f64 = 0.125;
+
+/// The indices of the points that can be corners of the hull, when chunks cut them
+/// down: each fixed chunk of [`CHUNK_POINTS`] is hulled on its own (in parallel, the
+/// same on any number of threads) and only its corners are kept, since a point in the
+/// hull of other points is no corner of the whole. A chunk that is flat keeps all its
+/// points. A million points in a ball keep about 2%, and the hull of the rest is then
+/// mostly the hull of points near its surface. `None` when that would not pay: few
+/// points, or a first chunk that keeps more than [`KEPT_SHARE_TO_SKIP_CHUNKS`] of its
+/// points.
+fn candidates(points: &[Point]) -> Option<Vec<u32>> {
+    if points.len() < 4 * CHUNK_POINTS {
+        return None;
+    }
+    let corners_of = |range: std::ops::Range<usize>| -> Vec<u32> {
+        let chunk = &points[range.clone()];
+        if degeneracy(chunk).is_some() {
+            return (range.start as u32..range.end as u32).collect();
+        }
+        let mut corner = vec![false; chunk.len()];
+        incremental::hull_triangles(chunk)
+            .iter()
+            .flatten()
+            .for_each(|&v| corner[v as usize] = true);
+        (0..chunk.len()).filter(|&i| corner[i]).map(|i| (range.start + i) as u32).collect()
+    };
+    let first = corners_of(0..CHUNK_POINTS);
+    if first.len() as f64 > KEPT_SHARE_TO_SKIP_CHUNKS * CHUNK_POINTS as f64 {
+        return None;
+    }
+    let rest = crate::accumulate::ordered_reduce(
+        points.len() - CHUNK_POINTS,
+        CHUNK_POINTS,
+        |range| corners_of(range.start + CHUNK_POINTS..range.end + CHUNK_POINTS),
+        |all, part| all.extend(part),
+    );
+    Some(first.into_iter().chain(rest.into_iter().flatten()).collect())
+}
+
 /// The convex hull of `points`.
 ///
 /// ```
@@ -184,7 +228,15 @@ pub fn convex_hull(points: &[Point]) -> Result<Hull, HullError> {
     if let Some(d) = degeneracy(points) {
         return Ok(Hull { mesh: None, properties: MassProperties::empty(0), degeneracy: Some(d) });
     }
-    let (vertices, triangles) = compact(points, &incremental::hull_triangles(points));
+    let triangles = match candidates(points) {
+        None => incremental::hull_triangles(points),
+        Some(kept) => {
+            let subset: Vec<Point> = kept.iter().map(|&i| points[i as usize]).collect();
+            let triangles = incremental::hull_triangles(&subset);
+            triangles.into_iter().map(|t| t.map(|v| kept[v as usize])).collect()
+        }
+    };
+    let (vertices, triangles) = compact(points, &triangles);
     // Measured about a hull vertex: x − r is exact for points within a factor of two of
     // r, as a cloud far from the origin is, so the sums keep their precision.
     let reference = points[vertices[0] as usize];

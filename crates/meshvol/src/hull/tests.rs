@@ -260,3 +260,36 @@ fn the_hull_is_the_same_on_any_number_of_threads() {
     };
     assert_eq!(on(1), on(3));
 }
+
+#[test]
+fn chunked_hulls_keep_every_corner() {
+    // Two chunks' worth of points in a ball, then one flat chunk a layer: 128 × 128
+    // lattice points at each of four heights, inside the ball.
+    let mut rng = XorShift::new(0xc4a2_4c5d);
+    let mut points: Vec<Point> = (0..2 * super::CHUNK_POINTS).map(|_| in_ball(&mut rng)).collect();
+    for z in [-0.2, 0.0, 0.2, 0.4] {
+        points.extend(
+            (0..128 * 128).map(|i| [(i % 128) as f64 / 254.0, (i / 128) as f64 / 254.0, z]),
+        );
+    }
+    let kept = super::candidates(&points).expect("chunks pay for points in a ball");
+    // The flat chunks keep all their points; the ball's chunks only their corners.
+    let flat = 4 * 128 * 128;
+    assert!(kept.len() > flat && kept.len() < flat + super::CHUNK_POINTS / 8, "{}", kept.len());
+    let hull = convex_hull(&points).unwrap();
+    let direct = super::incremental::hull_triangles(&points);
+    let corners = |triangles: Vec<[u32; 3]>| {
+        let mut v: Vec<u32> = triangles.into_iter().flatten().collect();
+        v.sort();
+        v.dedup();
+        v.into_iter().map(|i| points[i as usize]).collect::<Vec<Point>>()
+    };
+    let mut ours = hull.mesh.as_ref().unwrap().positions().to_vec();
+    ours.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let mut expected = corners(direct);
+    expected.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(ours, expected);
+    // Points on a sphere keep most of the first chunk: no chunks.
+    let sphere: Vec<Point> = (0..5 * super::CHUNK_POINTS).map(|_| on_sphere(&mut rng)).collect();
+    assert!(super::candidates(&sphere).is_none());
+}
