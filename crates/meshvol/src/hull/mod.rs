@@ -4,7 +4,8 @@
 //! # Method
 //! | stage | what | where |
 //! |---|---|---|
-//! | 1 | degenerate sets: no points, all equal, all on a line, all in a plane | [`degeneracy`] |
+//! | 1 | degenerate sets: no points, all equal, all on a line, all in a plane | `degeneracy` |
+//! | 1½ | chunks of 16 384 points hulled alone, their corners kept, where that pays | `candidates` |
 //! | 2 | a fixed-seed biased random insertion order; the first tetrahedron in it | `incremental` |
 //! | 3 | every point on the conflict list of one tetrahedron face it sees (parallel) | `incremental` |
 //! | 4 | insert each point still outside, in order; move the conflicts of removed faces | `incremental` |
@@ -15,6 +16,11 @@
 //!    decided with exact predicates (Shewchuk's orientation tests, `robust` crate): a
 //!    point set is flat when every point has orientation exactly 0 against three points
 //!    that span the plane. Such sets have volume 0, and say why.
+//!
+//!    1½. A point inside the hull of some of the points is no corner of the hull, so
+//!    when the first chunk of 16 384 points keeps under an eighth of them as corners
+//!    (points in a ball: a few percent), every chunk is hulled on its own, in parallel, and
+//!    only the chunks' corners go on. Points mostly on the hull (a sphere) skip this.
 //! 2. The hull is built by randomized incremental construction (Clarkson and Shor
 //!    1989; de Berg et al., *Computational Geometry*, ch. 11). Points go in in a random
 //!    order, fixed by a seed, so the hull is the same on every run and thread count; the
@@ -55,8 +61,30 @@
 //!
 //! # Cost
 //! Expected O(n log n) time for every input (the expectation is over the insertion
-//! order, not over the points), and O(n) memory: ~100 bytes a hull face, 12 a point.
-//! COST-TABLE
+//! order, not over the points), and O(n) memory: 36 bytes a hull face, about 40 a
+//! point, and 32 a point on a conflict list. Points all on the hull (a sphere), where
+//! quickhull's n·h cost shows, are no special case.
+//!
+//! `meshvol hull FILE` (release build, whole process, reading the `.xyz` included;
+//! 2-core machine shared with other builds, load 0.7–3.5) against the parry3d-f64
+//! quickhull this replaced (with its chunk pass) and against qhull (scipy 1.17
+//! `ConvexHull`, the hull alone, after `numpy.loadtxt`), on the same points:
+//!
+//! | points | meshvol | parry (before) | qhull, hull alone |
+//! |---|---|---|---|
+//! | 100 000 on a sphere | 0.14–0.25 s | 1.6 s | 0.56–0.97 s |
+//! | 1 000 000 on a sphere | 1.8–2.6 s | 234 s | 9.0–14.4 s |
+//! | 5 000 000 on a sphere | 11.8–13.2 s | over 11 min | 48.6 s |
+//! | 100 000 in a ball | 0.05–0.14 s | 0.06 s | 0.03 s |
+//! | 1 000 000 in a ball | 0.39 s | 0.29–0.40 s | 0.29 s |
+//! | 5 000 000 in a ball | 1.9 s | 1.5–1.9 s | 1.8 s |
+//!
+//! In-process (criterion, `cargo bench -p meshvol-bench --bench hull`, the hull and its
+//! measurement alone, quiet machine; generated clouds of the same kinds, and the 5M
+//! file): 100 000 / 1 000 000 / 5 000 000 points on a sphere 0.15 / 1.74 / 10.1 s (qhull's hull alone 0.56 / 9.0 / 48.6 s: 3.7–5.2×
+//! ahead; parry 0.94 s at 100 000); 100 000 / 1 000 000 in a ball 0.024 / 0.18 s
+//! (qhull 0.03 / 0.29 s). Whole processes in a ball stay up to 1.3× behind parry with
+//! its chunks, which hulled a chunk with few corners faster.
 
 mod incremental;
 
