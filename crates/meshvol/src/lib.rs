@@ -10,7 +10,7 @@
 //! - [`polygon::area_properties`] and [`polygon::polygon_issues`]: area, centroid and
 //!   second moments of plane polygons with holes, and whether their rings are simple;
 //! - [`section::section`]: the cross-section of a surface by a plane, as polygons;
-//! - `hull::convex_hull` (cargo feature `hull`): the convex hull of a point set;
+//! - `hull::convex_hull`: the convex hull of a point set;
 //! - [`surface`]: parts of a surface, several surfaces as one, or one turned inside out,
 //!   read as surfaces of their own, and the connected parts of a surface;
 //! - [`grid::cell_volumes`], [`grid::profile`] and [`grid::union`]: the exact volume in
@@ -30,7 +30,6 @@ pub mod cutfill;
 mod eigen;
 pub mod exact;
 pub mod grid;
-#[cfg(feature = "hull")]
 pub mod hull;
 pub mod mesh;
 pub mod polygon;
