@@ -62,15 +62,19 @@ def test_off(tmp_path):
     assert mesh.format == "off" and mesh.mass_properties().volume == 6.0
 
 
-def test_3mf_declares_its_unit(tmp_path):
+def block_mesh_xml():
+    """A 10 × 20 × 30 block as a 3MF <mesh> element."""
     vertices, faces = box((0, 0, 0), (10, 20, 30))
     xml_vertices = "".join(f'<vertex x="{x}" y="{y}" z="{z}"/>' for x, y, z in vertices.tolist())
     xml_triangles = "".join(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in faces.tolist())
+    return f"<mesh><vertices>{xml_vertices}</vertices><triangles>{xml_triangles}</triangles></mesh>"
+
+
+def test_3mf_declares_its_unit(tmp_path):
     model = (
         '<?xml version="1.0" encoding="UTF-8"?>\n'
         '<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
-        f'<resources><object id="1" name="block" type="model"><mesh><vertices>{xml_vertices}'
-        f"</vertices><triangles>{xml_triangles}</triangles></mesh></object></resources>"
+        f'<resources><object id="1" name="block" type="model">{block_mesh_xml()}</object></resources>'
         '<build><item objectid="1"/></build></model>'
     )
     path = tmp_path / "block.3mf"
@@ -84,9 +88,6 @@ def test_3mf_declares_its_unit(tmp_path):
 def test_3mf_copies_are_checked_from_their_part(tmp_path):
     # A block placed 100 × 100 times by components, 20 apart: every copy a closed shell,
     # the volume exactly 10⁴ × 6000, as for the same copies given as arrays.
-    vertices, faces = box((0, 0, 0), (10, 20, 30))
-    xml_vertices = "".join(f'<vertex x="{x}" y="{y}" z="{z}"/>' for x, y, z in vertices.tolist())
-    xml_triangles = "".join(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in faces.tolist())
     row = "".join(
         f'<component objectid="1" transform="1 0 0 0 1 0 0 0 1 {20 * i} 0 0"/>' for i in range(100)
     )
@@ -95,8 +96,7 @@ def test_3mf_copies_are_checked_from_their_part(tmp_path):
     )
     model = (
         '<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
-        f'<resources><object id="1" type="model"><mesh><vertices>{xml_vertices}'
-        f"</vertices><triangles>{xml_triangles}</triangles></mesh></object>"
+        f'<resources><object id="1" type="model">{block_mesh_xml()}</object>'
         f'<object id="2" type="model"><components>{row}</components></object>'
         f'<object id="3" type="model"><components>{grid}</components></object></resources>'
         '<build><item objectid="3"/></build></model>'

@@ -31,3 +31,15 @@ pub fn cross(a: Point, b: Point) -> Point {
 pub fn norm(a: Point) -> f64 {
     dot(a, a).sqrt()
 }
+
+/// −1, 0 or +1. (Not `f64::signum`, which gives ±1 for ±0: the exact zeros that
+/// predicates return are what tells touching from crossing.)
+pub fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}

@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use crate::vector::{cross, dot, sub};
+use crate::vector::{cross, dot, sign, sub};
 use crate::Point;
 
 /// "No face" and "no point": the end of a conflict list, a point inside the hull.
@@ -352,17 +352,6 @@ impl Builder<'_> {
 
     fn triangles(&self) -> Vec<[u32; 3]> {
         self.faces.iter().filter(|f| f.alive).map(|f| f.vertices).collect()
-    }
-}
-
-/// −1, 0 or +1 (not `f64::signum`, which gives ±1 for ±0).
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 

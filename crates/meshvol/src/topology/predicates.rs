@@ -1,21 +1,9 @@
 //! Exact geometric predicates on triangles, from Shewchuk's adaptive orientation tests
 //! (the `robust` crate): signs are exact, so the answers do not depend on rounding.
 
-use crate::vector::{cross, dot, sub};
+use crate::vector::{cross, dot, sign, sub};
 use crate::Point;
 use robust::{orient2d, orient3d, Coord, Coord3D};
-
-/// −1, 0 or +1. (Not `f64::signum`, which gives ±1 for ±0: the exact zeros the
-/// predicates return are what tells touching from crossing.)
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
-}
 
 fn c3(p: Point) -> Coord3D<f64> {
     Coord3D { x: p[0], y: p[1], z: p[2] }
