@@ -53,7 +53,7 @@ pub use terrain::{Terrain, TerrainError};
 
 use crate::accumulate::ordered_reduce;
 use crate::buckets::Buckets;
-use pairs::{boxes_overlap, facet_box, BucketGrid, PlanBox};
+use pairs::{box_union, boxes_overlap, facet_box, BucketGrid, PlanBox};
 use piece::{amounts, Piece, Sums};
 use std::ops::Range;
 use terrain::Facet;
@@ -179,8 +179,8 @@ impl<'a> Overlay<'a> {
     /// The piece where triangles `e` (existing) and `g` (design) overlap, with d at its
     /// corners; `None` when they do not.
     fn clip(&self, e: &Facet, g: &Facet) -> Option<Piece> {
-        let [a, b, c] = self.local(e);
-        let mut piece = Piece::triangle(a, b, c);
+        let corners = self.local(e);
+        let mut piece = Piece::triangle(corners[0], corners[1], corners[2]);
         let edges = self.local(g);
         for k in 0..3 {
             let (p, q) = (edges[k], edges[(k + 1) % 3]);
@@ -189,9 +189,8 @@ impl<'a> Overlay<'a> {
                 return None;
             }
         }
-        let ze = self.local(e);
         for corner in piece.corners_mut() {
-            corner[2] = height(&ze, &e.z, *corner) - height(&edges, &g.z, *corner);
+            corner[2] = height(&corners, &e.z, *corner) - height(&edges, &g.z, *corner);
         }
         Some(piece)
     }
@@ -222,10 +221,7 @@ fn piece_box(piece: &Piece, origin: [f64; 2]) -> PlanBox {
 
 fn union_box(a: Option<PlanBox>, b: Option<PlanBox>) -> Option<PlanBox> {
     match (a, b) {
-        (Some(a), Some(b)) => Some([
-            [a[0][0].min(b[0][0]), a[0][1].min(b[0][1])],
-            [a[1][0].max(b[1][0]), a[1][1].max(b[1][1])],
-        ]),
+        (Some(a), Some(b)) => Some(box_union(&a, &b)),
         (a, b) => a.or(b),
     }
 }

@@ -16,17 +16,14 @@
 //!   all share a corner are never walked (the slivers of a fan all overlap near their
 //!   apex), and each is decided by separating edge lines, exactly.
 
+use super::pairs::facet_box;
 use super::terrain::Facet;
 use crate::bvh::{Box32, Bvh};
+use crate::vector::orient2d;
 use crate::Bounds;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::HashMap;
-
-fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let coord = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
-    robust::orient2d(coord(a), coord(b), coord(c))
-}
 
 /// A pair of faces whose triangles overlap in plan, if any: the first by face order
 /// among those sharing a corner, else the first the search meets (the same every run).
@@ -137,9 +134,7 @@ fn first_apart(facets: &[Facet], corners: &[[u32; 3]]) -> Option<(usize, usize)>
     let boxes: Vec<Bounds> = facets
         .iter()
         .map(|f| {
-            let [a, b, c] = f.xy;
-            let lo = [0, 1].map(|k| a[k].min(b[k]).min(c[k]));
-            let hi = [0, 1].map(|k| a[k].max(b[k]).max(c[k]));
+            let [lo, hi] = facet_box(f);
             Bounds { min: [lo[0], lo[1], 0.0], max: [hi[0], hi[1], 0.0] }
         })
         .collect();

@@ -25,6 +25,11 @@ pub(crate) fn facet_box(f: &Facet) -> PlanBox {
     ]
 }
 
+/// The box holding both.
+pub(crate) fn box_union(a: &PlanBox, b: &PlanBox) -> PlanBox {
+    [[a[0][0].min(b[0][0]), a[0][1].min(b[0][1])], [a[1][0].max(b[1][0]), a[1][1].max(b[1][1])]]
+}
+
 /// Whether two boxes overlap (touching counts).
 pub(crate) fn boxes_overlap(a: &PlanBox, b: &PlanBox) -> bool {
     a[0][0] <= b[1][0] && b[0][0] <= a[1][0] && a[0][1] <= b[1][1] && b[0][1] <= a[1][1]

@@ -12,9 +12,9 @@
 //! are wound: [`super::overlaps`] finds the first such pair, exactly and in
 //! n log n time.
 
-use super::pairs::{facet_box, PlanBox};
+use super::pairs::{box_union, facet_box, PlanBox};
 use crate::accumulate::CompensatedSum;
-use crate::vector::{cross, norm, sub};
+use crate::vector::{cross, norm, orient2d, sub};
 use crate::{Point, Surface};
 use rayon::prelude::*;
 
@@ -52,11 +52,6 @@ pub struct Terrain {
 
 /// Faces per parallel task when reading a surface's triangles.
 const FACE_CHUNK: usize = 4096;
-
-fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let coord = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
-    robust::orient2d(coord(a), coord(b), coord(c))
-}
 
 /// The triangles of faces `faces`, and the vertical faces among them.
 fn read_faces<S: Surface + ?Sized>(
@@ -115,12 +110,7 @@ impl Terrain {
         if u32::try_from(facets.len()).is_err() {
             return Err(TerrainError::TooManyTriangles { triangles: facets.len() });
         }
-        let bounds = facets.iter().map(facet_box).reduce(|a, b| {
-            [
-                [a[0][0].min(b[0][0]), a[0][1].min(b[0][1])],
-                [a[1][0].max(b[1][0]), a[1][1].max(b[1][1])],
-            ]
-        });
+        let bounds = facets.iter().map(facet_box).reduce(|a, b| box_union(&a, &b));
         let mut area = CompensatedSum::default();
         for f in &facets {
             let [a, b, c] = f.xy;

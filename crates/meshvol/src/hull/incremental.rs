@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use crate::vector::{cross, dot, sign, sub};
+use crate::vector::{cross, dot, orient3d, sign, sub};
 use crate::Point;
 
 /// "No face" and "no point": the end of a conflict list, a point inside the hull.
@@ -67,7 +67,7 @@ impl Plane {
         }
         let [a, b, c] = self.vertices.map(|v| points[v as usize]);
         // orient3d is positive when q is on the side the normal points away from.
-        -sign(super::orient3d(a, b, c, q))
+        -sign(orient3d(a, b, c, q))
     }
 }
 
@@ -153,7 +153,7 @@ impl Builder<'_> {
         let p = corners.map(|v| self.points[v as usize]);
         let mut faces = [[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]].map(|t| t.map(|i| corners[i]));
         // Wind each face so that the fourth corner is inside.
-        if super::orient3d(p[0], p[1], p[2], p[3]) < 0.0 {
+        if orient3d(p[0], p[1], p[2], p[3]) < 0.0 {
             faces.iter_mut().for_each(|t| t.swap(1, 2));
         }
         for t in faces {
@@ -441,7 +441,7 @@ fn first_tetrahedron(points: &[Point]) -> [u32; 4] {
     let pb = points[b as usize];
     let c = find(&|p| !super::collinear(a, pb, p), "not all points are collinear");
     let pc = points[c as usize];
-    let d = find(&|p| super::orient3d(a, pb, pc, p) != 0.0, "not all points are coplanar");
+    let d = find(&|p| orient3d(a, pb, pc, p) != 0.0, "not all points are coplanar");
     [0, b, c, d]
 }
 

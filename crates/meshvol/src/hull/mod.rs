@@ -88,7 +88,7 @@
 
 mod incremental;
 
-use crate::vector::{add, sub};
+use crate::vector::{add, orient2d, orient3d, sub};
 use crate::{mass_properties, MassProperties, Mesh, Point};
 
 /// Why a point set has no solid hull.
@@ -144,16 +144,6 @@ impl Hull {
     pub fn volume(&self) -> f64 {
         self.properties.volume()
     }
-}
-
-fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let coord = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
-    robust::orient2d(coord(a), coord(b), coord(c))
-}
-
-fn orient3d(a: Point, b: Point, c: Point, d: Point) -> f64 {
-    let coord = |p: Point| robust::Coord3D { x: p[0], y: p[1], z: p[2] };
-    robust::orient3d(coord(a), coord(b), coord(c), coord(d))
 }
 
 /// Whether a, b, c lie on one line, exactly: all three coordinate-plane projections are

@@ -1,8 +1,9 @@
 //! The hull checked against its definition (exact predicates, independent of the
 //! algorithm), a brute-force hull, and closed-form polyhedra.
 
-use super::{convex_hull, orient3d, Degeneracy, Hull};
+use super::{convex_hull, Degeneracy, Hull};
 use crate::test_rng::XorShift;
+use crate::vector::orient3d;
 use crate::Point;
 
 /// A point uniformly in the unit ball, by rejection from the cube.
