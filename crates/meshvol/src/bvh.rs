@@ -259,10 +259,11 @@ impl Bvh {
         order.items
     }
 
-    /// Builds the hierarchy over `boxes` (item i has box `boxes[i]`), grouping
-    /// consecutive items: pass them in [`Bvh::spatial_order`].
-    pub(crate) fn new(boxes: Vec<Box32>) -> Bvh {
-        if boxes.is_empty() {
+    /// Builds the hierarchy over `items` items, item i with box `box_of(i)`, grouping
+    /// consecutive items: number them in [`Bvh::spatial_order`]. (The boxes are read
+    /// straight into the leaves: a list of them would cost 32 bytes an item.)
+    pub(crate) fn new(items: usize, box_of: impl Fn(usize) -> Box32 + Sync) -> Bvh {
+        if items == 0 {
             return Bvh::default();
         }
         // Top-down: halve ranges; children always come after their parent.
@@ -273,8 +274,8 @@ impl Bvh {
             begin: begin as u32,
             end: end as u32,
         };
-        let mut nodes = Vec::with_capacity(2 * boxes.len().div_ceil(LEAF_SIZE));
-        nodes.push(node(0, boxes.len()));
+        let mut nodes = Vec::with_capacity(2 * items.div_ceil(LEAF_SIZE));
+        nodes.push(node(0, items));
         let (mut next, mut leaf_count) = (0, 0);
         while next < nodes.len() {
             let (start, end) = (nodes[next].begin as usize, nodes[next].end as usize);
@@ -295,9 +296,12 @@ impl Bvh {
             .par_iter_mut()
             .filter(|node| node.count > 0)
             .map(|node| {
-                let items = &boxes[node.begin as usize..node.end as usize];
-                items.iter().for_each(|b| node.bounds.merge(b));
-                LeafBoxes::of(items)
+                let mut boxes = [Box32::EMPTY; LEAF_SIZE];
+                for (b, i) in boxes.iter_mut().zip(node.begin as usize..node.end as usize) {
+                    *b = box_of(i);
+                    node.bounds.merge(b);
+                }
+                LeafBoxes::of(&boxes[..node.count as usize])
             })
             .collect();
         for n in (0..nodes.len()).rev() {
@@ -630,7 +634,7 @@ mod tests {
                 Bounds { min, max }
             })
             .collect();
-        let bvh = Bvh::new(boxes.iter().map(Box32::around).collect());
+        let bvh = Bvh::new(boxes.len(), |i| Box32::around(&boxes[i]));
         let pairs = bvh.overlapping_pairs(None, |a, b| Some((a.min(b), a.max(b))));
         let brute: Vec<(usize, usize)> = (0..boxes.len())
             .flat_map(|a| (a + 1..boxes.len()).map(move |b| (a, b)))
@@ -681,7 +685,7 @@ mod tests {
         let order = Bvh::spatial_order(&centres);
         assert_eq!(order.len(), boxes.len());
         let spatial: Vec<Bounds> = order.iter().map(|&i| boxes[i as usize]).collect();
-        let tree = |boxes: &[Bounds]| Bvh::new(boxes.iter().map(Box32::around).collect());
+        let tree = |boxes: &[Bounds]| Bvh::new(boxes.len(), |i| Box32::around(&boxes[i]));
         let (bvh, spatial_bvh) = (tree(&boxes), tree(&spatial));
         for q in [
             Bounds { min: [0.5, 0.5, 0.5], max: [3.2, 2.0, 0.6] },
@@ -699,7 +703,7 @@ mod tests {
             assert_eq!(found, brute);
         }
         let mut none = 0;
-        Bvh::new(vec![]).overlapping(&boxes[0], |_| none += 1);
+        Bvh::new(0, |_| Box32::EMPTY).overlapping(&boxes[0], |_| none += 1);
         assert_eq!(none, 0);
         // Every overlapping pair exactly once.
         let pairs = bvh.overlapping_pairs(None, |a, b| Some((a.min(b), a.max(b))));

@@ -141,7 +141,7 @@ fn first_apart(facets: &[Facet], corners: &[[u32; 3]]) -> Option<(usize, usize)>
     let centres: Vec<_> =
         boxes.iter().map(|b| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
     let order = Bvh::spatial_order(&centres);
-    let bvh = Bvh::new(order.iter().map(|&i| Box32::around(&boxes[i as usize])).collect());
+    let bvh = Bvh::new(order.len(), |k| Box32::around(&boxes[order[k] as usize]));
     let tags: Vec<[u32; 3]> = order.iter().map(|&i| corners[i as usize]).collect();
     // The first pair the walk meets, not the first by face: a stack of many layers
     // has pairs by the million, and one names the problem.

@@ -81,7 +81,7 @@ fn copies_apart(assembly: &Assembly) -> bool {
     let centres: Vec<_> =
         boxes.iter().map(|b| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
     let order = Bvh::spatial_order(&centres);
-    let bvh = Bvh::new(order.iter().map(|&i| Box32::around(&boxes[i as usize])).collect());
+    let bvh = Bvh::new(order.len(), |k| Box32::around(&boxes[order[k] as usize]));
     let meet = |i: usize, j: usize| {
         let (a, b) = (&boxes[order[i] as usize], &boxes[order[j] as usize]);
         (0..3).all(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k])

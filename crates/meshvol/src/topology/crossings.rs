@@ -20,6 +20,7 @@
 use super::loops::Loops;
 use super::predicates;
 use super::weld::Welded;
+use crate::buckets::for_each_range_mut;
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
 use crate::Point;
@@ -79,6 +80,8 @@ fn shares_a_vertex(t: &[u32; 3], u: &[u32; 3]) -> bool {
 
 /// The kept faces' triangles in spatial order (neighbours in space are neighbours in
 /// memory, which the hierarchy's searches then read), and the hierarchy over them.
+/// Every array is made at its final size (no growth, no list of boxes), since these
+/// are among the largest arrays of a check.
 pub(super) fn triangles_in_space<'a>(
     loops: &Loops,
     kept: &[bool],
@@ -86,14 +89,21 @@ pub(super) fn triangles_in_space<'a>(
 ) -> (Triangles<'a>, Bvh) {
     // Each triangle as (face, corner): for a fan, the corner of its second vertex;
     // for a large face, its number in the face's halving (plus the face's start + 1).
-    let fans: Vec<(u32, u32)> = (0..kept.len())
-        .into_par_iter()
-        .filter(|&f| kept[f])
-        .flat_map_iter(|f| {
-            let r = loops.face(f);
-            (r.start + 1..r.end - 1).map(move |c| (f as u32, c as u32))
-        })
-        .collect();
+    let faces = kept.len();
+    let triangles_of = |f: usize| if kept[f] { loops.face(f).len() - 2 } else { 0 };
+    let mut first = Vec::with_capacity(faces + 1);
+    first.push(0);
+    for f in 0..faces {
+        first.push(first[f] + triangles_of(f));
+    }
+    let mut fans = vec![(0u32, 0u32); first[faces]];
+    for_each_range_mut(&mut fans, faces, &|f| first[f]..first[f + 1], &|f, out| {
+        let r = loops.face(f);
+        for (t, c) in out.iter_mut().zip(r.start + 1..r.end - 1) {
+            *t = (f as u32, c as u32);
+        }
+    });
+    drop(first);
     let corners = |(f, c): (u32, u32)| {
         let r = loops.face(f as usize);
         let c = c as usize;
@@ -104,28 +114,31 @@ pub(super) fn triangles_in_space<'a>(
         }
     };
     // Ordered by the face's own corners (read in sequence), not the welded vertices.
-    let centres: Vec<Point> = fans
-        .par_iter()
+    let mut centres = Vec::new();
+    fans.par_iter()
         .map(|&fan| {
-            let p = corners(fan).map(|c| loops.corners[c]);
+            let p = corners(fan).map(|c| welded.at(c));
             [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
         })
-        .collect();
+        .collect_into_vec(&mut centres);
     let order = Bvh::spatial_order(&centres);
     drop(centres);
-    let (ids, (face, boxes)): (Vec<_>, (Vec<_>, Vec<Box32>)) = order
+    let (mut ids, mut face) = (Vec::new(), Vec::new());
+    order
         .par_iter()
-        .map(|&i| {
-            let fan = fans[i as usize];
-            let ids = corners(fan).map(|c| welded.corner_vertex[c]);
-            let points = ids.map(|v| welded.positions[v as usize]);
-            let mut bounds = Bounds::of(points[0]);
-            bounds.include(points[1]);
-            bounds.include(points[2]);
-            (ids, (fan.0, Box32::around(&bounds)))
-        })
-        .unzip();
-    (Triangles { ids, face, positions: &welded.positions }, Bvh::new(boxes))
+        .map(|&i| corners(fans[i as usize]).map(|c| welded.corner_vertex[c]))
+        .collect_into_vec(&mut ids);
+    order.par_iter().map(|&i| fans[i as usize].0).collect_into_vec(&mut face);
+    drop((order, fans));
+    let triangles = Triangles { ids, face, positions: &welded.positions };
+    let bvh = Bvh::new(triangles.ids.len(), |i| {
+        let points = triangles.points(i);
+        let mut bounds = Bounds::of(points[0]);
+        bounds.include(points[1]);
+        bounds.include(points[2]);
+        Box32::around(&bounds)
+    });
+    (triangles, bvh)
 }
 
 /// The pairs of kept faces whose fan triangles cross, sorted.

@@ -1,14 +1,16 @@
 //! Stage 3, edges: the undirected edges of the kept faces and their uses, and the fans
 //! around each vertex.
 //!
-//! Each kept corner is listed under its vertex with the vertices before and after it in
-//! its face; from that one table, per vertex v: the uses of the edges whose smaller
-//! vertex is v (each edge (v, w) keyed v·2³² + w), and the fans of corners around v, two
-//! corners being in one fan when their faces share an edge at v (a [`UnionFind`] over
-//! the corners). A vertex in more than one fan is a bowtie: *non-manifold*. Sorting the
-//! uses by (key, corner) makes each edge's uses a run, in face order; an edge with one
-//! use is *boundary*, two *manifold* (and *consistent* when traversed in opposite
-//! directions), more *non-manifold*.
+//! Each kept corner is listed under its vertex (with its face); from that one table, per
+//! vertex v: the uses of the edges (v, w) whose smaller vertex is v, and the fans of
+//! corners around v, two corners being in one fan when their faces share an edge at v
+//! (a [`UnionFind`] over the corners). A vertex in more than one fan is a bowtie:
+//! *non-manifold*. Sorting v's uses by (w, corner) makes each edge's uses a run, in
+//! face order; an edge with one use is *boundary*, two *manifold* (and *consistent*
+//! when traversed in opposite directions), more *non-manifold*.
+//!
+//! This table is the check's peak of memory, so it is kept small: 8 bytes a corner by
+//! vertex, 12 bytes an edge use (v is implied by the group a use is in).
 
 use super::loops::Loops;
 use super::weld::Welded;
@@ -16,24 +18,66 @@ use crate::buckets::{for_each_range_mut, Buckets, SharedItems};
 use crate::union_find::UnionFind;
 use rayon::prelude::*;
 
-/// One use of an undirected edge: by face `face`, from corner `corner` to the next.
+/// One use of an undirected edge (v, w), v < w, listed under v: by a face, from corner
+/// `corner` to the next. Faces are numbered below 2³¹ ([`super::check`] refuses more),
+/// so the direction rides in the top bit of the face.
 #[derive(Clone, Copy)]
 pub(super) struct EdgeUse {
-    pub key: u64,
-    pub face: u32,
+    /// The larger vertex w.
+    other: u32,
     pub corner: u32,
-    /// Traversed from the smaller vertex to the larger.
-    pub forward: bool,
+    face_and_direction: u32,
 }
 
-/// A kept corner, seen from its vertex.
+const TOP: u32 = 1 << 31;
+
+impl EdgeUse {
+    fn new(other: u32, face: u32, corner: u32, forward: bool) -> EdgeUse {
+        EdgeUse { other, corner, face_and_direction: face | if forward { TOP } else { 0 } }
+    }
+
+    pub fn face(&self) -> u32 {
+        self.face_and_direction & !TOP
+    }
+
+    /// Traversed from the smaller vertex to the larger.
+    pub fn forward(&self) -> bool {
+        self.face_and_direction & TOP != 0
+    }
+}
+
+/// The edges: each a run of its uses, in order of (smaller vertex, larger vertex).
+pub(super) struct Edges {
+    uses: Vec<EdgeUse>,
+    /// Edge i's uses are `uses[start[i]..start[i + 1]]`.
+    start: Vec<u32>,
+}
+
+impl Edges {
+    pub fn len(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    pub fn get(&self, i: usize) -> &[EdgeUse] {
+        &self.uses[self.start[i] as usize..self.start[i + 1] as usize]
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &[EdgeUse]> {
+        (0..self.len()).map(|i| self.get(i))
+    }
+
+    pub fn par_iter(&self) -> impl ParallelIterator<Item = &[EdgeUse]> {
+        (0..self.len()).into_par_iter().map(|i| self.get(i))
+    }
+}
+
+/// A kept corner, seen from its vertex. (The vertices before and after it in its face
+/// are looked up when needed: storing them doubled this table, which is at the check's
+/// peak of memory.)
 #[derive(Clone, Copy, Default)]
 struct Around {
     corner: u32,
     face: u32,
-    /// The vertices before and after it in its face.
-    previous: u32,
-    next: u32,
 }
 
 /// How many vertices the kept faces use, and how many of those are non-manifold.
@@ -42,37 +86,35 @@ pub(super) struct VertexCounts {
     pub non_manifold: usize,
 }
 
-/// The uses of the kept faces' edges, sorted by (edge key, corner), and the vertex
-/// counts.
-pub(super) fn edge_uses(
-    loops: &Loops,
-    welded: &Welded,
-    kept: &[bool],
-) -> (Vec<EdgeUse>, VertexCounts) {
+/// The edges of the kept faces, each its uses in face order, and the vertex counts.
+pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, VertexCounts) {
     let faces = kept.len();
     let vid = |c: usize| welded.corner_vertex[c];
-    // Each kept corner by its vertex, with its face and the vertices before and after
-    // it: the edges and the fans around a vertex are then read from one place.
+    // Each kept corner by its vertex, with its face: the edges and the fans around a
+    // vertex are then read from one place.
     let vertex_count = welded.positions.len();
     let around = Buckets::new(vertex_count, faces, |range| {
         range.filter(|&f| kept[f]).flat_map(|f| {
-            loops.face(f).map(move |c| {
-                let (previous, next) = (vid(loops.previous(f, c)), vid(loops.next(f, c)));
-                (vid(c), Around { corner: c as u32, face: f as u32, previous, next })
-            })
+            loops.face(f).map(move |c| (vid(c), Around { corner: c as u32, face: f as u32 }))
         })
     });
+    // The vertices before and after a corner in its face.
+    let sides = |k: &Around| {
+        let (f, c) = (k.face as usize, k.corner as usize);
+        (vid(loops.previous(f, c)), vid(loops.next(f, c)))
+    };
     // Per vertex: the edge uses whose smaller vertex it is, and the fans of corners
     // around it, two corners being in one fan when their faces share an edge there. A
     // vertex in more than one fan (a bowtie) is non-manifold.
     let fans_and_uses = |(ends, fans): &mut (Vec<(u32, u32)>, UnionFind), v: usize| {
         let corners = around.get(v);
         let low = |w: u32| (w as usize > v) as u32;
-        let uses = corners.iter().map(|k| low(k.previous) + low(k.next)).sum::<u32>();
         ends.clear();
         for (i, k) in corners.iter().enumerate() {
-            ends.extend([(k.previous, i as u32), (k.next, i as u32)]);
+            let (previous, next) = sides(k);
+            ends.extend([(previous, i as u32), (next, i as u32)]);
         }
+        let uses = ends.iter().map(|&(w, _)| low(w)).sum::<u32>();
         ends.sort_unstable();
         fans.reset(corners.len());
         let mut count = corners.len() as u32;
@@ -99,38 +141,52 @@ pub(super) fn edge_uses(
         use_start.push(use_start[use_start.len() - 1] + uses as usize);
     }
     drop(per_vertex);
-    let unused = EdgeUse { key: 0, face: 0, corner: 0, forward: false };
+    let unused = EdgeUse::new(0, 0, 0, false);
     let mut uses = vec![unused; use_start[vertex_count]];
     let vertex_uses = |v: usize| use_start[v]..use_start[v + 1];
     for_each_range_mut(&mut uses, vertex_count, &vertex_uses, &|v, out| {
         let mut next = 0;
         for k in around.get(v) {
             let (f, c) = (k.face, k.corner);
-            if k.next as usize > v {
-                let key = ((v as u64) << 32) | u64::from(k.next);
-                out[next] = EdgeUse { key, face: f, corner: c, forward: true };
+            let (before, after) = sides(k);
+            if after as usize > v {
+                out[next] = EdgeUse::new(after, f, c, true);
                 next += 1;
             }
-            if k.previous as usize > v {
-                let key = ((v as u64) << 32) | u64::from(k.previous);
+            if before as usize > v {
                 let corner = loops.previous(f as usize, c as usize) as u32;
-                out[next] = EdgeUse { key, face: f, corner, forward: false };
+                out[next] = EdgeUse::new(before, f, corner, false);
                 next += 1;
             }
         }
-        out.sort_unstable_by_key(|e| (e.key, e.corner));
+        out.sort_unstable_by_key(|e| (e.other, e.corner));
     });
-    (uses, vertices)
-}
-
-/// The uses of each edge (a run of equal keys in `uses`), found in parallel.
-pub(super) fn edges(uses: &[EdgeUse]) -> Vec<&[EdgeUse]> {
-    let group_start: Vec<usize> = (0..uses.len())
-        .into_par_iter()
-        .filter(|&i| i == 0 || uses[i].key != uses[i - 1].key)
-        .chain(rayon::iter::once(uses.len()))
-        .collect();
-    group_start.par_windows(2).map(|w| &uses[w[0]..w[1]]).collect()
+    drop(around);
+    // Each edge is a run of equal `other` among its smaller vertex's uses: counted per
+    // vertex, then each run's first use written in place. (Uses number below the
+    // corners, which fit 32 bits.)
+    let run_starts = |v: usize| {
+        let group = &uses[vertex_uses(v)];
+        (0..group.len()).filter(move |&i| i == 0 || group[i].other != group[i - 1].other)
+    };
+    let runs: Vec<u32> =
+        (0..vertex_count).into_par_iter().map(|v| run_starts(v).count() as u32).collect();
+    let mut first_edge = Vec::with_capacity(vertex_count + 1);
+    first_edge.push(0);
+    for &r in &runs {
+        first_edge.push(first_edge[first_edge.len() - 1] + r as usize);
+    }
+    drop(runs);
+    let mut start = vec![0u32; first_edge[vertex_count] + 1];
+    let vertex_edges = |v: usize| first_edge[v]..first_edge[v + 1];
+    let (start_of_edges, end) = start.split_at_mut(first_edge[vertex_count]);
+    end[0] = uses.len() as u32;
+    for_each_range_mut(start_of_edges, vertex_count, &vertex_edges, &|v, out| {
+        for (at, i) in out.iter_mut().zip(run_starts(v)) {
+            *at = (use_start[v] + i) as u32;
+        }
+    });
+    (Edges { uses, start }, vertices)
 }
 
 /// What the edges say on their own: how many are boundary and non-manifold, and which
@@ -145,19 +201,19 @@ pub(super) struct EdgeCounts {
 }
 
 /// Counts the `edges` (each its uses) of `faces` faces.
-pub(super) fn count(edges: &[&[EdgeUse]], faces: usize) -> EdgeCounts {
+pub(super) fn count(edges: &Edges, faces: usize) -> EdgeCounts {
     let (mut boundary, mut non_manifold) = (0, 0);
     let mut consistently_oriented = true;
     let mut face_inconsistent = vec![false; faces];
-    for g in edges {
+    for g in edges.iter() {
         match g.len() {
             1 => boundary += 1,
             2 => {
-                let same = g[0].forward == g[1].forward;
+                let same = g[0].forward() == g[1].forward();
                 if same {
                     consistently_oriented = false;
-                    face_inconsistent[g[0].face as usize] = true;
-                    face_inconsistent[g[1].face as usize] = true;
+                    face_inconsistent[g[0].face() as usize] = true;
+                    face_inconsistent[g[1].face() as usize] = true;
                 }
             }
             _ => non_manifold += 1,
@@ -166,22 +222,40 @@ pub(super) fn count(edges: &[&[EdgeUse]], faces: usize) -> EdgeCounts {
     EdgeCounts { boundary, non_manifold, consistently_oriented, face_inconsistent }
 }
 
-/// A corner that starts no manifold edge.
-pub(super) const NO_NEIGHBOUR: (u32, bool) = (u32::MAX, false);
+/// A face across a manifold edge, and whether the two faces traverse the edge the same
+/// way (in the top bit: faces number below 2³¹ − 1).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) struct Neighbour(u32);
 
-/// Each face's neighbours across manifold edges, and whether the two traverse the edge
-/// the same way, for orientation propagation: at the corner that starts the edge in the
-/// face (so laid out like the corners, and found without sorting); [`NO_NEIGHBOUR`]
-/// elsewhere.
-pub(super) fn neighbours(edges: &[&[EdgeUse]], corners: usize) -> Vec<(u32, bool)> {
-    let mut neighbour = vec![NO_NEIGHBOUR; corners];
+impl Neighbour {
+    /// At a corner that starts no manifold edge.
+    pub const NONE: Neighbour = Neighbour(u32::MAX);
+
+    fn new(face: u32, same: bool) -> Neighbour {
+        Neighbour(face | if same { TOP } else { 0 })
+    }
+
+    pub fn face(self) -> u32 {
+        self.0 & !TOP
+    }
+
+    pub fn same(self) -> bool {
+        self.0 & TOP != 0
+    }
+}
+
+/// Each face's neighbours across manifold edges, for orientation propagation: at the
+/// corner that starts the edge in the face (so laid out like the corners, and found
+/// without sorting); [`Neighbour::NONE`] elsewhere.
+pub(super) fn neighbours(edges: &Edges, corners: usize) -> Vec<Neighbour> {
+    let mut neighbour = vec![Neighbour::NONE; corners];
     let shared = SharedItems::new(&mut neighbour);
     edges.par_iter().filter(|g| g.len() == 2).for_each(|g| {
-        let same = g[0].forward == g[1].forward;
+        let same = g[0].forward() == g[1].forward();
         // SAFETY: every corner starts one edge use, which is in one group.
         unsafe {
-            shared.write(g[0].corner as usize, (g[1].face, same));
-            shared.write(g[1].corner as usize, (g[0].face, same));
+            shared.write(g[0].corner as usize, Neighbour::new(g[1].face(), same));
+            shared.write(g[1].corner as usize, Neighbour::new(g[0].face(), same));
         }
     });
     neighbour

@@ -6,7 +6,7 @@
 //! faces of one shell that use it, which is exact for manifold meshes (a vertex is
 //! shared by shells only at non-manifold points).
 
-use super::edges::EdgeUse;
+use super::edges::Edges;
 use super::loops::Loops;
 use super::shells::Shells;
 use super::weld::Welded;
@@ -24,7 +24,7 @@ pub(super) fn per_shell(
     welded: &Welded,
     kept: &[bool],
     shells: &Shells,
-    edges: &[&[EdgeUse]],
+    edges: &Edges,
 ) -> Vec<ShellCounts> {
     let shell_of_face = &shells.of_face;
     let mut faces = vec![0usize; shells.count];
@@ -32,8 +32,8 @@ pub(super) fn per_shell(
         faces[shell_of_face[f] as usize] += 1;
     }
     let mut edges_in = vec![0usize; shells.count];
-    for g in edges {
-        edges_in[shell_of_face[g[0].face as usize] as usize] += 1;
+    for g in edges.iter() {
+        edges_in[shell_of_face[g[0].face() as usize] as usize] += 1;
     }
     let mut vertices = vec![0i64; shells.count];
     let mut last_shell_of_vertex = vec![u32::MAX; welded.positions.len()];

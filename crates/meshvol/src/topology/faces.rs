@@ -48,9 +48,9 @@ pub(super) fn classify(loops: &Loops, welded: &Welded) -> FaceClasses {
         .map(|f| {
             let r = loops.face(f);
             let repeated = ids_of(f as u32).windows(2).any(|w| w[0] == w[1]);
-            let apex = loops.corners[r.start];
+            let apex = welded.at(r.start);
             let area = (r.start + 1..r.end - 1).fold([0.0; 3], |s, c| {
-                add(s, cross(sub(loops.corners[c], apex), sub(loops.corners[c + 1], apex)))
+                add(s, cross(sub(welded.at(c), apex), sub(welded.at(c + 1), apex)))
             });
             (repeated, !repeated && area == [0.0; 3])
         })

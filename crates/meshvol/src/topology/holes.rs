@@ -11,7 +11,7 @@
 //! faces, as propagated, and of its caps, about the first corner r (terms the size of
 //! the model, not of its offset), summed with compensation in face order.
 
-use super::edges::EdgeUse;
+use super::edges::Edges;
 use super::loops::Loops;
 use super::shells::Shells;
 use super::weld::Welded;
@@ -34,7 +34,7 @@ pub(super) struct Caps {
 }
 
 /// The caps over the boundary loops of the `edges` (each its uses) of `shells`.
-pub(super) fn caps(loops: &Loops, welded: &Welded, edges: &[&[EdgeUse]], shells: &Shells) -> Caps {
+pub(super) fn caps(loops: &Loops, welded: &Welded, edges: &Edges, shells: &Shells) -> Caps {
     let vid = |c: usize| welded.corner_vertex[c];
     let (flip, shell_of_face) = (&shells.flip, &shells.of_face);
     // Boundary loops, following each face's propagated direction, and their caps.
@@ -43,9 +43,10 @@ pub(super) fn caps(loops: &Loops, welded: &Welded, edges: &[&[EdgeUse]], shells:
         .filter(|g| g.len() == 1)
         .map(|g| {
             let e = g[0];
-            let (c, n) = (e.corner as usize, loops.next(e.face as usize, e.corner as usize));
-            let (u, v) = if flip[e.face as usize] { (vid(n), vid(c)) } else { (vid(c), vid(n)) };
-            (u, v, shell_of_face[e.face as usize])
+            let (f, c) = (e.face() as usize, e.corner as usize);
+            let n = loops.next(f, c);
+            let (u, v) = if flip[f] { (vid(n), vid(c)) } else { (vid(c), vid(n)) };
+            (u, v, shell_of_face[f])
         })
         .collect();
     let loops_found = boundary_loops(&boundary);
@@ -91,7 +92,7 @@ pub(super) fn caps(loops: &Loops, welded: &Welded, edges: &[&[EdgeUse]], shells:
 /// Per shell: its signed volume as propagated from its first face, holes capped.
 pub(super) fn shell_volumes<S: Surface + ?Sized>(
     surface: &S,
-    loops: &Loops,
+    welded: &Welded,
     kept: &[bool],
     shells: &Shells,
     caps: &Caps,
@@ -99,7 +100,7 @@ pub(super) fn shell_volumes<S: Surface + ?Sized>(
     let faces = kept.len();
     let (flip, shell_of_face) = (&shells.flip, &shells.of_face);
     // Per-shell signed volume (propagated orientation, holes capped), about a local point.
-    let reference = loops.corners.first().copied().unwrap_or([0.0; 3]);
+    let reference = welded.positions.first().copied().unwrap_or([0.0; 3]);
     let six_volume = |a: Point, b: Point, c: Point| {
         let (a, b, c) = (sub(a, reference), sub(b, reference), sub(c, reference));
         dot(a, cross(b, c))

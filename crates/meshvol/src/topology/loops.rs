@@ -1,43 +1,63 @@
-//! The input of every stage: each face's corners, in order, gathered once from the
-//! surface's fans (a fan (a, b, c), (a, c, d), … is the loop a, b, c, d, …), so that
-//! stages index corners instead of calling the surface again.
+//! The input of every stage: where each face's corners lie in one corner numbering
+//! (a fan (a, b, c), (a, c, d), … is the loop a, b, c, d, …), and their positions,
+//! gathered from the surface's fans so that stages index corners instead of calling
+//! the surface again.
+//!
+//! Only welding reads the positions ([`Loops::corners`]); every later stage reads the
+//! welded vertex of a corner and that vertex's position, which is the corner's own
+//! position bit for bit under exact welding. So the positions (24 bytes a corner, the
+//! largest array of a check) are dropped once welded rather than kept through the
+//! check.
 
+use super::CheckError;
 use crate::buckets::for_each_range_mut;
 use crate::{Point, Surface};
 use rayon::prelude::*;
 
 /// Faces as loops of corners.
 pub(super) struct Loops {
-    pub corners: Vec<Point>,
-    /// Face f's corners are `corners[start[f]..start[f + 1]]`.
-    pub start: Vec<usize>,
+    /// Face f's corners are `start[f]..start[f + 1]`. (32 bits: [`super::check`]
+    /// refuses surfaces of more corners.)
+    pub start: Vec<u32>,
 }
 
 impl Loops {
-    /// The faces' corners, gathered in parallel: sizes first, then each face's fan
-    /// written into its place.
-    pub fn of<S: Surface + ?Sized>(surface: &S) -> Loops {
+    /// Each face's corner count, from its fan (k − 2 triangles: k corners), in parallel.
+    /// Corners are numbered with 32 bits, faces with 31 (edge uses and neighbours keep
+    /// a flag beside a face).
+    pub fn of<S: Surface + ?Sized>(surface: &S) -> Result<Loops, CheckError> {
         let faces = surface.face_count();
-        let sizes: Vec<usize> = (0..faces)
+        if faces >= (1 << 31) - 1 {
+            return Err(CheckError::TooManyFaces { faces });
+        }
+        let sizes: Vec<u32> = (0..faces)
             .into_par_iter()
             .map(|f| {
-                let mut triangles = 0;
-                surface.fan(f, |_, _, _| triangles += 1);
+                let mut triangles: u32 = 0;
+                surface.fan(f, |_, _, _| triangles = triangles.saturating_add(1));
                 if triangles == 0 {
                     0
                 } else {
-                    triangles + 2
+                    triangles.saturating_add(2)
                 }
             })
             .collect();
+        let corners: usize = sizes.iter().map(|&k| k as usize).sum();
+        if u32::try_from(corners).is_err() {
+            return Err(CheckError::TooLarge { corners });
+        }
         let mut start = Vec::with_capacity(faces + 1);
         start.push(0);
         for size in sizes {
-            start.push(start.last().unwrap_or(&0) + size);
+            start.push(start[start.len() - 1] + size);
         }
-        let range = |f: usize| start[f]..start[f + 1];
-        let mut corners = vec![[0.0; 3]; start[faces]];
-        for_each_range_mut(&mut corners, faces, &range, &|f, corners| {
+        Ok(Loops { start })
+    }
+
+    /// The corners' positions, each face's fan written into its place in parallel.
+    pub fn corners<S: Surface + ?Sized>(&self, surface: &S) -> Vec<Point> {
+        let mut corners = vec![[0.0; 3]; self.corner_count()];
+        for_each_range_mut(&mut corners, self.face_count(), &|f| self.face(f), &|f, corners| {
             let mut next = 0;
             surface.fan(f, |a, b, c| {
                 if next == 0 {
@@ -49,21 +69,25 @@ impl Loops {
                 next += 1;
             });
         });
-        Loops { corners, start }
+        corners
     }
 
     pub fn face_count(&self) -> usize {
         self.start.len() - 1
     }
 
+    pub fn corner_count(&self) -> usize {
+        self.start[self.face_count()] as usize
+    }
+
     pub fn face(&self, f: usize) -> std::ops::Range<usize> {
-        self.start[f]..self.start[f + 1]
+        self.start[f] as usize..self.start[f + 1] as usize
     }
 
     /// The corner after `c` in its face.
     pub fn next(&self, f: usize, c: usize) -> usize {
-        if c + 1 == self.start[f + 1] {
-            self.start[f]
+        if c + 1 == self.start[f + 1] as usize {
+            self.start[f] as usize
         } else {
             c + 1
         }
@@ -71,8 +95,8 @@ impl Loops {
 
     /// The corner before `c` in its face.
     pub fn previous(&self, f: usize, c: usize) -> usize {
-        if c == self.start[f] {
-            self.start[f + 1] - 1
+        if c == self.start[f] as usize {
+            self.start[f + 1] as usize - 1
         } else {
             c - 1
         }

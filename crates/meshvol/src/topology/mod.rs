@@ -41,15 +41,15 @@
 //!    pairs that share a vertex. Pairs from one shell are *self-intersections*; from two
 //!    shells, *overlapping shells*, whose common volume a plain sum counts twice.
 //!    Touching (shared planes, an edge lying on a face) is not crossing. The search
-//!    (parallel) runs beside steps 3–6 (mostly sequential walks), so that on few cores
-//!    neither leaves one idle.
+//!    runs after steps 3–5 have dropped their edge table, so that the two largest
+//!    arrays of a check are never held at once.
 //! 8. **Euler characteristic** V − E + F per shell, and genus (2 − χ)/2 for closed
 //!    orientable shells.
 //!
 //! # Stages and files
-//! [`check`] gathers the faces' corners (`loops.rs`) and runs the stages in order; the
-//! crossing search runs beside stages 3–5 and the nesting candidates, and its triangles
-//! then serve the nesting rays.
+//! [`check`] gathers the faces' corners (`loops.rs`), welds them, drops them, and runs
+//! the stages in order on the welded vertices; the crossing search runs after stages
+//! 3–5 and the nesting candidates, and its triangles then serve the nesting rays.
 //!
 //! | stage | what it finds | file |
 //! | --- | --- | --- |
@@ -328,6 +328,8 @@ pub struct Body {
 pub enum CheckError {
     #[error("{corners} face corners: checks index corners with 32 bits (at most 4294967295)")]
     TooLarge { corners: usize },
+    #[error("{faces} faces: checks number faces with 31 bits (at most 2147483646)")]
+    TooManyFaces { faces: usize },
 }
 
 /// Checks the topology of `surface`.
@@ -358,38 +360,42 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
     stage("gathering faces");
-    let loops = Loops::of(surface);
-    if u32::try_from(loops.corners.len()).is_err() {
-        return Err(CheckError::TooLarge { corners: loops.corners.len() });
-    }
+    let loops = Loops::of(surface)?;
+    stage("welding");
+    // The corners' positions are needed for welding only (see `loops.rs`).
+    let (exact, diagonal) = {
+        let corners = loops.corners(surface);
+        let diagonal = corners.first().map_or(0.0, |&first| {
+            let b = corners.iter().fold(Bounds { min: first, max: first }, |mut b, &p| {
+                b.min = [0, 1, 2].map(|k| b.min[k].min(p[k]));
+                b.max = [0, 1, 2].map(|k| b.max[k].max(p[k]));
+                b
+            });
+            norm(b.size())
+        });
+        (weld::exact(&corners), diagonal)
+    };
     Ok(match options.weld {
-        Weld::Exact => analyse(surface, &loops, None, options, stage),
-        Weld::Tolerance(t) => analyse(surface, &loops, Some(t), options, stage),
+        Weld::Exact => analyse(surface, &loops, &exact, None, options, stage),
+        Weld::Tolerance(t) => {
+            let welded = exact.within(t);
+            drop(exact);
+            analyse(surface, &loops, &welded, Some(t), options, stage)
+        }
         Weld::Auto => {
-            let exact = analyse(surface, &loops, None, options, stage);
-            let diagonal = match loops.corners.first() {
-                None => 0.0,
-                Some(&first) => {
-                    let b = loops.corners.iter().fold(
-                        Bounds { min: first, max: first },
-                        |mut b, &p| {
-                            b.min = [0, 1, 2].map(|k| b.min[k].min(p[k]));
-                            b.max = [0, 1, 2].map(|k| b.max[k].max(p[k]));
-                            b
-                        },
-                    );
-                    norm(b.size())
-                }
-            };
-            if exact.boundary_edges == 0 || diagonal == 0.0 {
-                exact
+            let exact_check = analyse(surface, &loops, &exact, None, options, stage);
+            if exact_check.boundary_edges == 0 || diagonal == 0.0 {
+                exact_check
             } else {
                 stage("welding again within a tolerance");
-                let welded = analyse(surface, &loops, Some(AUTO_WELD * diagonal), options, stage);
-                if welded.boundary_edges < exact.boundary_edges {
+                let t = AUTO_WELD * diagonal;
+                let welded = exact.within(t);
+                drop(exact);
+                let welded = analyse(surface, &loops, &welded, Some(t), options, stage);
+                if welded.boundary_edges < exact_check.boundary_edges {
                     welded
                 } else {
-                    exact
+                    exact_check
                 }
             }
         }
@@ -400,36 +406,31 @@ pub fn check_in_stages<S: Surface + ?Sized>(
 fn analyse<S: Surface + ?Sized>(
     surface: &S,
     loops: &Loops,
+    welded: &weld::Welded,
     tolerance: Option<f64>,
     options: &CheckOptions,
     stage: StageReport<'_>,
 ) -> Check {
     let faces = surface.face_count();
-    stage("welding");
-    let welded = weld::weld(&loops.corners, tolerance);
     stage("sorting out degenerate and duplicate faces");
-    let classes = faces::classify(loops, &welded);
+    let classes = faces::classify(loops, welded);
     let kept = &classes.kept;
 
-    // The crossing search (parallel, and the longest part) runs beside the connectivity
-    // analysis (mostly sequential walks over edges and shells), so that on few cores
-    // neither leaves one idle.
+    // The connectivity analysis, then the crossing search: one after the other, so that
+    // the edge table and the triangles in space (the two largest arrays of a check)
+    // are never held at once. (Run side by side, 5M triangles took 270 bytes each at
+    // the peak; one after the other 220, in the same time on 2 cores.)
     stage(if options.intersections {
         "finding edges, shells and crossings"
     } else {
         "finding edges and shells"
     });
-    let (space, connected) = rayon::join(
-        || {
-            options.intersections.then(|| {
-                let (triangles, bvh) =
-                    crossings::triangles_in_space(loops, &classes.spatial, &welded);
-                let crossing = crossings::crossing_pairs(&triangles, &bvh);
-                (triangles, bvh, crossing)
-            })
-        },
-        || connect(surface, loops, &welded, kept),
-    );
+    let connected = connect(surface, loops, welded, kept);
+    let space = options.intersections.then(|| {
+        let (triangles, bvh) = crossings::triangles_in_space(loops, &classes.spatial, welded);
+        let crossing = crossings::crossing_pairs(&triangles, &bvh);
+        (triangles, bvh, crossing)
+    });
     let Connected { vertices, edges, edge_counts, shells, caps, shell_signed, candidates, counts } =
         connected;
     // Triangles (fans of kept faces) in spatial order, with their corners inline, and
@@ -437,7 +438,7 @@ fn analyse<S: Surface + ?Sized>(
     let (triangles, bvh, crossing) = match space {
         Some((triangles, bvh, crossing)) => (triangles, bvh, Some(crossing)),
         None if candidates.any() => {
-            let (triangles, bvh) = crossings::triangles_in_space(loops, &classes.spatial, &welded);
+            let (triangles, bvh) = crossings::triangles_in_space(loops, &classes.spatial, welded);
             (triangles, bvh, None)
         }
         None => (crossings::Triangles::default(), Bvh::default(), None),
@@ -446,6 +447,7 @@ fn analyse<S: Surface + ?Sized>(
     stage("nesting shells");
     let containers =
         nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
+    drop((triangles, bvh));
     let crossings = crossing.map(|pairs| {
         crossings::face_pairs(pairs, &shells.of_face, options.examples, &mut overlapping_shells)
     });
@@ -474,15 +476,16 @@ fn analyse<S: Surface + ?Sized>(
         .map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize]))
         .collect();
     let cap_flip: Vec<bool> = caps.shell.iter().map(|&s| flip_shell[s as usize]).collect();
-    let weld::Welded { corner_vertex, positions: mut solid_vertices, .. } = welded;
+    let mut solid_vertices = Vec::with_capacity(welded.positions.len() + caps.centres.len());
+    solid_vertices.extend_from_slice(&welded.positions);
     solid_vertices.extend(caps.centres);
     let solid = Solid::new(
         solid::Faces {
             kept,
             flip: &face_flip,
             shell: shell_of_face,
-            corners: corner_vertex,
-            start: loops.start.clone(),
+            corners: welded.corner_vertex.clone(),
+            start: loops.start.iter().map(|&s| s as usize).collect(),
         },
         solid_vertices,
         solid::Caps { points: caps.points, ids: caps.ids, flip: &cap_flip, shell: &caps.shell },
@@ -539,14 +542,13 @@ fn connect<S: Surface + ?Sized>(
     welded: &weld::Welded,
     kept: &[bool],
 ) -> Connected {
-    let (uses, vertices) = edges::edge_uses(loops, welded, kept);
-    let edges = edges::edges(&uses);
+    let (edges, vertices) = edges::edges(loops, welded, kept);
     let edge_counts = edges::count(&edges, kept.len());
-    let neighbour = edges::neighbours(&edges, loops.corners.len());
+    let neighbour = edges::neighbours(&edges, loops.corner_count());
     let shells = shells::shells(loops, kept, &edges, &neighbour);
     drop(neighbour);
     let caps = holes::caps(loops, welded, &edges, &shells);
-    let shell_signed = holes::shell_volumes(surface, loops, kept, &shells, &caps);
+    let shell_signed = holes::shell_volumes(surface, welded, kept, &shells, &caps);
     let candidates = nesting::candidates(loops, welded, kept, &shells);
     let counts = euler::per_shell(loops, welded, kept, &shells, &edges);
     Connected {

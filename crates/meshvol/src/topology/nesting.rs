@@ -79,8 +79,7 @@ pub(super) fn candidates(
     let centres: Vec<Point> =
         solids.iter().map(|(_, b)| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
     let order = Bvh::spatial_order(&centres);
-    let shell_tree =
-        Bvh::new(order.iter().map(|&i| Box32::around(&solids[i as usize].1)).collect());
+    let shell_tree = Bvh::new(order.len(), |k| Box32::around(&solids[order[k] as usize].1));
     let candidates: Vec<Vec<usize>> = (0..shell_count)
         .into_par_iter()
         .map(|a| {

@@ -7,7 +7,7 @@
 //! ways that disagree makes the shell *non-orientable*. A shell with a boundary or
 //! non-manifold edge is *open*.
 
-use super::edges::{EdgeUse, NO_NEIGHBOUR};
+use super::edges::{Edges, Neighbour};
 use super::loops::Loops;
 use crate::union_find::UnionFind;
 
@@ -29,14 +29,14 @@ pub(super) struct Shells {
 pub(super) fn shells(
     loops: &Loops,
     kept: &[bool],
-    edges: &[&[EdgeUse]],
-    neighbour: &[(u32, bool)],
+    edges: &Edges,
+    neighbour: &[Neighbour],
 ) -> Shells {
     let faces = kept.len();
     let mut shells_of = UnionFind::new(faces);
-    for g in edges {
+    for g in edges.iter() {
         for e in &g[1..] {
-            shells_of.join(g[0].face, e.face);
+            shells_of.join(g[0].face(), e.face());
         }
     }
     // Shells, numbered by their first face.
@@ -66,7 +66,8 @@ pub(super) fn shells(
         queue.push_back(f as u32);
         while let Some(g) = queue.pop_front() {
             let across = neighbour[loops.face(g as usize)].iter();
-            for &(h, same) in across.filter(|n| **n != NO_NEIGHBOUR) {
+            for (h, same) in across.filter(|&&n| n != Neighbour::NONE).map(|n| (n.face(), n.same()))
+            {
                 let want = flip[g as usize] ^ same;
                 if !seen[h as usize] {
                     seen[h as usize] = true;
@@ -81,7 +82,7 @@ pub(super) fn shells(
 
     let mut open = vec![false; shell_count];
     for g in edges.iter().filter(|g| g.len() != 2) {
-        open[shell_of_face[g[0].face as usize] as usize] = true;
+        open[shell_of_face[g[0].face() as usize] as usize] = true;
     }
     Shells { of_face: shell_of_face, count: shell_count, flip, orientable, open }
 }

@@ -22,6 +22,7 @@ use rayon::prelude::*;
 use std::hash::BuildHasher;
 
 /// The welded vertices and, for each corner, its vertex.
+#[derive(Clone)]
 pub(crate) struct Welded {
     /// Vertex of each corner.
     pub corner_vertex: Vec<u32>,
@@ -66,14 +67,16 @@ fn exact_representatives(corners: &[Point]) -> Vec<u32> {
 
 /// Numbers the vertices given each corner's representative (the first corner of its
 /// vertex, so `representative[c] <= c`): vertex numbers count the representatives
-/// before, a prefix sum taken in parallel blocks.
-fn number(corners: &[Point], representative: &[u32]) -> Welded {
+/// before, a prefix sum taken in parallel blocks. A vertex's position is that of its
+/// first corner, `position(c)`.
+fn number(representative: &[u32], position: impl Fn(usize) -> Point + Sync) -> Welded {
     const BLOCK: usize = 1 << 16;
+    let corners = representative.len();
     let firsts = |range: std::ops::Range<usize>| {
         range.filter(|&c| representative[c] as usize == c).count() as u32
     };
-    let blocks = corners.len().div_ceil(BLOCK);
-    let block_range = |b: usize| b * BLOCK..((b + 1) * BLOCK).min(corners.len());
+    let blocks = corners.div_ceil(BLOCK);
+    let block_range = |b: usize| b * BLOCK..((b + 1) * BLOCK).min(corners);
     let mut before: Vec<u32> =
         (0..blocks).into_par_iter().map(|b| firsts(block_range(b))).collect();
     let mut total = 0;
@@ -81,7 +84,7 @@ fn number(corners: &[Point], representative: &[u32]) -> Welded {
         (*count, total) = (total, total + *count);
     }
     // The vertex number of each representative, then of every corner through it.
-    let mut corner_vertex = vec![0u32; corners.len()];
+    let mut corner_vertex = vec![0u32; corners];
     corner_vertex.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
         let mut next = before[b];
         for (c, v) in block_range(b).zip(out) {
@@ -91,7 +94,7 @@ fn number(corners: &[Point], representative: &[u32]) -> Welded {
         }
     });
     let shared = SharedItems::new(&mut corner_vertex);
-    (0..corners.len()).into_par_iter().for_each(|c| {
+    (0..corners).into_par_iter().for_each(|c| {
         let r = representative[c] as usize;
         if r != c {
             // SAFETY: corner c is written by this iteration only, and what it reads, its
@@ -101,20 +104,36 @@ fn number(corners: &[Point], representative: &[u32]) -> Welded {
         }
     });
     // Representatives in corner order are the vertices in number order.
-    let first_corner: Vec<u32> = (0..corners.len() as u32)
-        .into_par_iter()
-        .filter(|&c| representative[c as usize] == c)
-        .collect();
-    let positions = first_corner.par_iter().map(|&c| corners[c as usize]).collect();
+    let first_corner: Vec<u32> =
+        (0..corners as u32).into_par_iter().filter(|&c| representative[c as usize] == c).collect();
+    let positions = first_corner.par_iter().map(|&c| position(c as usize)).collect();
     Welded { corner_vertex, positions, first_corner }
 }
 
-/// Welds corners at exactly equal positions, or (with `tolerance`) at positions whose
-/// coordinates differ by at most the tolerance.
-pub(crate) fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
-    let exact = number(corners, &exact_representatives(corners));
-    let Some(t) = tolerance.filter(|t| *t > 0.0) else { return exact };
+/// Welds corners at exactly equal positions.
+pub(crate) fn exact(corners: &[Point]) -> Welded {
+    number(&exact_representatives(corners), |c| corners[c])
+}
 
+impl Welded {
+    /// Welds these (exactly welded) vertices further: those whose coordinates differ
+    /// by at most `t` become one. Each corner's position is its exact vertex's, bit for
+    /// bit, so the corners themselves are not needed.
+    pub(crate) fn within(&self, t: f64) -> Welded {
+        if t > 0.0 {
+            within(self, t)
+        } else {
+            self.clone()
+        }
+    }
+
+    /// The position of corner `c`'s vertex.
+    pub(crate) fn at(&self, c: usize) -> Point {
+        self.positions[self.corner_vertex[c] as usize]
+    }
+}
+
+fn within(exact: &Welded, t: f64) -> Welded {
     let points = &exact.positions;
     let size = 2.0 * t;
     let cell = |p: Point| p.map(|x| (x / size).floor() as i64);
@@ -155,12 +174,21 @@ pub(crate) fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
         .iter()
         .map(|&v| exact.first_corner[clusters.find(v) as usize])
         .collect();
-    number(corners, &representative)
+    // A representative is the first corner of an exact vertex, at that vertex's position.
+    number(&representative, |c| exact.at(c))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn weld(corners: &[Point], tolerance: Option<f64>) -> Welded {
+        let exact = exact(corners);
+        match tolerance {
+            Some(t) => exact.within(t),
+            None => exact,
+        }
+    }
 
     #[test]
     fn welds_within_the_tolerance_across_cell_borders() {
