@@ -52,10 +52,13 @@ mod terrain;
 #[cfg(test)]
 mod tests;
 
-pub use cells::{cell_cut_fill, CellCutFill, PlanGrid, PlanGridError, MAX_CELLS};
+pub use cells::{
+    cell_cut_fill, cell_cut_fill_with, CellCutFill, PlanGrid, PlanGridError, MAX_CELLS,
+};
 pub use terrain::{Terrain, TerrainError};
 
 use crate::accumulate::ordered_reduce;
+use crate::progress::{Counter, Progress};
 use pairs::{box_union, Pairs, PlanBox};
 use piece::{amounts, Piece, Sums};
 use std::ops::Range;
@@ -217,6 +220,12 @@ fn union_box(a: Option<PlanBox>, b: Option<PlanBox>) -> Option<PlanBox> {
 
 /// Cut and fill of `existing` against `design` over their common footprint.
 pub fn cut_fill(existing: &Terrain, design: Design<'_>) -> CutFill {
+    cut_fill_with(existing, design, &())
+}
+
+/// [`cut_fill`], telling `progress` its stages and the tasks (of pairs of triangles,
+/// or of triangles against a level) done.
+pub fn cut_fill_with(existing: &Terrain, design: Design<'_>, progress: &dyn Progress) -> CutFill {
     let empty = CutFill {
         cut: 0.0,
         fill: 0.0,
@@ -225,16 +234,20 @@ pub fn cut_fill(existing: &Terrain, design: Design<'_>) -> CutFill {
         footprint_area: 0.0,
         footprint_bounds: None,
     };
+    progress.stage("pairing the surfaces' triangles");
     let Some(overlay) = Overlay::new(existing, design) else {
         return empty;
     };
     let (tasks, chunk) = overlay.tasks();
+    progress.stage("integrating cut and fill");
+    let done = Counter::new(progress, tasks);
     let reduced = ordered_reduce(
         tasks,
         chunk,
         |range| {
             let mut sums = Sums::default();
             let mut bounds = None;
+            let units = range.len();
             overlay.pieces(range, |piece| {
                 let a = amounts(piece);
                 sums.add(&a);
@@ -244,6 +257,7 @@ pub fn cut_fill(existing: &Terrain, design: Design<'_>) -> CutFill {
                     bounds = union_box(bounds, Some(piece_box(piece, overlay.origin)));
                 }
             });
+            done.add(units);
             (sums, bounds)
         },
         |total, (sums, bounds)| {

@@ -226,3 +226,22 @@ fn cones_in_closed_form() {
         assert_close(r.area_cut, base * scale * scale, "area cut against a level");
     }
 }
+
+#[test]
+fn progress_counts_the_tasks_and_changes_nothing() {
+    use super::{cell_cut_fill, cell_cut_fill_with, cut_fill_with, PlanGrid};
+    use crate::progress::testing::Record;
+    let mut rng = XorShift::new(5);
+    let cone = random_fan(&mut rng, [0.0, 0.0, 1.0], 5000, 1.0);
+    let ramp = sheet(40, 1.6, |x, _| x);
+    for design in [Design::Surface(&ramp), Design::Level(0.5)] {
+        let record = Record::default();
+        assert_eq!(cut_fill_with(&cone, design, &record), cut_fill(&cone, design));
+        assert_eq!(record.counted_stages(), ["integrating cut and fill"]);
+        let grid = PlanGrid::new([-1.0, -1.0], [0.25, 0.25], [8, 8]).unwrap();
+        let record = Record::default();
+        let cells = cell_cut_fill_with(&cone, design, &grid, &record);
+        assert_eq!(cells, cell_cut_fill(&cone, design, &grid));
+        assert_eq!(record.counted_stages(), ["integrating cut and fill per cell"]);
+    }
+}

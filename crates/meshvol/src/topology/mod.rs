@@ -344,12 +344,14 @@ pub fn check<S: Surface + ?Sized>(
     surface: &S,
     options: &CheckOptions,
 ) -> Result<Check, CheckError> {
-    check_in_stages(surface, options, &|_| {})
+    check_in_stages(surface, options, &())
 }
 
-/// What a long check is doing, for a progress display: called with the name of each
-/// stage as it starts (`welding`, `finding edges, shells and crossings`, ...).
-pub type StageReport<'a> = &'a (dyn Fn(&'static str) + Sync);
+/// What a long check is doing, for a progress display: its
+/// [`Progress::stage`](crate::progress::Progress::stage) is called with the name of each
+/// stage as it starts (`welding`, `finding edges, shells and crossings`, ...); a closure
+/// taking the name will do.
+pub use crate::progress::StageReport;
 
 /// [`check`], calling `stage` as each stage starts.
 pub fn check_in_stages<S: Surface + ?Sized>(
@@ -357,7 +359,7 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     options: &CheckOptions,
     stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
-    stage("gathering faces");
+    stage.stage("gathering faces");
     let loops = Loops::of(surface);
     if u32::try_from(loops.corners.len()).is_err() {
         return Err(CheckError::TooLarge { corners: loops.corners.len() });
@@ -384,7 +386,7 @@ pub fn check_in_stages<S: Surface + ?Sized>(
             if exact.boundary_edges == 0 || diagonal == 0.0 {
                 exact
             } else {
-                stage("welding again within a tolerance");
+                stage.stage("welding again within a tolerance");
                 let welded = analyse(surface, &loops, Some(AUTO_WELD * diagonal), options, stage);
                 if welded.boundary_edges < exact.boundary_edges {
                     welded
@@ -405,16 +407,16 @@ fn analyse<S: Surface + ?Sized>(
     stage: StageReport<'_>,
 ) -> Check {
     let faces = surface.face_count();
-    stage("welding");
+    stage.stage("welding");
     let welded = weld::weld(&loops.corners, tolerance);
-    stage("sorting out degenerate and duplicate faces");
+    stage.stage("sorting out degenerate and duplicate faces");
     let classes = faces::classify(loops, &welded);
     let kept = &classes.kept;
 
     // The crossing search (parallel, and the longest part) runs beside the connectivity
     // analysis (mostly sequential walks over edges and shells), so that on few cores
     // neither leaves one idle.
-    stage(if options.intersections {
+    stage.stage(if options.intersections {
         "finding edges, shells and crossings"
     } else {
         "finding edges and shells"
@@ -443,7 +445,7 @@ fn analyse<S: Surface + ?Sized>(
         None => (crossings::Triangles::default(), Bvh::default(), None),
     };
     let mut overlapping_shells = BTreeSet::new();
-    stage("nesting shells");
+    stage.stage("nesting shells");
     let containers =
         nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
     let crossings = crossing.map(|pairs| {
