@@ -245,3 +245,27 @@ fn progress_counts_the_tasks_and_changes_nothing() {
         assert_eq!(record.counted_stages(), ["integrating cut and fill per cell"]);
     }
 }
+
+#[test]
+fn fans_give_the_same_bits_at_any_thread_count() {
+    use super::{cell_cut_fill, PlanGrid};
+    let mut rng = XorShift::new(8);
+    let cone = random_fan(&mut rng, [0.0, 0.0, 1.0], 3000, 1.0);
+    let other = random_fan(&mut rng, [0.0, 0.0, 0.5], 7000, 1.0);
+    let apart = random_fan(&mut rng, [0.2, 0.1, 0.5], 300, 1.0);
+    let ramp = sheet(30, 1.6, |x, y| x * y);
+    let grid = PlanGrid::new([-1.0, -1.0], [0.3, 0.3], [7, 7]).unwrap();
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let designs = [&other, &apart, &ramp].map(Design::Surface);
+            let totals = designs.map(|d| cut_fill(&cone, d));
+            let cells = designs.map(|d| cell_cut_fill(&cone, d, &grid));
+            (totals, cells, cut_fill(&ramp, Design::Surface(&cone)))
+        })
+    };
+    let one = run(1);
+    for threads in [2, 5] {
+        assert_eq!(run(threads), one, "{threads} threads");
+    }
+}
