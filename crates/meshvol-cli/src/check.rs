@@ -40,7 +40,7 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
             &loaded.surface,
             loaded.assembly.as_ref(),
             &options,
-            &|s| progress.stage_in("checking", path, s),
+            &progress.kernel(format!("checking {}", path.display())),
         )
         .map_err(|e| format!("{name}: {e}"))?;
         Ok(check(&Source::of(&name, &loaded), &c))

@@ -6,7 +6,7 @@ use crate::input::{self, Progress};
 use clap::{ArgGroup, Args};
 use meshvol::grid::Grid;
 use meshvol_io::grid_out::{self, Legend, Slice};
-use meshvol_report::cutfill::{cutfill, Against, CutFillReport, Spacing};
+use meshvol_report::cutfill::{cutfill_with, Against, CutFillReport, Spacing};
 use meshvol_report::subject::Source;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -102,8 +102,9 @@ fn measure(args: &CutFillArgs, progress: &Progress) -> Result<CutFillReport, Str
         (None, Some(pitch)) => Some(Spacing::Pitch(pitch)),
         (None, None) => None,
     };
-    progress.stage_all("measuring cut and fill");
-    let (report, cells) = cutfill(&source, &surface, against, spacing)?;
+    let hook = progress.kernel("measuring cut and fill".to_string());
+    let (report, cells) = cutfill_with(&source, &surface, against, spacing, &hook)?;
+    drop(hook);
     if let (Some(cells), Some(info)) = (cells, report.grid) {
         let [nx, ny] = info.counts;
         if let Some(out) = &args.out {

@@ -5,7 +5,7 @@ use crate::driver::{self, Output};
 use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{cell_volumes, union_cell_volumes};
+use meshvol::grid::{cell_volumes_with, union_cell_volumes};
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};
@@ -191,7 +191,8 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
     let (volumes, columns_unresolved) = if args.union {
         union_cell_volumes(&bodies, &grid).map_err(|e| e.to_string())?
     } else {
-        (cell_volumes(&together, &grid).map_err(|e| e.to_string())?, 0)
+        let hook = progress.kernel("computing cell volumes".to_string());
+        (cell_volumes_with(&together, &grid, &hook).map_err(|e| e.to_string())?, 0)
     };
     run.seconds = start.elapsed().as_secs_f64();
     run.columns_unresolved = columns_unresolved;

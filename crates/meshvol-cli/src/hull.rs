@@ -2,7 +2,7 @@
 
 use crate::driver::{self, Output};
 use clap::Args;
-use meshvol::hull::convex_hull;
+use meshvol::hull::convex_hull_with;
 use meshvol::Mesh;
 use meshvol_io::write::{self, PlyEncoding};
 use meshvol_report::hull::hull;
@@ -55,8 +55,9 @@ pub fn run(args: HullArgs, quiet: bool) -> ExitCode {
         let name = path.display().to_string();
         progress.stage("reading", path);
         let cloud = crate::input::load_points(path)?;
-        progress.stage("computing the hull of", path);
-        let h = convex_hull(&cloud.points).map_err(|e| format!("{name}: {e}"))?;
+        let hook = progress.kernel(format!("computing the hull of {name}"));
+        let h = convex_hull_with(&cloud.points, &hook).map_err(|e| format!("{name}: {e}"))?;
+        drop(hook);
         if let Some(out) = &args.out {
             let mesh = h.mesh.as_ref().ok_or_else(|| {
                 let why = h.degeneracy.map(|d| d.to_string()).unwrap_or_default();

@@ -5,9 +5,15 @@
 //! take more than a moment: standard input, or files of 16 MiB or more in all. It counts
 //! the input bytes done and names the current file and stage; warnings and results are
 //! printed around it. `--quiet` also silences warnings (errors are always printed).
+//!
+//! While a kernel runs ([`Progress::kernel`]: the hull, the cell volumes, cut and fill,
+//! the check), its stages name the message and the bar shows how far through the current
+//! stage it is (the kernel's own `advance`, per chunk of its work); the bytes come back
+//! when it ends.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -66,11 +72,7 @@ impl Progress {
         let show = !quiet && std::io::stderr().is_terminal() && (stdin || total >= LARGE);
         let bar = show.then(|| {
             let bar = ProgressBar::new(total);
-            let style = ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {bar:30} {bytes}/{total_bytes} {wide_msg}",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar());
-            bar.set_style(style);
+            bar.set_style(style(BYTES));
             bar.enable_steady_tick(Duration::from_millis(120));
             bar
         });
@@ -81,13 +83,6 @@ impl Progress {
     pub fn stage(&self, what: &str, path: &Path) {
         if let Some(bar) = &self.bar {
             bar.set_message(format!("{what} {}", path.display()));
-        }
-    }
-
-    /// Says what is being done to which file, and at which stage of it.
-    pub fn stage_in(&self, what: &str, path: &Path, stage: &str) {
-        if let Some(bar) = &self.bar {
-            bar.set_message(format!("{what} {}: {stage}", path.display()));
         }
     }
 
@@ -125,10 +120,68 @@ impl Progress {
         self.suspend(|| eprintln!("meshvol: error: {error}"));
     }
 
+    /// The core's progress hook for a kernel doing `what` (`"computing the hull of
+    /// x.ply"`): its stages follow `what` in the message, and its advances fill the bar.
+    pub fn kernel(&self, what: String) -> Kernel<'_> {
+        let saved = self.bar.as_ref().map_or((0, None), |bar| (bar.position(), bar.length()));
+        if let Some(bar) = &self.bar {
+            bar.set_message(what.clone());
+        }
+        Kernel { progress: self, what, saved, counting: AtomicBool::new(false) }
+    }
+
     /// Clears the bar; warnings still print after it.
     pub fn finish(&self) {
         if let Some(bar) = &self.bar {
             bar.finish_and_clear();
+        }
+    }
+}
+
+/// The bar's template while reading (bytes) and while a kernel runs (its fraction).
+const BYTES: &str = "{spinner} [{elapsed_precise}] {bar:30} {bytes}/{total_bytes} {wide_msg}";
+const FRACTION: &str = "{spinner} [{elapsed_precise}] {bar:30} {percent:>3}% {wide_msg}";
+
+fn style(template: &str) -> ProgressStyle {
+    ProgressStyle::with_template(template).unwrap_or_else(|_| ProgressStyle::default_bar())
+}
+
+/// A kernel's progress on the bar ([`Progress::kernel`]).
+pub struct Kernel<'a> {
+    progress: &'a Progress,
+    what: String,
+    /// The bar's byte count and total before the kernel, put back after it.
+    saved: (u64, Option<u64>),
+    /// Whether the bar counts the kernel's units (since its first advance).
+    counting: AtomicBool,
+}
+
+impl meshvol::progress::Progress for Kernel<'_> {
+    fn stage(&self, name: &'static str) {
+        if let Some(bar) = &self.progress.bar {
+            bar.set_message(format!("{}: {name}", self.what));
+        }
+    }
+
+    fn advance(&self, done: u64, total: u64) {
+        if let Some(bar) = &self.progress.bar {
+            if !self.counting.swap(true, Ordering::Relaxed) {
+                bar.set_style(style(FRACTION));
+            }
+            bar.set_length(total.max(1));
+            bar.set_position(done);
+        }
+    }
+}
+
+impl Drop for Kernel<'_> {
+    fn drop(&mut self) {
+        if let (Some(bar), true) = (&self.progress.bar, *self.counting.get_mut()) {
+            bar.set_style(style(BYTES));
+            if let Some(total) = self.saved.1 {
+                bar.set_length(total);
+            }
+            bar.set_position(self.saved.0);
         }
     }
 }

@@ -88,7 +88,7 @@ pub fn read(
                 &loaded.surface,
                 loaded.assembly.as_ref(),
                 &options,
-                &|s| progress.stage_in("checking", path, s),
+                &progress.kernel(format!("checking {}", path.display())),
             )
             .map_err(|e| format!("{name}: {e}"))?;
             Some(check)

@@ -62,7 +62,7 @@ impl PyMesh {
 
     /// The check of this mesh with `options` (from its parts when it is an assembly).
     pub(crate) fn check_with(&self, options: &CheckOptions) -> Result<Check, CheckError> {
-        topology::check_assembled(&self.mesh, self.assembly.as_deref(), options, &|_| {})
+        topology::check_assembled(&self.mesh, self.assembly.as_deref(), options, &())
     }
 
     /// What a measurement is taken of: with `check`, the solid the surface bounds (as

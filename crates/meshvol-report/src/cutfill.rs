@@ -5,7 +5,8 @@
 use crate::number::num;
 use crate::subject::Source;
 use crate::Report;
-use meshvol::cutfill::{cell_cut_fill, cut_fill, CellCutFill, Design, PlanGrid, Terrain};
+use meshvol::cutfill::{cell_cut_fill_with, cut_fill_with, CellCutFill, Design, PlanGrid, Terrain};
+use meshvol::progress::Progress;
 use meshvol::Surface;
 use serde::Serialize;
 use std::fmt::Write;
@@ -127,7 +128,19 @@ pub fn cutfill<S: Surface, T: Surface>(
     against: Against<'_, T>,
     spacing: Option<Spacing>,
 ) -> Result<(CutFillReport, Option<Cells>), String> {
+    cutfill_with(source, surface, against, spacing, &())
+}
+
+/// [`cutfill`], telling `progress` the kernels' stages and how far through them.
+pub fn cutfill_with<S: Surface, T: Surface>(
+    source: &Source,
+    surface: &S,
+    against: Against<'_, T>,
+    spacing: Option<Spacing>,
+    progress: &dyn Progress,
+) -> Result<(CutFillReport, Option<Cells>), String> {
     let name = source.name();
+    progress.stage("checking the existing surface is a height field");
     let existing = terrain(source, surface)?;
     let mut warnings = source.warnings.clone();
     warnings.extend(vertical_warning(&existing));
@@ -140,6 +153,7 @@ pub fn cutfill<S: Surface, T: Surface>(
             (format!("z = {z}"), Some(z), None, Design::Level(z))
         }
         Against::Surface { source: design_source, surface } => {
+            progress.stage("checking the design is a height field");
             design_terrain = terrain(design_source, surface)?;
             let design_name = design_source.name();
             warnings.extend(design_source.warnings.iter().map(|w| format!("{design_name}: {w}")));
@@ -149,7 +163,7 @@ pub fn cutfill<S: Surface, T: Surface>(
             (design_name.to_string(), None, Some(area), Design::Surface(&design_terrain))
         }
     };
-    let totals = cut_fill(&existing, kernel_design);
+    let totals = cut_fill_with(&existing, kernel_design, progress);
     let sums = [totals.cut, totals.fill, totals.area_cut, totals.area_fill, totals.footprint_area];
     if !sums.iter().all(|x| x.is_finite()) {
         return Err(format!(
@@ -174,7 +188,7 @@ pub fn cutfill<S: Surface, T: Surface>(
                 .footprint_bounds
                 .ok_or_else(|| format!("{name}: no common footprint to divide into cells"))?;
             let grid = plan_grid(bounds, spacing).map_err(|e| format!("{name}: {e}"))?;
-            Some((grid, cell_cut_fill(&existing, kernel_design, &grid)))
+            Some((grid, cell_cut_fill_with(&existing, kernel_design, &grid, progress)))
         }
     };
     let report = CutFillReport {

@@ -33,6 +33,7 @@ pub mod grid;
 pub mod hull;
 pub mod mesh;
 pub mod polygon;
+pub mod progress;
 pub mod properties;
 pub mod section;
 pub mod shapes;

@@ -13,6 +13,7 @@
 use super::piece::{amounts, Piece};
 use super::{Design, Overlay};
 use crate::accumulate::ordered_reduce;
+use crate::progress::{Counter, Progress};
 
 /// Most cells a plan grid may have (two f64 arrays of 2 GiB each).
 pub const MAX_CELLS: usize = 1 << 28;
@@ -125,19 +126,34 @@ pub fn cell_cut_fill(
     design: Design<'_>,
     grid: &PlanGrid,
 ) -> CellCutFill {
+    cell_cut_fill_with(existing, design, grid, &())
+}
+
+/// [`cell_cut_fill`], telling `progress` its stages and the tasks done (as
+/// [`super::cut_fill_with`]).
+pub fn cell_cut_fill_with(
+    existing: &super::Terrain,
+    design: Design<'_>,
+    grid: &PlanGrid,
+    progress: &dyn Progress,
+) -> CellCutFill {
     let n = grid.cell_count();
     let mut cells = CellCutFill { cut: vec![0.0; n], fill: vec![0.0; n] };
+    progress.stage("pairing the surfaces' triangles");
     let Some(overlay) = Overlay::new(existing, design) else {
         return cells;
     };
     let start = [0, 1].map(|a| grid.origin[a] - overlay.origin[a]);
     let ny = grid.counts[1];
     let (tasks, chunk) = overlay.tasks();
+    progress.stage("integrating cut and fill per cell");
+    let done = Counter::new(progress, tasks);
     let parts = ordered_reduce(
         tasks,
         chunk,
         |range| {
             let mut found: Vec<(usize, f64, f64)> = Vec::new();
+            let units = range.len();
             overlay.pieces(range, |piece| {
                 grid.cut(piece, 0, start[0], |i, column| {
                     grid.cut(column, 1, start[1], |j, part| {
@@ -146,6 +162,7 @@ pub fn cell_cut_fill(
                     });
                 });
             });
+            done.add(units);
             vec![found]
         },
         |all, more| all.extend(more),

@@ -12,7 +12,8 @@
 //!
 //! Both surfaces are triangulations ([`Terrain`]: each triangle's plan, checked not to
 //! overlap another's). Overlay their plans: every pair of an existing and a design
-//! triangle that overlap (found with a bucket grid, [`pairs`]) gives a convex *piece*,
+//! triangle that overlap (found in time near-linear in the triangles and the pairs, [`pairs`]: by
+//! sectors around shared corners, else by tree queries) gives a convex *piece*,
 //! one triangle clipped by the other's three edges (Sutherland–Hodgman). On a piece
 //! both surfaces are linear, so d = e − g is linear too: its value at each corner comes
 //! from the corner's barycentric weights in each triangle. Cut the piece at the line
@@ -26,7 +27,7 @@
 //!
 //! Coordinates are taken relative to the centre of the common box, which keeps the
 //! digits of terrains far from the origin (map coordinates). Pieces are summed in fixed
-//! chunks (of buckets, or of triangles) combined in order, with compensated sums: the
+//! tasks (of shared points or query triangles, or of triangles) combined in order, with compensated sums: the
 //! same bits at any thread count.
 //!
 //! ```
@@ -46,14 +47,19 @@ mod cells;
 mod overlaps;
 mod pairs;
 mod piece;
+mod sectors;
 mod terrain;
+#[cfg(test)]
+mod tests;
 
-pub use cells::{cell_cut_fill, CellCutFill, PlanGrid, PlanGridError, MAX_CELLS};
+pub use cells::{
+    cell_cut_fill, cell_cut_fill_with, CellCutFill, PlanGrid, PlanGridError, MAX_CELLS,
+};
 pub use terrain::{Terrain, TerrainError};
 
 use crate::accumulate::ordered_reduce;
-use crate::buckets::Buckets;
-use pairs::{box_union, boxes_overlap, facet_box, BucketGrid, PlanBox};
+use crate::progress::{Counter, Progress};
+use pairs::{box_union, Pairs, PlanBox};
 use piece::{amounts, Piece, Sums};
 use std::ops::Range;
 use terrain::Facet;
@@ -84,9 +90,8 @@ pub struct CutFill {
     pub footprint_bounds: Option<[[f64; 2]; 2]>,
 }
 
-/// Triangles per parallel task against a level; buckets per task for two surfaces.
+/// Triangles per parallel task against a level.
 const FACET_CHUNK: usize = 4096;
-const BUCKET_CHUNK: usize = 256;
 
 /// The pieces of the common footprint, produced task by task.
 struct Overlay<'a> {
@@ -98,7 +103,7 @@ struct Overlay<'a> {
 
 enum Overlaid<'a> {
     Level(f64),
-    Surface { design: &'a Terrain, grid: BucketGrid, existing: Buckets<u32>, own: Buckets<u32> },
+    Surface { design: &'a Terrain, pairs: Box<Pairs> },
 }
 
 impl<'a> Overlay<'a> {
@@ -116,26 +121,19 @@ impl<'a> Overlay<'a> {
                 if !(common[0][0] < common[1][0] && common[0][1] < common[1][1]) {
                     return None;
                 }
-                let triangles = existing.triangle_count() + design.triangle_count();
-                let grid = BucketGrid::new(common, triangles);
-                let overlay = Overlaid::Surface {
-                    design,
-                    grid,
-                    existing: grid.buckets(&existing.facets, &common),
-                    own: grid.buckets(&design.facets, &common),
-                };
-                (common, overlay)
+                let pairs = Pairs::new(&existing.facets, &design.facets);
+                (common, Overlaid::Surface { design, pairs: Box::new(pairs) })
             }
         };
         let origin = [0, 1].map(|a| 0.5 * (common[0][a] + common[1][a]));
         Some(Overlay { existing, origin, design })
     }
 
-    /// Tasks (triangles or buckets) and how many make a chunk.
+    /// Tasks (triangles, or [`Pairs`]' tasks) and how many make a chunk.
     fn tasks(&self) -> (usize, usize) {
         match &self.design {
             Overlaid::Level(_) => (self.existing.facets.len(), FACET_CHUNK),
-            Overlaid::Surface { grid, .. } => (grid.len(), BUCKET_CHUNK),
+            Overlaid::Surface { pairs, .. } => (pairs.task_count(), 1),
         }
     }
 
@@ -156,21 +154,15 @@ impl<'a> Overlay<'a> {
                     each(&piece);
                 }
             }
-            Overlaid::Surface { design, grid, existing, own } => {
-                for bucket in tasks {
-                    for &i in existing.get(bucket) {
-                        let e = &self.existing.facets[i as usize];
-                        let e_box = facet_box(e);
-                        for &j in own.get(bucket) {
-                            let g = &design.facets[j as usize];
-                            let g_box = facet_box(g);
-                            if boxes_overlap(&e_box, &g_box) && grid.owns(bucket, &e_box, &g_box) {
-                                if let Some(piece) = self.clip(e, g) {
-                                    each(&piece);
-                                }
-                            }
+            Overlaid::Surface { design, pairs } => {
+                let (ours, theirs) = (&self.existing.facets, &design.facets);
+                let mut tried = 0;
+                for task in tasks {
+                    pairs.pairs(task, ours, theirs, &mut tried, |e, g| {
+                        if let Some(piece) = self.clip(&ours[e], &theirs[g]) {
+                            each(&piece);
                         }
-                    }
+                    });
                 }
             }
         }
@@ -228,6 +220,12 @@ fn union_box(a: Option<PlanBox>, b: Option<PlanBox>) -> Option<PlanBox> {
 
 /// Cut and fill of `existing` against `design` over their common footprint.
 pub fn cut_fill(existing: &Terrain, design: Design<'_>) -> CutFill {
+    cut_fill_with(existing, design, &())
+}
+
+/// [`cut_fill`], telling `progress` its stages and the tasks (of pairs of triangles,
+/// or of triangles against a level) done.
+pub fn cut_fill_with(existing: &Terrain, design: Design<'_>, progress: &dyn Progress) -> CutFill {
     let empty = CutFill {
         cut: 0.0,
         fill: 0.0,
@@ -236,16 +234,20 @@ pub fn cut_fill(existing: &Terrain, design: Design<'_>) -> CutFill {
         footprint_area: 0.0,
         footprint_bounds: None,
     };
+    progress.stage("pairing the surfaces' triangles");
     let Some(overlay) = Overlay::new(existing, design) else {
         return empty;
     };
     let (tasks, chunk) = overlay.tasks();
+    progress.stage("integrating cut and fill");
+    let done = Counter::new(progress, tasks);
     let reduced = ordered_reduce(
         tasks,
         chunk,
         |range| {
             let mut sums = Sums::default();
             let mut bounds = None;
+            let units = range.len();
             overlay.pieces(range, |piece| {
                 let a = amounts(piece);
                 sums.add(&a);
@@ -255,6 +257,7 @@ pub fn cut_fill(existing: &Terrain, design: Design<'_>) -> CutFill {
                     bounds = union_box(bounds, Some(piece_box(piece, overlay.origin)));
                 }
             });
+            done.add(units);
             (sums, bounds)
         },
         |total, (sums, bounds)| {

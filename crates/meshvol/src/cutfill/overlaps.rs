@@ -49,12 +49,12 @@ fn corner_ids(facets: &[Facet]) -> Vec<[u32; 3]> {
 
 /// Whether `p` comes in the first half-turn around `v` (from the +x direction,
 /// counter-clockwise, that direction included).
-fn first_half(v: [f64; 2], p: [f64; 2]) -> bool {
+pub(super) fn first_half(v: [f64; 2], p: [f64; 2]) -> bool {
     p[1] > v[1] || (p[1] == v[1] && p[0] > v[0])
 }
 
 /// The order of directions `v→p` and `v→q` counter-clockwise from +x.
-fn by_angle(v: [f64; 2], p: [f64; 2], q: [f64; 2]) -> Ordering {
+pub(super) fn by_angle(v: [f64; 2], p: [f64; 2], q: [f64; 2]) -> Ordering {
     match (first_half(v, p), first_half(v, q)) {
         (true, false) => Ordering::Less,
         (false, true) => Ordering::Greater,

@@ -37,6 +37,7 @@
 use super::clip::Polygon;
 use super::{Grid, GridError};
 use crate::accumulate::two_sum;
+use crate::progress::{Counter, Progress};
 use crate::properties::CHUNK_FACES;
 use crate::{Point, Surface};
 use rayon::prelude::*;
@@ -532,10 +533,24 @@ pub(crate) fn cell_volumes<S: Surface + ?Sized>(
     block: &Block,
     touched: Option<&mut [u8]>,
 ) -> Result<Vec<f64>, GridError> {
+    cell_volumes_with(surface, grid, block, touched, &())
+}
+
+/// [`cell_volumes`], telling `progress` its stages and the tiles of columns done.
+pub(crate) fn cell_volumes_with<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    block: &Block,
+    touched: Option<&mut [u8]>,
+    progress: &dyn Progress,
+) -> Result<Vec<f64>, GridError> {
     let [_, _, depth] = block.shape();
     let mut out = zeroed(block.columns() * depth)?;
     let tiling = Tiling::new(block);
+    progress.stage("sorting faces into tiles of columns");
     let bins = Bins::new(surface, grid, block, &tiling, touched.is_some());
+    progress.stage("cutting faces into cells");
+    let done = Counter::new(progress, tiling.tiles());
     let units = Units::new(grid);
     let scale = grid.cell_volume();
     let (tile_cells, areas) = (tiling.per_tile * depth, block.areas());
@@ -551,6 +566,7 @@ pub(crate) fn cell_volumes<S: Surface + ?Sized>(
         for (direct, area) in cells.chunks_mut(depth).zip(area.chunks(areas)) {
             finish_column(direct, area, scale);
         }
+        done.add(1);
     };
     match touched {
         Some(touched) => out

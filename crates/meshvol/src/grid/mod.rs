@@ -218,8 +218,18 @@ pub fn cell_volumes<S: crate::Surface + ?Sized>(
     surface: &S,
     grid: &Grid,
 ) -> Result<Vec<f64>, GridError> {
+    cell_volumes_with(surface, grid, &())
+}
+
+/// [`cell_volumes`], telling `progress` its stages and the tiles of columns (strips of
+/// the grid's rows) done.
+pub fn cell_volumes_with<S: crate::Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    progress: &dyn crate::progress::Progress,
+) -> Result<Vec<f64>, GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
-    cells::cell_volumes(surface, &grid, &cells::Block::whole(grid.counts), None)
+    cells::cell_volumes_with(surface, &grid, &cells::Block::whole(grid.counts), None, progress)
 }
 
 /// The cells `x × y × z` of a grid (ranges of cell indices along each axis): a block of
@@ -301,4 +311,21 @@ pub fn occupancy(volumes: &[f64], cell_volume: f64) -> Occupancy {
         }
     }
     o
+}
+
+#[cfg(test)]
+mod progress_tests {
+    use super::{cell_volumes, cell_volumes_with, Grid};
+    use crate::progress::testing::Record;
+    use crate::shapes::uv_sphere;
+
+    #[test]
+    fn progress_counts_the_tiles_and_changes_nothing() {
+        let sphere = uv_sphere(1.0, 48, 24);
+        let grid = Grid::from_bounds([-1.1; 3], [1.1; 3], [40, 30, 20]).unwrap();
+        let record = Record::default();
+        let with = cell_volumes_with(&sphere, &grid, &record).unwrap();
+        assert_eq!(with, cell_volumes(&sphere, &grid).unwrap());
+        assert_eq!(record.counted_stages(), ["cutting faces into cells"]);
+    }
 }

@@ -1,6 +1,7 @@
 //! The randomized incremental hull (Clarkson–Shor) with conflict lists: see the module
 //! doc of [`crate::hull`] for the method, its predicates and its cost.
 
+use crate::progress::Progress;
 use rayon::prelude::*;
 
 use crate::vector::{cross, dot, orient3d, sign, sub};
@@ -445,9 +446,13 @@ fn first_tetrahedron(points: &[Point]) -> [u32; 4] {
     [0, b, c, d]
 }
 
+/// Points inserted between two progress reports.
+const POINTS_PER_REPORT: usize = 4096;
+
 /// One randomized incremental pass over `points` (not all coplanar): the hull's
 /// triangles over indices into `points`, and its vertices that are not corners.
-fn hull_pass(points: &[Point]) -> (Vec<[u32; 3]>, Vec<u32>) {
+/// Reports the points inserted so far (in insertion order) to `progress`.
+fn hull_pass(points: &[Point], progress: &dyn Progress) -> (Vec<[u32; 3]>, Vec<u32>) {
     let n = points.len();
     let order = insertion_order(points);
     // Renumbered in insertion order, so that the pass reads its per-point arrays in order.
@@ -473,10 +478,14 @@ fn hull_pass(points: &[Point]) -> (Vec<[u32; 3]>, Vec<u32>) {
     };
     builder.start(first_tetrahedron(&ranked));
     for p in 0..n as u32 {
+        if (p as usize).is_multiple_of(POINTS_PER_REPORT) {
+            progress.advance(u64::from(p), n as u64);
+        }
         if builder.conflict_face[p as usize] != NONE {
             builder.insert(p);
         }
     }
+    progress.advance(n as u64, n as u64);
     let non_corners = match builder.coplanar_neighbours {
         true => {
             let non_corners = builder.non_corners();
@@ -489,9 +498,11 @@ fn hull_pass(points: &[Point]) -> (Vec<[u32; 3]>, Vec<u32>) {
 }
 
 /// The convex hull of `points` (not all coplanar) as outward triangles over indices
-/// into `points`, its vertices exactly the hull's corners.
-pub(super) fn hull_triangles(points: &[Point]) -> Vec<[u32; 3]> {
-    let (triangles, non_corners) = hull_pass(points);
+/// into `points`, its vertices exactly the hull's corners; stages and points inserted
+/// go to `progress`.
+pub(super) fn hull_triangles(points: &[Point], progress: &dyn Progress) -> Vec<[u32; 3]> {
+    progress.stage("inserting points");
+    let (triangles, non_corners) = hull_pass(points, progress);
     if non_corners.is_empty() {
         return triangles;
     }
@@ -506,6 +517,7 @@ pub(super) fn hull_triangles(points: &[Point]) -> Vec<[u32; 3]> {
         }
     }
     let corner_points: Vec<Point> = corners.iter().map(|&v| points[v as usize]).collect();
-    let (triangles, _) = hull_pass(&corner_points);
+    progress.stage("inserting the corners again");
+    let (triangles, _) = hull_pass(&corner_points, progress);
     triangles.into_iter().map(|t| t.map(|v| corners[v as usize])).collect()
 }

@@ -88,6 +88,7 @@
 
 mod incremental;
 
+use crate::progress::{Counter, Progress};
 use crate::vector::{add, orient2d, orient3d, sub};
 use crate::{mass_properties, MassProperties, Mesh, Point};
 
@@ -184,7 +185,7 @@ const KEPT_SHARE_TO_SKIP_CHUNKS: f64 = 0.125;
 /// mostly the hull of points near its surface. `None` when that would not pay: few
 /// points, or a first chunk that keeps more than [`KEPT_SHARE_TO_SKIP_CHUNKS`] of its
 /// points.
-fn candidates(points: &[Point]) -> Option<Vec<u32>> {
+fn candidates(points: &[Point], progress: &dyn Progress) -> Option<Vec<u32>> {
     if points.len() < 4 * CHUNK_POINTS {
         return None;
     }
@@ -194,20 +195,26 @@ fn candidates(points: &[Point]) -> Option<Vec<u32>> {
             return (range.start as u32..range.end as u32).collect();
         }
         let mut corner = vec![false; chunk.len()];
-        incremental::hull_triangles(chunk)
+        incremental::hull_triangles(chunk, &())
             .iter()
             .flatten()
             .for_each(|&v| corner[v as usize] = true);
         (0..chunk.len()).filter(|&i| corner[i]).map(|i| (range.start + i) as u32).collect()
     };
+    progress.stage("hulling chunks of points");
     let first = corners_of(0..CHUNK_POINTS);
     if first.len() as f64 > KEPT_SHARE_TO_SKIP_CHUNKS * CHUNK_POINTS as f64 {
         return None;
     }
+    let done = Counter::new(progress, points.len() - CHUNK_POINTS);
     let rest = crate::accumulate::ordered_reduce(
         points.len() - CHUNK_POINTS,
         CHUNK_POINTS,
-        |range| corners_of(range.start + CHUNK_POINTS..range.end + CHUNK_POINTS),
+        |range| {
+            let corners = corners_of(range.start + CHUNK_POINTS..range.end + CHUNK_POINTS);
+            done.add(range.len());
+            corners
+        },
         |all, part| all.extend(part),
     );
     Some(first.into_iter().chain(rest.into_iter().flatten()).collect())
@@ -235,6 +242,12 @@ fn candidates(points: &[Point]) -> Option<Vec<u32>> {
 /// assert_eq!((flat.volume(), flat.degeneracy), (0.0, Some(Degeneracy::Coplanar)));
 /// ```
 pub fn convex_hull(points: &[Point]) -> Result<Hull, HullError> {
+    convex_hull_with(points, &())
+}
+
+/// [`convex_hull`], telling `progress` its stages (`hulling chunks of points`,
+/// `inserting points`, ...) and the points hulled or inserted so far in each.
+pub fn convex_hull_with(points: &[Point], progress: &dyn Progress) -> Result<Hull, HullError> {
     for (index, p) in points.iter().enumerate() {
         if let Some(&value) = p.iter().find(|x| !x.is_finite()) {
             return Err(HullError::NonFinite { index, value });
@@ -246,11 +259,11 @@ pub fn convex_hull(points: &[Point]) -> Result<Hull, HullError> {
     if let Some(d) = degeneracy(points) {
         return Ok(Hull { mesh: None, properties: MassProperties::empty(0), degeneracy: Some(d) });
     }
-    let triangles = match candidates(points) {
-        None => incremental::hull_triangles(points),
+    let triangles = match candidates(points, progress) {
+        None => incremental::hull_triangles(points, progress),
         Some(kept) => {
             let subset: Vec<Point> = kept.iter().map(|&i| points[i as usize]).collect();
-            let triangles = incremental::hull_triangles(&subset);
+            let triangles = incremental::hull_triangles(&subset, progress);
             triangles.into_iter().map(|t| t.map(|v| kept[v as usize])).collect()
         }
     };

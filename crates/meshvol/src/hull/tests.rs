@@ -273,12 +273,12 @@ fn chunked_hulls_keep_every_corner() {
             (0..128 * 128).map(|i| [(i % 128) as f64 / 254.0, (i / 128) as f64 / 254.0, z]),
         );
     }
-    let kept = super::candidates(&points).expect("chunks pay for points in a ball");
+    let kept = super::candidates(&points, &()).expect("chunks pay for points in a ball");
     // The flat chunks keep all their points; the ball's chunks only their corners.
     let flat = 4 * 128 * 128;
     assert!(kept.len() > flat && kept.len() < flat + super::CHUNK_POINTS / 8, "{}", kept.len());
     let hull = convex_hull(&points).unwrap();
-    let direct = super::incremental::hull_triangles(&points);
+    let direct = super::incremental::hull_triangles(&points, &());
     let corners = |triangles: Vec<[u32; 3]>| {
         let mut v: Vec<u32> = triangles.into_iter().flatten().collect();
         v.sort();
@@ -292,5 +292,18 @@ fn chunked_hulls_keep_every_corner() {
     assert_eq!(ours, expected);
     // Points on a sphere keep most of the first chunk: no chunks.
     let sphere: Vec<Point> = (0..5 * super::CHUNK_POINTS).map(|_| on_sphere(&mut rng)).collect();
-    assert!(super::candidates(&sphere).is_none());
+    assert!(super::candidates(&sphere, &()).is_none());
+}
+
+#[test]
+fn progress_counts_the_points_in_each_stage() {
+    // A ball big enough to be hulled in chunks first: each stage's count grows to its
+    // total, and the hull is the one without a hook.
+    let mut rng = XorShift::new(41);
+    let ball: Vec<Point> = (0..5 * super::CHUNK_POINTS).map(|_| in_ball(&mut rng)).collect();
+    let record = crate::progress::testing::Record::default();
+    let hull = super::convex_hull_with(&ball, &record).unwrap();
+    assert_eq!(hull.volume(), convex_hull(&ball).unwrap().volume());
+    let stages = record.counted_stages();
+    assert_eq!(stages[..2], ["hulling chunks of points", "inserting points"], "{stages:?}");
 }

@@ -346,12 +346,14 @@ pub fn check<S: Surface + ?Sized>(
     surface: &S,
     options: &CheckOptions,
 ) -> Result<Check, CheckError> {
-    check_in_stages(surface, options, &|_| {})
+    check_in_stages(surface, options, &())
 }
 
-/// What a long check is doing, for a progress display: called with the name of each
-/// stage as it starts (`welding`, `finding edges, shells and crossings`, ...).
-pub type StageReport<'a> = &'a (dyn Fn(&'static str) + Sync);
+/// What a long check is doing, for a progress display: its
+/// [`Progress::stage`](crate::progress::Progress::stage) is called with the name of each
+/// stage as it starts (`welding`, `finding edges, shells and crossings`, ...); a closure
+/// taking the name will do.
+pub use crate::progress::StageReport;
 
 /// [`check`], calling `stage` as each stage starts.
 pub fn check_in_stages<S: Surface + ?Sized>(
@@ -359,9 +361,9 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     options: &CheckOptions,
     stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
-    stage("gathering faces");
+    stage.stage("gathering faces");
     let loops = Loops::of(surface)?;
-    stage("welding");
+    stage.stage("welding");
     // The corners' positions are needed for welding only (see `loops.rs`).
     let (exact, diagonal) = {
         let corners = loops.corners(surface);
@@ -387,7 +389,7 @@ pub fn check_in_stages<S: Surface + ?Sized>(
             if exact_check.boundary_edges == 0 || diagonal == 0.0 {
                 exact_check
             } else {
-                stage("welding again within a tolerance");
+                stage.stage("welding again within a tolerance");
                 let t = AUTO_WELD * diagonal;
                 let welded = exact.within(t);
                 drop(exact);
@@ -412,7 +414,7 @@ fn analyse<S: Surface + ?Sized>(
     stage: StageReport<'_>,
 ) -> Check {
     let faces = surface.face_count();
-    stage("sorting out degenerate and duplicate faces");
+    stage.stage("sorting out degenerate and duplicate faces");
     let classes = faces::classify(loops, welded);
     let kept = &classes.kept;
 
@@ -420,7 +422,7 @@ fn analyse<S: Surface + ?Sized>(
     // the edge table and the triangles in space (the two largest arrays of a check)
     // are never held at once. (Run side by side, 5M triangles took 270 bytes each at
     // the peak; one after the other 220, in the same time on 2 cores.)
-    stage(if options.intersections {
+    stage.stage(if options.intersections {
         "finding edges, shells and crossings"
     } else {
         "finding edges and shells"
@@ -444,7 +446,7 @@ fn analyse<S: Surface + ?Sized>(
         None => (crossings::Triangles::default(), Bvh::default(), None),
     };
     let mut overlapping_shells = BTreeSet::new();
-    stage("nesting shells");
+    stage.stage("nesting shells");
     let containers =
         nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
     drop((triangles, bvh));
