@@ -4,7 +4,7 @@
 use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol_report::union::union;
+use meshvol_report::union::union_in_stages;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -33,6 +33,14 @@ pub fn run(args: UnionArgs, quiet: bool) -> ExitCode {
             progress.done(path);
         }
         progress.stage_all("measuring the union");
-        union(&solid::subjects(&inputs), args.tolerance)
+        let t0 = std::time::Instant::now();
+        let trace = std::env::var_os("MESHVOL_TRACE_UNION").is_some();
+        let stage = |stage: &'static str, done: f64| {
+            if trace && (done == 0.0 || done == 1.0) {
+                eprintln!("TRACE {:.3} {stage} {done}", t0.elapsed().as_secs_f64());
+            }
+            progress.stage_all(&format!("measuring the union: {stage} {:.0}%", 100.0 * done));
+        };
+        union_in_stages(&solid::subjects(&inputs), args.tolerance, &stage)
     })
 }

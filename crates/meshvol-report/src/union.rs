@@ -4,7 +4,7 @@
 use crate::number::{count, num};
 use crate::subject::{joined_names, union_bodies, Subject};
 use crate::Report;
-use meshvol::grid::union as kernel;
+use meshvol::grid::{union_in_stages as kernel, UnionProgress};
 use meshvol::Surface;
 use serde::Serialize;
 use std::fmt::Write;
@@ -46,6 +46,16 @@ pub fn union<S: Surface + Sync>(
     subjects: &[Subject<'_, S>],
     tolerance: f64,
 ) -> Result<UnionReport, String> {
+    union_in_stages(subjects, tolerance, &|_, _| {})
+}
+
+/// [`union`], calling `progress` with the kernel's stage and how far it is
+/// ([`UnionProgress`]).
+pub fn union_in_stages<S: Surface + Sync>(
+    subjects: &[Subject<'_, S>],
+    tolerance: f64,
+    progress: UnionProgress<'_>,
+) -> Result<UnionReport, String> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(format!("tolerance must be a positive number; got {tolerance}"));
     }
@@ -59,7 +69,7 @@ pub fn union<S: Surface + Sync>(
         return Err("no faces: there is no body to measure".into());
     }
     let start = Instant::now();
-    let mut u = kernel(&bodies, tolerance).map_err(|e| e.to_string())?;
+    let mut u = kernel(&bodies, tolerance, progress).map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();
     // Caps on holes are guesses: the interval must hold whatever the missing faces were.
     let uncertainty: f64 = subjects.iter().map(Subject::volume_uncertainty).sum();

@@ -14,10 +14,20 @@
 //!
 //! # Refinement
 //! Open cells are cut into 2×2×2 children and the same is done for each child, with the
-//! kernel run on a 2×2×2 grid over the cell and only the triangles of the touching bodies
-//! that lie in the cell's column at or above its bottom (those below add nothing to any
-//! layer of it; those above add their projected area). Refinement goes on level by level
-//! while the total gap Σ(upper − lower) exceeds the tolerance and refining shrinks it:
+//! kernel run on a 2×2×2 grid over the cell. The kernel needs, in each of the cell's
+//! four child columns, every face of the column at or above the cell's bottom; but a
+//! face wholly above the cell only adds its signed projected area `A` over the child
+//! column to every layer (× the layer's height), and for a closed body
+//! `A(F, z) = area(Ω ∩ {z} ∩ F)`, the cross-section, a 2D quantity. So a cell carries,
+//! per touching body, only its *list* (the faces whose boxes meet it) and its *field*:
+//! `A` at its top over a lattice of fine squares of its footprint (2^[`MAX_DEPTH`] to a
+//! base cell's side, what the quadrants of the deepest cells refined need). A child's
+//! list is the part of its parent's list that meets it, and its field its parent's
+//! over its footprint plus, for a lower child, the parent's listed faces wholly above it
+//! (`A(F, z_mid) = A(F, z_top) + ` the projected area of the faces between). A base
+//! column's cells get theirs from one pass over its faces, so a level costs the faces
+//! its cells meet, not the columns above them. Refinement goes on level by level while
+//! the total gap Σ(upper − lower) exceeds the tolerance and refining shrinks it:
 //! a cell whose children's gaps add up to more than [`STALL`] of its own (two surfaces
 //! that touch or lie on each other, where every child still holds both) is not refined
 //! further, and there are at most [`MAX_DEPTH`] levels of at most 2¹⁸ open cells each.
@@ -39,6 +49,11 @@
 //!   0 (exact orientation predicates; a ray through an edge or vertex is decided by a
 //!   fixed symbolic perturbation of the point, so each sheet counts once).
 //!
+//! A column's triangles are indexed in plan (uniform bins over its footprint): a ray
+//! tests only the triangles filed in its point's bin, and a piece is cut only by the
+//! triangles whose plan boxes meet its own, so a column costs about its triangles and
+//! the pieces they are cut into, not their product.
+//!
 //! The column–clamp integral of the kept pieces, together with the pieces of cells that
 //! are not open (kept unless a body fills the cell), is the union's volume in each cell
 //! of the column: exact up to rounding. The same resolution, applied to every column of
@@ -49,9 +64,11 @@
 //! | stage | file |
 //! | --- | --- |
 //! | bounds per cell, faces binned by column | `bounds.rs` |
+//! | a base column's open cells: lists and fields, one pass over its faces | `column.rs` |
 //! | refinement of open cells | `refine.rs` |
+//! | bins in plan over a column, for rays and cuts | `plan.rs` |
 //! | exact resolution of open columns | `resolve.rs` |
-//! | the driver: base grid, levels, the interval; [`union_cell_volumes`] | `mod.rs` |
+//! | the driver: base grid, levels, the interval, progress; [`union_cell_volumes`] | `mod.rs` |
 //!
 //! # Honesty
 //! The interval adds up exact columns, exact cells and the bounds of open leaves, and is
@@ -60,6 +77,8 @@
 //! times the largest such error seen in the tests.
 
 mod bounds;
+mod column;
+mod plan;
 mod refine;
 mod resolve;
 
@@ -71,7 +90,8 @@ use crate::surface::Oriented;
 use crate::{mass_properties, Point, Surface};
 use bounds::{Bodies, Cell};
 use rayon::prelude::*;
-use refine::{faces_in_column, refine, OpenCell, Refined};
+use refine::{refine, OpenCell, Refined};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A cell whose children's gaps add up to more than this fraction of its own gap is not
 /// refined further: a curve where two surfaces cross leaves about a quarter of the gap
@@ -154,6 +174,43 @@ fn base_grid(min: Point, max: Point, target: usize) -> Result<Grid, GridError> {
 /// assert!(u.lower <= 15.0 && 15.0 <= u.upper && u.upper - u.lower < 1e-8);
 /// ```
 pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, UnionError> {
+    union_in_stages(bodies, tolerance, &|_, _| {})
+}
+
+/// What a long union is doing, for a progress display: called with the stage's name
+/// (`bounds`, `refining`, `resolving columns`) and the fraction of it done (0 to 1), as
+/// each stage starts and as it goes on (at most about a hundred calls a stage, from any
+/// thread).
+pub type UnionProgress<'a> = &'a (dyn Fn(&'static str, f64) + Sync);
+
+/// Counts the items of a stage done, and reports each whole percent.
+struct Ticker<'a> {
+    stage: &'static str,
+    total: usize,
+    done: AtomicUsize,
+    progress: UnionProgress<'a>,
+}
+
+impl<'a> Ticker<'a> {
+    fn new(stage: &'static str, total: usize, progress: UnionProgress<'a>) -> Self {
+        progress(stage, 0.0);
+        Ticker { stage, total: total.max(1), done: AtomicUsize::new(0), progress }
+    }
+
+    fn tick(&self) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        if done * 100 / self.total != (done - 1) * 100 / self.total {
+            (self.progress)(self.stage, (done as f64 / self.total as f64).min(1.0));
+        }
+    }
+}
+
+/// [`union`], calling `progress` as it goes (see [`UnionProgress`]).
+pub fn union_in_stages<S: Surface>(
+    bodies: &[S],
+    tolerance: f64,
+    progress: UnionProgress<'_>,
+) -> Result<UnionVolume, UnionError> {
     if bodies.is_empty() {
         return Err(UnionError::NoBodies);
     }
@@ -209,6 +266,7 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
     let target = triangles.clamp(1 << 15, 1 << 18);
     let grid = base_grid(min, max, target)?;
     let allowance = projected * (max[2] - min[2]) * 2f64.powi(-36);
+    progress("bounds", 0.0);
     let model = Bodies::new(oriented, grid)?;
     let [_, _, nz] = grid.counts;
     let columns = grid.counts[0] * grid.counts[1];
@@ -220,46 +278,25 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
     let mut level = Vec::new();
     let mut open_columns = Vec::new();
     for c in 0..columns {
+        let (i, j) = (c / grid.counts[1], c % grid.counts[1]);
         let mut has_open = false;
         for k in 0..nz {
             match model.cell(c * nz + k) {
                 Cell::Exact(v) => exact[c] += v,
-                Cell::Open { .. } => has_open = true,
+                Cell::Open { lower: l, upper: u } => {
+                    has_open = true;
+                    lower[c] += l;
+                    upper[c] += u;
+                    // Its parts are found when it is refined (`Bodies::open_cells`).
+                    let at = [i as f64, j as f64, k as f64];
+                    let parts = Vec::new();
+                    level.push(OpenCell { column: c, at, level: 0, parts, lower: l, upper: u });
+                }
             }
         }
         if has_open {
             open_columns.push(c);
         }
-    }
-    // Base open cells, with their touching bodies' faces.
-    let base_open: Vec<Vec<OpenCell>> = open_columns
-        .par_iter()
-        .map(|&c| {
-            let touch = model.column_touches(c);
-            let (i, j) = (c / grid.counts[1], c % grid.counts[1]);
-            (0..nz)
-                .filter_map(|k| match model.cell(c * nz + k) {
-                    Cell::Open { lower, upper } => {
-                        let lo =
-                            [0, 1, 2].map(|a| grid.origin[a] + [i, j, k][a] as f64 * grid.cell[a]);
-                        let faces = (0..model.bodies.len())
-                            .filter(|&b| touch[b * nz + k])
-                            .map(|b| {
-                                let all = model.bins[b].column(c);
-                                (b, faces_in_column(&model.bodies[b], all, lo, grid.cell))
-                            })
-                            .collect();
-                        Some(OpenCell { column: c, lo, size: grid.cell, faces, lower, upper })
-                    }
-                    Cell::Exact(_) => None,
-                })
-                .collect()
-        })
-        .collect();
-    for cell in base_open.into_iter().flatten() {
-        lower[cell.column] += cell.lower;
-        upper[cell.column] += cell.upper;
-        level.push(cell);
     }
     let total = |exact: &[f64], bound: &[f64]| {
         let mut s = CompensatedSum::default();
@@ -274,8 +311,24 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
         if gap <= tolerance * low.abs() {
             break;
         }
-        let refined: Vec<Refined> =
-            level.par_iter().map(|cell| refine(&model.bodies, cell)).collect::<Result<_, _>>()?;
+        progress("refining", depth as f64 / MAX_DEPTH as f64);
+        let refine_all = |cells: &[OpenCell]| -> Result<Vec<Refined>, GridError> {
+            cells.iter().map(|cell| refine(&model.bodies, &grid, cell)).collect()
+        };
+        let refined: Vec<Refined> = if depth == 0 {
+            // The base level, column by column: each column's cells get their parts
+            // from one pass over its faces.
+            let per_column: Vec<Vec<Refined>> = open_columns
+                .par_iter()
+                .map(|&c| refine_all(&model.open_cells(c)))
+                .collect::<Result<_, _>>()?;
+            per_column.into_iter().flatten().collect()
+        } else {
+            level
+                .par_iter()
+                .map(|cell| refine(&model.bodies, &grid, cell))
+                .collect::<Result<_, _>>()?
+        };
         cells_refined += level.len();
         for cell in &level {
             lower[cell.column] -= cell.lower;
@@ -295,14 +348,22 @@ pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, Un
         level = next;
         depth += 1;
     }
+    progress("refining", 1.0);
     let gap = total(&upper, &[]) - total(&lower, &[]);
     let low = total(&exact, &lower);
     let (mut cells_resolved_exactly, mut columns_unresolved) = (0, 0);
     if gap > tolerance * low.abs() {
         // Resolve every column that still holds an open leaf.
         let targets: Vec<usize> = (0..columns).filter(|&c| upper[c] > lower[c]).collect();
-        let results: Vec<Option<(Vec<f64>, usize)>> =
-            targets.par_iter().map(|&c| model.exact_column(c)).collect();
+        let ticker = Ticker::new("resolving columns", targets.len(), progress);
+        let results: Vec<Option<(Vec<f64>, usize)>> = targets
+            .par_iter()
+            .map(|&c| {
+                let result = model.exact_column(c);
+                ticker.tick();
+                result
+            })
+            .collect();
         for (&c, result) in targets.iter().zip(results) {
             match result {
                 Some((cells, resolved)) => {

@@ -6,7 +6,10 @@
 //! a coplanar face shared the same way round with a later body.
 
 use super::bounds::{Bodies, Cell};
-use crate::grid::cells::{finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece};
+use super::plan::{plan_box, PlanBox, PlanIndex};
+use crate::grid::cells::{
+    cover, finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece,
+};
 use crate::grid::clip::Polygon;
 use crate::{Point, Surface};
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -22,10 +25,11 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         let [_, ny, nz] = self.grid.counts;
         let whole = Block::whole(self.grid.counts);
         let (i, j) = (c / ny, c % ny);
+        let origin = [i as f64, j as f64];
         let touch = self.column_touches(c);
         let m = self.bodies.len();
         let base = c * nz;
-        // Open layers: their touching bodies, cutters and ray triangles.
+        // Open layers: their touching bodies, then their cutters.
         let mut open: Vec<Option<OpenLayer>> = (0..nz).map(|_| None).collect();
         let mut resolved = 0;
         for (k, slot) in open.iter_mut().enumerate() {
@@ -36,43 +40,49 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
             if bodies.len() < 2 {
                 continue;
             }
-            let lo = [i as f64, j as f64, k as f64];
-            let mut cutters = Vec::new();
-            for &b in &bodies {
-                for &f in self.bins[b].column(c) {
-                    self.bodies[b].fan(f as usize, |p, q, r| {
-                        let unit = [p, q, r].map(|x| self.units.map(x));
-                        let meets = (0..3).all(|a| {
-                            let (mn, mx) = (
-                                unit.iter().map(|v| v[a]).fold(f64::INFINITY, f64::min),
-                                unit.iter().map(|v| v[a]).fold(f64::NEG_INFINITY, f64::max),
-                            );
-                            mn <= lo[a] + 1.0 && mx >= lo[a]
-                        });
-                        if meets {
-                            cutters.push(Cutter { body: b, world: [p, q, r], unit });
-                        }
-                    });
-                }
-            }
-            *slot = Some(OpenLayer { bodies, cutters });
+            *slot = Some(OpenLayer { bodies, cutters: Vec::new(), index: PlanIndex::empty() });
             resolved += 1;
         }
-        // Ray triangles per body: the column's non-vertical triangles.
-        let rays: Vec<Vec<[Point; 3]>> = (0..m)
-            .map(|b| {
-                let mut tris = Vec::new();
-                for &f in self.bins[b].column(c) {
-                    self.bodies[b].fan(f as usize, |p, q, r| {
-                        let t = [p, q, r].map(|x| self.units.map(x));
-                        if orient2d(xy(t[0]), xy(t[1]), xy(t[2])) != 0.0 {
-                            tris.push(t);
-                        }
+        // One pass over the column's triangles: each is a cutter of the open layers its
+        // closed box meets (where its body touches), and a ray triangle of its body when
+        // it is not vertical.
+        let mut rays = Vec::with_capacity(m);
+        let (x, y) = (i as f64, j as f64);
+        for (b, body) in self.bodies.iter().enumerate() {
+            let mut tris = Vec::new();
+            for &f in self.bins[b].column(c) {
+                body.fan(f as usize, |p, q, r| {
+                    let unit = [p, q, r].map(|v| self.units.map(v));
+                    let plan = plan_box(&unit);
+                    let z = unit.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                        (lo.min(v[2]), hi.max(v[2]))
                     });
-                }
-                tris
-            })
-            .collect();
+                    if plan[0] <= x + 1.0 && plan[1] >= x && plan[2] <= y + 1.0 && plan[3] >= y {
+                        let (k0, k1) = cover(z.0, z.1, nz, true);
+                        for layer in open[k0..k1].iter_mut().flatten() {
+                            if layer.bodies.contains(&b) {
+                                layer.cutters.push(Cutter {
+                                    body: b,
+                                    world: [p, q, r],
+                                    unit,
+                                    plan,
+                                });
+                            }
+                        }
+                    }
+                    if orient2d(xy(unit[0]), xy(unit[1]), xy(unit[2])) != 0.0 {
+                        tris.push(unit);
+                    }
+                });
+            }
+            let boxes: Vec<PlanBox> = tris.iter().map(plan_box).collect();
+            rays.push(Rays { index: PlanIndex::new(origin, &boxes, 1), tris });
+        }
+        for layer in open.iter_mut().flatten() {
+            let boxes: Vec<PlanBox> = layer.cutters.iter().map(|t| t.plan).collect();
+            layer.index = PlanIndex::new(origin, &boxes, 1);
+        }
+        let mut scratch = Scratch::default();
         let mut direct = vec![0.0; nz];
         let mut area = vec![0.0; nz + 1];
         let mut failed = false;
@@ -93,6 +103,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                             unit,
                             open: &open,
                             rays: &rays,
+                            scratch: &mut scratch,
                             direct: &mut direct,
                             area: &mut area,
                             failed: &mut failed,
@@ -118,17 +129,34 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
     }
 }
 
-/// A triangle of another body that meets an open cell.
+/// A triangle of a touching body that meets an open cell.
 struct Cutter {
     body: usize,
     world: [Point; 3],
     unit: [Point; 3],
+    plan: PlanBox,
 }
 
-/// An open cell of a column being resolved.
+/// An open cell of a column being resolved: its touching bodies and their triangles
+/// that meet it, indexed in plan.
 struct OpenLayer {
     bodies: Vec<usize>,
     cutters: Vec<Cutter>,
+    index: PlanIndex,
+}
+
+/// One body's non-vertical triangles in a column, indexed in plan, for the ray test.
+struct Rays {
+    tris: Vec<[Point; 3]>,
+    index: PlanIndex,
+}
+
+/// Buffers reused for every piece of a column.
+#[derive(Default)]
+struct Scratch {
+    pieces: Vec<Polygon<SUB>>,
+    coplanar: Vec<usize>,
+    near: Vec<u32>,
 }
 
 fn xy(p: Point) -> Coord<f64> {
@@ -153,11 +181,13 @@ fn left_of(a: Point, b: Point, p: Point) -> bool {
     }
 }
 
-/// Signed crossings of the vertical ray up from `p` with `triangles` (±1 by the sign of
-/// the triangle's n_z): 1 inside an outward closed surface, 0 outside.
-fn winding(p: Point, triangles: &[[Point; 3]]) -> i32 {
+/// Signed crossings of the vertical ray up from `p` with a body's triangles in the
+/// column (±1 by the sign of the triangle's n_z): 1 inside an outward closed surface, 0
+/// outside. Only the triangles filed in p's bin can hold p in plan.
+fn winding(p: Point, rays: &Rays) -> i32 {
     let mut w = 0;
-    for t in triangles {
+    for &t in rays.index.at(p[0], p[1]) {
+        let t = &rays.tris[t as usize];
         let up = orient2d(xy(t[0]), xy(t[1]), xy(t[2])) > 0.0;
         let [a, b, c] = if up { *t } else { [t[0], t[2], t[1]] };
         if left_of(a, b, p) && left_of(b, c, p) && left_of(c, a, p) {
@@ -203,7 +233,8 @@ struct KeptSink<'s, 'a, S: ?Sized> {
     triangle: [Point; 3],
     unit: [Point; 3],
     open: &'s [Option<OpenLayer>],
-    rays: &'s [Vec<[Point; 3]>],
+    rays: &'s [Rays],
+    scratch: &'s mut Scratch,
     direct: &'s mut [f64],
     area: &'s mut [f64],
     failed: &'s mut bool,
@@ -220,8 +251,8 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
         let Some(open) = &self.open[layer] else {
             return part.area_and_moment(layer as f64);
         };
-        match resolve(part, layer as f64, self.body, [&self.triangle, &self.unit], open, self.rays)
-        {
+        let own = [&self.triangle, &self.unit];
+        match resolve(part, layer as f64, self.body, own, open, self.rays, self.scratch) {
             Some(kept) => kept,
             None => {
                 *self.failed = true;
@@ -256,32 +287,42 @@ fn resolve<const N: usize>(
     body: usize,
     [triangle, unit]: [&[Point; 3]; 2],
     open: &OpenLayer,
-    rays: &[Vec<[Point; 3]>],
+    rays: &[Rays],
+    scratch: &mut Scratch,
 ) -> Option<(f64, f64)> {
+    let Scratch { pieces, coplanar: coplanar_cutters, near } = scratch;
     let mut first = Polygon::<SUB>::EMPTY;
     for &v in part.vertices() {
         first.push(v);
     }
-    let mut pieces = vec![first];
+    pieces.clear();
+    pieces.push(first);
+    coplanar_cutters.clear();
     let plane = plane_of(part);
-    let mut coplanar_cutters = Vec::new();
-    for (index, cutter) in open.cutters.iter().enumerate() {
-        if cutter.body == body {
+    // Only cutters whose plan box meets the part's can cut it (a cut needs the segment's
+    // box to meet a piece's) or hold a centroid of it.
+    let (px, py) = (part.range(0), part.range(1));
+    open.index.meeting(&[px.0, px.1, py.0, py.1], near);
+    for &index in near.iter() {
+        let cutter = &open.cutters[index as usize];
+        let [x0, x1, y0, y1] = cutter.plan;
+        let apart = x0 > px.1 || x1 < px.0 || y0 > py.1 || y1 < py.0;
+        if cutter.body == body || apart {
             continue;
         }
         if coplanar(triangle, &cutter.world, unit, &cutter.unit) {
-            coplanar_cutters.push(index);
+            coplanar_cutters.push(index as usize);
             let u = cutter.unit;
             for (p, q) in [(u[0], u[1]), (u[1], u[2]), (u[2], u[0])] {
-                cut(&mut pieces, p, q)?;
+                cut(pieces, p, q)?;
             }
         } else if let Some((p, q)) = plane.and_then(|pl| crossing(&cutter.unit, pl)) {
-            cut(&mut pieces, p, q)?;
+            cut(pieces, p, q)?;
         }
     }
     let (mut area, mut moment) = (0.0, 0.0);
     let own_up = orient2d(xy(triangle[0]), xy(triangle[1]), xy(triangle[2])) > 0.0;
-    for piece in &pieces {
+    for piece in pieces.iter() {
         let (a, m) = piece.area_and_moment(layer);
         if a == 0.0 {
             continue;
@@ -370,14 +411,16 @@ fn cut(pieces: &mut Vec<Polygon<SUB>>, p: Point, q: Point) -> Option<()> {
     for k in 0..pieces.len() {
         let s = pieces[k];
         let (sx, sy) = (s.range(0), s.range(1));
-        let meets = sx.0 <= x1 && sx.1 >= x0 && sy.0 <= y1 && sy.1 >= y0;
+        if sx.0 > x1 || sx.1 < x0 || sy.0 > y1 || sy.1 < y0 {
+            continue;
+        }
         let (mut neg, mut pos) = (false, false);
         for v in s.vertices() {
             let d = line(v);
             neg |= d < 0.0;
             pos |= d > 0.0;
         }
-        if meets && neg && pos {
+        if neg && pos {
             if s.vertices().len() + 1 > SUB {
                 return None;
             }
