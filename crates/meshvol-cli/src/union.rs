@@ -33,12 +33,7 @@ pub fn run(args: UnionArgs, quiet: bool) -> ExitCode {
             progress.done(path);
         }
         progress.stage_all("measuring the union");
-        let t0 = std::time::Instant::now();
-        let trace = std::env::var_os("MESHVOL_TRACE_UNION").is_some();
         let stage = |stage: &'static str, done: f64| {
-            if trace && (done == 0.0 || done == 1.0) {
-                eprintln!("TRACE {:.3} {stage} {done}", t0.elapsed().as_secs_f64());
-            }
             progress.stage_all(&format!("measuring the union: {stage} {:.0}%", 100.0 * done));
         };
         union_in_stages(&solid::subjects(&inputs), args.tolerance, &stage)
