@@ -4,7 +4,7 @@
 use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol_report::union::union_in_stages;
+use meshvol_report::union::union_with;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -32,10 +32,7 @@ pub fn run(args: UnionArgs, quiet: bool) -> ExitCode {
             inputs.push(solid::read(path, args.solid.check(), progress)?);
             progress.done(path);
         }
-        progress.stage_all("measuring the union");
-        let stage = |stage: &'static str, done: f64| {
-            progress.stage_all(&format!("measuring the union: {stage} {:.0}%", 100.0 * done));
-        };
-        union_in_stages(&solid::subjects(&inputs), args.tolerance, &stage)
+        let hook = progress.kernel("measuring the union".to_string());
+        union_with(&solid::subjects(&inputs), args.tolerance, &hook)
     })
 }

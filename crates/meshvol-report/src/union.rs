@@ -4,7 +4,8 @@
 use crate::number::{count, num};
 use crate::subject::{joined_names, union_bodies, Subject};
 use crate::Report;
-use meshvol::grid::{union_in_stages as kernel, UnionProgress};
+use meshvol::grid::union_with as kernel;
+use meshvol::progress::Progress;
 use meshvol::Surface;
 use serde::Serialize;
 use std::fmt::Write;
@@ -46,15 +47,14 @@ pub fn union<S: Surface + Sync>(
     subjects: &[Subject<'_, S>],
     tolerance: f64,
 ) -> Result<UnionReport, String> {
-    union_in_stages(subjects, tolerance, &|_, _| {})
+    union_with(subjects, tolerance, &())
 }
 
-/// [`union`], calling `progress` with the kernel's stage and how far it is
-/// ([`UnionProgress`]).
-pub fn union_in_stages<S: Surface + Sync>(
+/// [`union`], telling `progress` the kernel's stages and how far each is.
+pub fn union_with<S: Surface + Sync>(
     subjects: &[Subject<'_, S>],
     tolerance: f64,
-    progress: UnionProgress<'_>,
+    progress: &dyn Progress,
 ) -> Result<UnionReport, String> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(format!("tolerance must be a positive number; got {tolerance}"));

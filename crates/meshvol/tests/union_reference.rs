@@ -8,7 +8,8 @@
 mod common;
 
 use common::{mapped, moved};
-use meshvol::grid::{union, union_in_stages, UnionVolume};
+use meshvol::grid::{union, union_with, UnionVolume};
+use meshvol::progress::Progress;
 use meshvol::shapes::{cuboid, uv_sphere, uv_sphere_volume};
 use meshvol::{Mesh, Surface};
 use std::f64::consts::PI;
@@ -134,31 +135,47 @@ fn two_boxes_at_loose_and_tight_tolerances() {
     }
 }
 
+/// Records a kernel's progress: `(stage, 0, 0)` as a stage starts, `("", done, total)`
+/// for an advance.
+#[derive(Default)]
+struct Record(Mutex<Vec<(&'static str, u64, u64)>>);
+
+impl Progress for Record {
+    fn stage(&self, name: &'static str) {
+        self.0.lock().unwrap().push((name, 0, 0));
+    }
+    fn advance(&self, done: u64, total: u64) {
+        self.0.lock().unwrap().push(("", done, total));
+    }
+}
+
 #[test]
 fn refinement_is_the_same_bits_on_one_thread_and_reports_its_stages() {
     let a = uv_sphere(1.0, 64, 32);
     let b = moved(&uv_sphere(0.8, 48, 24), [0.9, 0.2, 0.1]);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    for tolerance in [3e-2, 1e-3, 1e-6] {
-        let stages = Mutex::new(Vec::new());
-        let record = |stage: &'static str, done: f64| stages.lock().unwrap().push((stage, done));
-        let u = union_in_stages(&[&a, &b], tolerance, &record).unwrap();
+    for tolerance in [3e-2, 1e-4, 1e-6] {
+        let record = Record::default();
+        let u = union_with(&[&a, &b], tolerance, &record).unwrap();
         let one = pool.install(|| union(&[&a, &b], tolerance).unwrap());
-        assert_eq!(
-            (one.lower.to_bits(), one.upper.to_bits()),
-            (u.lower.to_bits(), u.upper.to_bits())
-        );
-        let stages = stages.into_inner().unwrap();
-        assert_eq!(stages.first().map(|s| s.0), Some("bounds"), "{stages:?}");
-        assert!(stages.iter().all(|&(_, f)| (0.0..=1.0).contains(&f)), "{stages:?}");
+        let bits = |u: &UnionVolume| (u.lower.to_bits(), u.upper.to_bits());
+        assert_eq!(bits(&one), bits(&u));
+        let calls = record.0.into_inner().unwrap();
+        // Stages in order, each counting up to its total.
         let names = ["bounds", "refining", "resolving columns"];
-        assert!(stages.iter().all(|s| names.contains(&s.0)), "{stages:?}");
-        // Stages come in order.
-        let order: Vec<usize> =
-            stages.iter().map(|s| names.iter().position(|n| *n == s.0).unwrap()).collect();
-        assert!(order.windows(2).all(|w| w[0] <= w[1]), "{stages:?}");
-        if u.cells_resolved_exactly > 0 {
-            assert_eq!(stages.last(), Some(&("resolving columns", 1.0)), "{stages:?}");
+        let stages: Vec<usize> = calls
+            .iter()
+            .filter(|c| !c.0.is_empty())
+            .map(|c| names.iter().position(|n| *n == c.0).expect("a known stage"))
+            .collect();
+        assert_eq!(stages.first(), Some(&0), "{calls:?}");
+        assert!(stages.windows(2).all(|w| w[0] <= w[1]), "{calls:?}");
+        for run in calls.split(|c| !c.0.is_empty()).skip(1) {
+            assert!(run.windows(2).all(|w| w[0].1 <= w[1].1 && w[0].2 == w[1].2), "{run:?}");
+            assert!(run.last().is_some_and(|l| l.1 == l.2), "{run:?}");
         }
+        let refined = stages.iter().filter(|&&s| s == 1).count();
+        assert_eq!(refined > 0, u.cells_refined > 0, "{calls:?}");
+        assert_eq!(stages.contains(&2), u.cells_resolved_exactly > 0, "{calls:?}");
     }
 }

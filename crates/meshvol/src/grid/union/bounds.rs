@@ -8,6 +8,7 @@
 
 use crate::grid::cells::{cell_volumes, cover, for_each_piece, zeroed, Block, Piece, Units};
 use crate::grid::{Grid, GridError};
+use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
 use crate::{Point, Surface};
 use rayon::prelude::*;
@@ -144,7 +145,15 @@ pub(super) struct Bodies<'a, S: ?Sized> {
 }
 
 impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
-    pub fn new(bodies: Vec<Oriented<'a, S>>, grid: Grid) -> Result<Self, GridError> {
+    /// The facts of `bodies` on `grid`, telling `progress` the stage `bounds` and the
+    /// bodies done.
+    pub fn new(
+        bodies: Vec<Oriented<'a, S>>,
+        grid: Grid,
+        progress: &dyn Progress,
+    ) -> Result<Self, GridError> {
+        progress.stage("bounds");
+        let done = Counter::new(progress, bodies.len());
         let cells = grid.cell_count();
         let cell_volume = grid.cell_volume();
         let mut tally: Vec<Tally> = zeroed(cells)?;
@@ -161,6 +170,7 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
             for c in 0..cells {
                 tally[c].add(v[c], touched[c] != 0, cell_volume);
             }
+            done.add(1);
         }
         let bins = bodies.iter().map(|b| ColumnBins::new(b, &grid)).collect();
         let units = Units::new(&grid);

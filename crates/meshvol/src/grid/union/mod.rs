@@ -86,12 +86,12 @@ pub use resolve::COPLANAR_TOLERANCE;
 
 use super::{Grid, GridError};
 use crate::accumulate::CompensatedSum;
+use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
 use crate::{mass_properties, Point, Surface};
 use bounds::{Bodies, Cell};
 use rayon::prelude::*;
 use refine::{refine, OpenCell, Refined};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A cell whose children's gaps add up to more than this fraction of its own gap is not
 /// refined further: a curve where two surfaces cross leaves about a quarter of the gap
@@ -174,42 +174,15 @@ fn base_grid(min: Point, max: Point, target: usize) -> Result<Grid, GridError> {
 /// assert!(u.lower <= 15.0 && 15.0 <= u.upper && u.upper - u.lower < 1e-8);
 /// ```
 pub fn union<S: Surface>(bodies: &[S], tolerance: f64) -> Result<UnionVolume, UnionError> {
-    union_in_stages(bodies, tolerance, &|_, _| {})
+    union_with(bodies, tolerance, &())
 }
 
-/// What a long union is doing, for a progress display: called with the stage's name
-/// (`bounds`, `refining`, `resolving columns`) and the fraction of it done (0 to 1), as
-/// each stage starts and as it goes on (at most about a hundred calls a stage, from any
-/// thread).
-pub type UnionProgress<'a> = &'a (dyn Fn(&'static str, f64) + Sync);
-
-/// Counts the items of a stage done, and reports each whole percent.
-struct Ticker<'a> {
-    stage: &'static str,
-    total: usize,
-    done: AtomicUsize,
-    progress: UnionProgress<'a>,
-}
-
-impl<'a> Ticker<'a> {
-    fn new(stage: &'static str, total: usize, progress: UnionProgress<'a>) -> Self {
-        progress(stage, 0.0);
-        Ticker { stage, total: total.max(1), done: AtomicUsize::new(0), progress }
-    }
-
-    fn tick(&self) {
-        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
-        if done * 100 / self.total != (done - 1) * 100 / self.total {
-            (self.progress)(self.stage, (done as f64 / self.total as f64).min(1.0));
-        }
-    }
-}
-
-/// [`union`], calling `progress` as it goes (see [`UnionProgress`]).
-pub fn union_in_stages<S: Surface>(
+/// [`union`], telling `progress` its stages (`bounds`, one `refining` per level,
+/// `resolving columns`) and, in each, the bodies, cells or columns done.
+pub fn union_with<S: Surface>(
     bodies: &[S],
     tolerance: f64,
-    progress: UnionProgress<'_>,
+    progress: &dyn Progress,
 ) -> Result<UnionVolume, UnionError> {
     if bodies.is_empty() {
         return Err(UnionError::NoBodies);
@@ -266,8 +239,7 @@ pub fn union_in_stages<S: Surface>(
     let target = triangles.clamp(1 << 15, 1 << 18);
     let grid = base_grid(min, max, target)?;
     let allowance = projected * (max[2] - min[2]) * 2f64.powi(-36);
-    progress("bounds", 0.0);
-    let model = Bodies::new(oriented, grid)?;
+    let model = Bodies::new(oriented, grid, progress)?;
     let [_, _, nz] = grid.counts;
     let columns = grid.counts[0] * grid.counts[1];
 
@@ -311,24 +283,22 @@ pub fn union_in_stages<S: Surface>(
         if gap <= tolerance * low.abs() {
             break;
         }
-        progress("refining", depth as f64 / MAX_DEPTH as f64);
+        progress.stage("refining");
+        let done = Counter::new(progress, level.len());
         let refine_all = |cells: &[OpenCell]| -> Result<Vec<Refined>, GridError> {
-            cells.iter().map(|cell| refine(&model.bodies, &grid, cell)).collect()
+            let refined = cells.iter().map(|cell| refine(&model.bodies, &grid, cell)).collect();
+            done.add(cells.len());
+            refined
         };
-        let refined: Vec<Refined> = if depth == 0 {
+        let per_chunk: Vec<Result<Vec<Refined>, GridError>> = if depth == 0 {
             // The base level, column by column: each column's cells get their parts
             // from one pass over its faces.
-            let per_column: Vec<Vec<Refined>> = open_columns
-                .par_iter()
-                .map(|&c| refine_all(&model.open_cells(c)))
-                .collect::<Result<_, _>>()?;
-            per_column.into_iter().flatten().collect()
+            open_columns.par_iter().map(|&c| refine_all(&model.open_cells(c))).collect()
         } else {
-            level
-                .par_iter()
-                .map(|cell| refine(&model.bodies, &grid, cell))
-                .collect::<Result<_, _>>()?
+            level.par_chunks(64).map(refine_all).collect()
         };
+        let per_chunk: Vec<Vec<Refined>> = per_chunk.into_iter().collect::<Result<_, _>>()?;
+        let refined = per_chunk.into_iter().flatten();
         cells_refined += level.len();
         for cell in &level {
             lower[cell.column] -= cell.lower;
@@ -348,19 +318,19 @@ pub fn union_in_stages<S: Surface>(
         level = next;
         depth += 1;
     }
-    progress("refining", 1.0);
     let gap = total(&upper, &[]) - total(&lower, &[]);
     let low = total(&exact, &lower);
     let (mut cells_resolved_exactly, mut columns_unresolved) = (0, 0);
     if gap > tolerance * low.abs() {
         // Resolve every column that still holds an open leaf.
         let targets: Vec<usize> = (0..columns).filter(|&c| upper[c] > lower[c]).collect();
-        let ticker = Ticker::new("resolving columns", targets.len(), progress);
+        progress.stage("resolving columns");
+        let done = Counter::new(progress, targets.len());
         let results: Vec<Option<(Vec<f64>, usize)>> = targets
             .par_iter()
             .map(|&c| {
                 let result = model.exact_column(c);
-                ticker.tick();
+                done.add(1);
                 result
             })
             .collect();
@@ -413,7 +383,7 @@ pub fn union_cell_volumes<S: Surface>(
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
     let oriented =
         bodies.iter().map(|b| Oriented::new(b, mass_properties(b).signed_volume < 0.0)).collect();
-    let model = Bodies::new(oriented, grid)?;
+    let model = Bodies::new(oriented, grid, &())?;
     let [_, _, nz] = grid.counts;
     let mut out = super::cells::zeroed(grid.cell_count())?;
     let unresolved: usize = out
