@@ -7,9 +7,9 @@
 //! printed around it. `--quiet` also silences warnings (errors are always printed).
 //!
 //! While a kernel runs ([`Progress::kernel`]: the hull, the cell volumes, cut and fill,
-//! the check), its stages name the message and the bar shows how far through the current
-//! stage it is (the kernel's own `advance`, per chunk of its work); the bytes come back
-//! when it ends.
+//! the union, the check), its stages name the message and the bar shows how far through
+//! the current stage it is (the kernel's own `advance`, per chunk of its work); the bytes
+//! come back when it ends.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};

@@ -16,16 +16,18 @@
 //! Open cells are cut into 2×2×2 children and the same is done for each child, with the
 //! kernel run on a 2×2×2 grid over the cell. The kernel needs, in each of the cell's
 //! four child columns, every face of the column at or above the cell's bottom; but a
-//! face wholly above the cell only adds its signed projected area `A` over the child
-//! column to every layer (× the layer's height), and for a closed body
-//! `A(F, z) = area(Ω ∩ {z} ∩ F)`, the cross-section, a 2D quantity. So a cell carries,
-//! per touching body, only its *list* (the faces whose boxes meet it) and its *field*:
-//! `A` at its top over a lattice of fine squares of its footprint (2^[`MAX_DEPTH`] to a
-//! base cell's side, what the quadrants of the deepest cells refined need). A child's
-//! list is the part of its parent's list that meets it, and its field its parent's
-//! over its footprint plus, for a lower child, the parent's listed faces wholly above it
-//! (`A(F, z_mid) = A(F, z_top) + ` the projected area of the faces between). A base
-//! column's cells get theirs from one pass over its faces, so a level costs the faces
+//! face wholly above the cell only adds its signed projected area over the child column
+//! to every layer (× the layer's height): a 2D quantity (for a closed body, the faces
+//! above a plane project to the body's cross-section there). So a cell carries, per
+//! touching body, only its *list*, the faces whose boxes meet its box (widened by
+//! 10⁻⁹ of a base cell, more than any rounding between the grids' units), and its
+//! *field*, the signed projected area of the body's other faces above it, over a lattice
+//! of fine squares of its footprint (2^[`MAX_DEPTH`] to a base cell's side: what the
+//! quadrants of the deepest cells refined need). Every other face of the column lies
+//! wholly below the cell or beside it and adds nothing. A child's list is the part of
+//! its parent's list that meets it; its field is its parent's over its footprint plus,
+//! for a lower child, the parent's listed faces wholly above it. A base column's cells
+//! get theirs from one pass over its faces, so a level costs the faces
 //! its cells meet, not the columns above them. Refinement goes on level by level while
 //! the total gap Σ(upper − lower) exceeds the tolerance and refining shrinks it:
 //! a cell whose children's gaps add up to more than [`STALL`] of its own (two surfaces
