@@ -317,28 +317,8 @@ impl Bvh {
 
     /// Calls `visit(item)` for every item whose box overlaps `query` (closed boxes:
     /// touching counts), and perhaps for items that miss it by less than an f32 rounding.
-    pub fn overlapping(&self, query: &Bounds, mut visit: impl FnMut(usize)) {
-        if self.nodes.is_empty() {
-            return;
-        }
-        let query = &Box32::around(query);
-        let mut stack = [0u32; STACK];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let node = &self.nodes[stack[top] as usize];
-            if !overlaps(&node.bounds, query) {
-                continue;
-            }
-            if node.count > 0 {
-                let hits = self.leaves[node.start as usize].overlapping(query) & node.lanes();
-                bits(hits).for_each(|i| visit((node.begin + i) as usize));
-            } else {
-                stack[top] = node.start;
-                stack[top + 1] = node.start + 1;
-                top += 2;
-            }
-        }
+    pub fn overlapping(&self, query: &Bounds, visit: impl FnMut(usize)) {
+        self.overlapping_where(query, |_, _, _| true, visit);
     }
 
     /// Like [`Bvh::overlapping`], with a say for the caller at every node: the walk
