@@ -5,7 +5,7 @@ use crate::driver::{self, Output};
 use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{cell_volumes_with, union_cell_volumes};
+use meshvol::grid::{cell_volumes_with, union_cell_volumes_with};
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};
@@ -189,7 +189,8 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
     progress.stage_all("computing cell volumes");
     let start = Instant::now();
     let (volumes, columns_unresolved) = if args.union {
-        union_cell_volumes(&bodies, &grid).map_err(|e| e.to_string())?
+        let hook = progress.kernel("computing the union's cell volumes".to_string());
+        union_cell_volumes_with(&bodies, &grid, &hook).map_err(|e| e.to_string())?
     } else {
         let hook = progress.kernel("computing cell volumes".to_string());
         (cell_volumes_with(&together, &grid, &hook).map_err(|e| e.to_string())?, 0)

@@ -8,7 +8,9 @@
 mod common;
 
 use common::{mapped, moved};
-use meshvol::grid::{union, union_with, UnionVolume};
+use meshvol::grid::{
+    union, union_cell_volumes, union_cell_volumes_with, union_with, Grid, UnionVolume,
+};
 use meshvol::progress::Progress;
 use meshvol::shapes::{cuboid, uv_sphere, uv_sphere_volume};
 use meshvol::{Mesh, Surface};
@@ -178,4 +180,23 @@ fn refinement_is_the_same_bits_on_one_thread_and_reports_its_stages() {
         assert_eq!(refined > 0, u.cells_refined > 0, "{calls:?}");
         assert_eq!(stages.contains(&2), u.cells_resolved_exactly > 0, "{calls:?}");
     }
+}
+
+#[test]
+fn union_cell_volumes_reports_bounds_then_every_column_and_keeps_its_bits() {
+    // Two overlapping boxes: the union's cells sum to the exact union, 2 + 2 − 1/2.
+    let (a, b) = (cuboid([0.0; 3], [1.0, 1.0, 2.0]), cuboid([0.5, 0.0, 0.0], [1.5, 1.0, 2.0]));
+    let grid = Grid::new([-0.25, -0.25, -0.25], [0.4, 0.3, 0.5], [5, 6, 6]).unwrap();
+    let record = Record::default();
+    let (cells, unresolved) = union_cell_volumes_with(&[&a, &b], &grid, &record).unwrap();
+    assert_eq!((cells.clone(), unresolved), union_cell_volumes(&[&a, &b], &grid).unwrap());
+    assert_eq!(unresolved, 0);
+    let total: f64 = cells.iter().sum();
+    assert!((total - 3.0).abs() < 1e-12, "{total}");
+    let calls = record.0.into_inner().unwrap();
+    let stages: Vec<&str> = calls.iter().map(|c| c.0).filter(|n| !n.is_empty()).collect();
+    assert_eq!(stages, ["bounds", "resolving columns"], "{calls:?}");
+    let columns = calls.split(|c| !c.0.is_empty()).next_back().unwrap();
+    assert!(columns.windows(2).all(|w| w[0].1 <= w[1].1), "{columns:?}");
+    assert_eq!(columns.last().map(|l| (l.1, l.2)), Some((30, 30)), "{columns:?}");
 }

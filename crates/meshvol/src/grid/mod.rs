@@ -38,8 +38,8 @@ mod union;
 
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
 pub use union::{
-    union, union_cell_volumes, union_with, UnionError, UnionVolume, COPLANAR_TOLERANCE, MAX_DEPTH,
-    STALL,
+    union, union_cell_volumes, union_cell_volumes_with, union_with, UnionError, UnionVolume,
+    COPLANAR_TOLERANCE, MAX_DEPTH, STALL,
 };
 
 use crate::Point;

@@ -382,37 +382,59 @@ pub fn union_cell_volumes<S: Surface>(
     bodies: &[S],
     grid: &Grid,
 ) -> Result<(Vec<f64>, usize), GridError> {
+    union_cell_volumes_with(bodies, grid, &())
+}
+
+/// [`union_cell_volumes`], telling `progress` its stages (`bounds`, `resolving
+/// columns`) and, in each, the bodies or columns done.
+pub fn union_cell_volumes_with<S: Surface>(
+    bodies: &[S],
+    grid: &Grid,
+    progress: &dyn Progress,
+) -> Result<(Vec<f64>, usize), GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
     let oriented =
         bodies.iter().map(|b| Oriented::new(b, mass_properties(b).signed_volume < 0.0)).collect();
-    let model = Bodies::new(oriented, grid, &())?;
-    let [_, _, nz] = grid.counts;
+    let model = Bodies::new(oriented, grid, progress)?;
+    let [nx, ny, nz] = grid.counts;
     let mut out = super::cells::zeroed(grid.cell_count())?;
+    progress.stage("resolving columns");
+    let done = Counter::new(progress, nx * ny);
     let unresolved: usize = out
         .par_chunks_mut(nz)
         .enumerate()
         .map(|(c, cells)| {
-            let mut open = false;
-            for (k, v) in cells.iter_mut().enumerate() {
-                *v = match model.cell(c * nz + k) {
-                    Cell::Exact(x) => x,
-                    Cell::Open { lower, .. } => {
-                        open = true;
-                        lower
-                    }
-                };
-            }
-            if !open {
-                return 0;
-            }
-            match model.exact_column(c) {
-                Some((exact, _)) => {
-                    cells.copy_from_slice(&exact);
-                    0
-                }
-                None => 1,
-            }
+            let unresolved = cell_column(&model, c, cells);
+            done.add(1);
+            unresolved
         })
         .sum();
     Ok((out, unresolved))
+}
+
+/// Fills one column's cells (column `c` of the grid) with the union's volume: 1 when
+/// the column holds open cells that could not be resolved (they keep their lower
+/// bound), else 0.
+fn cell_column<S: Surface>(model: &Bodies<'_, S>, c: usize, cells: &mut [f64]) -> usize {
+    let nz = cells.len();
+    let mut open = false;
+    for (k, v) in cells.iter_mut().enumerate() {
+        *v = match model.cell(c * nz + k) {
+            Cell::Exact(x) => x,
+            Cell::Open { lower, .. } => {
+                open = true;
+                lower
+            }
+        };
+    }
+    if !open {
+        return 0;
+    }
+    match model.exact_column(c) {
+        Some((exact, _)) => {
+            cells.copy_from_slice(&exact);
+            0
+        }
+        None => 1,
+    }
 }
