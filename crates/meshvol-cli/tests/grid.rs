@@ -2,7 +2,7 @@
 //! here, checked against closed forms (boxes) and by reading the outputs back.
 
 mod common;
-use common::{f, meshvol, p, write};
+use common::{f, meshvol, p, read_npy, write};
 
 use serde_json::Value;
 use std::path::Path;
@@ -39,22 +39,6 @@ fn box_obj(lo: [f64; 3], hi: [f64; 3], first: usize) -> String {
 /// Reads a little-endian f64 array.
 fn f64s(bytes: &[u8]) -> Vec<f64> {
     bytes.chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
-}
-
-/// The data of a `.npy` file and its shape.
-fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
-    let bytes = std::fs::read(path).unwrap();
-    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
-    let n = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    let header = std::str::from_utf8(&bytes[10..10 + n]).unwrap();
-    assert!(header.contains("'descr': '<f8'") && header.contains("'fortran_order': False"));
-    let shape = header.split("'shape': (").nth(1).unwrap().split(')').next().unwrap();
-    let shape = shape
-        .split(',')
-        .filter(|s| !s.trim().is_empty())
-        .map(|s| s.trim().parse().unwrap())
-        .collect();
-    (shape, f64s(&bytes[10 + n..]))
 }
 
 /// The value of attribute `name` in the first tag that has it.

@@ -77,6 +77,21 @@ impl<T: Copy + Default + Send + Sync> Buckets<T> {
     }
 }
 
+/// Where each group starts when groups of these sizes are laid end to end: `sizes.len()
+/// + 1` running totals from 0 (group k is `starts[k]..starts[k + 1]`).
+pub(crate) fn starts<T: Copy + Default + std::ops::Add<Output = T>>(
+    sizes: impl ExactSizeIterator<Item = T>,
+) -> Vec<T> {
+    let mut starts = Vec::with_capacity(sizes.len() + 1);
+    let mut total = T::default();
+    starts.push(total);
+    for size in sizes {
+        total = total + size;
+        starts.push(total);
+    }
+    starts
+}
+
 /// A buffer that threads write at disjoint positions (each position by one thread).
 pub(crate) struct SharedItems<'a, T> {
     items: *mut T,

@@ -259,6 +259,16 @@ impl Bvh {
         order.items
     }
 
+    /// A hierarchy over `boxes` in [`Bvh::spatial_order`] of their centres: the order
+    /// (the tree's item k is box `order[k]`) and the tree.
+    pub(crate) fn over_boxes(boxes: &[Bounds]) -> (Vec<u32>, Bvh) {
+        let centres: Vec<Point> =
+            boxes.iter().map(|b| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
+        let order = Bvh::spatial_order(&centres);
+        let bvh = Bvh::new(order.len(), |k| Box32::around(&boxes[order[k] as usize]));
+        (order, bvh)
+    }
+
     /// Builds the hierarchy over `items` items, item i with box `box_of(i)`, grouping
     /// consecutive items: number them in [`Bvh::spatial_order`]. (The boxes are read
     /// straight into the leaves: a list of them would cost 32 bytes an item.)

@@ -37,3 +37,16 @@ pub fn three_mf(model: &str) -> Vec<u8> {
     zip.write_all(model.as_bytes()).unwrap();
     zip.finish().unwrap().into_inner()
 }
+
+/// The values of a `.npy` file of float64 (its header checked) and its shape.
+pub fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+    let n = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let header = std::str::from_utf8(&bytes[10..10 + n]).unwrap();
+    assert!(header.contains("'descr': '<f8'") && header.contains("'fortran_order': False"));
+    let shape = header.split("'shape': (").nth(1).unwrap().split(')').next().unwrap();
+    let shape = shape.split(',').filter(|s| !s.trim().is_empty());
+    let values = bytes[10 + n..].chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap()));
+    (shape.map(|s| s.trim().parse().unwrap()).collect(), values.collect())
+}

@@ -18,7 +18,7 @@
 
 use super::pairs::facet_box;
 use super::terrain::Facet;
-use crate::bvh::{Box32, Bvh};
+use crate::bvh::Bvh;
 use crate::vector::orient2d;
 use crate::Bounds;
 use rayon::prelude::*;
@@ -138,10 +138,7 @@ fn first_apart(facets: &[Facet], corners: &[[u32; 3]]) -> Option<(usize, usize)>
             Bounds { min: [lo[0], lo[1], 0.0], max: [hi[0], hi[1], 0.0] }
         })
         .collect();
-    let centres: Vec<_> =
-        boxes.iter().map(|b| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
-    let order = Bvh::spatial_order(&centres);
-    let bvh = Bvh::new(order.len(), |k| Box32::around(&boxes[order[k] as usize]));
+    let (order, bvh) = Bvh::over_boxes(&boxes);
     let tags: Vec<[u32; 3]> = order.iter().map(|&i| corners[i as usize]).collect();
     // The first pair the walk meets, not the first by face: a stack of many layers
     // has pairs by the million, and one names the problem.

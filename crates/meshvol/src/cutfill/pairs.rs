@@ -55,7 +55,7 @@
 use super::overlaps::interiors_overlap;
 use super::sectors::{Corners, Sector};
 use super::terrain::Facet;
-use crate::bvh::{Box32, Bvh, NO_TAG};
+use crate::bvh::{Bvh, NO_TAG};
 use crate::vector::orient2d;
 use crate::Bounds;
 use std::ops::Range;
@@ -125,10 +125,7 @@ impl Tree {
     fn new(facets: &[Facet], members: impl Iterator<Item = usize>, tags: &[[u32; 3]]) -> Tree {
         let members: Vec<usize> = members.collect();
         let boxes: Vec<Bounds> = members.iter().map(|&f| bounds(&facet_box(&facets[f]))).collect();
-        let centres: Vec<_> =
-            boxes.iter().map(|b| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
-        let order = Bvh::spatial_order(&centres);
-        let bvh = Bvh::new(order.len(), |k| Box32::around(&boxes[order[k] as usize]));
+        let (order, bvh) = Bvh::over_boxes(&boxes);
         let items: Vec<u32> = order.iter().map(|&i| members[i as usize] as u32).collect();
         let item_tags: Vec<[u32; 3]> = items.iter().map(|&f| tags[f as usize]).collect();
         let shared = bvh.node_tags(&item_tags);

@@ -25,11 +25,7 @@ pub struct Joined<S> {
 
 impl<S: Surface> Joined<S> {
     pub fn new(surfaces: Vec<S>) -> Self {
-        let mut starts = Vec::with_capacity(surfaces.len() + 1);
-        starts.push(0);
-        for s in &surfaces {
-            starts.push(starts[starts.len() - 1] + s.face_count());
-        }
+        let starts = crate::buckets::starts(surfaces.iter().map(|s| s.face_count()));
         Joined { surfaces, starts }
     }
 

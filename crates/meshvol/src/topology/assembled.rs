@@ -19,7 +19,7 @@ use super::{
     StageReport, Weld,
 };
 use crate::assembly::{part_bounds, Assembly};
-use crate::bvh::{Box32, Bvh};
+use crate::bvh::Bvh;
 use crate::{Bounds, Surface};
 use rayon::prelude::*;
 
@@ -78,10 +78,7 @@ fn copies_apart(assembly: &Assembly) -> bool {
         .iter()
         .filter_map(|p| part_boxes[p.part as usize].map(|b| p.transform.bounds(&b)))
         .collect();
-    let centres: Vec<_> =
-        boxes.iter().map(|b| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
-    let order = Bvh::spatial_order(&centres);
-    let bvh = Bvh::new(order.len(), |k| Box32::around(&boxes[order[k] as usize]));
+    let (order, bvh) = Bvh::over_boxes(&boxes);
     let meet = |i: usize, j: usize| {
         let (a, b) = (&boxes[order[i] as usize], &boxes[order[j] as usize]);
         (0..3).all(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k])

@@ -20,7 +20,7 @@
 use super::loops::Loops;
 use super::predicates;
 use super::weld::Welded;
-use crate::buckets::for_each_range_mut;
+use crate::buckets::{for_each_range_mut, starts};
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
 use crate::Point;
@@ -91,11 +91,7 @@ pub(super) fn triangles_in_space<'a>(
     // for a large face, its number in the face's halving (plus the face's start + 1).
     let faces = kept.len();
     let triangles_of = |f: usize| if kept[f] { loops.face(f).len() - 2 } else { 0 };
-    let mut first = Vec::with_capacity(faces + 1);
-    first.push(0);
-    for f in 0..faces {
-        first.push(first[f] + triangles_of(f));
-    }
+    let first = starts((0..faces).map(triangles_of));
     let mut fans = vec![(0u32, 0u32); first[faces]];
     for_each_range_mut(&mut fans, faces, &|f| first[f]..first[f + 1], &|f, out| {
         let r = loops.face(f);

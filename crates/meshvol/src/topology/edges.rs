@@ -14,7 +14,7 @@
 
 use super::loops::Loops;
 use super::weld::Welded;
-use crate::buckets::{for_each_range_mut, Buckets, SharedItems};
+use crate::buckets::{for_each_range_mut, starts, Buckets, SharedItems};
 use crate::union_find::UnionFind;
 use rayon::prelude::*;
 
@@ -135,11 +135,7 @@ pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, Ve
     };
     // Edge uses grouped by smaller vertex, then sorted by (larger vertex, corner):
     // corners number faces in order, so the uses of an edge come in face order.
-    let mut use_start = Vec::with_capacity(vertex_count + 1);
-    use_start.push(0);
-    for &(uses, _) in &per_vertex {
-        use_start.push(use_start[use_start.len() - 1] + uses as usize);
-    }
+    let use_start = starts(per_vertex.iter().map(|&(uses, _)| uses as usize));
     drop(per_vertex);
     let unused = EdgeUse::new(0, 0, 0, false);
     let mut uses = vec![unused; use_start[vertex_count]];
@@ -171,11 +167,7 @@ pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, Ve
     };
     let runs: Vec<u32> =
         (0..vertex_count).into_par_iter().map(|v| run_starts(v).count() as u32).collect();
-    let mut first_edge = Vec::with_capacity(vertex_count + 1);
-    first_edge.push(0);
-    for &r in &runs {
-        first_edge.push(first_edge[first_edge.len() - 1] + r as usize);
-    }
+    let first_edge = starts(runs.iter().map(|&r| r as usize));
     drop(runs);
     let mut start = vec![0u32; first_edge[vertex_count] + 1];
     let vertex_edges = |v: usize| first_edge[v]..first_edge[v + 1];

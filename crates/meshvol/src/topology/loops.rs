@@ -10,7 +10,7 @@
 //! check.
 
 use super::CheckError;
-use crate::buckets::for_each_range_mut;
+use crate::buckets::{for_each_range_mut, starts};
 use crate::{Point, Surface};
 use rayon::prelude::*;
 
@@ -46,12 +46,7 @@ impl Loops {
         if u32::try_from(corners).is_err() {
             return Err(CheckError::TooLarge { corners });
         }
-        let mut start = Vec::with_capacity(faces + 1);
-        start.push(0);
-        for size in sizes {
-            start.push(start[start.len() - 1] + size);
-        }
-        Ok(Loops { start })
+        Ok(Loops { start: starts(sizes.into_iter()) })
     }
 
     /// The corners' positions, each face's fan written into its place in parallel.

@@ -23,7 +23,7 @@ use super::shells::Shells;
 use super::weld::Welded;
 use super::Shell;
 use crate::accumulate::CompensatedSum;
-use crate::bvh::{Box32, Bvh};
+use crate::bvh::Bvh;
 use crate::properties::Bounds;
 use crate::vector::{add, norm, scale};
 use crate::Point;
@@ -72,21 +72,18 @@ pub(super) fn candidates(
     // hierarchy over the closed shells' boxes (files with 100 000 parts are common), in
     // spatial order: over shells in file order, a soup of scattered open triangles made
     // every query walk most of the tree.
-    let solids: Vec<(usize, Bounds)> = (0..shell_count)
+    let (solids, boxes): (Vec<usize>, Vec<Bounds>) = (0..shell_count)
         .filter(|&s| solid_shell[s])
         .filter_map(|s| shell_bounds[s].map(|b| (s, b)))
-        .collect();
-    let centres: Vec<Point> =
-        solids.iter().map(|(_, b)| [0, 1, 2].map(|k| 0.5 * b.min[k] + 0.5 * b.max[k])).collect();
-    let order = Bvh::spatial_order(&centres);
-    let shell_tree = Bvh::new(order.len(), |k| Box32::around(&solids[order[k] as usize].1));
+        .unzip();
+    let (order, shell_tree) = Bvh::over_boxes(&boxes);
     let candidates: Vec<Vec<usize>> = (0..shell_count)
         .into_par_iter()
         .map(|a| {
             let mut near = Vec::new();
             if let Some(ba) = shell_bounds[a] {
                 shell_tree.overlapping(&ba, |i| {
-                    let b = solids[order[i] as usize].0;
+                    let b = solids[order[i] as usize];
                     if b != a {
                         near.push(b);
                     }

@@ -121,7 +121,7 @@ impl Welded {
     /// bit, so the corners themselves are not needed.
     pub(crate) fn within(&self, t: f64) -> Welded {
         if t > 0.0 {
-            within(self, t)
+            join_close(self, t)
         } else {
             self.clone()
         }
@@ -133,7 +133,8 @@ impl Welded {
     }
 }
 
-fn within(exact: &Welded, t: f64) -> Welded {
+/// [`Welded::within`] for t > 0.
+fn join_close(exact: &Welded, t: f64) -> Welded {
     let points = &exact.positions;
     let size = 2.0 * t;
     let cell = |p: Point| p.map(|x| (x / size).floor() as i64);
