@@ -1,10 +1,13 @@
 //! Reading the inputs: files, or `-` for standard input, with a progress bar on stderr
 //! for large inputs.
 //!
-//! The bar shows only when stderr is a terminal, `--quiet` is not given, and the inputs
-//! take more than a moment: standard input, or files of 16 MiB or more in all. It counts
-//! the input bytes done and names the current file and stage; warnings and results are
-//! printed around it. `--quiet` also silences warnings (errors are always printed).
+//! The bar shows only when stderr is a terminal, `--quiet` is not given, and the run
+//! takes more than a moment: it appears once the command has run for [`DELAY`] (or
+//! `MESHVOL_PROGRESS_DELAY_MS` milliseconds), whatever the size of its inputs, so a
+//! quick run prints only its results and a long kernel on a small file still shows how
+//! far it is. It counts the input bytes done and names the current file and stage;
+//! warnings and results are printed around it. `--quiet` also silences warnings (errors
+//! are always printed).
 //!
 //! While a kernel runs ([`Progress::kernel`]: the hull, the cell volumes, cut and fill,
 //! the union, the check), its stages name the message and the bar shows how far through
@@ -14,13 +17,14 @@
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use meshvol_io::{Loaded, PointCloud, PolygonFile};
 
-/// Inputs of at least this many bytes in all get a progress bar.
-const LARGE: u64 = 16 << 20;
+/// How long a run goes before its bar appears, unless `MESHVOL_PROGRESS_DELAY_MS` says.
+const DELAY: Duration = Duration::from_secs(1);
 
 /// The path that means standard input.
 pub fn is_stdin(path: &Path) -> bool {
@@ -60,23 +64,27 @@ pub fn load_points(path: &Path) -> Result<PointCloud, String> {
 
 /// Progress on stderr, and the warnings printed around it.
 pub struct Progress {
+    /// The bar, drawn to nothing until [`DELAY`] has passed.
     bar: Option<ProgressBar>,
+    /// Whether the bar is finished: held while the bar is shown, so a bar finished
+    /// just as its delay ends is never drawn again.
+    finished: Arc<Mutex<bool>>,
     quiet: bool,
 }
 
 impl Progress {
     pub fn new(paths: &[PathBuf], quiet: bool) -> Progress {
-        let stdin = paths.iter().any(|p| is_stdin(p));
         let total: u64 =
             paths.iter().filter_map(|p| std::fs::metadata(p).ok()).map(|m| m.len()).sum();
-        let show = !quiet && std::io::stderr().is_terminal() && (stdin || total >= LARGE);
+        let finished = Arc::new(Mutex::new(false));
+        let show = !quiet && std::io::stderr().is_terminal();
         let bar = show.then(|| {
-            let bar = ProgressBar::new(total);
+            let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
             bar.set_style(style(BYTES));
-            bar.enable_steady_tick(Duration::from_millis(120));
+            show_after(delay(), bar.clone(), Arc::clone(&finished));
             bar
         });
-        Progress { bar, quiet }
+        Progress { bar, finished, quiet }
     }
 
     /// Says what is being done to which file.
@@ -133,9 +141,35 @@ impl Progress {
     /// Clears the bar; warnings still print after it.
     pub fn finish(&self) {
         if let Some(bar) = &self.bar {
+            // A poisoned lock (a panic while showing the bar) still finishes it.
+            let mut finished = self.finished.lock().unwrap_or_else(|e| e.into_inner());
+            *finished = true;
             bar.finish_and_clear();
         }
     }
+}
+
+/// The delay before the bar appears: `MESHVOL_PROGRESS_DELAY_MS` when it is a number of
+/// milliseconds, [`DELAY`] otherwise.
+fn delay() -> Duration {
+    std::env::var("MESHVOL_PROGRESS_DELAY_MS")
+        .ok()
+        .and_then(|ms| ms.trim().parse().ok())
+        .map_or(DELAY, Duration::from_millis)
+}
+
+/// Draws `bar` on stderr after `delay`, unless it is finished by then. The waiting
+/// thread is not joined: a run that ends first simply ends. A system that cannot start
+/// the thread gets no bar, not a failed run.
+fn show_after(delay: Duration, bar: ProgressBar, finished: Arc<Mutex<bool>>) {
+    let _ = std::thread::Builder::new().name("progress".into()).spawn(move || {
+        std::thread::sleep(delay);
+        let finished = finished.lock().unwrap_or_else(|e| e.into_inner());
+        if !*finished {
+            bar.set_draw_target(ProgressDrawTarget::stderr());
+            bar.enable_steady_tick(Duration::from_millis(120));
+        }
+    });
 }
 
 /// The bar's template while reading (bytes) and while a kernel runs (its fraction).
