@@ -67,21 +67,22 @@ PEERS = {
     "meshvol-py": ("meshvol", "meshvol", "meshvol's in-process row (optional: "
                    "`pip install ./crates/meshvol-py`, which builds it with maturin)"),
 }
-# volume tools: end-to-end worker script (None: in-process only), formats it reads
+# volume tools: end-to-end worker script (None: in-process only), formats it reads. The
+# strongest peers first: when a section's time budget runs out, the slower ones are left out.
 E2E_TOOLS = {
-    "trimesh": ("trimesh_file.py", ("stl", "stl-ascii", "obj", "ply")),
-    "numpy-stl": ("numpystl_file.py", ("stl", "stl-ascii")),
-    "open3d": ("open3d_file.py", ("stl", "stl-ascii", "obj", "ply")),
-    "pymeshlab": ("pymeshlab_file.py", ("stl", "stl-ascii", "obj", "ply")),
-    "vtk": ("vtk_file.py", ("stl", "stl-ascii", "obj", "ply")),
     "trueform": ("trueform_file.py", ("stl", "stl-ascii", "obj")),
     "meshlib": ("meshlib_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "vtk": ("vtk_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "trimesh": ("trimesh_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "numpy-stl": ("numpystl_file.py", ("stl", "stl-ascii")),
+    "pymeshlab": ("pymeshlab_file.py", ("stl", "stl-ascii", "obj", "ply")),
+    "open3d": ("open3d_file.py", ("stl", "stl-ascii", "obj", "ply")),
 }
 IMPORT_ONLY = {"trimesh": "trimesh", "numpy-stl": "stl.mesh", "open3d": "open3d",
                "pymeshlab": "pymeshlab", "vtk": "vtkmodules.vtkFiltersCore",
                "trueform": "trueform", "meshlib": "meshlib.mrmeshpy"}
-INPROCESS_TOOLS = ("meshvol-py", "trimesh", "manifold3d", "numpy-stl", "open3d", "pymeshlab", "vtk",
-                   "trueform", "meshlib")
+INPROCESS_TOOLS = ("meshvol-py", "trueform", "meshlib", "vtk", "trimesh", "manifold3d", "numpy-stl",
+                   "pymeshlab", "open3d")
 NO_VERDICT = "(no verdict)"
 SECTIONS = ["volume", "inprocess", "check", "grid", "union", "profile", "hull", "area", "scaling"]
 # run only when named in --only: the scaling section is meshvol alone on spheres up to 20M
