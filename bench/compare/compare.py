@@ -890,7 +890,7 @@ def build_parser():
                    "(default 256,512; --quick 64,128)")
     s.add_argument("--grid-sample", type=int, help="partial cells timed with manifold3d (30; quick 10)")
     s.add_argument("--union-bodies", help="COUNT,TRIANGLES of the union spheres (20,20k; quick 6,5k)")
-    s.add_argument("--hull-points", type=parse_size, help="points per hull cloud (100k; quick 10k)")
+    s.add_argument("--hull-points", type=parse_size, help="points per hull cloud (1M; quick 10k)")
     s.add_argument("--area-vertices", type=parse_size,
                    help="vertices of the big polygon (1m; quick 100k)")
     s.add_argument("--area-polygons", type=parse_size,

@@ -39,7 +39,7 @@ def params(args) -> dict:
         "grid_cells": [64, 128] if q else [256, 512],
         "grid_sample": 10 if q else 30,
         "union": (6, 5_000) if q else (20, 20_000),
-        "hull_points": 10_000 if q else 100_000,
+        "hull_points": 10_000 if q else 1_000_000,
         "area_vertices": 100_000 if q else 1_000_000,
         "area_polygons": 10_000 if q else 100_000,
         "profile_levels": 20 if q else 100,
