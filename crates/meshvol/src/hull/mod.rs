@@ -21,6 +21,9 @@
 //!    when the first chunk of 16 384 points keeps under an eighth of them as corners
 //!    (points in a ball: a few percent), every chunk is hulled on its own, in parallel, and
 //!    only the chunks' corners go on. Points mostly on the hull (a sphere) skip this.
+//!    A chunk is every m-th point (m chunks), not a run of consecutive points: a run
+//!    of an ordered cloud (a lattice in file order) is a flat slab whose points are
+//!    nearly all on its own hull, so every one would be kept, after an exact test.
 //! 2. The hull is built by randomized incremental construction (Clarkson and Shor
 //!    1989; de Berg et al., *Computational Geometry*, ch. 11). Points go in in a random
 //!    order, fixed by a seed, so the hull is the same on every run and thread count; the
@@ -177,47 +180,57 @@ const CHUNK_POINTS: usize = 1 << 14;
 /// are mostly on the hull (as on a sphere), and chunks would not pay.
 const KEPT_SHARE_TO_SKIP_CHUNKS: f64 = 0.125;
 
-/// The indices of the points that can be corners of the hull, when chunks cut them
-/// down: each fixed chunk of [`CHUNK_POINTS`] is hulled on its own (in parallel, the
-/// same on any number of threads) and only its corners are kept, since a point in the
-/// hull of other points is no corner of the whole. A chunk that is flat keeps all its
-/// points. A million points in a ball keep about 2%, and the hull of the rest is then
-/// mostly the hull of points near its surface. `None` when that would not pay: few
-/// points, or a first chunk that keeps more than [`KEPT_SHARE_TO_SKIP_CHUNKS`] of its
-/// points.
+/// The indices of the points that can be corners of the hull (in increasing order),
+/// when chunks cut them down: each fixed chunk of about [`CHUNK_POINTS`] is hulled on
+/// its own (in parallel, the same on any number of threads) and only its corners are
+/// kept, since a point in the hull of other points is no corner of the whole. A chunk
+/// that is flat keeps all its points. A million points in a ball keep about 2%, and the
+/// hull of the rest is then mostly the hull of points near its surface. `None` when
+/// that would not pay: few points, or a first chunk that keeps more than
+/// [`KEPT_SHARE_TO_SKIP_CHUNKS`] of its points.
+///
+/// Chunk j of m holds the points j, j + m, j + 2m, …: every chunk is spread over the
+/// whole cloud. Runs of consecutive points would make an ordered cloud (a lattice in
+/// file order, a scan line by line) into slabs with nearly every point on their own
+/// hull's faces, each one kept and each one decided by exact arithmetic.
 fn candidates(points: &[Point], progress: &dyn Progress) -> Option<Vec<u32>> {
     if points.len() < 4 * CHUNK_POINTS {
         return None;
     }
-    let corners_of = |range: std::ops::Range<usize>| -> Vec<u32> {
-        let chunk = &points[range.clone()];
-        if degeneracy(chunk).is_some() {
-            return (range.start as u32..range.end as u32).collect();
+    let chunks = points.len().div_ceil(CHUNK_POINTS);
+    let size = |j: usize| (points.len() - j).div_ceil(chunks);
+    let corners_of = |j: usize| -> Vec<u32> {
+        let indices: Vec<u32> = (j..points.len()).step_by(chunks).map(|i| i as u32).collect();
+        let chunk: Vec<Point> = indices.iter().map(|&i| points[i as usize]).collect();
+        if degeneracy(&chunk).is_some() {
+            return indices;
         }
         let mut corner = vec![false; chunk.len()];
-        incremental::hull_triangles(chunk, &())
+        incremental::hull_triangles(&chunk, &())
             .iter()
             .flatten()
             .for_each(|&v| corner[v as usize] = true);
-        (0..chunk.len()).filter(|&i| corner[i]).map(|i| (range.start + i) as u32).collect()
+        indices.into_iter().zip(corner).filter(|&(_, c)| c).map(|(i, _)| i).collect()
     };
     progress.stage("hulling chunks of points");
-    let first = corners_of(0..CHUNK_POINTS);
-    if first.len() as f64 > KEPT_SHARE_TO_SKIP_CHUNKS * CHUNK_POINTS as f64 {
+    let first = corners_of(0);
+    if first.len() as f64 > KEPT_SHARE_TO_SKIP_CHUNKS * size(0) as f64 {
         return None;
     }
-    let done = Counter::new(progress, points.len() - CHUNK_POINTS);
+    let done = Counter::new(progress, points.len() - size(0));
     let rest = crate::accumulate::ordered_reduce(
-        points.len() - CHUNK_POINTS,
-        CHUNK_POINTS,
+        chunks - 1,
+        1,
         |range| {
-            let corners = corners_of(range.start + CHUNK_POINTS..range.end + CHUNK_POINTS);
-            done.add(range.len());
+            let corners = corners_of(range.start + 1);
+            done.add(size(range.start + 1));
             corners
         },
         |all, part| all.extend(part),
     );
-    Some(first.into_iter().chain(rest.into_iter().flatten()).collect())
+    let mut kept: Vec<u32> = first.into_iter().chain(rest.into_iter().flatten()).collect();
+    kept.sort_unstable();
+    Some(kept)
 }
 
 /// The convex hull of `points`.
