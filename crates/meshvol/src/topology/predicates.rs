@@ -1,6 +1,7 @@
 //! Exact geometric predicates on triangles, from Shewchuk's adaptive orientation tests
 //! (the `robust` crate): signs are exact, so the answers do not depend on rounding.
 
+use super::apart::apart;
 use crate::vector::{cross, dot, sign, sub};
 use crate::Point;
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -97,10 +98,12 @@ const GRID_BITS: i32 = 40;
 /// times a difference of two products, three times, on differences of input
 /// coordinates), so most tests are a dot product and a comparison, and the rest go to
 /// [`orient_exactly`].
-struct Plane {
-    t: [Point; 3],
-    normal: Point,
-    magnitude: Point,
+pub(super) struct Plane {
+    pub t: [Point; 3],
+    /// (t₁ − t₀) × (t₂ − t₀), rounded.
+    pub normal: Point,
+    /// Per component of `normal`, the sum of its two products' magnitudes.
+    pub magnitude: Point,
 }
 
 /// Shewchuk's orient3d error bound coefficient, (7 + 56ε)ε with ε = 2⁻⁵³.
@@ -108,7 +111,7 @@ const ORIENT3D_BOUND: f64 = (7.0 + 56.0 * HALF_ULP) * HALF_ULP;
 const HALF_ULP: f64 = f64::EPSILON / 2.0;
 
 impl Plane {
-    fn of(t: [Point; 3]) -> Plane {
+    pub fn of(t: [Point; 3]) -> Plane {
         let (v, w) = (sub(t[1], t[0]), sub(t[2], t[0]));
         let m = |i: usize, j: usize| (v[i] * w[j]).abs() + (v[j] * w[i]).abs();
         Plane { t, normal: cross(v, w), magnitude: [m(1, 2), m(2, 0), m(0, 1)] }
@@ -117,52 +120,92 @@ impl Plane {
     /// `orient(t[0], t[1], t[2], p)`, exactly.
     #[inline]
     fn orient(&self, p: Point) -> f64 {
+        self.filtered(p).unwrap_or_else(|| orient_exactly(self.t, p))
+    }
+
+    /// [`Plane::orient`] where floating point decides it, `None` where only the exact
+    /// path can (nearly or exactly coplanar points).
+    #[inline]
+    fn filtered(&self, p: Point) -> Option<f64> {
         let u = sub(p, self.t[0]);
         // orient is the sign of det[a − p; b − p; c − p] = −(p − a)·((b − a) × (c − a)).
         let det = -dot(u, self.normal);
         let permanent = dot(u.map(f64::abs), self.magnitude);
-        if det.abs() > ORIENT3D_BOUND * permanent {
-            sign(det)
-        } else {
-            orient_exactly(self.t, p)
-        }
+        (det.abs() > ORIENT3D_BOUND * permanent).then(|| sign(det))
     }
 
-    /// Whether segment pq crosses this triangle properly: p and q strictly on opposite
-    /// sides of its plane, and the segment's line strictly inside the triangle.
-    fn crossed_by(&self, p: Point, q: Point) -> bool {
-        if self.orient(p) * self.orient(q) >= 0.0 {
-            return false;
-        }
+    /// Whether segment pq, whose ends are on opposite sides of the plane (their
+    /// [`Plane::orient`]s already known), crosses this triangle properly: the
+    /// segment's line strictly inside the triangle.
+    fn crossed_inside(&self, p: Point, q: Point) -> bool {
         let [a, b, c] = self.t;
         let (s1, s2, s3) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
         s1 != 0.0 && s1 == s2 && s2 == s3
     }
+}
 
-    /// Whether all of `u` lies strictly on one side of the plane.
-    fn separates(&self, u: &[Point; 3]) -> bool {
-        let s = u.map(|p| self.orient(p));
-        s[0] != 0.0 && s[0] == s[1] && s[1] == s[2]
-    }
+/// Whether orientations `s` are all strictly on one side.
+fn one_side(s: [f64; 3]) -> bool {
+    s[0] != 0.0 && s[0] == s[1] && s[1] == s[2]
 }
 
 /// Whether two triangles cross properly: an edge of one passes strictly through the
 /// interior of the other. Touching (shared or coplanar parts, an edge lying on a face)
 /// does not count: it neither double-counts volume nor breaks a surface.
 pub(crate) fn triangles_cross(t: [Point; 3], u: [Point; 3]) -> bool {
+    triangles_cross_with(t, u, apart)
+}
+
+/// [`triangles_cross`] with `skip`, a test that may answer "certainly disjoint" for a
+/// pair the floating-point filter leaves undecided; [`apart`] in the search, and in
+/// tests a test that never answers, to compare against.
+fn triangles_cross_with(
+    t: [Point; 3],
+    u: [Point; 3],
+    skip: impl Fn(&Plane, &Plane) -> bool,
+) -> bool {
     // One triangle strictly on one side of the other's plane: they cannot meet. (Three
-    // orientation tests settle most pairs before the thirty of the edge tests.)
+    // orientation tests settle most pairs before the edge tests.)
     let plane_t = Plane::of(t);
-    if plane_t.separates(&u) {
+    let quick_u = u.map(|p| plane_t.filtered(p));
+    if quick_u.iter().all(Option::is_some) && one_side(quick_u.map(Option::unwrap_or_default)) {
         return false;
     }
+    // Undecided by floating point: nearly or exactly coplanar points, which a mesh
+    // snapped to a coarse grid makes common (a 5M sphere on a 2⁻¹⁰ grid: chords of
+    // neighbouring rings tens of grid steps long, rounded parallel). Where the two
+    // triangles lie apart within their planes, [`apart`] says so without the exact
+    // path; it is tried once per pair.
     let plane_u = Plane::of(u);
-    if plane_u.separates(&t) {
+    let mut tried = false;
+    if quick_u.contains(&None) {
+        tried = true;
+        if skip(&plane_t, &plane_u) {
+            return false;
+        }
+    }
+    let side_u = [0, 1, 2].map(|k| quick_u[k].unwrap_or_else(|| orient_exactly(t, u[k])));
+    if one_side(side_u) {
         return false;
     }
-    let edges = |t: [Point; 3]| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])];
-    edges(t).iter().any(|&(p, q)| plane_u.crossed_by(p, q))
-        || edges(u).iter().any(|&(p, q)| plane_t.crossed_by(p, q))
+    let quick_t = t.map(|p| plane_u.filtered(p));
+    if quick_t.contains(&None) && !tried && skip(&plane_t, &plane_u) {
+        return false;
+    }
+    let side_t = [0, 1, 2].map(|k| quick_t[k].unwrap_or_else(|| orient_exactly(u, t[k])));
+    if one_side(side_t) {
+        return false;
+    }
+    // An edge crosses the other triangle only with its ends strictly on opposite sides
+    // of that plane: the sides just found, not computed again (on that 5M sphere, two
+    // thirds of 10M exact tests were such repeats).
+    let crossing = |(side, plane, points): ([f64; 3], &Plane, [Point; 3])| {
+        (0..3).any(|i| {
+            let j = (i + 1) % 3;
+            side[i] * side[j] < 0.0 && plane.crossed_inside(points[i], points[j])
+        })
+    };
+    crossing((side_t, &plane_u, t)) || crossing((side_u, &plane_t, u))
 }
 
 /// The six axis directions a ray can take, as rotations of coordinates that carry the
@@ -325,6 +368,44 @@ mod tests {
             let exact = sign(orient3d(c3(t[0]), c3(t[1]), c3(t[2]), c3(p)));
             assert_eq!(Plane::of(t).orient(p), exact, "{t:?} {p:?}");
         }
+    }
+
+    /// The search's test, with [`apart`] skipping pairs, against the exact test alone, on
+    /// pairs made to defeat the filter: on a coarse grid (many exactly coplanar), nearly
+    /// coplanar off any grid, touching at a corner or along an edge, slivers, and
+    /// crossing. A skip that wrongly rejects a crossing pair fails here.
+    #[test]
+    fn skipping_apart_pairs_changes_no_answer() {
+        let mut rng = crate::test_rng::XorShift::new(0x3c6ef372fe94f82b);
+        let (mut crossing, mut skipped) = (0, 0);
+        for case in 0..300_000 {
+            let mut r = |n: u64| rng.below(2 * n + 1) as f64 - n as f64;
+            let grid = [4.0, 64.0, 1024.0][case % 3];
+            let base = [r(50), r(50), r(50)];
+            let (s1, s2) = ([r(9), r(9), r(9)], [r(9), r(9), r(9)]);
+            // Points of one plane (base + i s1 + j s2), a few off it by a grid step.
+            let mut point = |off: bool| -> Point {
+                let (i, j) = (r(4), r(4));
+                let lift = if off { r(1) } else { 0.0 };
+                [0, 1, 2].map(|k| (base[k] + i * s1[k] + j * s2[k] + lift) / grid)
+            };
+            let off = case % 4 == 0;
+            let t = [point(false), point(false), point(false)];
+            let mut u = [point(off), point(off), point(off)];
+            match case % 5 {
+                0 => u[0] = t[0],                                           // a corner
+                1 => u[0] = [0, 1, 2].map(|k| (t[0][k] + t[1][k]) / 2.0),   // on an edge
+                2 => u[2] = u[1].map(|c| c * (1.0 + f64::EPSILON)),         // a sliver
+                3 => u = u.map(|p| p.map(|c| c + c * f64::EPSILON * r(3))), // off the grid
+                _ => {}
+            }
+            let plain = triangles_cross_with(t, u, |_, _| false);
+            assert_eq!(triangles_cross_with(t, u, apart), plain, "{t:?} {u:?}");
+            assert_eq!(triangles_cross_with(u, t, apart), plain, "{u:?} {t:?}");
+            crossing += plain as usize;
+            skipped += apart(&Plane::of(t), &Plane::of(u)) as usize;
+        }
+        assert!(crossing > 1000 && skipped > 10_000, "{crossing} crossing, {skipped} apart");
     }
 
     #[test]
