@@ -4,9 +4,7 @@
 //! The triangles of faces with an interior (flat ones have none) are put in spatial
 //! order and a [`Bvh`] is built over their boxes; every pair of overlapping boxes whose
 //! triangles share no welded vertex (neighbours meet there by design) and come from two
-//! faces is tested with exact orientation predicates ([`predicates::triangles_cross`]);
-//! where their floating-point filter cannot decide (nearly or exactly coplanar points),
-//! pairs that a bounded-rounding test proves disjoint are skipped first (`apart.rs`).
+//! faces is tested with exact orientation predicates ([`predicates::triangles_cross`]).
 //! Touching is not crossing. Pairs within one shell are self-intersections; pairs from
 //! two shells make those shells overlap. The same triangles and hierarchy serve the
 //! nesting rays.

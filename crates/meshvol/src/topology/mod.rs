@@ -62,7 +62,6 @@
 //! | 7. crossings | triangles in space, crossing face pairs | `crossings.rs` |
 //! | 8. Euler | χ and genus per shell | `euler.rs` |
 //! | | exact orientation predicates for stages 6 and 7 | `predicates.rs` |
-//! | | a floating-point test that two triangles lie apart, before exact ones | `apart.rs` |
 //! | | the solid as a surface or a mesh | `solid.rs` |
 //! | | the check of an assembly of placed parts, from one check per part | `assembled.rs` |
 //! | | the verdict, doubts and warnings in words | `verdict.rs` |
@@ -71,7 +70,6 @@
 //! inward), collapsed and duplicate faces dropped (flat ones kept), holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
-mod apart;
 mod assembled;
 mod crossings;
 mod edges;

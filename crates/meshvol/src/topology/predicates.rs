@@ -1,7 +1,6 @@
 //! Exact geometric predicates on triangles, from Shewchuk's adaptive orientation tests
 //! (the `robust` crate): signs are exact, so the answers do not depend on rounding.
 
-use super::apart::apart;
 use crate::vector::{cross, dot, sign, sub};
 use crate::Point;
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -98,12 +97,12 @@ const GRID_BITS: i32 = 40;
 /// times a difference of two products, three times, on differences of input
 /// coordinates), so most tests are a dot product and a comparison, and the rest go to
 /// [`orient_exactly`].
-pub(super) struct Plane {
-    pub t: [Point; 3],
+struct Plane {
+    t: [Point; 3],
     /// (t₁ − t₀) × (t₂ − t₀), rounded.
-    pub normal: Point,
+    normal: Point,
     /// Per component of `normal`, the sum of its two products' magnitudes.
-    pub magnitude: Point,
+    magnitude: Point,
 }
 
 /// Shewchuk's orient3d error bound coefficient, (7 + 56ε)ε with ε = 2⁻⁵³.
@@ -111,7 +110,7 @@ const ORIENT3D_BOUND: f64 = (7.0 + 56.0 * HALF_ULP) * HALF_ULP;
 const HALF_ULP: f64 = f64::EPSILON / 2.0;
 
 impl Plane {
-    pub fn of(t: [Point; 3]) -> Plane {
+    fn of(t: [Point; 3]) -> Plane {
         let (v, w) = (sub(t[1], t[0]), sub(t[2], t[0]));
         let m = |i: usize, j: usize| (v[i] * w[j]).abs() + (v[j] * w[i]).abs();
         Plane { t, normal: cross(v, w), magnitude: [m(1, 2), m(2, 0), m(0, 1)] }
@@ -120,18 +119,15 @@ impl Plane {
     /// `orient(t[0], t[1], t[2], p)`, exactly.
     #[inline]
     fn orient(&self, p: Point) -> f64 {
-        self.filtered(p).unwrap_or_else(|| orient_exactly(self.t, p))
-    }
-
-    /// [`Plane::orient`] where floating point decides it, `None` where only the exact
-    /// path can (nearly or exactly coplanar points).
-    #[inline]
-    fn filtered(&self, p: Point) -> Option<f64> {
         let u = sub(p, self.t[0]);
         // orient is the sign of det[a − p; b − p; c − p] = −(p − a)·((b − a) × (c − a)).
         let det = -dot(u, self.normal);
         let permanent = dot(u.map(f64::abs), self.magnitude);
-        (det.abs() > ORIENT3D_BOUND * permanent).then(|| sign(det))
+        if det.abs() > ORIENT3D_BOUND * permanent {
+            sign(det)
+        } else {
+            orient_exactly(self.t, p)
+        }
     }
 
     /// Whether segment pq, whose ends are on opposite sides of the plane (their
@@ -153,59 +149,29 @@ fn one_side(s: [f64; 3]) -> bool {
 /// interior of the other. Touching (shared or coplanar parts, an edge lying on a face)
 /// does not count: it neither double-counts volume nor breaks a surface.
 pub(crate) fn triangles_cross(t: [Point; 3], u: [Point; 3]) -> bool {
-    triangles_cross_with(t, u, apart)
-}
-
-/// [`triangles_cross`] with `skip`, a test that may answer "certainly disjoint" for a
-/// pair the floating-point filter leaves undecided; [`apart`] in the search, and in
-/// tests a test that never answers, to compare against.
-fn triangles_cross_with(
-    t: [Point; 3],
-    u: [Point; 3],
-    skip: impl Fn(&Plane, &Plane) -> bool,
-) -> bool {
     // One triangle strictly on one side of the other's plane: they cannot meet. (Three
     // orientation tests settle most pairs before the edge tests.)
     let plane_t = Plane::of(t);
-    let quick_u = u.map(|p| plane_t.filtered(p));
-    if quick_u.iter().all(Option::is_some) && one_side(quick_u.map(Option::unwrap_or_default)) {
-        return false;
-    }
-    // Undecided by floating point: nearly or exactly coplanar points, which a mesh
-    // snapped to a coarse grid makes common (a 5M sphere on a 2⁻¹⁰ grid: chords of
-    // neighbouring rings tens of grid steps long, rounded parallel). Where the two
-    // triangles lie apart within their planes, [`apart`] says so without the exact
-    // path; it is tried once per pair.
-    let plane_u = Plane::of(u);
-    let mut tried = false;
-    if quick_u.contains(&None) {
-        tried = true;
-        if skip(&plane_t, &plane_u) {
-            return false;
-        }
-    }
-    let side_u = [0, 1, 2].map(|k| quick_u[k].unwrap_or_else(|| orient_exactly(t, u[k])));
+    let side_u = u.map(|p| plane_t.orient(p));
     if one_side(side_u) {
         return false;
     }
-    let quick_t = t.map(|p| plane_u.filtered(p));
-    if quick_t.contains(&None) && !tried && skip(&plane_t, &plane_u) {
-        return false;
-    }
-    let side_t = [0, 1, 2].map(|k| quick_t[k].unwrap_or_else(|| orient_exactly(u, t[k])));
+    let plane_u = Plane::of(u);
+    let side_t = t.map(|p| plane_u.orient(p));
     if one_side(side_t) {
         return false;
     }
     // An edge crosses the other triangle only with its ends strictly on opposite sides
-    // of that plane: the sides just found, not computed again (on that 5M sphere, two
-    // thirds of 10M exact tests were such repeats).
-    let crossing = |(side, plane, points): ([f64; 3], &Plane, [Point; 3])| {
+    // of that plane: the sides just found, not computed again (on a 5M sphere snapped to
+    // a 2⁻¹⁰ grid, where neighbouring chords are exactly parallel, two thirds of 10M
+    // exact tests were such repeats).
+    let crossing = |side: [f64; 3], plane: &Plane, points: [Point; 3]| {
         (0..3).any(|i| {
             let j = (i + 1) % 3;
             side[i] * side[j] < 0.0 && plane.crossed_inside(points[i], points[j])
         })
     };
-    crossing((side_t, &plane_u, t)) || crossing((side_u, &plane_t, u))
+    crossing(side_t, &plane_u, t) || crossing(side_u, &plane_t, u)
 }
 
 /// The six axis directions a ray can take, as rotations of coordinates that carry the
@@ -370,15 +336,29 @@ mod tests {
         }
     }
 
-    /// The search's test, with [`apart`] skipping pairs, against the exact test alone, on
+    /// [`triangles_cross`] (each orientation computed once, through the filter) against
+    /// the textbook form with every orientation exact and computed where it is used, on
     /// pairs made to defeat the filter: on a coarse grid (many exactly coplanar), nearly
     /// coplanar off any grid, touching at a corner or along an edge, slivers, and
-    /// crossing. A skip that wrongly rejects a crossing pair fails here.
+    /// crossing.
     #[test]
-    fn skipping_apart_pairs_changes_no_answer() {
+    fn reused_sides_give_the_textbook_answer() {
+        let exact = |t: [Point; 3], p: Point| orient(t[0], t[1], t[2], p);
+        let crossed_by = |t: [Point; 3], p: Point, q: Point| {
+            let [a, b, c] = t;
+            let (s1, s2, s3) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
+            exact(t, p) * exact(t, q) < 0.0 && s1 != 0.0 && s1 == s2 && s2 == s3
+        };
+        let textbook = |t: [Point; 3], u: [Point; 3]| {
+            let edges = |t: [Point; 3]| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])];
+            !one_side(u.map(|p| exact(t, p)))
+                && !one_side(t.map(|p| exact(u, p)))
+                && (edges(t).iter().any(|&(p, q)| crossed_by(u, p, q))
+                    || edges(u).iter().any(|&(p, q)| crossed_by(t, p, q)))
+        };
         let mut rng = crate::test_rng::XorShift::new(0x3c6ef372fe94f82b);
-        let (mut crossing, mut skipped) = (0, 0);
-        for case in 0..300_000 {
+        let (mut crossing, mut touching) = (0, 0);
+        for case in 0..100_000 {
             let mut r = |n: u64| rng.below(2 * n + 1) as f64 - n as f64;
             let grid = [4.0, 64.0, 1024.0][case % 3];
             let base = [r(50), r(50), r(50)];
@@ -399,13 +379,13 @@ mod tests {
                 3 => u = u.map(|p| p.map(|c| c + c * f64::EPSILON * r(3))), // off the grid
                 _ => {}
             }
-            let plain = triangles_cross_with(t, u, |_, _| false);
-            assert_eq!(triangles_cross_with(t, u, apart), plain, "{t:?} {u:?}");
-            assert_eq!(triangles_cross_with(u, t, apart), plain, "{u:?} {t:?}");
-            crossing += plain as usize;
-            skipped += apart(&Plane::of(t), &Plane::of(u)) as usize;
+            let expected = textbook(t, u);
+            assert_eq!(triangles_cross(t, u), expected, "{t:?} {u:?}");
+            assert_eq!(triangles_cross(u, t), expected, "{u:?} {t:?}");
+            crossing += expected as usize;
+            touching += (!expected && !one_side(u.map(|p| exact(t, p)))) as usize;
         }
-        assert!(crossing > 1000 && skipped > 10_000, "{crossing} crossing, {skipped} apart");
+        assert!(crossing > 1000 && touching > 1000, "{crossing} crossing, {touching} touching");
     }
 
     #[test]
