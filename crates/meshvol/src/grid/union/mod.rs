@@ -77,7 +77,7 @@
 //!
 //! | stage | file |
 //! | --- | --- |
-//! | bounds per cell, faces binned by column | `bounds.rs` |
+//! | bounds per cell, each body's touched cells (kept from the kernel), faces binned by column | `bounds.rs` |
 //! | a base column's open cells: lists and fields, one pass over its faces | `column.rs` |
 //! | whether refinement pays: a sample refined one level | `policy.rs` |
 //! | refinement of open cells | `refine.rs` |
