@@ -6,7 +6,7 @@
 //! Each body's faces are also binned by the columns their boxes meet, for the later
 //! stages.
 
-use crate::grid::cells::{cell_volumes, cover, for_each_piece, zeroed, Block, Piece, Units};
+use crate::grid::cells::{cell_volumes, cover, zeroed, Block, Units};
 use crate::grid::{Grid, GridError};
 use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
@@ -140,6 +140,9 @@ pub(super) struct Bodies<'a, S: ?Sized> {
     pub units: Units,
     pub tally: Vec<Tally>,
     pub bins: Vec<ColumnBins>,
+    /// Per body, the cells it touches, in increasing order: kept from the kernel's
+    /// marks, so the later stages need not cut the faces again to find them.
+    touches: Vec<Vec<usize>>,
     /// Bodies with a cell volume outside `[0, |C|]` beyond [`SOLID_SLACK`].
     pub not_solid: Vec<usize>,
 }
@@ -159,6 +162,7 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
         let mut tally: Vec<Tally> = zeroed(cells)?;
         let mut touched = vec![0u8; cells];
         let mut not_solid = Vec::new();
+        let mut touches = Vec::with_capacity(bodies.len());
         // Rounding leaves a solid's cell volumes within about 1e-15 |C| of [0, |C|].
         let slack = SOLID_SLACK * cell_volume;
         for (b, body) in bodies.iter().enumerate() {
@@ -170,11 +174,12 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
             for c in 0..cells {
                 tally[c].add(v[c], touched[c] != 0, cell_volume);
             }
+            touches.push(touched.iter().enumerate().filter(|t| *t.1 != 0).map(|t| t.0).collect());
             done.add(1);
         }
         let bins = bodies.iter().map(|b| ColumnBins::new(b, &grid)).collect();
         let units = Units::new(&grid);
-        Ok(Bodies { bodies, grid, units, tally, bins, not_solid })
+        Ok(Bodies { bodies, grid, units, tally, bins, touches, not_solid })
     }
 
     pub fn cell(&self, c: usize) -> Cell {
@@ -184,13 +189,35 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
     /// For column `c`: which bodies touch each layer (`touch[b * nz + k]`).
     pub fn column_touches(&self, c: usize) -> Vec<bool> {
         let nz = self.grid.counts[2];
-        let whole = Block::whole(self.grid.counts);
         let mut touch = vec![false; self.bodies.len() * nz];
-        for (b, body) in self.bodies.iter().enumerate() {
-            for &f in self.bins[b].column(c) {
+        for (b, cells) in self.touches.iter().enumerate() {
+            let first = cells.partition_point(|&x| x < c * nz);
+            let end = cells.partition_point(|&x| x < (c + 1) * nz);
+            for &x in &cells[first..end] {
+                touch[b * nz + x - c * nz] = true;
+            }
+        }
+        touch
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::cells::{for_each_piece, Piece};
+    use crate::shapes::{cuboid, uv_sphere};
+
+    /// The touches of column `c` found by cutting its faces again (the kernel's own
+    /// marking, one column at a time).
+    fn by_cutting<S: Surface>(model: &Bodies<'_, S>, c: usize) -> Vec<bool> {
+        let nz = model.grid.counts[2];
+        let whole = Block::whole(model.grid.counts);
+        let mut touch = vec![false; model.bodies.len() * nz];
+        for (b, body) in model.bodies.iter().enumerate() {
+            for &f in model.bins[b].column(c) {
                 body.fan(f as usize, |p, q, r| {
-                    let t =
-                        Piece::triangle(self.units.map(p), self.units.map(q), self.units.map(r));
+                    let m = |v| model.units.map(v);
+                    let t = Piece::triangle(m(p), m(q), m(r));
                     for_each_piece(&t, &whole, &(c..c + 1), true, |_, piece| {
                         let z = piece.range(2);
                         let (k0, k1) = cover(z.0, z.1, nz, true);
@@ -200,5 +227,23 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
             }
         }
         touch
+    }
+
+    #[test]
+    fn kept_touches_are_the_cut_ones() {
+        // A sphere and a box whose faces lie on grid planes (closed boxes touched from
+        // both sides), on a grid with the box's corners at cell corners.
+        let a = uv_sphere(1.0, 24, 12);
+        let b = cuboid([-0.5, -0.25, 0.0], [1.5, 0.75, 1.0]);
+        let grid = Grid::from_bounds([-1.0, -1.0, -1.0], [1.5, 1.0, 1.0], [10, 8, 8]).unwrap();
+        let bodies = vec![Oriented::new(&a, false), Oriented::new(&b, false)];
+        let model = Bodies::new(bodies, grid, &()).unwrap();
+        let mut marked = 0;
+        for c in 0..grid.counts[0] * grid.counts[1] {
+            let touch = model.column_touches(c);
+            assert_eq!(touch, by_cutting(&model, c), "column {c}");
+            marked += touch.iter().filter(|&&t| t).count();
+        }
+        assert!(marked > 100, "{marked}");
     }
 }

@@ -34,6 +34,14 @@
 //! that touch or lie on each other, where every child still holds both) is not refined
 //! further, and there are at most [`MAX_DEPTH`] levels of at most 2¹⁸ open cells each.
 //!
+//! Refinement only pays where it can meet the tolerance or close whole columns (a
+//! column with an open leaf is resolved exactly whatever its leaves' bounds). So one open
+//! base column in 8 (`policy::SAMPLE_EVERY`) is refined one level first; refinement goes
+//! on (reusing the sample) when the open gap, shrunk [`MAX_DEPTH`] times by the sample's
+//! ratio of children's gap to parents', would meet the tolerance, or when a quarter of
+//! the sampled columns closed. Otherwise (surfaces crossing or lying on each other in
+//! most open cells) the open columns go straight to exact resolution.
+//!
 //! # Exact resolution
 //! What refinement leaves open is resolved exactly, one column of the base grid at a
 //! time, since columns are independent in the column–clamp method. In a cell, the
@@ -51,10 +59,14 @@
 //!   0 (exact orientation predicates; a ray through an edge or vertex is decided by a
 //!   fixed symbolic perturbation of the point, so each sheet counts once).
 //!
-//! A column's triangles are indexed in plan (uniform bins over its footprint): a ray
-//! tests only the triangles filed in its point's bin, and a piece is cut only by the
-//! triangles whose plan boxes meet its own, so a column costs about its triangles and
-//! the pieces they are cut into, not their product.
+//! A column's triangles are indexed in plan (uniform bins over its footprint; an open
+//! cell's cutters one index per body): a ray tests only the triangles filed in its
+//! point's bin, and a piece is cut only by the other bodies' triangles whose plan boxes
+//! meet its own and which no edge of theirs separates from it in plan, so a column costs
+//! about its triangles and the pieces they are cut into, not their product. A cutter's
+//! corners are put on the sides of the piece's plane by exact orientation (a corner
+//! shared with the piece's triangle is on it), so triangles that only touch the plane at
+//! a common vertex, as the fans at two UV spheres' shared poles do, do not cut.
 //!
 //! The column–clamp integral of the kept pieces, together with the pieces of cells that
 //! are not open (kept unless a body fills the cell), is the union's volume in each cell
@@ -65,8 +77,9 @@
 //!
 //! | stage | file |
 //! | --- | --- |
-//! | bounds per cell, faces binned by column | `bounds.rs` |
+//! | bounds per cell, each body's touched cells (kept from the kernel), faces binned by column | `bounds.rs` |
 //! | a base column's open cells: lists and fields, one pass over its faces | `column.rs` |
+//! | whether refinement pays: a sample refined one level | `policy.rs` |
 //! | refinement of open cells | `refine.rs` |
 //! | bins in plan over a column, for rays and cuts | `plan.rs` |
 //! | exact resolution of open columns | `resolve.rs` |
@@ -81,6 +94,7 @@
 mod bounds;
 mod column;
 mod plan;
+mod policy;
 mod refine;
 mod resolve;
 
@@ -279,11 +293,20 @@ pub fn union_with<S: Surface>(
     };
     let mut cells_refined = 0;
     let mut depth = 0;
+    // The base level's sampled columns, refined before deciding whether to refine.
+    let mut sampled = Vec::new();
     while !level.is_empty() && depth < MAX_DEPTH && 8 * level.len() <= MAX_OPEN {
         let gap = total(&upper, &[]) - total(&lower, &[]);
         let low = total(&exact, &lower);
         if gap <= tolerance * low.abs() {
             break;
+        }
+        if depth == 0 {
+            let pays;
+            (sampled, pays) = policy::sample(&model, &open_columns, gap, tolerance * low.abs())?;
+            if !pays {
+                break;
+            }
         }
         progress.stage("refining");
         let done = Counter::new(progress, level.len());
@@ -294,8 +317,19 @@ pub fn union_with<S: Surface>(
         };
         let per_chunk: Vec<Result<Vec<Refined>, GridError>> = if depth == 0 {
             // The base level, column by column: each column's cells get their parts
-            // from one pass over its faces.
-            open_columns.par_iter().map(|&c| refine_all(&model.open_cells(c))).collect()
+            // from one pass over its faces; the sample's are taken as they are.
+            let sampled = std::mem::take(&mut sampled);
+            open_columns
+                .par_iter()
+                .zip(sampled.into_par_iter())
+                .map(|(&c, known)| match known {
+                    Some(refined) => {
+                        done.add(refined.len());
+                        Ok(refined)
+                    }
+                    None => refine_all(&model.open_cells(c)),
+                })
+                .collect()
         } else {
             level.par_chunks(64).map(refine_all).collect()
         };

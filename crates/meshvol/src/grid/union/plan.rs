@@ -38,17 +38,6 @@ pub(super) fn plan_box(t: &[Point; 3]) -> PlanBox {
 }
 
 impl PlanIndex {
-    /// An index of no items.
-    pub fn empty() -> PlanIndex {
-        PlanIndex {
-            origin: [0.0; 2],
-            side: 1,
-            offsets: vec![0, 0],
-            items: Vec::new(),
-            first: Vec::new(),
-        }
-    }
-
     /// Files `boxes` (item i = `boxes[i]`) over the unit square at `origin`, about
     /// `per_bin` items to a bin and at most [`MAX_SIDE`]² bins.
     pub fn new(origin: [f64; 2], boxes: &[PlanBox], per_bin: usize) -> PlanIndex {

@@ -40,7 +40,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
             if bodies.len() < 2 {
                 continue;
             }
-            *slot = Some(OpenLayer { bodies, cutters: Vec::new(), index: PlanIndex::empty() });
+            *slot = Some(OpenLayer { bodies, cutters: Vec::new(), indices: Vec::new() });
             resolved += 1;
         }
         // One pass over the column's triangles: each is a cutter of the open layers its
@@ -66,21 +66,40 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                                     world: [p, q, r],
                                     unit,
                                     plan,
+                                    sides: sides(&unit),
                                 });
                             }
                         }
                     }
-                    if orient2d(xy(unit[0]), xy(unit[1]), xy(unit[2])) != 0.0 {
-                        tris.push(unit);
+                    let turn = orient2d(xy(unit[0]), xy(unit[1]), xy(unit[2]));
+                    if turn != 0.0 {
+                        let up = turn > 0.0;
+                        let corners = if up { unit } else { [unit[0], unit[2], unit[1]] };
+                        tris.push(RayTriangle { corners, plan: plan_box(&unit), up });
                     }
                 });
             }
-            let boxes: Vec<PlanBox> = tris.iter().map(plan_box).collect();
+            let boxes: Vec<PlanBox> = tris.iter().map(|t| t.plan).collect();
             rays.push(Rays { index: PlanIndex::new(origin, &boxes, 1), tris });
         }
         for layer in open.iter_mut().flatten() {
-            let boxes: Vec<PlanBox> = layer.cutters.iter().map(|t| t.plan).collect();
-            layer.index = PlanIndex::new(origin, &boxes, 1);
+            // One index per body: a piece is cut by the other bodies' triangles only, and
+            // its own body's (most of a cell's, for the finer mesh) are never looked at.
+            // The cutters were pushed body by body, so each body's are one run.
+            let mut start = 0;
+            while start < layer.cutters.len() {
+                let body = layer.cutters[start].body;
+                let end =
+                    start + layer.cutters[start..].iter().take_while(|t| t.body == body).count();
+                let boxes: Vec<PlanBox> =
+                    layer.cutters[start..end].iter().map(|t| t.plan).collect();
+                layer.indices.push(BodyCutters {
+                    body,
+                    start,
+                    index: PlanIndex::new(origin, &boxes, 1),
+                });
+                start = end;
+            }
         }
         let mut scratch = Scratch::default();
         let mut direct = vec![0.0; nz];
@@ -135,19 +154,71 @@ struct Cutter {
     world: [Point; 3],
     unit: [Point; 3],
     plan: PlanBox,
+    /// Its edges' outward unit normals in plan and offsets (`nx·x + ny·y ≤ offset`
+    /// holds on it), where its plan projection has area.
+    sides: Option<[[f64; 3]; 3]>,
+}
+
+/// Plan distances this far (grid units) past an edge of a cutter put a point outside
+/// it: some 10⁴ times the rounding of the distances (coordinates below 2¹⁰).
+const APART: f64 = 1e-9;
+
+/// The outward sides of triangle `t`'s plan projection ([`Cutter::sides`]).
+fn sides(t: &[Point; 3]) -> Option<[[f64; 3]; 3]> {
+    let turn = orient2d(xy(t[0]), xy(t[1]), xy(t[2]));
+    if turn == 0.0 {
+        return None;
+    }
+    let [a, b, c] = if turn > 0.0 { *t } else { [t[0], t[2], t[1]] };
+    let side = |p: Point, q: Point| {
+        let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+        let length = (dx * dx + dy * dy).sqrt();
+        let (nx, ny) = (dy / length, -dx / length);
+        [nx, ny, nx * p[0] + ny * p[1]]
+    };
+    Some([side(a, b), side(b, c), side(c, a)])
+}
+
+impl Cutter {
+    /// Whether `part` lies wholly beyond one of the cutter's edges in plan (so the
+    /// cutter can neither cut it nor hold any point of it): a separating-axis test,
+    /// sharper than boxes for slivers (the fans at a UV sphere's poles), whose boxes meet
+    /// far more pieces than the slivers do.
+    fn apart<const N: usize>(&self, part: &Polygon<N>) -> bool {
+        self.sides.is_some_and(|sides| {
+            sides.iter().any(|&[nx, ny, offset]| {
+                part.vertices().iter().all(|v| nx * v[0] + ny * v[1] > offset + APART)
+            })
+        })
+    }
 }
 
 /// An open cell of a column being resolved: its touching bodies and their triangles
-/// that meet it, indexed in plan.
+/// that meet it (body by body), indexed in plan per body.
 struct OpenLayer {
     bodies: Vec<usize>,
     cutters: Vec<Cutter>,
+    indices: Vec<BodyCutters>,
+}
+
+/// One body's cutters of an open layer: `cutters[start + item]` for the index's items.
+struct BodyCutters {
+    body: usize,
+    start: usize,
     index: PlanIndex,
+}
+
+/// A non-vertical triangle for the ray test: its corners counter-clockwise in plan,
+/// whether that is its own order (n_z > 0), and its plan box (a cheap first reject).
+struct RayTriangle {
+    corners: [Point; 3],
+    plan: PlanBox,
+    up: bool,
 }
 
 /// One body's non-vertical triangles in a column, indexed in plan, for the ray test.
 struct Rays {
-    tris: Vec<[Point; 3]>,
+    tris: Vec<RayTriangle>,
     index: PlanIndex,
 }
 
@@ -187,9 +258,12 @@ fn left_of(a: Point, b: Point, p: Point) -> bool {
 fn winding(p: Point, rays: &Rays) -> i32 {
     let mut w = 0;
     for &t in rays.index.at(p[0], p[1]) {
-        let t = &rays.tris[t as usize];
-        let up = orient2d(xy(t[0]), xy(t[1]), xy(t[2])) > 0.0;
-        let [a, b, c] = if up { *t } else { [t[0], t[2], t[1]] };
+        let RayTriangle { corners: [a, b, c], plan, up } = rays.tris[t as usize];
+        // Outside the closed plan box, p is outside the triangle whatever the
+        // perturbation (it moves p by less than any distance between floats).
+        if p[0] < plan[0] || p[0] > plan[1] || p[1] < plan[2] || p[1] > plan[3] {
+            continue;
+        }
         if left_of(a, b, p) && left_of(b, c, p) && left_of(c, a, p) {
             // orient3d(a, b, c, p) > 0: p below the plane of the counter-clockwise (a, b, c).
             if orient3d(xyz(a), xyz(b), xyz(c), xyz(p)) > 0.0 {
@@ -200,6 +274,16 @@ fn winding(p: Point, rays: &Rays) -> i32 {
     w
 }
 
+/// `orient3d(t, v)`: its sign is exact. A corner of `t` is 0 without the predicate,
+/// which needs its slowest, exact stage to prove a zero: shared vertices (a fan's
+/// centre common to two meshes) would otherwise make it the costliest test of a column.
+fn side_of(t: &[Point; 3], v: Point) -> f64 {
+    if t.contains(&v) {
+        return 0.0;
+    }
+    orient3d(xyz(t[0]), xyz(t[1]), xyz(t[2]), xyz(v))
+}
+
 /// Triangles of two bodies closer than this (grid cells) to lying in one plane count as
 /// coplanar: faces that coincide up to the rounding of their coordinates (a quad split
 /// along the other diagonal, a copy moved and moved back).
@@ -208,7 +292,7 @@ pub const COPLANAR_TOLERANCE: f64 = 1e-10;
 /// Whether `u` lies in the plane of `t`: exactly (world coordinates), or within
 /// [`COPLANAR_TOLERANCE`] (grid units `tu`, `uu`).
 fn coplanar(t: &[Point; 3], u: &[Point; 3], tu: &[Point; 3], uu: &[Point; 3]) -> bool {
-    if u.iter().all(|&v| orient3d(xyz(t[0]), xyz(t[1]), xyz(t[2]), xyz(v)) == 0.0) {
+    if u.iter().all(|&v| side_of(t, v) == 0.0) {
         return true;
     }
     let (e1, e2) = ([0, 1, 2].map(|k| tu[1][k] - tu[0][k]), [0, 1, 2].map(|k| tu[2][k] - tu[0][k]));
@@ -298,26 +382,27 @@ fn resolve<const N: usize>(
     pieces.clear();
     pieces.push(first);
     coplanar_cutters.clear();
-    let plane = plane_of(part);
     // Only cutters whose plan box meets the part's can cut it (a cut needs the segment's
     // box to meet a piece's) or hold a centroid of it.
     let (px, py) = (part.range(0), part.range(1));
-    open.index.meeting(&[px.0, px.1, py.0, py.1], near);
-    for &index in near.iter() {
-        let cutter = &open.cutters[index as usize];
-        let [x0, x1, y0, y1] = cutter.plan;
-        let apart = x0 > px.1 || x1 < px.0 || y0 > py.1 || y1 < py.0;
-        if cutter.body == body || apart {
-            continue;
-        }
-        if coplanar(triangle, &cutter.world, unit, &cutter.unit) {
-            coplanar_cutters.push(index as usize);
-            let u = cutter.unit;
-            for (p, q) in [(u[0], u[1]), (u[1], u[2]), (u[2], u[0])] {
+    for cutters in open.indices.iter().filter(|c| c.body != body) {
+        cutters.index.meeting(&[px.0, px.1, py.0, py.1], near);
+        for &item in near.iter() {
+            let index = cutters.start + item as usize;
+            let cutter = &open.cutters[index];
+            let [x0, x1, y0, y1] = cutter.plan;
+            if x0 > px.1 || x1 < px.0 || y0 > py.1 || y1 < py.0 || cutter.apart(part) {
+                continue;
+            }
+            if coplanar(triangle, &cutter.world, unit, &cutter.unit) {
+                coplanar_cutters.push(index);
+                let u = cutter.unit;
+                for (p, q) in [(u[0], u[1]), (u[1], u[2]), (u[2], u[0])] {
+                    cut(pieces, p, q)?;
+                }
+            } else if let Some((p, q)) = crossing(&cutter.unit, unit) {
                 cut(pieces, p, q)?;
             }
-        } else if let Some((p, q)) = plane.and_then(|pl| crossing(&cutter.unit, pl)) {
-            cut(pieces, p, q)?;
         }
     }
     let (mut area, mut moment) = (0.0, 0.0);
@@ -349,38 +434,17 @@ fn resolve<const N: usize>(
     Some((area, moment))
 }
 
-/// The plane z = z0 + gx·x + gy·y through a non-vertical polygon, from its first,
-/// farthest and middle vertices; `None` when it is vertical or degenerate.
-fn plane_of<const N: usize>(part: &Polygon<N>) -> Option<[f64; 3]> {
-    let v = part.vertices();
-    if v.len() < 3 {
-        return None;
-    }
-    // The triangle of largest projected area among (v0, vk, vk+1).
-    let o = v[0];
-    let (mut best, mut cross) = (1, 0.0f64);
-    for k in 1..v.len() - 1 {
-        let c = (v[k][0] - o[0]) * (v[k + 1][1] - o[1]) - (v[k][1] - o[1]) * (v[k + 1][0] - o[0]);
-        if c.abs() > cross.abs() {
-            best = k;
-            cross = c;
-        }
-    }
-    if cross == 0.0 {
-        return None;
-    }
-    let (a, b) = (v[best], v[best + 1]);
-    let (ax, ay, az) = (a[0] - o[0], a[1] - o[1], a[2] - o[2]);
-    let (bx, by, bz) = (b[0] - o[0], b[1] - o[1], b[2] - o[2]);
-    let gx = (az * by - bz * ay) / cross;
-    let gy = (ax * bz - bx * az) / cross;
-    Some([o[2] - gx * o[0] - gy * o[1], gx, gy])
-}
-
-/// Where triangle `t` crosses the plane z = p0 + p1·x + p2·y: the segment's two ends
-/// (xy matters), or `None` when it does not cross it along a segment.
-fn crossing(t: &[Point; 3], plane: [f64; 3]) -> Option<(Point, Point)> {
-    let d = t.map(|v| v[2] - (plane[0] + plane[1] * v[0] + plane[2] * v[1]));
+/// Where triangle `t` crosses the plane of triangle `own` (both in grid units): the
+/// segment's two ends (xy matters), or `None` when it does not cross it along a segment.
+///
+/// Which side of the plane each corner lies on is exact (`orient3d`), so a triangle
+/// that only touches the plane at a shared vertex (two meshes of one shape meeting at a
+/// pole, an assembly's common corners) does not cut: rounding in a fitted plane used to
+/// turn such a touch into a short crossing through the vertex, once per triangle of a
+/// fan, chopping the fan's tips into slivers that each needed a ray test.
+fn crossing(t: &[Point; 3], own: &[Point; 3]) -> Option<(Point, Point)> {
+    // Signed volumes: exact signs, magnitudes ∝ the corners' distances to the plane.
+    let d = t.map(|v| side_of(own, v));
     let mut ends = [[0.0; 3]; 3];
     let mut n = 0;
     for k in 0..3 {
@@ -390,6 +454,7 @@ fn crossing(t: &[Point; 3], plane: [f64; 3]) -> Option<(Point, Point)> {
             n += 1;
         }
         if (du < 0.0 && dw > 0.0) || (du > 0.0 && dw < 0.0) {
+            // In [0, 1]: |du − dw| ≥ |du| and rounding is monotone.
             let s = du / (du - dw);
             ends[n] = [0, 1, 2].map(|a| u[a] + s * (w[a] - u[a]));
             n += 1;
@@ -455,3 +520,7 @@ fn inside_triangle(t: &[Point; 3], p: Point) -> bool {
     let s = [side(t[0], t[1]), side(t[1], t[2]), side(t[2], t[0])];
     s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
 }
+
+#[cfg(test)]
+#[path = "resolve_tests.rs"]
+mod tests;
