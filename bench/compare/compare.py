@@ -588,7 +588,7 @@ def report_inprocess(inp) -> tuple[list[str], list[str]]:
              "manifold3d, which has no other way in, the `Manifold` build plus `volume()` and "
              "`surface_area()`; for Open3D, `get_volume()`, which first runs `is_watertight()` "
              "with its all-pairs self-intersection test). Peak MB is the whole Python process. "
-             "meshvol's row is its Python binding (`meshvol.Mesh(v, f).mass_properties()`, "
+             "meshvol's row is its Python binding (`meshvol.Mesh(v, f).mass_properties(check=False)`, as wound like the peers, "
              "crates/meshvol-py) when that is installed in the venv; the ratio and **meshvol "
              "ahead?** then compare with it. Otherwise they compare with meshvol's criterion "
              "estimate (†) of a mesh within 10% of the row's size, where there is one: "
