@@ -11,8 +11,8 @@ use crate::grid::cells::{
     cover, finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece,
 };
 use crate::grid::clip::Polygon;
+use crate::vector::{cross, dot, orient2d, orient3d, sub};
 use crate::{Point, Surface};
-use robust::{orient2d, orient3d, Coord, Coord3D};
 
 /// Sub-pieces have at most this many vertices (a piece cut by many lines).
 const SUB: usize = 32;
@@ -54,11 +54,13 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                 body.fan(f as usize, |p, q, r| {
                     let unit = [p, q, r].map(|v| self.units.map(v));
                     let plan = plan_box(&unit);
+                    let ccw = counter_clockwise(&unit);
                     let z = unit.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
                         (lo.min(v[2]), hi.max(v[2]))
                     });
                     if plan[0] <= x + 1.0 && plan[1] >= x && plan[2] <= y + 1.0 && plan[3] >= y {
                         let (k0, k1) = cover(z.0, z.1, nz, true);
+                        let sides = ccw.map(|(corners, _)| sides(corners));
                         for layer in open[k0..k1].iter_mut().flatten() {
                             if layer.bodies.contains(&b) {
                                 layer.cutters.push(Cutter {
@@ -66,16 +68,13 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                                     world: [p, q, r],
                                     unit,
                                     plan,
-                                    sides: sides(&unit),
+                                    sides,
                                 });
                             }
                         }
                     }
-                    let turn = orient2d(xy(unit[0]), xy(unit[1]), xy(unit[2]));
-                    if turn != 0.0 {
-                        let up = turn > 0.0;
-                        let corners = if up { unit } else { [unit[0], unit[2], unit[1]] };
-                        tris.push(RayTriangle { corners, plan: plan_box(&unit), up });
+                    if let Some((corners, up)) = ccw {
+                        tris.push(RayTriangle { corners, plan, up });
                     }
                 });
             }
@@ -87,18 +86,11 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
             // its own body's (most of a cell's, for the finer mesh) are never looked at.
             // The cutters were pushed body by body, so each body's are one run.
             let mut start = 0;
-            while start < layer.cutters.len() {
-                let body = layer.cutters[start].body;
-                let end =
-                    start + layer.cutters[start..].iter().take_while(|t| t.body == body).count();
-                let boxes: Vec<PlanBox> =
-                    layer.cutters[start..end].iter().map(|t| t.plan).collect();
-                layer.indices.push(BodyCutters {
-                    body,
-                    start,
-                    index: PlanIndex::new(origin, &boxes, 1),
-                });
-                start = end;
+            for run in layer.cutters.chunk_by(|t, u| t.body == u.body) {
+                let boxes: Vec<PlanBox> = run.iter().map(|t| t.plan).collect();
+                let index = PlanIndex::new(origin, &boxes, 1);
+                layer.indices.push(BodyCutters { body: run[0].body, start, index });
+                start += run.len();
             }
         }
         let mut scratch = Scratch::default();
@@ -163,20 +155,16 @@ struct Cutter {
 /// it: some 10⁴ times the rounding of the distances (coordinates below 2¹⁰).
 const APART: f64 = 1e-9;
 
-/// The outward sides of triangle `t`'s plan projection ([`Cutter::sides`]).
-fn sides(t: &[Point; 3]) -> Option<[[f64; 3]; 3]> {
-    let turn = orient2d(xy(t[0]), xy(t[1]), xy(t[2]));
-    if turn == 0.0 {
-        return None;
-    }
-    let [a, b, c] = if turn > 0.0 { *t } else { [t[0], t[2], t[1]] };
+/// The outward sides of a triangle's plan projection, from its corners
+/// counter-clockwise in plan ([`Cutter::sides`]).
+fn sides([a, b, c]: [Point; 3]) -> [[f64; 3]; 3] {
     let side = |p: Point, q: Point| {
         let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
         let length = (dx * dx + dy * dy).sqrt();
         let (nx, ny) = (dy / length, -dx / length);
         [nx, ny, nx * p[0] + ny * p[1]]
     };
-    Some([side(a, b), side(b, c), side(c, a)])
+    [side(a, b), side(b, c), side(c, a)]
 }
 
 impl Cutter {
@@ -230,12 +218,21 @@ struct Scratch {
     near: Vec<u32>,
 }
 
-fn xy(p: Point) -> Coord<f64> {
-    Coord { x: p[0], y: p[1] }
+/// A point's plan coordinates.
+fn xy(p: Point) -> [f64; 2] {
+    [p[0], p[1]]
 }
 
-fn xyz(p: Point) -> Coord3D<f64> {
-    Coord3D { x: p[0], y: p[1], z: p[2] }
+/// Triangle `t` counter-clockwise in plan, and whether that is its own order (n_z > 0);
+/// `None` when its plan projection has no area (a vertical triangle).
+fn counter_clockwise(t: &[Point; 3]) -> Option<([Point; 3], bool)> {
+    let turn = orient2d(xy(t[0]), xy(t[1]), xy(t[2]));
+    (turn != 0.0).then(|| if turn > 0.0 { (*t, true) } else { ([t[0], t[2], t[1]], false) })
+}
+
+/// Whether triangle `t` faces up (n_z > 0), exactly.
+fn faces_up(t: &[Point; 3]) -> bool {
+    orient2d(xy(t[0]), xy(t[1]), xy(t[2])) > 0.0
 }
 
 /// Whether `p`, perturbed by (ε, ε²), lies left of the directed line a → b.
@@ -266,7 +263,7 @@ fn winding(p: Point, rays: &Rays) -> i32 {
         }
         if left_of(a, b, p) && left_of(b, c, p) && left_of(c, a, p) {
             // orient3d(a, b, c, p) > 0: p below the plane of the counter-clockwise (a, b, c).
-            if orient3d(xyz(a), xyz(b), xyz(c), xyz(p)) > 0.0 {
+            if orient3d(a, b, c, p) > 0.0 {
                 w += if up { 1 } else { -1 };
             }
         }
@@ -281,7 +278,7 @@ fn side_of(t: &[Point; 3], v: Point) -> f64 {
     if t.contains(&v) {
         return 0.0;
     }
-    orient3d(xyz(t[0]), xyz(t[1]), xyz(t[2]), xyz(v))
+    orient3d(t[0], t[1], t[2], v)
 }
 
 /// Triangles of two bodies closer than this (grid cells) to lying in one plane count as
@@ -295,18 +292,9 @@ fn coplanar(t: &[Point; 3], u: &[Point; 3], tu: &[Point; 3], uu: &[Point; 3]) ->
     if u.iter().all(|&v| side_of(t, v) == 0.0) {
         return true;
     }
-    let (e1, e2) = ([0, 1, 2].map(|k| tu[1][k] - tu[0][k]), [0, 1, 2].map(|k| tu[2][k] - tu[0][k]));
-    let n = [
-        e1[1] * e2[2] - e1[2] * e2[1],
-        e1[2] * e2[0] - e1[0] * e2[2],
-        e1[0] * e2[1] - e1[1] * e2[0],
-    ];
-    let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    length > 0.0
-        && uu.iter().all(|v| {
-            let d = (0..3).map(|k| n[k] * (v[k] - tu[0][k])).sum::<f64>();
-            d.abs() <= COPLANAR_TOLERANCE * length
-        })
+    let n = cross(sub(tu[1], tu[0]), sub(tu[2], tu[0]));
+    let length = dot(n, n).sqrt();
+    length > 0.0 && uu.iter().all(|&v| dot(n, sub(v, tu[0])).abs() <= COPLANAR_TOLERANCE * length)
 }
 
 /// Adds the kept parts of one body's pieces to a column's sums.
@@ -406,7 +394,7 @@ fn resolve<const N: usize>(
         }
     }
     let (mut area, mut moment) = (0.0, 0.0);
-    let own_up = orient2d(xy(triangle[0]), xy(triangle[1]), xy(triangle[2])) > 0.0;
+    let own_up = faces_up(triangle);
     for piece in pieces.iter() {
         let (a, m) = piece.area_and_moment(layer);
         if a == 0.0 {
@@ -420,7 +408,7 @@ fn resolve<const N: usize>(
                 .find(|t| t.body == other && inside_triangle(&t.unit, point));
             match on {
                 Some(t) => {
-                    let up = orient2d(xy(t.world[0]), xy(t.world[1]), xy(t.world[2])) > 0.0;
+                    let up = faces_up(&t.world);
                     up == own_up && body < other
                 }
                 None => winding(point, &rays[other]) <= 0,

@@ -2,35 +2,26 @@
 //! `Cutter::apart` (the separating-axis test in plan).
 
 use super::*;
+use crate::test_rng::XorShift;
 
-/// A fixed sequence of numbers in `[-1, 1)`.
-struct Numbers(u64);
+/// A number in `[-1, 1)`.
+fn signed(rng: &mut XorShift) -> f64 {
+    2.0 * rng.unit() - 1.0
+}
 
-impl Numbers {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-
-    fn point(&mut self) -> Point {
-        [self.next(), self.next(), self.next()]
-    }
+fn point(rng: &mut XorShift) -> Point {
+    [signed(rng), signed(rng), signed(rng)]
 }
 
 fn cutter(t: [Point; 3]) -> Cutter {
-    Cutter { body: 1, world: t, unit: t, plan: plan_box(&t), sides: sides(&t) }
+    let sides = counter_clockwise(&t).map(|(corners, _)| sides(corners));
+    Cutter { body: 1, world: t, unit: t, plan: plan_box(&t), sides }
 }
 
 /// Float side of `v` against the plane of `t`, scaled to a distance.
 fn distance(t: &[Point; 3], v: Point) -> f64 {
-    let (e1, e2) = ([0, 1, 2].map(|k| t[1][k] - t[0][k]), [0, 1, 2].map(|k| t[2][k] - t[0][k]));
-    let n = [
-        e1[1] * e2[2] - e1[2] * e2[1],
-        e1[2] * e2[0] - e1[0] * e2[2],
-        e1[0] * e2[1] - e1[1] * e2[0],
-    ];
-    let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    (0..3).map(|k| n[k] * (v[k] - t[0][k])).sum::<f64>() / length
+    let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+    dot(n, sub(v, t[0])) / dot(n, n).sqrt()
 }
 
 #[test]
@@ -49,10 +40,10 @@ fn a_touch_at_a_shared_corner_does_not_cut() {
 
 #[test]
 fn crossings_lie_on_both_planes_and_are_found_when_corners_straddle() {
-    let mut n = Numbers(7);
+    let mut n = XorShift::new(7);
     for _ in 0..20_000 {
-        let own = [n.point(), n.point(), n.point()];
-        let t = [n.point(), n.point(), n.point()];
+        let own = [point(&mut n), point(&mut n), point(&mut n)];
+        let t = [point(&mut n), point(&mut n), point(&mut n)];
         let d = t.map(|v| distance(&own, v));
         let straddles = d.iter().any(|&x| x > 1e-6) && d.iter().any(|&x| x < -1e-6);
         match crossing(&t, &own) {
@@ -79,19 +70,19 @@ fn in_triangle(t: &[Point; 3], p: Point, m: f64) -> bool {
 
 #[test]
 fn apart_only_when_plan_shapes_do_not_meet() {
-    let mut n = Numbers(11);
+    let mut n = XorShift::new(11);
     let (mut separated, mut cases) = (0, 0);
     for _ in 0..20_000 {
-        let scale = 0.05 + n.next().abs();
-        let t = [n.point(), n.point(), n.point()].map(|v| v.map(|x| x * scale));
+        let scale = 0.05 + signed(&mut n).abs();
+        let t = [point(&mut n), point(&mut n), point(&mut n)].map(|v| v.map(|x| x * scale));
         let c = cutter(t);
-        let centre = n.point();
+        let centre = point(&mut n);
         // A quadrilateral: a convex polygon of four corners around `centre`.
-        let r = 0.3 * n.next().abs() + 1e-3;
+        let r = 0.3 * signed(&mut n).abs() + 1e-3;
         let mut part = Polygon::<9>::EMPTY;
-        let turn = n.next() * 3.0;
+        let turn = signed(&mut n) * 3.0;
         for k in 0..4 {
-            let a = turn + k as f64 * std::f64::consts::FRAC_PI_2 + 0.3 * n.next();
+            let a = turn + k as f64 * std::f64::consts::FRAC_PI_2 + 0.3 * signed(&mut n);
             part.push([centre[0] + r * a.cos(), centre[1] + r * a.sin(), centre[2]]);
         }
         // Brute force: points of the part (a lattice of convex combinations of its
