@@ -123,11 +123,24 @@ pub enum LevelError {
     OutOfRange { volume: f64, total: f64 },
     #[error("the surface has no vertices")]
     Empty,
+    /// The volume below is not monotone in the level (a surface that is not closed):
+    /// the adjacent levels `level` and the next float hold `low` and `high`, which do not
+    /// bracket the volume asked for, even allowing for their rounding bounds.
+    #[error(
+        "no level holds the volume {volume}: the volume below jumps from {low} to {high} at \
+         the level {level} (the surface is not a closed solid)"
+    )]
+    NotReached { volume: f64, level: f64, low: f64, high: f64 },
 }
 
 /// The level d such that the part of the solid where n̂·x ≤ d (n̂ = `direction`
 /// normalized) has volume `volume`: bisection on the part's volume, which grows with d,
 /// to the last bit of d (about 64 steps, each one pass over the triangles).
+///
+/// The answer is checked, never assumed: the volumes at the final bracket's two levels
+/// (adjacent floats), widened by their rounding bounds, must hold `volume` between
+/// them, or the search did not converge ([`LevelError::NotReached`]); of the two, the
+/// level whose volume is nearer is returned.
 pub fn level_for_volume<S: Surface + ?Sized>(
     surface: &S,
     direction: Point,
@@ -157,18 +170,23 @@ pub fn level_for_volume<S: Surface + ?Sized>(
     }
     let at = |d: f64| {
         let plane = Plane::new(scale(n, d), n).map_err(|_| LevelError::BadDirection)?;
-        Ok(below(surface, &plane).part.signed_volume)
+        let part = below(surface, &plane).part;
+        Ok((part.signed_volume, part.volume_error_bound))
     };
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
         }
-        if at(mid)? < volume {
+        if at(mid)?.0 < volume {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    Ok(if volume - at(lo)? <= at(hi)? - volume { lo } else { hi })
+    let ((low, low_bound), (high, high_bound)) = (at(lo)?, at(hi)?);
+    if !(low - low_bound <= volume && volume <= high + high_bound) {
+        return Err(LevelError::NotReached { volume, level: lo, low, high });
+    }
+    Ok(if volume - low <= high - volume { lo } else { hi })
 }

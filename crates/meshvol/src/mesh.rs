@@ -260,6 +260,21 @@ pub trait Surface: Sync {
     fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point));
 }
 
+/// The first corner of the first face that has a triangle: the point a kernel takes its
+/// sums about. Not simply face 0's: an adapter (a surface cut by a plane, a subset) may
+/// give face 0 no triangle, and a closed surface's sums need a point near the surface,
+/// not the origin, to keep their rounding small. `None` when no face has a triangle.
+pub(crate) fn first_corner<S: Surface + ?Sized>(surface: &S) -> Option<Point> {
+    let mut r = None;
+    for face in 0..surface.face_count() {
+        surface.fan(face, |a, _, _| r = r.or(Some(a)));
+        if r.is_some() {
+            break;
+        }
+    }
+    r
+}
+
 /// A reference to a surface is the surface.
 impl<S: Surface + ?Sized> Surface for &S {
     fn face_count(&self) -> usize {

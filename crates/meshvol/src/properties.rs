@@ -258,14 +258,6 @@ impl Partial {
     }
 }
 
-/// The first vertex of the first face: the reference point sums are taken about.
-fn reference_point<S: Surface + ?Sized>(surface: &S) -> Option<Point> {
-    let mut r = None;
-    if surface.face_count() > 0 {
-        surface.fan(0, |a, _, _| r = r.or(Some(a)));
-    }
-    r
-}
 
 /// Computes the mass properties of the solid bounded by `surface`, in one parallel,
 /// deterministic pass.
@@ -288,7 +280,7 @@ fn reference_point<S: Surface + ?Sized>(surface: &S) -> Option<Point> {
 /// ```
 pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
     let faces = surface.face_count();
-    let Some(r) = reference_point(surface) else {
+    let Some(r) = crate::mesh::first_corner(surface) else {
         return MassProperties::empty(faces);
     };
     let sums = ordered_reduce(

@@ -1,5 +1,7 @@
 //! The part of a solid below a plane, against closed forms.
 
+mod common;
+
 use meshvol::below::{below, level_for_volume};
 use meshvol::section::Plane;
 use meshvol::shapes::cuboid;
@@ -61,5 +63,42 @@ fn a_heeled_box_barge_has_its_centre_of_buoyancy_in_closed_form() {
         assert!(close(c[1], y) && close(c[2], z), "{degrees}°: {c:?} vs ({y}, {z})");
         // The waterplane: B / cos θ wide.
         assert!(close(b.section_area, length * beam / t.cos()));
+    }
+}
+
+/// The regression the invariance issue found: face 0 wholly above the plane left the
+/// cut surface's sums without a reference point, and every such plane gave 0. Every
+/// rotation of the face order must give the same part.
+#[test]
+fn the_part_does_not_depend_on_which_face_comes_first() {
+    let cube = cuboid([0.0; 3], [1.0; 3]);
+    let lists = common::face_lists(&cube);
+    let plane = Plane::new([0.0, 0.0, 0.5], [0.0, 0.0, 1.0]).unwrap();
+    for first in 0..lists.len() {
+        let mut faces = lists.clone();
+        faces.rotate_left(first);
+        let mesh = common::polygons(cube.positions(), &faces);
+        let b = below(&mesh, &plane);
+        assert!(close(b.part.signed_volume, 0.5), "first face {first}: {}", b.part.signed_volume);
+        assert!(close(b.part.area, 3.0), "first face {first}: {}", b.part.area);
+        let d = level_for_volume(&mesh, [0.0, 0.0, 1.0], 0.25).unwrap();
+        assert!(close(d, 0.25), "first face {first}: level {d}");
+    }
+}
+
+/// An open surface's volume below is not monotone in the level: a volume it never
+/// crosses is an error, never another volume.
+#[test]
+fn a_volume_an_open_surface_never_holds_is_an_error() {
+    let open = common::open_box([0.0; 3], [1.0; 3]);
+    let total = meshvol::mass_properties(&open).signed_volume;
+    let asked = 0.5 * total;
+    match level_for_volume(&open, [1.0, 0.0, 0.0], asked) {
+        Err(e) => assert!(e.to_string().contains("no level holds"), "{e}"),
+        Ok(d) => {
+            let plane = Plane::new([d, 0.0, 0.0], [1.0, 0.0, 0.0]).unwrap();
+            let got = below(&open, &plane).part.signed_volume;
+            assert!((got - asked).abs() <= 1e-12, "level {d} holds {got}, not {asked}");
+        }
     }
 }

@@ -174,9 +174,7 @@ pub fn profile<S: Surface + ?Sized>(
     }
 
     let faces = surface.face_count();
-    let mut reference = None;
-    surface.fan(0, |a, _, _| reference = reference.or(Some(axis.permute(a))));
-    let r = reference.unwrap_or([0.0; 3]);
+    let r = crate::mesh::first_corner(surface).map_or([0.0; 3], |a| axis.permute(a));
     let to_units = |p: Point| {
         let q = axis.permute(p);
         [q[0] - r[0], q[1] - r[1], (q[2] - min) / step]
