@@ -135,6 +135,7 @@ class _CheckFacts:
     boundary_edges: int
     boundary_loops: int
     non_manifold_edges: int
+    unpaired_at_non_manifold_edges: int
     non_manifold_vertices: int
     degenerate_faces: int
     flat_faces: int
