@@ -42,6 +42,7 @@ pub mod profile;
 pub mod repair;
 pub mod section;
 pub mod subject;
+pub mod timings;
 pub mod union;
 pub mod units;
 pub mod volume;
