@@ -186,7 +186,8 @@ pub struct Section {
     /// Chains that did not close: the surface is open along the plane.
     pub open_chains: usize,
     /// Edges crossed more than once in the same direction: edges shared by more than two
-    /// triangles, or inconsistent winding. Such crossings are chained arbitrarily.
+    /// triangles, or inconsistent winding. Such crossings are chained in turn (the
+    /// area is the same whichever way: every segment is in one loop).
     pub ambiguous_edges: usize,
     /// Loops whose winding disagrees with their nesting (a counter-clockwise hole or a
     /// clockwise exterior, relative to the majority): an inward-wound shell inside
@@ -291,31 +292,50 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
     )
     .unwrap_or_default();
 
-    // Each edge's crossing is the start of one segment and the end of another.
-    let mut starting: HashMap<EdgeKey, u32> = HashMap::with_capacity(segments.len());
-    let mut ambiguous_edges = 0;
-    for (i, s) in segments.iter().enumerate() {
-        if starting.insert(s.from, i as u32).is_some() {
-            ambiguous_edges += 1;
-        }
-    }
-    // Open chains first, from the segments nothing leads to, so that each is counted
-    // once; whatever is left is made of loops.
+    // Each edge's crossing is the start of one segment and the end of another; at an
+    // edge of more than two triangles (the checked solid of two bodies touching along
+    // an edge), of as many segments as end there. Segments sorted by the edge they
+    // start at, so each edge's are a run, taken in turn.
+    let mut order: Vec<u32> = (0..segments.len() as u32).collect();
+    order.sort_unstable_by_key(|&i| (segments[i as usize].from, i));
+    let run = |key: &EdgeKey| {
+        let start = order.partition_point(|&i| segments[i as usize].from < *key);
+        let end = start + order[start..].partition_point(|&i| segments[i as usize].from == *key);
+        start..end
+    };
+    let ambiguous_edges = (0..order.len())
+        .filter(|&k| {
+            k > 0 && segments[order[k] as usize].from == segments[order[k - 1] as usize].from
+        })
+        .map(|k| segments[order[k] as usize].from)
+        .collect::<std::collections::BTreeSet<_>>()
+        .len();
     let mut used = vec![false; segments.len()];
-    let mut has_predecessor = vec![false; segments.len()];
+    // An unused segment starting at `key`, in the order of the run.
+    let next_from = |key: &EdgeKey, used: &[bool]| {
+        order[run(key)].iter().map(|&i| i as usize).find(|&i| !used[i])
+    };
+    // Open chains first, from the edges more segments start at than end at, so that
+    // each is counted once; whatever is left is made of loops.
+    let mut ending: HashMap<EdgeKey, u32> = HashMap::with_capacity(segments.len());
     for s in &segments {
-        if let Some(&next) = starting.get(&s.to) {
-            has_predecessor[next as usize] = true;
-        }
+        *ending.entry(s.to).or_default() += 1;
     }
     let mut open_chains = 0;
-    for first in (0..segments.len()).filter(|&i| !has_predecessor[i]) {
+    for k in 0..order.len() {
+        let first = order[k] as usize;
+        let key = segments[first].from;
+        let ends = ending.get(&key).copied().unwrap_or(0) as usize;
+        // The run's segments beyond as many as end there start open chains.
+        if used[first] || k - run(&key).start < ends {
+            continue;
+        }
         open_chains += 1;
         let mut at = first;
-        while !used[at] {
+        loop {
             used[at] = true;
-            match starting.get(&segments[at].to) {
-                Some(&next) => at = next as usize,
+            match next_from(&segments[at].to, &used) {
+                Some(next) => at = next,
                 None => break,
             }
         }
@@ -334,10 +354,12 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
             if chain.last() != Some(&point) {
                 chain.push(point);
             }
-            match starting.get(&segments[at].to) {
-                Some(&next) if next as usize == first => break true,
-                Some(&next) if !used[next as usize] => at = next as usize,
-                _ => break false,
+            if segments[at].to == segments[first].from {
+                break true;
+            }
+            match next_from(&segments[at].to, &used) {
+                Some(next) => at = next,
+                None => break false,
             }
         };
         if !closed {

@@ -9,7 +9,7 @@ mod common;
 use common::{face_lists, polygons};
 use meshvol::below::below;
 use meshvol::grid::{cell_volumes, profile, Axis, Grid, Levels};
-use meshvol::section::Plane;
+use meshvol::section::{section, Plane};
 use meshvol::shapes::cuboid;
 use meshvol::topology::{check, Check, CheckOptions};
 use meshvol::{mass_properties, Mesh, Point};
@@ -101,6 +101,21 @@ fn two_boxes_touching_along_an_edge_are_two_closed_bodies() {
             assert!(c.shells.iter().all(|s| s.closed && s.volume == 1.0), "{name}: {:?}", c.shells);
             assert_eq!(c.bodies().len(), 2, "{name}");
         }
+    }
+}
+
+#[test]
+fn the_section_through_an_edge_where_bodies_touch_closes() {
+    // Two squares touching at a corner: the crossings of the shared edge start two
+    // segments and end two, and every segment must be chained into a loop.
+    for outward in [true, false] {
+        let mesh = joined(&[
+            block([0.0; 3], [1.0; 3], true),
+            block([1.0, 1.0, 0.0], [2.0, 2.0, 1.0], outward),
+        ]);
+        let c = check(&mesh, &CheckOptions::default()).unwrap();
+        let s = section(&c.solid(&mesh), &Plane::axis(2, 0.5).unwrap());
+        assert_eq!((s.open_chains, s.loops, s.signed_area), (0, 2, 2.0), "outward {outward}");
     }
 }
 
