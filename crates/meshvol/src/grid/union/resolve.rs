@@ -5,7 +5,7 @@
 //! other body by a vertical ray with exact predicates and a symbolic perturbation, or on
 //! a coplanar face shared the same way round with a later body.
 
-use super::bounds::{Bodies, Cell};
+use super::bounds::{Bodies, Cell, Rule};
 use super::plan::{plan_box, PlanBox, PlanIndex};
 use crate::grid::cells::{
     cover, finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece,
@@ -33,7 +33,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         let mut open: Vec<Option<OpenLayer>> = (0..nz).map(|_| None).collect();
         let mut resolved = 0;
         for (k, slot) in open.iter_mut().enumerate() {
-            if self.tally[base + k].full || self.tally[base + k].touching < 2 {
+            if self.tally[base + k].settled || self.tally[base + k].touching < 2 {
                 continue;
             }
             let bodies: Vec<usize> = (0..m).filter(|&b| touch[b * nz + k]).collect();
@@ -317,14 +317,15 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
     fn kept<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) -> (f64, f64) {
         let nz = self.owner.grid.counts[2];
         let cell = self.column * nz + layer;
-        if self.owner.tally[cell].full {
+        if self.owner.tally[cell].settled {
             return (0.0, 0.0);
         }
         let Some(open) = &self.open[layer] else {
             return part.area_and_moment(layer as f64);
         };
         let own = [&self.triangle, &self.unit];
-        match resolve(part, layer as f64, self.body, own, open, self.rays, self.scratch) {
+        let rule = self.owner.rule;
+        match resolve(part, layer as f64, self.body, own, open, rule, self.rays, self.scratch) {
             Some(kept) => kept,
             None => {
                 *self.failed = true;
@@ -343,7 +344,11 @@ impl<S: Surface + ?Sized> LayerSink for KeptSink<'_, '_, S> {
 
     fn above<const N: usize>(&mut self, part: &Polygon<N>) {
         // On or above the top plane: classified with the top cell, whose closed box it
-        // touches.
+        // touches. An intersection's grid has room above the bodies' common box, so
+        // whatever lies there is outside some body.
+        if self.owner.rule == Rule::Intersection {
+            return;
+        }
         let top = self.area.len() - 1;
         let (area, _) = self.kept(top - 1, part);
         self.area[top] += area;
@@ -353,12 +358,14 @@ impl<S: Surface + ?Sized> LayerSink for KeptSink<'_, '_, S> {
 /// Splits `part` (of body `body`'s triangle `triangle`, in an open cell at height
 /// `layer`) along the other bodies' surfaces and returns the kept sub-pieces' area and
 /// ∫ (z − layer) dA; `None` when a sub-piece would need more than [`SUB`] sides.
+#[allow(clippy::too_many_arguments)]
 fn resolve<const N: usize>(
     part: &Polygon<N>,
     layer: f64,
     body: usize,
     [triangle, unit]: [&[Point; 3]; 2],
     open: &OpenLayer,
+    rule: Rule,
     rays: &[Rays],
     scratch: &mut Scratch,
 ) -> Option<(f64, f64)> {
@@ -411,7 +418,10 @@ fn resolve<const N: usize>(
                     let up = faces_up(&t.world);
                     up == own_up && body < other
                 }
-                None => winding(point, &rays[other]) <= 0,
+                None => {
+                    let inside = winding(point, &rays[other]) > 0;
+                    inside == (rule == Rule::Intersection)
+                }
             }
         });
         if kept {
