@@ -59,7 +59,9 @@ pub struct Intersection {
     pub cells_resolved_exactly: usize,
     /// Columns that could not be resolved: their bounds stay in the interval.
     pub columns_unresolved: usize,
-    /// The base grid (1×1×1 when the bodies' boxes are apart).
+    /// The bodies' boxes are apart or only touch: the volume is 0, found with no grid.
+    pub disjoint: bool,
+    /// The base grid (1×1×1 when disjoint).
     pub grid: Grid,
     /// Bodies (0: A, 1: B) wound inward, measured turned outward.
     pub flipped: Vec<usize>,
@@ -155,6 +157,29 @@ pub fn intersection_with<S: Surface>(
     progress: &dyn Progress,
 ) -> Result<Intersection, UnionError> {
     let (pa, pb) = (mass_properties(a), mass_properties(b));
+    let disjoint = match (pa.bounds, pb.bounds) {
+        (Some(p), Some(q)) => (0..3).any(|k| p.max[k] <= q.min[k] || q.max[k] <= p.min[k]),
+        _ => true,
+    };
+    let flipped: Vec<usize> =
+        [&pa, &pb].iter().enumerate().filter(|(_, p)| p.signed_volume < 0.0).map(|(n, _)| n).collect();
+    if disjoint {
+        return Ok(Intersection {
+            lower: 0.0,
+            upper: 0.0,
+            volume_a: pa.signed_volume.abs(),
+            volume_b: pb.signed_volume.abs(),
+            error_a: pa.volume_error_bound,
+            error_b: pb.volume_error_bound,
+            cells_refined: 0,
+            cells_resolved_exactly: 0,
+            columns_unresolved: 0,
+            disjoint,
+            grid: Grid::new([0.0; 3], [1.0; 3], [1, 1, 1])?,
+            flipped,
+            bodies_not_solid: Vec::new(),
+        });
+    }
     let u = combine(&[a, b], Rule::Intersection, tolerance, progress)?;
     Ok(Intersection {
         lower: u.lower,
@@ -166,8 +191,9 @@ pub fn intersection_with<S: Surface>(
         cells_refined: u.cells_refined,
         cells_resolved_exactly: u.cells_resolved_exactly,
         columns_unresolved: u.columns_unresolved,
+        disjoint,
         grid: u.grid,
-        flipped: u.flipped,
+        flipped,
         bodies_not_solid: u.bodies_not_solid,
     })
 }
