@@ -3,7 +3,7 @@
 //! inputs.
 
 mod common;
-use common::{f, meshvol, p, write};
+use common::{box_obj, f, meshvol, p, write};
 
 use serde_json::Value;
 use std::path::Path;
@@ -13,30 +13,6 @@ fn json(args: &[&str]) -> Value {
     let out = meshvol(args);
     assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     serde_json::from_slice(&out.stdout).expect("one JSON object")
-}
-
-/// An axis-aligned box as six OBJ quads (1-based from `base`), wound outward or inward;
-/// without its top face when `open`.
-fn box_obj(min: [f64; 3], max: [f64; 3], base: usize, outward: bool, open: bool) -> String {
-    let mut s = String::new();
-    for k in 0..8 {
-        let q = [k & 1, (k >> 1) & 1, (k >> 2) & 1];
-        let c: Vec<f64> = (0..3).map(|a| if q[a] == 1 { max[a] } else { min[a] }).collect();
-        s += &format!("v {} {} {}\n", c[0], c[1], c[2]);
-    }
-    // Corners numbered by bits (x, y, z); each quad counter-clockwise seen from outside;
-    // the second is the top.
-    let quads =
-        [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    for (n, q) in quads.into_iter().enumerate() {
-        if open && n == 1 {
-            continue;
-        }
-        let ids: Vec<usize> = q.iter().map(|&i| i + base).collect();
-        let ids: Vec<usize> = if outward { ids } else { ids.into_iter().rev().collect() };
-        s += &format!("f {} {} {} {}\n", ids[0], ids[1], ids[2], ids[3]);
-    }
-    s
 }
 
 fn boxed(dir: &Path, name: &str, min: [f64; 3], max: [f64; 3]) -> String {
@@ -116,14 +92,14 @@ fn a_box_and_a_box_turned_45_degrees() {
 fn a_body_is_its_checked_solid() {
     let dir = tempfile::tempdir().unwrap();
     // A 2×2×2 box with a centred unit cavity, against a box over [0.25, 1.75]³: 1.5³ − 1.
-    let text = box_obj([0.0; 3], [2.0; 3], 1, true, false)
-        + &box_obj([0.5; 3], [1.5; 3], 9, false, false);
+    let text =
+        box_obj([0.0; 3], [2.0; 3], 1, true, false) + &box_obj([0.5; 3], [1.5; 3], 9, false, false);
     let cavity = p(&write(dir.path(), "cavity.obj", text)).to_string();
     let middle = boxed(dir.path(), "middle.obj", [0.25; 3], [1.75; 3]);
     holds(&json(&["intersect", &cavity, &middle, "--json"]), 1.5f64.powi(3) - 1.0, 1e-9);
     // An open box is capped and warned about; its cap is its missing top.
-    let open = p(&write(dir.path(), "open.obj", box_obj([0.0; 3], [1.0; 3], 1, true, true)))
-        .to_string();
+    let open =
+        p(&write(dir.path(), "open.obj", box_obj([0.0; 3], [1.0; 3], 1, true, true))).to_string();
     let half = boxed(dir.path(), "half.obj", [0.5, 0.0, 0.0], [3.0, 1.0, 1.0]);
     let v = json(&["intersect", &open, &half, "--json"]);
     holds(&v, 0.5, 1e-6);

@@ -4,6 +4,7 @@
 
 use crate::number::{count, num};
 use crate::subject::{joined_names, Subject};
+use crate::union::Interval;
 use crate::Report;
 use meshvol::grid::{intersection_with as kernel, Bounded};
 use meshvol::progress::Progress;
@@ -95,33 +96,19 @@ pub fn intersect_with<S: Surface + Sync>(
     }
     i.error_a += ua;
     i.error_b += ub;
-    for &n in &i.flipped {
-        warnings.push(format!(
-            "{}: wound inward (negative volume); measured as a solid turned outward",
-            names[n]
-        ));
-    }
-    for &n in &i.bodies_not_solid {
-        warnings.push(format!(
-            "{}: not a closed solid (its volume in some cells leaves [0, cell volume]): the \
-             interval is ordered but not certified",
-            names[n]
-        ));
-    }
-    if i.columns_unresolved > 0 {
-        warnings.push(format!(
-            "{} of the grid could not be resolved exactly; the interval keeps their bounds",
-            count(i.columns_unresolved, "column", "columns")
-        ));
-    }
-    if i.upper - i.lower > tolerance * i.lower.abs() {
-        let why = if uncertainty > 0.0 {
-            "the caps on holes leave it uncertain"
-        } else {
-            "refinement and exact resolution could not close it"
-        };
-        warnings.push(format!("the interval is wider than the tolerance {tolerance}: {why}"));
-    }
+    warnings.extend(
+        Interval {
+            names: &names,
+            flipped: &i.flipped,
+            flipped_note: "",
+            not_solid: &i.bodies_not_solid,
+            columns_unresolved: i.columns_unresolved,
+            bounds: (i.lower, i.upper),
+            tolerance,
+            uncertainty,
+        }
+        .warnings(),
+    );
     let (union, iou): (Bounded, Bounded) = (i.union(), i.iou());
     Ok(IntersectReport {
         file: joined_names(&subjects),

@@ -161,8 +161,12 @@ pub fn intersection_with<S: Surface>(
         (Some(p), Some(q)) => (0..3).any(|k| p.max[k] <= q.min[k] || q.max[k] <= p.min[k]),
         _ => true,
     };
-    let flipped: Vec<usize> =
-        [&pa, &pb].iter().enumerate().filter(|(_, p)| p.signed_volume < 0.0).map(|(n, _)| n).collect();
+    let flipped: Vec<usize> = [&pa, &pb]
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.signed_volume < 0.0)
+        .map(|(n, _)| n)
+        .collect();
     if disjoint {
         return Ok(Intersection {
             lower: 0.0,

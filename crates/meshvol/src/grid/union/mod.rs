@@ -231,7 +231,8 @@ pub(crate) fn combine<S: Surface>(
         if mp.signed_volume < 0.0 {
             flipped.push(i);
         }
-        let (lo, hi) = mp.bounds.map_or(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]), |b| (b.min, b.max));
+        let (lo, hi) =
+            mp.bounds.map_or(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]), |b| (b.min, b.max));
         for a in 0..3 {
             min[a] = min[a].min(lo[a]);
             max[a] = max[a].max(hi[a]);
@@ -344,7 +345,8 @@ pub(crate) fn combine<S: Surface>(
         progress.stage("refining");
         let done = Counter::new(progress, level.len());
         let refine_all = |cells: &[OpenCell]| -> Result<Vec<Refined>, GridError> {
-            let refined = cells.iter().map(|cell| refine(&model.bodies, model.rule, &grid, cell)).collect();
+            let refined =
+                cells.iter().map(|cell| refine(&model.bodies, model.rule, &grid, cell)).collect();
             done.add(cells.len());
             refined
         };
