@@ -73,6 +73,13 @@
 //! of the column: exact up to rounding. The same resolution, applied to every column of
 //! a given grid, gives [`union_cell_volumes`].
 //!
+//! # The intersection
+//! Every stage takes a [`Rule`]: [`Rule::Intersection`] changes only the bounds of a
+//! cell (`Tally::cell`: a body missing it settles it at 0; two touching bodies give
+//! `max(0, Σ v_i − (t − 1)|C|) ≤ vol ≤ min_i v_i`), the keep rule of exact resolution
+//! (a sub-piece is kept inside, not outside, the other bodies) and the grid (the bodies'
+//! common box, with room); see [`super::intersection`].
+//!
 //! # Stages and files
 //!
 //! | stage | file |

@@ -3,7 +3,9 @@
 //! touching bodies' surfaces into sub-pieces no other surface crosses, and a sub-piece
 //! is kept when it is on the union's boundary (module docs of [`super`]): outside every
 //! other body by a vertical ray with exact predicates and a symbolic perturbation, or on
-//! a coplanar face shared the same way round with a later body.
+//! a coplanar face shared the same way round with a later body. For the intersection
+//! ([`Rule::Intersection`]) a sub-piece off the other bodies' faces is kept when inside
+//! every other body instead.
 
 use super::bounds::{Bodies, Cell, Rule};
 use super::plan::{plan_box, PlanBox, PlanIndex};
