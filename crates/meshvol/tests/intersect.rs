@@ -11,6 +11,7 @@ use meshvol::below::below;
 use meshvol::grid::{intersection, Intersection};
 use meshvol::section::Plane;
 use meshvol::shapes::{cuboid, uv_sphere};
+use meshvol::MassProperties;
 use meshvol::{mass_properties, Mesh};
 
 /// Asserts that `i` holds `exact` and is at most `width` wide relative to it (absolute
@@ -25,6 +26,29 @@ fn holds(i: &Intersection, exact: f64, width: f64, what: &str) {
     );
     assert!(i.upper - i.lower <= width * scale, "{what}: width {}", i.upper - i.lower);
     assert_eq!(i.columns_unresolved, 0, "{what}");
+}
+
+/// Asserts that the intersection's moments are those of `truth` within 1e-9 relative
+/// (the centroid relative to the body's size `size`).
+fn same_moments(i: &Intersection, truth: &MassProperties, size: f64, what: &str) {
+    let m = i.moments.unwrap_or_else(|| panic!("{what}: no moments"));
+    assert!((m.volume - truth.signed_volume).abs() <= 1e-9 * truth.signed_volume, "{what}");
+    let c = truth.centroid.unwrap();
+    for a in 0..3 {
+        assert!((m.centroid[a] - c[a]).abs() <= 1e-9 * size, "{what}: {:?} vs {c:?}", m.centroid);
+    }
+    let largest = (0..3).map(|a| truth.inertia[a][a]).fold(0.0, f64::max);
+    for r in 0..3 {
+        for k in 0..3 {
+            let (got, want) = (m.inertia[r][k], truth.inertia[r][k]);
+            assert!(
+                (got - want).abs() <= 1e-9 * largest,
+                "{what}: {:?} vs {:?}",
+                m.inertia,
+                truth.inertia
+            );
+        }
+    }
 }
 
 /// The prism over the convex polygon `ring` (xy, counter-clockwise) from z0 to z1.
@@ -52,6 +76,8 @@ fn boxes_overlap_by_the_product_of_their_overlaps() {
     let exact = (2.7 - 1.3) * (1.45 - 0.7) * (0.875 - 0.25);
     let i = intersection(&a, &b, 1e-9).unwrap();
     holds(&i, exact, 1e-9, "box ∩ box");
+    let common = mass_properties(&cuboid([1.3, 0.7, 0.25], [2.7, 1.45, 0.875]));
+    same_moments(&i, &common, 2.7, "box ∩ box");
     let (va, vb) = (2.6 * 2.2 * 1.25, 2.7 * 0.75 * 1.875);
     let a_minus_b = i.a_minus_b();
     assert!(a_minus_b.lower <= va - exact && va - exact <= a_minus_b.upper);
@@ -81,7 +107,21 @@ fn a_cube_turned_45_degrees_against_a_cube() {
     // 2r² − 4(r − 1)² for 1 ≤ r ≤ 2; heights overlap over [0.25, 1].
     let b = prism(&diamond(1.5), 0.25, 2.0);
     let exact = (2.0 * 1.5f64.powi(2) - 4.0 * 0.5f64.powi(2)) * 0.75;
-    holds(&intersection(&a, &b, 1e-9).unwrap(), exact, 1e-9, "overlapping");
+    let i = intersection(&a, &b, 1e-9).unwrap();
+    holds(&i, exact, 1e-9, "overlapping");
+    // The common part is the octagon the square and the diamond share, over [0.25, 1].
+    let octagon = [
+        [1.0, -0.5],
+        [1.0, 0.5],
+        [0.5, 1.0],
+        [-0.5, 1.0],
+        [-1.0, 0.5],
+        [-1.0, -0.5],
+        [-0.5, -1.0],
+        [0.5, -1.0],
+    ];
+    let truth = mass_properties(&prism(&octagon, 0.25, 1.0));
+    same_moments(&i, &truth, 2.0, "octagon");
     // Inside: the diamond wholly in the square, over part of its height.
     let c = prism(&diamond(0.875), 0.125, 0.5);
     let exact = 2.0 * 0.875f64.powi(2) * 0.375;
@@ -100,6 +140,7 @@ fn a_sphere_and_a_large_box_cut_the_sphere_below_a_plane() {
         let i = intersection(&sphere, &slab, 1e-9).unwrap();
         // `below`'s own rounding is far under the interval's allowance.
         holds(&i, exact, 1e-9, &format!("below {h}"));
+        same_moments(&i, &part, 1.0, &format!("below {h}"));
     }
 }
 
@@ -118,6 +159,10 @@ fn two_spheres_meet_in_a_lens() {
     let va = mass_properties(&a).signed_volume;
     assert!((i.a_minus_b().value + i.volume() - va).abs() < 1e-12);
     assert!(i.iou().upper <= 1.0);
+    // The spheres are symmetric through the midpoint of their centres: so is the lens.
+    let c = i.moments.unwrap().centroid;
+    let mid = [0.3, 0.0, 0.4];
+    assert!((0..3).all(|k| (c[k] - mid[k]).abs() < 1e-9), "{c:?}");
 }
 
 #[test]
@@ -126,6 +171,7 @@ fn a_body_with_itself_is_itself() {
         let v = mass_properties(&body).signed_volume;
         let i = intersection(&body, &body, 1e-9).unwrap();
         holds(&i, v, 1e-9, "A ∩ A");
+        same_moments(&i, &mass_properties(&body), 1.0, "A ∩ A");
         assert!((i.iou().value - 1.0).abs() < 1e-9);
         // Wound inward, it is measured turned outward.
         let inward = body.flipped();

@@ -109,6 +109,7 @@ pub use resolve::COPLANAR_TOLERANCE;
 
 use super::{Grid, GridError};
 use crate::accumulate::CompensatedSum;
+use crate::grid::intersect::moments::Sums;
 use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
 use crate::{mass_properties, Point, Surface};
@@ -208,17 +209,20 @@ pub fn union_with<S: Surface>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<UnionVolume, UnionError> {
-    combine(bodies, Rule::Union, tolerance, progress)
+    combine(bodies, Rule::Union, tolerance, false, progress).map(|(u, _)| u)
 }
 
 /// The union's or the intersection's volume (module docs; `intersect` for the
-/// intersection's bounds and grid).
+/// intersection's bounds and grid) and, with `moments`, the moments of the solid from
+/// its boundary's pieces kept in every column (`None` where a column fails to resolve,
+/// and for no volume: then the volume is 0).
 pub(crate) fn combine<S: Surface>(
     bodies: &[S],
     rule: Rule,
     tolerance: f64,
+    moments: bool,
     progress: &dyn Progress,
-) -> Result<UnionVolume, UnionError> {
+) -> Result<(UnionVolume, Option<(Point, Sums)>), UnionError> {
     if bodies.is_empty() {
         return Err(UnionError::NoBodies);
     }
@@ -265,18 +269,21 @@ pub(crate) fn combine<S: Surface>(
     if flat {
         // No volume: no body encloses any, or (intersection) their boxes are apart.
         let grid = Grid::new([0.0; 3], [1.0; 3], [1, 1, 1])?;
-        return Ok(UnionVolume {
-            lower: 0.0,
-            upper: 0.0,
-            bodies: bodies.len(),
-            sum_of_volumes,
-            cells_refined: 0,
-            cells_resolved_exactly: 0,
-            columns_unresolved: 0,
-            grid,
-            flipped,
-            bodies_not_solid: Vec::new(),
-        });
+        return Ok((
+            UnionVolume {
+                lower: 0.0,
+                upper: 0.0,
+                bodies: bodies.len(),
+                sum_of_volumes,
+                cells_refined: 0,
+                cells_resolved_exactly: 0,
+                columns_unresolved: 0,
+                grid,
+                flipped,
+                bodies_not_solid: Vec::new(),
+            },
+            None,
+        ));
     }
     // The projected area of the faces that meet the grid, for the rounding allowance.
     let mut projected = 0.0;
@@ -445,7 +452,8 @@ pub(crate) fn combine<S: Surface>(
     // Ordered for any input: per-column bounds are updated in place (rounding), and a
     // body that is not a solid makes the bounds meaningless (then it is listed).
     let (low, high) = (low.min(high), low.max(high));
-    Ok(UnionVolume {
+    let sums = if moments { column_moments(&model, progress) } else { None };
+    let volume = UnionVolume {
         lower: low - allowance,
         upper: high + allowance,
         bodies: bodies.len(),
@@ -456,7 +464,32 @@ pub(crate) fn combine<S: Surface>(
         grid,
         flipped,
         bodies_not_solid: model.not_solid,
-    })
+    };
+    Ok((volume, sums.map(|s| (grid.origin, s))))
+}
+
+/// The moments of the kept pieces of every column (about the grid's origin), summed in
+/// column order; `None` when some column cannot be resolved.
+fn column_moments<S: Surface>(model: &Bodies<'_, S>, progress: &dyn Progress) -> Option<Sums> {
+    let columns = model.grid.counts[0] * model.grid.counts[1];
+    progress.stage("moments");
+    let done = Counter::new(progress, columns);
+    let per_column: Vec<Option<Sums>> = (0..columns)
+        .into_par_iter()
+        .map(|c| {
+            let mut sums = [0.0; 10];
+            let resolved = model.exact_column_with(c, Some(&mut sums)).map(|_| sums);
+            done.add(1);
+            resolved
+        })
+        .collect();
+    let mut total = [CompensatedSum::default(); 10];
+    for sums in per_column {
+        for (t, x) in total.iter_mut().zip(sums?) {
+            t.add(x);
+        }
+    }
+    Some(total.map(|t| t.value()))
 }
 
 /// The union's volume in every cell of `grid`: exact where at most one body touches a

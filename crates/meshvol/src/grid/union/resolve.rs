@@ -13,6 +13,7 @@ use crate::grid::cells::{
     cover, finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece,
 };
 use crate::grid::clip::Polygon;
+use crate::grid::intersect::moments::{add_piece, Sums};
 use crate::vector::{cross, dot, orient2d, orient3d, sub};
 use crate::{Point, Surface};
 
@@ -24,6 +25,16 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
     /// many open cells that resolved; `None` where a piece needed more than [`SUB`]
     /// sides or a resolved value falls outside its cell's bounds.
     pub(super) fn exact_column(&self, c: usize) -> Option<(Vec<f64>, usize)> {
+        self.exact_column_with(c, None)
+    }
+
+    /// [`Self::exact_column`], adding the moments of the kept pieces (the boundary of
+    /// the union or intersection in the column) to `moments` where given.
+    pub(crate) fn exact_column_with(
+        &self,
+        c: usize,
+        mut moments: Option<&mut Sums>,
+    ) -> Option<(Vec<f64>, usize)> {
         let [_, ny, nz] = self.grid.counts;
         let whole = Block::whole(self.grid.counts);
         let (i, j) = (c / ny, c % ny);
@@ -120,6 +131,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                             direct: &mut direct,
                             area: &mut area,
                             failed: &mut failed,
+                            moments: moments.as_deref_mut(),
                         };
                         sweep_layers(piece, piece.range(2), nz, &mut sink);
                     });
@@ -218,6 +230,8 @@ struct Scratch {
     pieces: Vec<Polygon<SUB>>,
     coplanar: Vec<usize>,
     near: Vec<u32>,
+    /// The pieces [`resolve`] kept, by index into `pieces`.
+    kept: Vec<usize>,
 }
 
 /// A point's plan coordinates.
@@ -312,6 +326,7 @@ struct KeptSink<'s, 'a, S: ?Sized> {
     direct: &'s mut [f64],
     area: &'s mut [f64],
     failed: &'s mut bool,
+    moments: Option<&'s mut Sums>,
 }
 
 impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
@@ -322,13 +337,24 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
         if self.owner.tally[cell].settled {
             return (0.0, 0.0);
         }
+        let cell_size = self.owner.grid.cell;
         let Some(open) = &self.open[layer] else {
+            if let Some(sums) = self.moments.as_deref_mut() {
+                add_piece(part.vertices(), cell_size, sums);
+            }
             return part.area_and_moment(layer as f64);
         };
         let own = [&self.triangle, &self.unit];
         let rule = self.owner.rule;
         match resolve(part, layer as f64, self.body, own, open, rule, self.rays, self.scratch) {
-            Some(kept) => kept,
+            Some(kept) => {
+                if let Some(sums) = self.moments.as_deref_mut() {
+                    for &k in &self.scratch.kept {
+                        add_piece(self.scratch.pieces[k].vertices(), cell_size, sums);
+                    }
+                }
+                kept
+            }
             None => {
                 *self.failed = true;
                 (0.0, 0.0)
@@ -371,7 +397,8 @@ fn resolve<const N: usize>(
     rays: &[Rays],
     scratch: &mut Scratch,
 ) -> Option<(f64, f64)> {
-    let Scratch { pieces, coplanar: coplanar_cutters, near } = scratch;
+    let Scratch { pieces, coplanar: coplanar_cutters, near, kept: kept_pieces } = scratch;
+    kept_pieces.clear();
     let mut first = Polygon::<SUB>::EMPTY;
     for &v in part.vertices() {
         first.push(v);
@@ -404,7 +431,7 @@ fn resolve<const N: usize>(
     }
     let (mut area, mut moment) = (0.0, 0.0);
     let own_up = faces_up(triangle);
-    for piece in pieces.iter() {
+    for (index, piece) in pieces.iter().enumerate() {
         let (a, m) = piece.area_and_moment(layer);
         if a == 0.0 {
             continue;
@@ -429,6 +456,7 @@ fn resolve<const N: usize>(
         if kept {
             area += a;
             moment += m;
+            kept_pieces.push(index);
         }
     }
     Some((area, moment))
