@@ -51,6 +51,18 @@ fn two_boxes_give_every_key() {
     }
     assert!(f(&v["iou_lower"]) <= f(&v["iou"]) && f(&v["iou"]) <= f(&v["iou_upper"]));
     assert_eq!(v["disjoint"], false);
+    // The common box [1.5, 2] × [0, 1] × [0.25, 1]: its centre and inertia.
+    let c = &v["centroid"];
+    let (dx, dy, dz) = (0.5f64, 1.0f64, 0.75f64);
+    for (k, want) in [1.75, 0.5, 0.625].into_iter().enumerate() {
+        assert!((f(&c[k]) - want).abs() < 1e-9, "{v}");
+    }
+    let i = &v["inertia"];
+    let diagonal =
+        [dy * dy + dz * dz, dx * dx + dz * dz, dx * dx + dy * dy].map(|s| exact * s / 12.0);
+    for (k, want) in diagonal.into_iter().enumerate() {
+        assert!((f(&i[k][k]) - want).abs() < 1e-9 * want, "{v}");
+    }
     // Swapped, the same volume.
     let w = json(&["intersect", &b, &a, "--json"]);
     holds(&w, exact, 1e-9);
@@ -68,6 +80,7 @@ fn boxes_apart_are_zero_without_a_grid() {
     let v = json(&["intersect", &a, &b, "--json"]);
     assert_eq!((f(&v["lower"]), f(&v["upper"]), f(&v["iou"])), (0.0, 0.0, 0.0), "{v}");
     assert_eq!(v["disjoint"], true);
+    assert!(v["centroid"].is_null() && v["inertia"].is_null(), "{v}");
     assert_eq!(f(&v["a_minus_b"]), 1.0);
 }
 

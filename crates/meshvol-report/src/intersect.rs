@@ -39,6 +39,10 @@ pub struct IntersectReport {
     pub iou_upper: f64,
     /// 2|A∩B| / (|A| + |B|).
     pub dice: f64,
+    /// The centroid of A∩B, and its inertia tensor about the centroid for unit density;
+    /// `null` without volume or where the boundary could not be resolved everywhere.
+    pub centroid: Option<[f64; 3]>,
+    pub inertia: Option<[[f64; 3]; 3]>,
     /// The bodies' boxes are apart (or only touch): the intersection is 0, found
     /// without a grid.
     pub disjoint: bool,
@@ -127,6 +131,8 @@ pub fn intersect_with<S: Surface + Sync>(
         iou_lower: iou.lower,
         iou_upper: iou.upper,
         dice: i.dice().value,
+        centroid: i.moments.map(|m| m.centroid),
+        inertia: i.moments.map(|m| m.inertia),
         disjoint: i.disjoint,
         cells_refined: i.cells_refined,
         cells_resolved_exactly: i.cells_resolved_exactly,
@@ -165,6 +171,18 @@ impl Report for IntersectReport {
                 s,
                 "  caps on holes    ± {} (in the interval)",
                 num(self.volume_uncertainty, 4)
+            );
+        }
+        if let Some(c) = self.centroid {
+            let c: Vec<String> = c.iter().map(|&x| num(x, 10)).collect();
+            let _ = writeln!(s, "  centroid         ({})", c.join(", "));
+        }
+        if let Some(m) = self.inertia {
+            let d: Vec<String> = (0..3).map(|k| num(m[k][k], 10)).collect();
+            let _ = writeln!(
+                s,
+                "  inertia (diag)   ({})  (about the centroid, unit density)",
+                d.join(", ")
             );
         }
         let _ = writeln!(s, "  IoU              {}", num(self.iou, 12));
