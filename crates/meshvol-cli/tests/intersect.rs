@@ -136,3 +136,32 @@ fn bad_inputs_are_errors_naming_the_file() {
     assert_eq!(meshvol(&["intersect", &a]).status.code(), Some(2));
     assert_eq!(meshvol(&["intersect", &a, &a, "--tolerance", "-1"]).status.code(), Some(2));
 }
+
+#[test]
+fn pairs_measure_each_overlapping_pair_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = boxed(dir.path(), "a.obj", [0.0; 3], [2.0; 3]);
+    let b = boxed(dir.path(), "b.obj", [1.0; 3], [3.0; 3]);
+    let far = boxed(dir.path(), "far.obj", [10.0; 3], [11.0; 3]);
+    // Touches a along x = 2 and b along y = 1: no volume in common with either.
+    let touching = boxed(dir.path(), "touching.obj", [2.0, 0.0, 0.0], [3.0, 1.0, 1.0]);
+    let c = boxed(dir.path(), "c.obj", [1.5, 0.0, 1.5], [2.5, 2.5, 2.5]);
+    let out = meshvol(&["intersect", &a, &b, &far, &touching, &c, "--pairs", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let lines: Vec<Value> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let files: Vec<&str> = lines.iter().map(|v| v["file"].as_str().unwrap()).collect();
+    assert_eq!(files, [format!("{a}, {b}"), format!("{a}, {c}"), format!("{b}, {c}")]);
+    // a ∩ b: the unit cube; a ∩ c: [1.5, 2] × [0, 2] × [1.5, 2]; b ∩ c: [1.5, 2.5] ×
+    // [1, 2.5] × [1.5, 2.5].
+    for (v, exact) in lines.iter().zip([1.0, 0.5 * 2.0 * 0.5, 1.0 * 1.5 * 1.0]) {
+        holds(v, exact, 1e-9);
+    }
+    // Without --pairs, two files only; more pairs than --max-pairs is refused.
+    assert_eq!(meshvol(&["intersect", &a, &b, &c]).status.code(), Some(2));
+    let out = meshvol(&["intersect", &a, &b, &c, "--pairs", "--max-pairs", "2"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--max-pairs"));
+}

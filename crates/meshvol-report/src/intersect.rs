@@ -6,7 +6,7 @@ use crate::number::{count, num};
 use crate::subject::{joined_names, Subject};
 use crate::union::Interval;
 use crate::Report;
-use meshvol::grid::{intersection_with as kernel, Bounded};
+use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
 use meshvol::progress::Progress;
 use meshvol::Surface;
 use serde::Serialize;
@@ -143,6 +143,14 @@ pub fn intersect_with<S: Surface + Sync>(
         seconds,
         warnings,
     })
+}
+
+/// The pairs `(i, j)`, `i < j`, of `subjects` (each measured whole) whose boxes overlap:
+/// the only pairs that can hold common volume.
+pub fn overlapping_pairs<S: Surface + Sync>(subjects: &[Subject<'_, S>]) -> Vec<(usize, usize)> {
+    let boxes: Vec<_> =
+        subjects.iter().map(|s| meshvol::mass_properties(&s.measured()).bounds).collect();
+    overlapping_boxes(&boxes)
 }
 
 impl Report for IntersectReport {

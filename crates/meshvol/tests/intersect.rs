@@ -8,7 +8,7 @@ mod common;
 use common::{mapped, moved, polygons, XorShift};
 
 use meshvol::below::below;
-use meshvol::grid::{intersection, Intersection};
+use meshvol::grid::{intersection, overlapping_boxes, Intersection};
 use meshvol::section::Plane;
 use meshvol::shapes::{cuboid, uv_sphere};
 use meshvol::MassProperties;
@@ -211,4 +211,32 @@ fn order_shuffles_and_exact_motions_change_nothing() {
     for (n, f) in motions.into_iter().enumerate() {
         same(&intersection(&mapped(&a, f), &mapped(&b, f), 1e-9).unwrap(), &format!("motion {n}"));
     }
+}
+
+#[test]
+fn overlapping_boxes_are_the_pairs_a_plain_double_loop_finds() {
+    let mut rng = XorShift::new(11);
+    let mut boxes = Vec::new();
+    for n in 0..300 {
+        if n % 50 == 7 {
+            boxes.push(None);
+            continue;
+        }
+        // Corners on a coarse lattice, so boxes often share faces (touching: no pair).
+        let lo: [f64; 3] = std::array::from_fn(|_| rng.below(40) as f64 * 0.25);
+        let hi: [f64; 3] = std::array::from_fn(|a| lo[a] + 0.25 * (1 + rng.below(8)) as f64);
+        boxes.push(Some(meshvol::Bounds { min: lo, max: hi }));
+    }
+    let mut plain = Vec::new();
+    for i in 0..boxes.len() {
+        for j in i + 1..boxes.len() {
+            if let (Some(p), Some(q)) = (boxes[i], boxes[j]) {
+                if (0..3).all(|a| p.min[a] < q.max[a] && q.min[a] < p.max[a]) {
+                    plain.push((i, j));
+                }
+            }
+        }
+    }
+    assert!(plain.len() > 100, "{}", plain.len());
+    assert_eq!(overlapping_boxes(&boxes), plain);
 }

@@ -37,7 +37,9 @@ mod intersect;
 mod profile;
 mod union;
 
-pub use intersect::{intersection, intersection_with, Bounded, Intersection, Moments};
+pub use intersect::{
+    intersection, intersection_with, overlapping_boxes, Bounded, Intersection, Moments,
+};
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
 pub use union::{
     union, union_cell_volumes, union_cell_volumes_with, union_with, UnionError, UnionVolume,

@@ -49,7 +49,7 @@ pub(crate) mod moments;
 use super::union::{combine, Rule, UnionError};
 use super::Grid;
 use crate::progress::Progress;
-use crate::{mass_properties, Point, Surface};
+use crate::{mass_properties, Bounds, Point, Surface};
 
 /// The intersection of two bodies: the certified interval of its volume, the bodies'
 /// volumes, and how the interval was found.
@@ -236,4 +236,27 @@ pub fn intersection_with<S: Surface>(
         bodies_not_solid: u.bodies_not_solid,
         moments,
     })
+}
+
+/// The pairs `(i, j)`, `i < j`, of `boxes` whose interiors overlap (boxes that only
+/// touch hold no common volume), in increasing order: a sweep along x over the boxes
+/// sorted by their lower x, so the work is n log n plus the pairs whose x ranges
+/// overlap, not n². `None` (an empty body) overlaps nothing.
+pub fn overlapping_boxes(boxes: &[Option<Bounds>]) -> Vec<(usize, usize)> {
+    let mut order: Vec<(usize, Bounds)> =
+        boxes.iter().enumerate().filter_map(|(n, b)| b.map(|b| (n, b))).collect();
+    order.sort_by(|p, q| p.1.min[0].total_cmp(&q.1.min[0]).then(p.0.cmp(&q.0)));
+    let mut pairs = Vec::new();
+    for (k, &(n, b)) in order.iter().enumerate() {
+        for &(m, c) in &order[k + 1..] {
+            if c.min[0] >= b.max[0] {
+                break;
+            }
+            if (1..3).all(|a| c.min[a] < b.max[a] && b.min[a] < c.max[a]) {
+                pairs.push((n.min(m), n.max(m)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs
 }
