@@ -4,7 +4,7 @@
 
 use crate::number::{count, num};
 use crate::subject::{joined_names, Subject};
-use crate::union::Interval;
+use crate::union::{interval_text, Interval};
 use crate::Report;
 use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
 use meshvol::progress::Progress;
@@ -166,21 +166,7 @@ impl Report for IntersectReport {
         let mut s = String::new();
         let [nx, ny, nz] = self.grid;
         let _ = writeln!(s, "intersection of {} and {}", self.files[0], self.files[1]);
-        let _ = writeln!(s, "  volume           {}  (midpoint)", num(self.volume, 15));
-        let _ = writeln!(
-            s,
-            "  certified        [{}, {}]  (width {})",
-            num(self.lower, 17),
-            num(self.upper, 17),
-            num(self.upper - self.lower, 3)
-        );
-        if self.volume_uncertainty > 0.0 {
-            let _ = writeln!(
-                s,
-                "  caps on holes    ± {} (in the interval)",
-                num(self.volume_uncertainty, 4)
-            );
-        }
+        interval_text(&mut s, self.volume, (self.lower, self.upper), self.volume_uncertainty);
         if let Some(c) = self.centroid {
             let c: Vec<String> = c.iter().map(|&x| num(x, 10)).collect();
             let _ = writeln!(s, "  centroid         ({})", c.join(", "));

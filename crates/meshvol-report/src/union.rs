@@ -164,6 +164,22 @@ impl Interval<'_> {
     }
 }
 
+/// The text lines of a certified interval: its midpoint, its bounds and width, and the
+/// caps' share of it.
+pub(crate) fn interval_text(s: &mut String, volume: f64, (lower, upper): (f64, f64), caps: f64) {
+    let _ = writeln!(s, "  volume           {}  (midpoint)", num(volume, 15));
+    let _ = writeln!(
+        s,
+        "  certified        [{}, {}]  (width {})",
+        num(lower, 17),
+        num(upper, 17),
+        num(upper - lower, 3)
+    );
+    if caps > 0.0 {
+        let _ = writeln!(s, "  caps on holes    ± {} (in the interval)", num(caps, 4));
+    }
+}
+
 impl Report for UnionReport {
     fn file(&self) -> &str {
         &self.file
@@ -182,21 +198,7 @@ impl Report for UnionReport {
             count(self.bodies, "body", "bodies"),
             self.body_names.join("; ")
         );
-        let _ = writeln!(s, "  volume           {}  (midpoint)", num(self.volume, 15));
-        let _ = writeln!(
-            s,
-            "  certified        [{}, {}]  (width {})",
-            num(self.lower, 17),
-            num(self.upper, 17),
-            num(self.upper - self.lower, 3)
-        );
-        if self.volume_uncertainty > 0.0 {
-            let _ = writeln!(
-                s,
-                "  caps on holes    ± {} (in the interval)",
-                num(self.volume_uncertainty, 4)
-            );
-        }
+        interval_text(&mut s, self.volume, (self.lower, self.upper), self.volume_uncertainty);
         let _ = writeln!(s, "  sum of volumes   {}", num(self.sum_of_volumes, 15));
         let _ = writeln!(
             s,
