@@ -240,3 +240,18 @@ fn overlapping_boxes_are_the_pairs_a_plain_double_loop_finds() {
     assert!(plain.len() > 100, "{}", plain.len());
     assert_eq!(overlapping_boxes(&boxes), plain);
 }
+
+#[test]
+fn the_same_bits_at_any_thread_count() {
+    let a = uv_sphere(1.0, 64, 32);
+    let b = moved(&uv_sphere(0.75, 40, 20), [0.5, 0.25, 0.125]);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| intersection(&a, &b, 1e-9).unwrap())
+    };
+    let one = run(1);
+    assert!(one.moments.is_some());
+    for threads in [2, 3, 8] {
+        assert_eq!(run(threads), one, "{threads} threads");
+    }
+}
