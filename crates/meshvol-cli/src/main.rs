@@ -12,6 +12,7 @@ mod driver;
 mod grid;
 mod hull;
 mod input;
+mod intersect;
 mod profile;
 mod repair;
 mod section;
@@ -73,6 +74,9 @@ enum Command {
     /// The volume of the union of overlapping bodies (files, or one file's shells) as a
     /// certified interval, without a boolean mesh.
     Union(union::UnionArgs),
+    /// The volume of the intersection of two bodies as a certified interval, with IoU,
+    /// Dice and the differences A − B, B − A, without a boolean mesh.
+    Intersect(intersect::IntersectArgs),
     /// The part of the solid below a plane: volume, centroid (centre of buoyancy),
     /// wetted area, section (waterplane); or the level that holds a given volume.
     Below(below::BelowArgs),
@@ -178,6 +182,7 @@ fn main() -> ExitCode {
         Command::Grid(args) => grid::run(args, cli.quiet),
         Command::Profile(args) => profile::run(args, cli.quiet),
         Command::Union(args) => union::run(args, cli.quiet),
+        Command::Intersect(args) => intersect::run(args, cli.quiet),
         Command::Below(args) => below::run(args, cli.quiet),
         Command::Cutfill(args) => cutfill::run(args, cli.quiet),
     }

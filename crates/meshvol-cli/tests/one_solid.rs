@@ -4,7 +4,7 @@
 //! value is a closed form of the construction.
 
 mod common;
-use common::{f, meshvol};
+use common::{box_obj, f, meshvol};
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -20,25 +20,6 @@ fn warnings(v: &Value) -> Vec<String> {
     v["warnings"].as_array().expect("a warnings list").iter().map(|w| w.to_string()).collect()
 }
 
-/// An axis-aligned box as six OBJ quads (1-based from `base`), wound outward or inward.
-fn box_obj(min: [f64; 3], max: [f64; 3], base: usize, outward: bool) -> String {
-    let mut s = String::new();
-    for k in 0..8 {
-        let p = [k & 1, (k >> 1) & 1, (k >> 2) & 1];
-        let c: Vec<f64> = (0..3).map(|a| if p[a] == 1 { max[a] } else { min[a] }).collect();
-        s += &format!("v {} {} {}\n", c[0], c[1], c[2]);
-    }
-    // Corners numbered by bits (x, y, z); each quad counter-clockwise seen from outside.
-    let quads =
-        [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    for q in quads {
-        let ids: Vec<usize> = q.iter().map(|&i| i + base).collect();
-        let ids: Vec<usize> = if outward { ids } else { ids.into_iter().rev().collect() };
-        s += &format!("f {} {} {} {}\n", ids[0], ids[1], ids[2], ids[3]);
-    }
-    s
-}
-
 fn write(dir: &Path, name: &str, text: &str) -> String {
     let path: PathBuf = dir.join(name);
     std::fs::write(&path, text).unwrap();
@@ -48,8 +29,8 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
 /// A 2×2×2 box with a centred 1×1×1 cavity: volume 7, section area 3 at mid-height, 4
 /// elsewhere; 9 (or 8 for the union of the two boxes) if the cavity is taken for a solid.
 fn cavity_box(dir: &Path, cavity_outward: bool) -> String {
-    let text =
-        box_obj([0.0; 3], [2.0; 3], 1, true) + &box_obj([0.5; 3], [1.5; 3], 9, cavity_outward);
+    let text = box_obj([0.0; 3], [2.0; 3], 1, true, false)
+        + &box_obj([0.5; 3], [1.5; 3], 9, cavity_outward, false);
     write(dir, &format!("cavity-{cavity_outward}.obj"), &text)
 }
 
@@ -103,9 +84,9 @@ fn no_check_measures_the_surface_as_wound_everywhere() {
 fn overlapping_parts_are_found_alike_by_volume_and_check() {
     // Two unit cubes overlapping in a 0.5×1×1 slab, and a third apart: one pair.
     let dir = tempfile::tempdir().unwrap();
-    let text = box_obj([0.0; 3], [1.0; 3], 1, true)
-        + &box_obj([0.5, 0.2, 0.3], [1.5, 1.2, 1.3], 9, true)
-        + &box_obj([5.0; 3], [6.0; 3], 17, true);
+    let text = box_obj([0.0; 3], [1.0; 3], 1, true, false)
+        + &box_obj([0.5, 0.2, 0.3], [1.5, 1.2, 1.3], 9, true, false)
+        + &box_obj([5.0; 3], [6.0; 3], 17, true, false);
     let file = write(dir.path(), "overlap.obj", &text);
     let check = meshvol(&["check", &file, "--json"]);
     assert!(!check.status.success(), "overlapping shells do not bound a volume");
@@ -128,7 +109,7 @@ fn an_open_body_is_capped_and_says_so() {
     // A unit cube without its top: capped, the volume is 1 with a flat cap (no
     // uncertainty); every command warns that it is open.
     let dir = tempfile::tempdir().unwrap();
-    let cube = box_obj([0.0; 3], [1.0; 3], 1, true);
+    let cube = box_obj([0.0; 3], [1.0; 3], 1, true, false);
     let open: String =
         cube.lines().filter(|l| *l != "f 5 6 8 7").map(|l| format!("{l}\n")).collect();
     assert_eq!(open.lines().count(), cube.lines().count() - 1);

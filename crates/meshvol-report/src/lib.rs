@@ -2,7 +2,7 @@
 //!
 //! Each command's report is a struct here ([`volume::VolumeReport`],
 //! [`check::CheckReport`], [`grid::GridReport`], [`profile::ProfileReport`],
-//! [`union::UnionReport`], [`section::SectionReport`], [`area::AreaReport`],
+//! [`union::UnionReport`], [`intersect::IntersectReport`], [`section::SectionReport`], [`area::AreaReport`],
 //! [`hull::HullReport`], [`repair::RepairReport`], [`cutfill::CutFillReport`]): built from the kernels' results by
 //! one function, serialized by serde into the JSON the `meshvol` command prints (field
 //! names are the keys: a public contract, see docs/json.md) and into the dicts of the
@@ -39,6 +39,7 @@ pub mod cutfill;
 pub mod grid;
 pub mod hull;
 pub mod inertial;
+pub mod intersect;
 pub mod number;
 pub mod profile;
 pub mod repair;

@@ -75,34 +75,19 @@ pub fn union_with<S: Surface + Sync>(
     let uncertainty: f64 = subjects.iter().map(Subject::volume_uncertainty).sum();
     u.lower = (u.lower - uncertainty).max(0.0);
     u.upper += uncertainty;
-    for &b in &u.flipped {
-        warnings.push(format!(
-            "{}: wound inward (negative volume); measured as a solid turned outward (if it is \
-             a cavity, the union of shells is not what you want)",
-            names[b]
-        ));
-    }
-    for &b in &u.bodies_not_solid {
-        warnings.push(format!(
-            "{}: not a closed solid (its volume in some cells leaves [0, cell volume]): the \
-             interval is ordered but not certified",
-            names[b]
-        ));
-    }
-    if u.columns_unresolved > 0 {
-        warnings.push(format!(
-            "{} of the grid could not be resolved exactly; the interval keeps their bounds",
-            count(u.columns_unresolved, "column", "columns")
-        ));
-    }
-    if u.upper - u.lower > tolerance * u.lower.abs() {
-        let why = if uncertainty > 0.0 {
-            "the caps on holes leave it uncertain"
-        } else {
-            "refinement and exact resolution could not close it"
-        };
-        warnings.push(format!("the interval is wider than the tolerance {tolerance}: {why}"));
-    }
+    warnings.extend(
+        Interval {
+            names: &names,
+            flipped: &u.flipped,
+            flipped_note: " (if it is a cavity, the union of shells is not what you want)",
+            not_solid: &u.bodies_not_solid,
+            columns_unresolved: u.columns_unresolved,
+            bounds: (u.lower, u.upper),
+            tolerance,
+            uncertainty,
+        }
+        .warnings(),
+    );
     Ok(UnionReport {
         file: joined_names(subjects),
         files: subjects.iter().map(|s| s.source.name().to_string()).collect(),
@@ -123,6 +108,78 @@ pub fn union_with<S: Surface + Sync>(
     })
 }
 
+/// What a certified interval from the union's machinery (`union`, `intersect`) says
+/// about its bodies and its width.
+pub(crate) struct Interval<'a> {
+    /// The bodies' names, indexed by `flipped` and `not_solid`.
+    pub names: &'a [String],
+    pub flipped: &'a [usize],
+    /// Added to the warning about a body wound inward.
+    pub flipped_note: &'a str,
+    pub not_solid: &'a [usize],
+    pub columns_unresolved: usize,
+    pub bounds: (f64, f64),
+    pub tolerance: f64,
+    /// The caps' uncertainty in the interval.
+    pub uncertainty: f64,
+}
+
+impl Interval<'_> {
+    /// Bodies wound inward or not solid, columns unresolved, an interval wider than the
+    /// tolerance.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        for &b in self.flipped {
+            warnings.push(format!(
+                "{}: wound inward (negative volume); measured as a solid turned outward{}",
+                self.names[b], self.flipped_note
+            ));
+        }
+        for &b in self.not_solid {
+            warnings.push(format!(
+                "{}: not a closed solid (its volume in some cells leaves [0, cell volume]): the \
+                 interval is ordered but not certified",
+                self.names[b]
+            ));
+        }
+        if self.columns_unresolved > 0 {
+            warnings.push(format!(
+                "{} of the grid could not be resolved exactly; the interval keeps their bounds",
+                count(self.columns_unresolved, "column", "columns")
+            ));
+        }
+        let (lower, upper) = self.bounds;
+        if upper - lower > self.tolerance * lower.abs() {
+            let why = if self.uncertainty > 0.0 {
+                "the caps on holes leave it uncertain"
+            } else {
+                "refinement and exact resolution could not close it"
+            };
+            warnings.push(format!(
+                "the interval is wider than the tolerance {}: {why}",
+                self.tolerance
+            ));
+        }
+        warnings
+    }
+}
+
+/// The text lines of a certified interval: its midpoint, its bounds and width, and the
+/// caps' share of it.
+pub(crate) fn interval_text(s: &mut String, volume: f64, (lower, upper): (f64, f64), caps: f64) {
+    let _ = writeln!(s, "  volume           {}  (midpoint)", num(volume, 15));
+    let _ = writeln!(
+        s,
+        "  certified        [{}, {}]  (width {})",
+        num(lower, 17),
+        num(upper, 17),
+        num(upper - lower, 3)
+    );
+    if caps > 0.0 {
+        let _ = writeln!(s, "  caps on holes    ± {} (in the interval)", num(caps, 4));
+    }
+}
+
 impl Report for UnionReport {
     fn file(&self) -> &str {
         &self.file
@@ -141,21 +198,7 @@ impl Report for UnionReport {
             count(self.bodies, "body", "bodies"),
             self.body_names.join("; ")
         );
-        let _ = writeln!(s, "  volume           {}  (midpoint)", num(self.volume, 15));
-        let _ = writeln!(
-            s,
-            "  certified        [{}, {}]  (width {})",
-            num(self.lower, 17),
-            num(self.upper, 17),
-            num(self.upper - self.lower, 3)
-        );
-        if self.volume_uncertainty > 0.0 {
-            let _ = writeln!(
-                s,
-                "  caps on holes    ± {} (in the interval)",
-                num(self.volume_uncertainty, 4)
-            );
-        }
+        interval_text(&mut s, self.volume, (self.lower, self.upper), self.volume_uncertainty);
         let _ = writeln!(s, "  sum of volumes   {}", num(self.sum_of_volumes, 15));
         let _ = writeln!(
             s,

@@ -50,3 +50,27 @@ pub fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
     let values = bytes[10 + n..].chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap()));
     (shape.map(|s| s.trim().parse().unwrap()).collect(), values.collect())
 }
+
+/// An axis-aligned box as six OBJ quads (1-based from `base`), wound outward or inward;
+/// without its top face when `open`.
+pub fn box_obj(min: [f64; 3], max: [f64; 3], base: usize, outward: bool, open: bool) -> String {
+    let mut s = String::new();
+    for k in 0..8 {
+        let q = [k & 1, (k >> 1) & 1, (k >> 2) & 1];
+        let c: Vec<f64> = (0..3).map(|a| if q[a] == 1 { max[a] } else { min[a] }).collect();
+        s += &format!("v {} {} {}\n", c[0], c[1], c[2]);
+    }
+    // Corners numbered by bits (x, y, z); each quad counter-clockwise seen from outside;
+    // the second is the top.
+    let quads =
+        [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    for (n, q) in quads.into_iter().enumerate() {
+        if open && n == 1 {
+            continue;
+        }
+        let ids: Vec<usize> = q.iter().map(|&i| i + base).collect();
+        let ids: Vec<usize> = if outward { ids } else { ids.into_iter().rev().collect() };
+        s += &format!("f {} {} {} {}\n", ids[0], ids[1], ids[2], ids[3]);
+    }
+    s
+}

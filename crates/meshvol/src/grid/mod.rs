@@ -33,9 +33,13 @@
 
 mod cells;
 mod clip;
+mod intersect;
 mod profile;
 mod union;
 
+pub use intersect::{
+    intersection, intersection_with, overlapping_boxes, Bounded, Intersection, Moments,
+};
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
 pub use union::{
     union, union_cell_volumes, union_cell_volumes_with, union_with, UnionError, UnionVolume,

@@ -85,50 +85,77 @@ pub(super) fn face_box<S: Surface + ?Sized>(
     (lo, hi)
 }
 
-/// What the union is in one cell.
+/// Which combination of the bodies is measured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rule {
+    /// The union: the points inside some body.
+    Union,
+    /// The intersection: the points inside every body.
+    Intersection,
+}
+
+/// What the union (or intersection) is in one cell.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Cell {
     /// Exactly this volume.
     Exact(f64),
-    /// Two or more bodies touch it: the union lies in `[lower, upper]`.
+    /// Two or more bodies touch it: the combination lies in `[lower, upper]`.
     Open { lower: f64, upper: f64 },
 }
 
 /// One cell's tally over the bodies, from which it is exact or open.
 #[derive(Clone, Copy, Default)]
 pub(super) struct Tally {
-    /// Some body fills the cell without touching it.
-    pub full: bool,
-    /// Bodies touching it (2 means 2 or more).
+    /// A body that does not touch the cell decides it: for a union, one that fills it
+    /// (the union is the whole cell); for an intersection, one that misses it (empty).
+    /// Pieces of the other bodies in a settled cell are not on the boundary.
+    pub settled: bool,
+    /// Bodies touching it (saturating).
     pub touching: u8,
-    /// Max and Σ of the touching bodies' volumes.
+    /// Max, min and Σ of the touching bodies' volumes.
     max: f64,
+    min: f64,
     sum: f64,
 }
 
 impl Tally {
     /// Counts a body whose volume in the cell is `v` and which `touches` it or not.
-    pub fn add(&mut self, v: f64, touches: bool, cell_volume: f64) {
+    pub fn add(&mut self, v: f64, touches: bool, cell_volume: f64, rule: Rule) {
         // A closed solid's volume in a cell lies in [0, |C|]; clamped, max ≤ Σ holds and
         // the bounds stay ordered whatever the input (`UnionVolume::bodies_not_solid`).
         // (max/min also send NaN to 0.)
         let v = v.max(0.0).min(cell_volume);
         if touches {
-            self.touching = (self.touching + 1).min(2);
+            self.min = if self.touching == 0 { v } else { self.min.min(v) };
+            self.touching = self.touching.saturating_add(1);
             self.max = self.max.max(v);
             self.sum += v;
-        } else if v > 0.5 * cell_volume {
-            self.full = true;
+        } else {
+            let fills = v > 0.5 * cell_volume;
+            self.settled |= match rule {
+                Rule::Union => fills,
+                Rule::Intersection => !fills,
+            };
         }
     }
 
-    pub fn cell(&self, cell_volume: f64) -> Cell {
-        if self.full {
-            Cell::Exact(cell_volume)
-        } else if self.touching <= 1 {
-            Cell::Exact(self.sum)
-        } else {
-            Cell::Open { lower: self.max.min(cell_volume), upper: self.sum.min(cell_volume) }
+    pub fn cell(&self, cell_volume: f64, rule: Rule) -> Cell {
+        match rule {
+            Rule::Union if self.settled => Cell::Exact(cell_volume),
+            Rule::Union if self.touching <= 1 => Cell::Exact(self.sum),
+            Rule::Union => {
+                Cell::Open { lower: self.max.min(cell_volume), upper: self.sum.min(cell_volume) }
+            }
+            Rule::Intersection if self.settled => Cell::Exact(0.0),
+            // Every body fills it.
+            Rule::Intersection if self.touching == 0 => Cell::Exact(cell_volume),
+            Rule::Intersection if self.touching == 1 => Cell::Exact(self.sum),
+            Rule::Intersection => {
+                // Bonferroni: |∩ X_i| ≥ Σ |X_i| − (t − 1)|C| for t sets in C.
+                let t = f64::from(self.touching);
+                let lower = (self.sum - (t - 1.0) * cell_volume).max(0.0);
+                Cell::Open { lower: lower.min(self.min), upper: self.min }
+            }
         }
     }
 }
@@ -136,6 +163,7 @@ impl Tally {
 /// The bodies on a grid: per-cell facts from the kernel, and faces binned by column.
 pub(super) struct Bodies<'a, S: ?Sized> {
     pub bodies: Vec<Oriented<'a, S>>,
+    pub rule: Rule,
     pub grid: Grid,
     pub units: Units,
     pub tally: Vec<Tally>,
@@ -152,6 +180,7 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
     /// bodies done.
     pub fn new(
         bodies: Vec<Oriented<'a, S>>,
+        rule: Rule,
         grid: Grid,
         progress: &dyn Progress,
     ) -> Result<Self, GridError> {
@@ -172,18 +201,18 @@ impl<'a, S: Surface + ?Sized> Bodies<'a, S> {
                 not_solid.push(b);
             }
             for c in 0..cells {
-                tally[c].add(v[c], touched[c] != 0, cell_volume);
+                tally[c].add(v[c], touched[c] != 0, cell_volume, rule);
             }
             touches.push(touched.iter().enumerate().filter(|t| *t.1 != 0).map(|t| t.0).collect());
             done.add(1);
         }
         let bins = bodies.iter().map(|b| ColumnBins::new(b, &grid)).collect();
         let units = Units::new(&grid);
-        Ok(Bodies { bodies, grid, units, tally, bins, touches, not_solid })
+        Ok(Bodies { bodies, rule, grid, units, tally, bins, touches, not_solid })
     }
 
     pub fn cell(&self, c: usize) -> Cell {
-        self.tally[c].cell(self.grid.cell_volume())
+        self.tally[c].cell(self.grid.cell_volume(), self.rule)
     }
 
     /// For column `c`: which bodies touch each layer (`touch[b * nz + k]`).
@@ -237,7 +266,7 @@ mod tests {
         let b = cuboid([-0.5, -0.25, 0.0], [1.5, 0.75, 1.0]);
         let grid = Grid::from_bounds([-1.0, -1.0, -1.0], [1.5, 1.0, 1.0], [10, 8, 8]).unwrap();
         let bodies = vec![Oriented::new(&a, false), Oriented::new(&b, false)];
-        let model = Bodies::new(bodies, grid, &()).unwrap();
+        let model = Bodies::new(bodies, Rule::Union, grid, &()).unwrap();
         let mut marked = 0;
         for c in 0..grid.counts[0] * grid.counts[1] {
             let touch = model.column_touches(c);

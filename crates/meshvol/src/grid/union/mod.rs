@@ -73,6 +73,13 @@
 //! of the column: exact up to rounding. The same resolution, applied to every column of
 //! a given grid, gives [`union_cell_volumes`].
 //!
+//! # The intersection
+//! Every stage takes a [`Rule`]: [`Rule::Intersection`] changes only the bounds of a
+//! cell (`Tally::cell`: a body missing it settles it at 0; two touching bodies give
+//! `max(0, Σ v_i − (t − 1)|C|) ≤ vol ≤ min_i v_i`), the keep rule of exact resolution
+//! (a sub-piece is kept inside, not outside, the other bodies) and the grid (the bodies'
+//! common box, with room); see [`super::intersection`].
+//!
 //! # Stages and files
 //!
 //! | stage | file |
@@ -102,9 +109,11 @@ pub use resolve::COPLANAR_TOLERANCE;
 
 use super::{Grid, GridError};
 use crate::accumulate::CompensatedSum;
+use crate::grid::intersect::moments::Sums;
 use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
 use crate::{mass_properties, Point, Surface};
+pub(crate) use bounds::Rule;
 use bounds::{Bodies, Cell};
 use rayon::prelude::*;
 use refine::{refine, OpenCell, Refined};
@@ -200,62 +209,101 @@ pub fn union_with<S: Surface>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<UnionVolume, UnionError> {
+    combine(bodies, Rule::Union, tolerance, false, progress).map(|(u, _)| u)
+}
+
+/// The union's or the intersection's volume (module docs; `intersect` for the
+/// intersection's bounds and grid) and, with `moments`, the moments of the solid from
+/// its boundary's pieces kept in every column (`None` where a column fails to resolve,
+/// and for no volume: then the volume is 0).
+pub(crate) fn combine<S: Surface>(
+    bodies: &[S],
+    rule: Rule,
+    tolerance: f64,
+    moments: bool,
+    progress: &dyn Progress,
+) -> Result<(UnionVolume, Option<(Point, Sums)>), UnionError> {
     if bodies.is_empty() {
         return Err(UnionError::NoBodies);
     }
     let mut oriented = Vec::new();
     let mut flipped = Vec::new();
     let mut sum_of_volumes = CompensatedSum::default();
-    let mut largest = 0.0f64;
+    let (mut largest, mut smallest) = (0.0f64, f64::INFINITY);
     let (mut min, mut max) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    let mut projected = 0.0;
+    let (mut common_min, mut common_max) = ([f64::NEG_INFINITY; 3], [f64::INFINITY; 3]);
     let mut triangles = 0;
     for (i, body) in bodies.iter().enumerate() {
         let mp = mass_properties(body);
         sum_of_volumes.add(mp.signed_volume.abs());
         largest = largest.max(mp.signed_volume.abs());
+        smallest = smallest.min(mp.signed_volume.abs());
         triangles += mp.triangles;
         if mp.signed_volume < 0.0 {
             flipped.push(i);
         }
-        if let Some(b) = mp.bounds {
-            for a in 0..3 {
-                min[a] = min[a].min(b.min[a]);
-                max[a] = max[a].max(b.max[a]);
-            }
+        let (lo, hi) =
+            mp.bounds.map_or(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]), |b| (b.min, b.max));
+        for a in 0..3 {
+            min[a] = min[a].min(lo[a]);
+            max[a] = max[a].max(hi[a]);
+            common_min[a] = common_min[a].max(lo[a]);
+            common_max[a] = common_max[a].min(hi[a]);
         }
-        let mut p = 0.0;
-        for f in 0..body.face_count() {
-            body.fan(f, |a, b, c| {
-                p += ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs() * 0.5;
-            });
-        }
-        projected += p;
         oriented.push(Oriented::new(body, mp.signed_volume < 0.0));
     }
+    if rule == Rule::Intersection {
+        // The intersection lies in the bodies' common box: the grid covers it with room
+        // on every side, so no piece of its boundary is on the grid's faces.
+        (min, max) = (common_min, common_max);
+        let longest = (0..3).map(|a| max[a] - min[a]).fold(0.0, f64::max);
+        for a in 0..3 {
+            let room = 1e-6 * longest;
+            (min[a], max[a]) = (min[a] - room, max[a] + room);
+        }
+    }
     let sum_of_volumes = sum_of_volumes.value();
-    // Also true for no vertices at all (min = +∞).
-    let flat = (0..3).any(|a| max[a] <= min[a] || max[a].is_nan() || min[a].is_nan());
+    // Also true for no vertices at all (min = +∞), and for bodies whose boxes are apart.
+    let flat = (0..3).any(|a| max[a] <= min[a] || max[a].is_nan() || min[a].is_nan())
+        || (rule == Rule::Intersection && (0..3).any(|a| common_max[a] <= common_min[a]));
     if flat {
-        // No body encloses any volume.
+        // No volume: no body encloses any, or (intersection) their boxes are apart.
         let grid = Grid::new([0.0; 3], [1.0; 3], [1, 1, 1])?;
-        return Ok(UnionVolume {
-            lower: 0.0,
-            upper: 0.0,
-            bodies: bodies.len(),
-            sum_of_volumes,
-            cells_refined: 0,
-            cells_resolved_exactly: 0,
-            columns_unresolved: 0,
-            grid,
-            flipped,
-            bodies_not_solid: Vec::new(),
-        });
+        return Ok((
+            UnionVolume {
+                lower: 0.0,
+                upper: 0.0,
+                bodies: bodies.len(),
+                sum_of_volumes,
+                cells_refined: 0,
+                cells_resolved_exactly: 0,
+                columns_unresolved: 0,
+                grid,
+                flipped,
+                bodies_not_solid: Vec::new(),
+            },
+            None,
+        ));
+    }
+    // The projected area of the faces that meet the grid, for the rounding allowance.
+    let mut projected = 0.0;
+    for body in bodies {
+        for f in 0..body.face_count() {
+            body.fan(f, |a, b, c| {
+                let meets = (0..3).all(|k| {
+                    a[k].min(b[k]).min(c[k]) <= max[k] && a[k].max(b[k]).max(c[k]) >= min[k]
+                });
+                if meets {
+                    projected +=
+                        ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs() * 0.5;
+                }
+            });
+        }
     }
     let target = triangles.clamp(1 << 15, 1 << 18);
     let grid = base_grid(min, max, target)?;
     let allowance = projected * (max[2] - min[2]) * 2f64.powi(-36);
-    let model = Bodies::new(oriented, grid, progress)?;
+    let model = Bodies::new(oriented, rule, grid, progress)?;
     let [_, _, nz] = grid.counts;
     let columns = grid.counts[0] * grid.counts[1];
 
@@ -311,7 +359,8 @@ pub fn union_with<S: Surface>(
         progress.stage("refining");
         let done = Counter::new(progress, level.len());
         let refine_all = |cells: &[OpenCell]| -> Result<Vec<Refined>, GridError> {
-            let refined = cells.iter().map(|cell| refine(&model.bodies, &grid, cell)).collect();
+            let refined =
+                cells.iter().map(|cell| refine(&model.bodies, model.rule, &grid, cell)).collect();
             done.add(cells.len());
             refined
         };
@@ -386,15 +435,25 @@ pub fn union_with<S: Surface>(
     }
     let (mut low, mut high) = (total(&exact, &lower), total(&exact, &upper));
     if model.not_solid.is_empty() {
-        // For solids the union holds the largest body and is held by their sum: facts
-        // that bound the interval whatever its cells' rounding.
-        low = low.max(largest);
-        high = high.min(sum_of_volumes);
+        // For solids the union holds the largest body and is held by their sum, the
+        // intersection is held by the smallest: facts that bound the interval whatever
+        // its cells' rounding.
+        match rule {
+            Rule::Union => {
+                low = low.max(largest);
+                high = high.min(sum_of_volumes);
+            }
+            Rule::Intersection => {
+                low = low.max(0.0);
+                high = high.min(smallest);
+            }
+        }
     }
     // Ordered for any input: per-column bounds are updated in place (rounding), and a
     // body that is not a solid makes the bounds meaningless (then it is listed).
     let (low, high) = (low.min(high), low.max(high));
-    Ok(UnionVolume {
+    let sums = if moments { column_moments(&model, progress) } else { None };
+    let volume = UnionVolume {
         lower: low - allowance,
         upper: high + allowance,
         bodies: bodies.len(),
@@ -405,7 +464,32 @@ pub fn union_with<S: Surface>(
         grid,
         flipped,
         bodies_not_solid: model.not_solid,
-    })
+    };
+    Ok((volume, sums.map(|s| (grid.origin, s))))
+}
+
+/// The moments of the kept pieces of every column (about the grid's origin), summed in
+/// column order; `None` when some column cannot be resolved.
+fn column_moments<S: Surface>(model: &Bodies<'_, S>, progress: &dyn Progress) -> Option<Sums> {
+    let columns = model.grid.counts[0] * model.grid.counts[1];
+    progress.stage("moments");
+    let done = Counter::new(progress, columns);
+    let per_column: Vec<Option<Sums>> = (0..columns)
+        .into_par_iter()
+        .map(|c| {
+            let mut sums = [0.0; 10];
+            let resolved = model.exact_column_with(c, Some(&mut sums)).map(|_| sums);
+            done.add(1);
+            resolved
+        })
+        .collect();
+    let mut total = [CompensatedSum::default(); 10];
+    for sums in per_column {
+        for (t, x) in total.iter_mut().zip(sums?) {
+            t.add(x);
+        }
+    }
+    Some(total.map(|t| t.value()))
 }
 
 /// The union's volume in every cell of `grid`: exact where at most one body touches a
@@ -429,7 +513,7 @@ pub fn union_cell_volumes_with<S: Surface>(
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
     let oriented =
         bodies.iter().map(|b| Oriented::new(b, mass_properties(b).signed_volume < 0.0)).collect();
-    let model = Bodies::new(oriented, grid, progress)?;
+    let model = Bodies::new(oriented, Rule::Union, grid, progress)?;
     let [nx, ny, nz] = grid.counts;
     let mut out = super::cells::zeroed(grid.cell_count())?;
     progress.stage("resolving columns");

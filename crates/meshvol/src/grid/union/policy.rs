@@ -37,7 +37,10 @@ pub(super) fn sample<S: Surface + ?Sized>(
         .map(|(n, &c)| {
             (n % SAMPLE_EVERY == 0).then(|| {
                 let cells = model.open_cells(c);
-                cells.iter().map(|cell| refine(&model.bodies, &model.grid, cell)).collect()
+                cells
+                    .iter()
+                    .map(|cell| refine(&model.bodies, model.rule, &model.grid, cell))
+                    .collect()
             })
         })
         .collect();

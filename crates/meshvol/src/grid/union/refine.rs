@@ -9,7 +9,7 @@
 //! what its cells' own faces cost, not their columns'. A cell whose children's gaps add
 //! up to more than [`super::STALL`] of its own is not refined further.
 
-use super::bounds::{face_box, Cell, Tally};
+use super::bounds::{face_box, Cell, Rule, Tally};
 use super::{MAX_DEPTH, STALL};
 use crate::grid::cells::{add_faces, finish_column, for_each_piece, Block, Piece, Units};
 use crate::grid::{Grid, GridError};
@@ -95,6 +95,7 @@ pub(super) fn add_area(t: [Point; 3], at: Point, side: usize, field: &mut [f64])
 /// lists and fields of the open ones.
 pub(super) fn refine<S: Surface + ?Sized>(
     bodies: &[Oriented<'_, S>],
+    rule: Rule,
     grid: &Grid,
     cell: &OpenCell,
 ) -> Result<Refined, GridError> {
@@ -153,9 +154,9 @@ pub(super) fn refine<S: Surface + ?Sized>(
     for child in 0..8 {
         let mut tally = Tally::default();
         for (v, t) in &per_body {
-            tally.add(v[child], t[child] != 0, child_volume);
+            tally.add(v[child], t[child] != 0, child_volume, rule);
         }
-        match tally.cell(child_volume) {
+        match tally.cell(child_volume, rule) {
             Cell::Exact(v) => exact += v,
             Cell::Open { lower, upper } => {
                 let (i, j, k) = (child >> 2, (child >> 1) & 1, child & 1);

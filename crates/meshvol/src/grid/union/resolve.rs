@@ -3,14 +3,17 @@
 //! touching bodies' surfaces into sub-pieces no other surface crosses, and a sub-piece
 //! is kept when it is on the union's boundary (module docs of [`super`]): outside every
 //! other body by a vertical ray with exact predicates and a symbolic perturbation, or on
-//! a coplanar face shared the same way round with a later body.
+//! a coplanar face shared the same way round with a later body. For the intersection
+//! ([`Rule::Intersection`]) a sub-piece off the other bodies' faces is kept when inside
+//! every other body instead.
 
-use super::bounds::{Bodies, Cell};
+use super::bounds::{Bodies, Cell, Rule};
 use super::plan::{plan_box, PlanBox, PlanIndex};
 use crate::grid::cells::{
     cover, finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece,
 };
 use crate::grid::clip::Polygon;
+use crate::grid::intersect::moments::{add_piece, Sums};
 use crate::vector::{cross, dot, orient2d, orient3d, sub};
 use crate::{Point, Surface};
 
@@ -22,6 +25,16 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
     /// many open cells that resolved; `None` where a piece needed more than [`SUB`]
     /// sides or a resolved value falls outside its cell's bounds.
     pub(super) fn exact_column(&self, c: usize) -> Option<(Vec<f64>, usize)> {
+        self.exact_column_with(c, None)
+    }
+
+    /// [`Self::exact_column`], adding the moments of the kept pieces (the boundary of
+    /// the union or intersection in the column) to `moments` where given.
+    pub(crate) fn exact_column_with(
+        &self,
+        c: usize,
+        mut moments: Option<&mut Sums>,
+    ) -> Option<(Vec<f64>, usize)> {
         let [_, ny, nz] = self.grid.counts;
         let whole = Block::whole(self.grid.counts);
         let (i, j) = (c / ny, c % ny);
@@ -33,7 +46,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         let mut open: Vec<Option<OpenLayer>> = (0..nz).map(|_| None).collect();
         let mut resolved = 0;
         for (k, slot) in open.iter_mut().enumerate() {
-            if self.tally[base + k].full || self.tally[base + k].touching < 2 {
+            if self.tally[base + k].settled || self.tally[base + k].touching < 2 {
                 continue;
             }
             let bodies: Vec<usize> = (0..m).filter(|&b| touch[b * nz + k]).collect();
@@ -118,6 +131,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                             direct: &mut direct,
                             area: &mut area,
                             failed: &mut failed,
+                            moments: moments.as_deref_mut(),
                         };
                         sweep_layers(piece, piece.range(2), nz, &mut sink);
                     });
@@ -216,6 +230,8 @@ struct Scratch {
     pieces: Vec<Polygon<SUB>>,
     coplanar: Vec<usize>,
     near: Vec<u32>,
+    /// The pieces [`resolve`] kept, by index into `pieces`.
+    kept: Vec<usize>,
 }
 
 /// A point's plan coordinates.
@@ -310,6 +326,7 @@ struct KeptSink<'s, 'a, S: ?Sized> {
     direct: &'s mut [f64],
     area: &'s mut [f64],
     failed: &'s mut bool,
+    moments: Option<&'s mut Sums>,
 }
 
 impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
@@ -317,15 +334,27 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
     fn kept<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) -> (f64, f64) {
         let nz = self.owner.grid.counts[2];
         let cell = self.column * nz + layer;
-        if self.owner.tally[cell].full {
+        if self.owner.tally[cell].settled {
             return (0.0, 0.0);
         }
+        let cell_size = self.owner.grid.cell;
         let Some(open) = &self.open[layer] else {
+            if let Some(sums) = self.moments.as_deref_mut() {
+                add_piece(part.vertices(), cell_size, sums);
+            }
             return part.area_and_moment(layer as f64);
         };
         let own = [&self.triangle, &self.unit];
-        match resolve(part, layer as f64, self.body, own, open, self.rays, self.scratch) {
-            Some(kept) => kept,
+        let rule = self.owner.rule;
+        match resolve(part, layer as f64, self.body, own, open, rule, self.rays, self.scratch) {
+            Some(kept) => {
+                if let Some(sums) = self.moments.as_deref_mut() {
+                    for &k in &self.scratch.kept {
+                        add_piece(self.scratch.pieces[k].vertices(), cell_size, sums);
+                    }
+                }
+                kept
+            }
             None => {
                 *self.failed = true;
                 (0.0, 0.0)
@@ -343,7 +372,11 @@ impl<S: Surface + ?Sized> LayerSink for KeptSink<'_, '_, S> {
 
     fn above<const N: usize>(&mut self, part: &Polygon<N>) {
         // On or above the top plane: classified with the top cell, whose closed box it
-        // touches.
+        // touches. An intersection's grid has room above the bodies' common box, so
+        // whatever lies there is outside some body.
+        if self.owner.rule == Rule::Intersection {
+            return;
+        }
         let top = self.area.len() - 1;
         let (area, _) = self.kept(top - 1, part);
         self.area[top] += area;
@@ -353,16 +386,19 @@ impl<S: Surface + ?Sized> LayerSink for KeptSink<'_, '_, S> {
 /// Splits `part` (of body `body`'s triangle `triangle`, in an open cell at height
 /// `layer`) along the other bodies' surfaces and returns the kept sub-pieces' area and
 /// ∫ (z − layer) dA; `None` when a sub-piece would need more than [`SUB`] sides.
+#[allow(clippy::too_many_arguments)]
 fn resolve<const N: usize>(
     part: &Polygon<N>,
     layer: f64,
     body: usize,
     [triangle, unit]: [&[Point; 3]; 2],
     open: &OpenLayer,
+    rule: Rule,
     rays: &[Rays],
     scratch: &mut Scratch,
 ) -> Option<(f64, f64)> {
-    let Scratch { pieces, coplanar: coplanar_cutters, near } = scratch;
+    let Scratch { pieces, coplanar: coplanar_cutters, near, kept: kept_pieces } = scratch;
+    kept_pieces.clear();
     let mut first = Polygon::<SUB>::EMPTY;
     for &v in part.vertices() {
         first.push(v);
@@ -395,7 +431,7 @@ fn resolve<const N: usize>(
     }
     let (mut area, mut moment) = (0.0, 0.0);
     let own_up = faces_up(triangle);
-    for piece in pieces.iter() {
+    for (index, piece) in pieces.iter().enumerate() {
         let (a, m) = piece.area_and_moment(layer);
         if a == 0.0 {
             continue;
@@ -411,12 +447,16 @@ fn resolve<const N: usize>(
                     let up = faces_up(&t.world);
                     up == own_up && body < other
                 }
-                None => winding(point, &rays[other]) <= 0,
+                None => {
+                    let inside = winding(point, &rays[other]) > 0;
+                    inside == (rule == Rule::Intersection)
+                }
             }
         });
         if kept {
             area += a;
             moment += m;
+            kept_pieces.push(index);
         }
     }
     Some((area, moment))

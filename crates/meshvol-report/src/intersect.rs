@@ -1,0 +1,202 @@
+//! `intersect`: the volume of the intersection of two bodies as a certified interval,
+//! with the union, the differences, IoU and Dice that follow from it, widened by the
+//! caps' uncertainty, with the warnings that say when it is not certified.
+
+use crate::number::{count, num};
+use crate::subject::{joined_names, Subject};
+use crate::union::{interval_text, Interval};
+use crate::Report;
+use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
+use meshvol::progress::Progress;
+use meshvol::Surface;
+use serde::Serialize;
+use std::fmt::Write;
+use std::time::Instant;
+
+/// The report. Field names are the JSON keys.
+#[derive(Clone, Debug, Serialize)]
+pub struct IntersectReport {
+    /// The two inputs, joined by `, `.
+    pub file: String,
+    pub files: Vec<String>,
+    /// `lower ≤ |A∩B| ≤ upper`; `volume` is the midpoint.
+    pub lower: f64,
+    pub upper: f64,
+    pub volume: f64,
+    /// |A| and |B|: the volumes of the two checked solids.
+    pub volume_a: f64,
+    pub volume_b: f64,
+    /// |A∪B| = |A| + |B| − |A∩B|, and its interval.
+    pub union: f64,
+    pub union_lower: f64,
+    pub union_upper: f64,
+    /// |A∖B| = |A| − |A∩B| and |B∖A| = |B| − |A∩B|.
+    pub a_minus_b: f64,
+    pub b_minus_a: f64,
+    /// |A∩B| / |A∪B| (0 when the union is empty), and its interval.
+    pub iou: f64,
+    pub iou_lower: f64,
+    pub iou_upper: f64,
+    /// 2|A∩B| / (|A| + |B|).
+    pub dice: f64,
+    /// The centroid of A∩B, and its inertia tensor about the centroid for unit density;
+    /// `null` without volume or where the boundary could not be resolved everywhere.
+    pub centroid: Option<[f64; 3]>,
+    pub inertia: Option<[[f64; 3]; 3]>,
+    /// The bodies' boxes are apart (or only touch): the intersection is 0, found
+    /// without a grid.
+    pub disjoint: bool,
+    pub cells_refined: usize,
+    pub cells_resolved_exactly: usize,
+    /// Grid columns left unresolved: their bounds stay in the interval.
+    pub columns_unresolved: usize,
+    /// Inputs (0: A, 1: B) wound inward, measured turned outward.
+    pub flipped: Vec<usize>,
+    /// How far the caps on the bodies' holes could put the volumes off; the intervals
+    /// are widened by it (0 for closed bodies).
+    pub volume_uncertainty: f64,
+    /// The base grid's cells (`[1, 1, 1]` when disjoint).
+    pub grid: [usize; 3],
+    pub seconds: f64,
+    pub warnings: Vec<String>,
+}
+
+/// The intersection of `a` and `b`, each whole (every shell of an input is part of its
+/// body), refined until `upper − lower ≤ tolerance · lower` where it can be.
+pub fn intersect<S: Surface + Sync>(
+    a: &Subject<'_, S>,
+    b: &Subject<'_, S>,
+    tolerance: f64,
+) -> Result<IntersectReport, String> {
+    intersect_with(a, b, tolerance, &())
+}
+
+/// [`intersect`], telling `progress` the kernel's stages and how far each is.
+pub fn intersect_with<S: Surface + Sync>(
+    a: &Subject<'_, S>,
+    b: &Subject<'_, S>,
+    tolerance: f64,
+    progress: &dyn Progress,
+) -> Result<IntersectReport, String> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(format!("tolerance must be a positive number; got {tolerance}"));
+    }
+    let subjects = [*a, *b];
+    let mut warnings: Vec<String> = subjects
+        .iter()
+        .flat_map(|s| s.warnings().into_iter().map(|w| format!("{}: {w}", s.source.name())))
+        .collect();
+    let names: Vec<String> = subjects.iter().map(|s| s.source.name().to_string()).collect();
+    let (body_a, body_b) = (a.whole().surface, b.whole().surface);
+    let start = Instant::now();
+    let mut i = kernel(&body_a, &body_b, tolerance, progress).map_err(|e| e.to_string())?;
+    let seconds = start.elapsed().as_secs_f64();
+    // Caps on holes are guesses: the intervals must hold whatever the missing faces were.
+    let (ua, ub) = (a.volume_uncertainty(), b.volume_uncertainty());
+    let uncertainty = ua + ub;
+    if !i.disjoint {
+        i.lower = (i.lower - uncertainty).max(0.0);
+        i.upper += uncertainty;
+    }
+    i.error_a += ua;
+    i.error_b += ub;
+    warnings.extend(
+        Interval {
+            names: &names,
+            flipped: &i.flipped,
+            flipped_note: "",
+            not_solid: &i.bodies_not_solid,
+            columns_unresolved: i.columns_unresolved,
+            bounds: (i.lower, i.upper),
+            tolerance,
+            uncertainty,
+        }
+        .warnings(),
+    );
+    let (union, iou): (Bounded, Bounded) = (i.union(), i.iou());
+    Ok(IntersectReport {
+        file: joined_names(&subjects),
+        files: names,
+        lower: i.lower,
+        upper: i.upper,
+        volume: i.volume(),
+        volume_a: i.volume_a,
+        volume_b: i.volume_b,
+        union: union.value,
+        union_lower: union.lower,
+        union_upper: union.upper,
+        a_minus_b: i.a_minus_b().value,
+        b_minus_a: i.b_minus_a().value,
+        iou: iou.value,
+        iou_lower: iou.lower,
+        iou_upper: iou.upper,
+        dice: i.dice().value,
+        centroid: i.moments.map(|m| m.centroid),
+        inertia: i.moments.map(|m| m.inertia),
+        disjoint: i.disjoint,
+        cells_refined: i.cells_refined,
+        cells_resolved_exactly: i.cells_resolved_exactly,
+        columns_unresolved: i.columns_unresolved,
+        flipped: i.flipped,
+        volume_uncertainty: uncertainty,
+        grid: i.grid.counts,
+        seconds,
+        warnings,
+    })
+}
+
+/// The pairs `(i, j)`, `i < j`, of `subjects` (each measured whole) whose boxes overlap:
+/// the only pairs that can hold common volume.
+pub fn overlapping_pairs<S: Surface + Sync>(subjects: &[Subject<'_, S>]) -> Vec<(usize, usize)> {
+    let boxes: Vec<_> =
+        subjects.iter().map(|s| meshvol::mass_properties(&s.measured()).bounds).collect();
+    overlapping_boxes(&boxes)
+}
+
+impl Report for IntersectReport {
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    fn text(&self) -> String {
+        let mut s = String::new();
+        let [nx, ny, nz] = self.grid;
+        let _ = writeln!(s, "intersection of {} and {}", self.files[0], self.files[1]);
+        interval_text(&mut s, self.volume, (self.lower, self.upper), self.volume_uncertainty);
+        if let Some(c) = self.centroid {
+            let c: Vec<String> = c.iter().map(|&x| num(x, 10)).collect();
+            let _ = writeln!(s, "  centroid         ({})", c.join(", "));
+        }
+        if let Some(m) = self.inertia {
+            let d: Vec<String> = (0..3).map(|k| num(m[k][k], 10)).collect();
+            let _ = writeln!(
+                s,
+                "  inertia (diag)   ({})  (about the centroid, unit density)",
+                d.join(", ")
+            );
+        }
+        let _ = writeln!(s, "  IoU              {}", num(self.iou, 12));
+        let _ = writeln!(s, "  Dice             {}", num(self.dice, 12));
+        let _ = writeln!(s, "  volume A         {}", num(self.volume_a, 15));
+        let _ = writeln!(s, "  volume B         {}", num(self.volume_b, 15));
+        let _ = writeln!(s, "  A − B            {}", num(self.a_minus_b, 15));
+        let _ = writeln!(s, "  B − A            {}", num(self.b_minus_a, 15));
+        let _ = writeln!(s, "  union            {}", num(self.union, 15));
+        if self.disjoint {
+            let _ = writeln!(s, "  boxes apart      no grid needed");
+        } else {
+            let _ = writeln!(
+                s,
+                "  grid             {nx}×{ny}×{nz}, {} refined, {} resolved exactly",
+                count(self.cells_refined, "cell", "cells"),
+                self.cells_resolved_exactly
+            );
+        }
+        let _ = writeln!(s, "  time             {:.3} s", self.seconds);
+        s
+    }
+}
