@@ -291,32 +291,68 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
     )
     .unwrap_or_default();
 
-    // Each edge's crossing is the start of one segment and the end of another.
-    let mut starting: HashMap<EdgeKey, u32> = HashMap::with_capacity(segments.len());
+    // Each edge's crossing is the start of one segment and the end of another; an edge
+    // shared by more than two triangles (a non-manifold edge, or a fan's diagonal lying
+    // on an edge of its face through a corner between) starts several. The segments
+    // starting at each edge form one run of `order`; following a chain takes the next
+    // unused segment of the run at the edge it ends on, so where as many segments end
+    // at an edge as start there every one is chained (arbitrarily among them: the
+    // loops' total signed area does not depend on the pairing).
+    let mut order: Vec<u32> = (0..segments.len() as u32).collect();
+    order.sort_unstable_by(|&a, &b| {
+        segments[a as usize].from.cmp(&segments[b as usize].from).then(a.cmp(&b))
+    });
+    let mut runs: HashMap<EdgeKey, (usize, usize)> = HashMap::with_capacity(segments.len());
     let mut ambiguous_edges = 0;
-    for (i, s) in segments.iter().enumerate() {
-        if starting.insert(s.from, i as u32).is_some() {
-            ambiguous_edges += 1;
+    let mut start = 0;
+    while start < order.len() {
+        let edge = segments[order[start] as usize].from;
+        let mut end = start + 1;
+        while end < order.len() && segments[order[end] as usize].from == edge {
+            end += 1;
         }
+        ambiguous_edges += end - start - 1;
+        runs.insert(edge, (start, end));
+        start = end;
     }
-    // Open chains first, from the segments nothing leads to, so that each is counted
-    // once; whatever is left is made of loops.
-    let mut used = vec![false; segments.len()];
-    let mut has_predecessor = vec![false; segments.len()];
+    // Open chains first, from the edges where more segments start than end, so that
+    // each is counted once; whatever is left is made of loops.
+    let mut ending: HashMap<EdgeKey, usize> = HashMap::with_capacity(segments.len());
     for s in &segments {
-        if let Some(&next) = starting.get(&s.to) {
-            has_predecessor[next as usize] = true;
-        }
+        *ending.entry(s.to).or_default() += 1;
     }
+    let mut sources: Vec<(EdgeKey, usize)> = Vec::new();
+    let mut start = 0;
+    while start < order.len() {
+        let edge = segments[order[start] as usize].from;
+        let (_, end) = runs[&edge];
+        let ends = ending.get(&edge).copied().unwrap_or(0);
+        if end - start > ends {
+            sources.push((edge, end - start - ends));
+        }
+        start = end;
+    }
+    let mut used = vec![false; segments.len()];
+    // The next unused segment starting at `edge`, marked used.
+    let mut take = |used: &mut [bool], edge: &EdgeKey| -> Option<usize> {
+        let run = runs.get_mut(edge)?;
+        while run.0 < run.1 {
+            let i = order[run.0] as usize;
+            run.0 += 1;
+            if !used[i] {
+                used[i] = true;
+                return Some(i);
+            }
+        }
+        None
+    };
     let mut open_chains = 0;
-    for first in (0..segments.len()).filter(|&i| !has_predecessor[i]) {
-        open_chains += 1;
-        let mut at = first;
-        while !used[at] {
-            used[at] = true;
-            match starting.get(&segments[at].to) {
-                Some(&next) => at = next as usize,
-                None => break,
+    for (edge, count) in sources {
+        for _ in 0..count {
+            let Some(mut at) = take(&mut used, &edge) else { break };
+            open_chains += 1;
+            while let Some(next) = take(&mut used, &segments[at].to) {
+                at = next;
             }
         }
     }
@@ -326,18 +362,19 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
         if used[first] {
             continue;
         }
+        used[first] = true;
         chain.clear();
         let mut at = first;
+        // With the open chains gone, every edge starts as many unused segments as end
+        // there, so the walk can only stop where it began.
         let closed = loop {
-            used[at] = true;
             let point = plane.project(segments[at].start);
             if chain.last() != Some(&point) {
                 chain.push(point);
             }
-            match starting.get(&segments[at].to) {
-                Some(&next) if next as usize == first => break true,
-                Some(&next) if !used[next as usize] => at = next as usize,
-                _ => break false,
+            match take(&mut used, &segments[at].to) {
+                Some(next) => at = next,
+                None => break segments[at].to == segments[first].from,
             }
         };
         if !closed {
