@@ -258,7 +258,6 @@ impl Partial {
     }
 }
 
-
 /// Computes the mass properties of the solid bounded by `surface`, in one parallel,
 /// deterministic pass.
 ///
