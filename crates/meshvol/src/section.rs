@@ -186,7 +186,8 @@ pub struct Section {
     /// Chains that did not close: the surface is open along the plane.
     pub open_chains: usize,
     /// Edges crossed more than once in the same direction: edges shared by more than two
-    /// triangles, or inconsistent winding. Such crossings are chained arbitrarily.
+    /// triangles, or inconsistent winding. Such crossings are chained turning most to the
+    /// left (see [`section`]).
     pub ambiguous_edges: usize,
     /// Loops whose winding disagrees with their nesting (a counter-clockwise hole or a
     /// clockwise exterior, relative to the majority): an inward-wound shell inside
@@ -197,13 +198,14 @@ pub struct Section {
 /// An edge named by its end points' coordinate bits, below end first.
 type EdgeKey = [u64; 6];
 
-/// One triangle's piece of the section: from the crossing of edge `from` to that of
-/// edge `to`.
+/// One triangle's piece of the section: from the crossing of edge `from` (`start`) to
+/// that of edge `to` (`end`).
 #[derive(Clone, Copy)]
 struct Segment {
     from: EdgeKey,
     to: EdgeKey,
     start: Point,
+    end: Point,
 }
 
 #[inline(always)]
@@ -241,12 +243,15 @@ fn triangle_segment(plane: &Plane, corners: [Point; 3]) -> Option<Segment> {
                 let point = crossing(corners[j], d[j], corners[i], d[i]);
                 from = Some((key(corners[j], corners[i]), point));
             }
-            (true, false) => to = Some(key(corners[i], corners[j])),
+            (true, false) => {
+                let point = crossing(corners[i], d[i], corners[j], d[j]);
+                to = Some((key(corners[i], corners[j]), point));
+            }
             _ => {}
         }
     }
-    let ((from, start), to) = (from?, to?);
-    Some(Segment { from, to, start })
+    let ((from, start), (to, end)) = (from?, to?);
+    Some(Segment { from, to, start, end })
 }
 
 /// The cross-section of `surface` by `plane`.
@@ -294,10 +299,12 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
     // Each edge's crossing is the start of one segment and the end of another; an edge
     // shared by more than two triangles (a non-manifold edge, or a fan's diagonal lying
     // on an edge of its face through a corner between) starts several. The segments
-    // starting at each edge form one run of `order`; following a chain takes the next
-    // unused segment of the run at the edge it ends on, so where as many segments end
-    // at an edge as start there every one is chained (arbitrarily among them: the
-    // loops' total signed area does not depend on the pairing).
+    // starting at each edge form one run of `order`, and a chain arriving at an edge
+    // goes on with one of the run's unused segments, so where as many segments end at
+    // an edge as start there every one is chained. Where there is a choice, the chain
+    // turns most to the left: the solid lies to the left of its section's segments, so
+    // this traces the boundary of one piece of it around the point, and sections that
+    // touch there (two bodies sharing an edge) stay apart, whatever the face order.
     let mut order: Vec<u32> = (0..segments.len() as u32).collect();
     order.sort_unstable_by(|&a, &b| {
         segments[a as usize].from.cmp(&segments[b as usize].from).then(a.cmp(&b))
@@ -321,38 +328,52 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
     for s in &segments {
         *ending.entry(s.to).or_default() += 1;
     }
-    let mut sources: Vec<(EdgeKey, usize)> = Vec::new();
-    let mut start = 0;
-    while start < order.len() {
-        let edge = segments[order[start] as usize].from;
-        let (_, end) = runs[&edge];
+    let mut sources: Vec<(usize, usize)> = Vec::new();
+    for (&edge, &(start, end)) in &runs {
         let ends = ending.get(&edge).copied().unwrap_or(0);
         if end - start > ends {
-            sources.push((edge, end - start - ends));
+            sources.push((start, end - start - ends));
         }
-        start = end;
     }
+    sources.sort_unstable();
     let mut used = vec![false; segments.len()];
-    // The next unused segment starting at `edge`, marked used.
-    let mut take = |used: &mut [bool], edge: &EdgeKey| -> Option<usize> {
-        let run = runs.get_mut(edge)?;
-        while run.0 < run.1 {
-            let i = order[run.0] as usize;
-            run.0 += 1;
-            if !used[i] {
-                used[i] = true;
-                return Some(i);
-            }
-        }
-        None
+    let direction = |i: usize| {
+        let (a, b) = (plane.project(segments[i].start), plane.project(segments[i].end));
+        [b[0] - a[0], b[1] - a[1]]
+    };
+    // How far segment `next` turns left from segment `at` seen from the side the normal
+    // points to (an angle in (−π, π]; the `y = h` frame sees the plane from below).
+    let left = if plane.frame_is_flipped() { -1.0 } else { 1.0 };
+    let turn = |at: usize, next: usize| {
+        let (u, v) = (direction(at), direction(next));
+        (left * (u[0] * v[1] - u[1] * v[0])).atan2(u[0] * v[0] + u[1] * v[1])
+    };
+    // The segment the chain goes on with after `at` (`None`: the chain ends), marked
+    // used; `first`, the chain's first segment, is a candidate too (a loop closes).
+    let next = |used: &mut [bool], at: usize, first: Option<usize>| -> Option<usize> {
+        let &(start, end) = runs.get(&segments[at].to)?;
+        let candidates = order[start..end].iter().map(|&i| i as usize);
+        let mut free = candidates.filter(|&i| !used[i] || Some(i) == first);
+        let best = if end - start > 1 {
+            free.max_by(|&a, &b| turn(at, a).total_cmp(&turn(at, b)).then(b.cmp(&a)))
+        } else {
+            free.next()
+        }?;
+        used[best] = true;
+        Some(best)
     };
     let mut open_chains = 0;
-    for (edge, count) in sources {
+    for (start, count) in sources {
+        let (_, end) = runs[&segments[order[start] as usize].from];
         for _ in 0..count {
-            let Some(mut at) = take(&mut used, &edge) else { break };
+            let Some(mut at) = order[start..end].iter().map(|&i| i as usize).find(|&i| !used[i])
+            else {
+                break;
+            };
+            used[at] = true;
             open_chains += 1;
-            while let Some(next) = take(&mut used, &segments[at].to) {
-                at = next;
+            while let Some(following) = next(&mut used, at, None) {
+                at = following;
             }
         }
     }
@@ -372,9 +393,10 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
             if chain.last() != Some(&point) {
                 chain.push(point);
             }
-            match take(&mut used, &segments[at].to) {
-                Some(next) => at = next,
-                None => break segments[at].to == segments[first].from,
+            match next(&mut used, at, Some(first)) {
+                Some(following) if following == first => break true,
+                Some(following) => at = following,
+                None => break false,
             }
         };
         if !closed {

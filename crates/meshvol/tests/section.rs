@@ -169,3 +169,42 @@ fn a_fan_diagonal_along_an_edge_keeps_the_section() {
         }
     }
 }
+
+/// Two unit cubes sharing an edge along each axis in turn: the planes across that edge
+/// cut two unit squares touching at a corner, whose crossings of the shared edge can
+/// be chained either way. They must stay two loops (and two polygons) for every face
+/// order, whichever way the plane's frame turns.
+#[test]
+fn sections_touching_at_a_shared_edge_stay_apart() {
+    for axis in 0..3 {
+        // The second cube is moved by 1 along the two other axes.
+        let mut far = [2.0; 3];
+        let mut near = [1.0; 3];
+        far[axis] = 1.0;
+        near[axis] = 0.0;
+        let meshes = [cuboid([0.0; 3], [1.0; 3]), cuboid(near, far)];
+        let joined = Mesh::concatenate(&meshes);
+        // One vertex per position, so that the shared edge is one edge of four faces.
+        let mut positions: Vec<[f64; 3]> = Vec::new();
+        let mut id = |p: [f64; 3]| match positions.iter().position(|&q| q == p) {
+            Some(i) => i as u32,
+            None => {
+                positions.push(p);
+                positions.len() as u32 - 1
+            }
+        };
+        let faces: Vec<Vec<u32>> = (0..joined.face_count())
+            .map(|f| joined.face(f).iter().map(|&v| id(joined.positions()[v as usize])).collect())
+            .collect();
+        for first in 0..faces.len() {
+            let mut order = faces.clone();
+            order.rotate_left(first);
+            let mesh =
+                Mesh::from_polygons(positions.clone(), order.iter().map(|f| &f[..])).unwrap();
+            let s = section(&mesh, &Plane::axis(axis, 0.5).unwrap());
+            let area = area_properties(&s.polygons).area;
+            let got = (s.loops, s.polygons.len(), s.open_chains, area);
+            assert_eq!(got, (2, 2, 0, 2.0), "edge along {axis}, faces from {first}");
+        }
+    }
+}
