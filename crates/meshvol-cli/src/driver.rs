@@ -7,6 +7,7 @@
 //! status: 0 when every input was measured and passed, 1 otherwise.
 
 use crate::input::Progress;
+use meshvol_report::timings::{self, StageTiming};
 use meshvol_report::{error_line, json_line, Report};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -39,18 +40,41 @@ impl Driver {
         }
     }
 
-    /// Prints `report`: its warnings on stderr, then its text or JSON line.
+    /// Prints `report`: its warnings on stderr, then its text or JSON line (with
+    /// `--timings`, the stages' timings as the JSON's `timings` list, or on stderr).
     pub fn report(&mut self, report: &impl Report) {
-        let body = if self.output.json { json_line(report) } else { Ok(report.text()) };
+        let timings = self.progress.take_timings();
+        let body = if self.output.json {
+            json_line(report).and_then(|line| match &timings {
+                Some(t) => timings::with_timings(&line, t),
+                None => Ok(line),
+            })
+        } else {
+            self.print_timings(report.file(), timings.as_deref());
+            Ok(report.text())
+        };
         match body {
-            Ok(body) => self.print(report, &body),
+            Ok(body) => self.show(report, &body),
             Err(e) => self.fail(report.file(), &e),
         }
     }
 
     /// Prints `report`'s warnings, then `body` (the report in a form of the command's
-    /// own: CSV, WKT, GeoJSON).
+    /// own: CSV, WKT, GeoJSON), and with `--timings` the stages' timings on stderr.
     pub fn print(&mut self, report: &impl Report, body: &str) {
+        let timings = self.progress.take_timings();
+        self.print_timings(report.file(), timings.as_deref());
+        self.show(report, body);
+    }
+
+    fn print_timings(&self, file: &str, timings: Option<&[StageTiming]>) {
+        if let Some(t) = timings {
+            let text = timings::text(file, t);
+            self.progress.suspend(|| eprint!("{text}"));
+        }
+    }
+
+    fn show(&mut self, report: &impl Report, body: &str) {
         for w in report.warnings() {
             self.progress.warn(report.file(), w);
         }
@@ -60,6 +84,8 @@ impl Driver {
 
     /// Reports that `file` failed with `error` (which names the file).
     pub fn fail(&mut self, file: &str, error: &str) {
+        // The failed input's stages are not reported; the next input starts afresh.
+        let _ = self.progress.take_timings();
         self.failed = true;
         self.progress.error(error);
         if self.output.json {

@@ -3,10 +3,10 @@
 use crate::driver::{self, Output};
 use clap::Args;
 use meshvol::hull::convex_hull_with;
-use meshvol::Mesh;
-use meshvol_io::write::{self, PlyEncoding};
+use meshvol_io::write::MeshFormat;
 use meshvol_report::hull::hull;
-use std::path::{Path, PathBuf};
+use meshvol_report::written::write_mesh;
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Args)]
@@ -19,30 +19,23 @@ pub struct HullArgs {
     /// Print one JSON object per file, one per line.
     #[arg(long)]
     json: bool,
-    /// Write the hull (of a single FILE) as .stl (binary), .obj or .ply (binary).
+    /// Write the hull (of a single FILE) as .stl (binary), .obj or .ply (binary). The file
+    /// is read back and must be the hull reported: STL stores float32 coordinates, which
+    /// can change a hull far from the origin; such a write is refused (exit 1).
     #[arg(long, short, value_name = "OUT", value_parser = parse_out)]
     out: Option<PathBuf>,
+    /// Write --out even when its format changes the hull (float32 rounding): warn, and
+    /// report the volume written beside the hull's.
+    #[arg(long, requires = "out")]
+    allow_lossy: bool,
 }
 
 fn parse_out(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
-    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("stl" | "obj" | "ply") => Ok(path),
+    match MeshFormat::of_path(&path) {
+        Some(MeshFormat::Stl | MeshFormat::Obj | MeshFormat::Ply) => Ok(path),
         _ => Err(format!("'{s}': cannot write this format: use .stl, .obj or .ply")),
     }
-}
-
-fn write_mesh(out: &Path, mesh: &Mesh) -> Result<(), String> {
-    let file = std::fs::File::create(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let mut w = std::io::BufWriter::new(file);
-    let extension = out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    match extension.as_deref() {
-        Some("obj") => write::obj(&mut w, mesh),
-        Some("ply") => write::ply(&mut w, mesh, PlyEncoding::BinaryLittleEndian),
-        _ => write::stl_binary(&mut w, mesh),
-    }
-    .and_then(|()| std::io::Write::flush(&mut w))
-    .map_err(|e| format!("{}: {e}", out.display()))
 }
 
 /// Runs the command.
@@ -58,14 +51,24 @@ pub fn run(args: HullArgs, quiet: bool) -> ExitCode {
         let hook = progress.kernel(format!("computing the hull of {name}"));
         let h = convex_hull_with(&cloud.points, &hook).map_err(|e| format!("{name}: {e}"))?;
         drop(hook);
-        if let Some(out) = &args.out {
-            let mesh = h.mesh.as_ref().ok_or_else(|| {
-                let why = h.degeneracy.map(|d| d.to_string()).unwrap_or_default();
-                format!("{name}: no hull to write to {}: {why}", out.display())
-            })?;
-            write_mesh(out, mesh)?;
-        }
+        let written = match &args.out {
+            Some(out) => {
+                let mesh = h.mesh.as_ref().ok_or_else(|| {
+                    let why = h.degeneracy.map(|d| d.to_string()).unwrap_or_default();
+                    format!("{name}: no hull to write to {}: {why}", out.display())
+                })?;
+                progress.stage("writing and reading back", out);
+                let w = write_mesh(mesh, out, args.allow_lossy)
+                    .map_err(|e| e.message("--allow-lossy"))?;
+                Some(w)
+            }
+            None => None,
+        };
         let format = Some(cloud.source.name());
-        Ok(hull(Some(name), format, cloud.points.len(), &h, cloud.warnings))
+        let report = hull(Some(name), format, cloud.points.len(), &h, cloud.warnings);
+        Ok(match written {
+            Some(w) => report.with_written(w),
+            None => report,
+        })
     })
 }

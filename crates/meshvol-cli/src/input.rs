@@ -18,10 +18,11 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use meshvol_io::{Loaded, PointCloud, PolygonFile};
+use meshvol_report::timings::StageTiming;
 
 /// How long a run goes before its bar appears, unless `MESHVOL_PROGRESS_DELAY_MS` says.
 const DELAY: Duration = Duration::from_secs(1);
@@ -62,6 +63,9 @@ pub fn load_points(path: &Path) -> Result<PointCloud, String> {
     meshvol_io::read_points(path).map_err(|e| e.to_string())
 }
 
+/// Whether stage timings are recorded (`--timings`): set once by `main`.
+pub static TIMINGS: AtomicBool = AtomicBool::new(false);
+
 /// Progress on stderr, and the warnings printed around it.
 pub struct Progress {
     /// The bar, drawn to nothing until [`DELAY`] has passed.
@@ -70,6 +74,49 @@ pub struct Progress {
     /// just as its delay ends is never drawn again.
     finished: Arc<Mutex<bool>>,
     quiet: bool,
+    /// With `--timings`: the stages of the current input.
+    clock: Option<Mutex<Clock>>,
+}
+
+/// The stages of one input as they pass: every stage a command or kernel names ends
+/// the one before it.
+struct Clock {
+    done: Vec<StageTiming>,
+    current: Option<(String, Instant, f64)>,
+}
+
+impl Clock {
+    fn close(&mut self) {
+        if let Some((stage, start, cpu)) = self.current.take() {
+            let wall_s = start.elapsed().as_secs_f64();
+            self.done.push(StageTiming { stage, wall_s, cpu_s: (cpu_seconds() - cpu).max(0.0) });
+        }
+    }
+
+    fn start(&mut self, stage: &str) {
+        self.close();
+        self.current = Some((stage.to_string(), Instant::now(), cpu_seconds()));
+    }
+}
+
+/// User and system CPU seconds of this process so far.
+#[cfg(unix)]
+fn cpu_seconds() -> f64 {
+    let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
+    // SAFETY: getrusage writes the struct it is given; RUSAGE_SELF is always valid.
+    if unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } != 0 {
+        return 0.0;
+    }
+    // SAFETY: initialised above (zeroed, then written by a successful call).
+    let usage = unsafe { usage.assume_init() };
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    seconds(usage.ru_utime) + seconds(usage.ru_stime)
+}
+
+/// CPU time is not read on this system: timings give wall seconds only.
+#[cfg(not(unix))]
+fn cpu_seconds() -> f64 {
+    0.0
 }
 
 impl Progress {
@@ -84,11 +131,15 @@ impl Progress {
             show_after(delay(), bar.clone(), Arc::clone(&finished));
             bar
         });
-        Progress { bar, finished, quiet }
+        let clock = TIMINGS
+            .load(Ordering::Relaxed)
+            .then(|| Mutex::new(Clock { done: Vec::new(), current: None }));
+        Progress { bar, finished, quiet, clock }
     }
 
     /// Says what is being done to which file.
     pub fn stage(&self, what: &str, path: &Path) {
+        self.time(what);
         if let Some(bar) = &self.bar {
             bar.set_message(format!("{what} {}", path.display()));
         }
@@ -96,9 +147,26 @@ impl Progress {
 
     /// Says what is being done to all the inputs together.
     pub fn stage_all(&self, what: &str) {
+        self.time(what);
         if let Some(bar) = &self.bar {
             bar.set_message(what.to_string());
         }
+    }
+
+    /// With `--timings`, ends the current stage and starts `stage`.
+    fn time(&self, stage: &str) {
+        if let Some(clock) = &self.clock {
+            clock.lock().unwrap_or_else(|e| e.into_inner()).start(stage);
+        }
+    }
+
+    /// With `--timings`, the stages of the input just measured (the last ending now),
+    /// and a fresh start for the next; `None` without.
+    pub fn take_timings(&self) -> Option<Vec<StageTiming>> {
+        let clock = self.clock.as_ref()?;
+        let mut clock = clock.lock().unwrap_or_else(|e| e.into_inner());
+        clock.close();
+        Some(std::mem::take(&mut clock.done))
     }
 
     /// Counts a file as done.
@@ -192,6 +260,7 @@ pub struct Kernel<'a> {
 
 impl meshvol::progress::Progress for Kernel<'_> {
     fn stage(&self, name: &'static str) {
+        self.progress.time(name);
         if let Some(bar) = &self.progress.bar {
             bar.set_message(format!("{}: {name}", self.what));
         }

@@ -36,6 +36,10 @@ struct Cli {
     /// No progress bar and no warnings on stderr (errors are still printed).
     #[arg(long, short, global = true)]
     quiet: bool,
+    /// Time each stage (reading, each stage of the check, measuring): wall and CPU
+    /// seconds, as a `timings` list in the JSON (with --json) or on stderr.
+    #[arg(long, global = true)]
+    timings: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -106,7 +110,7 @@ fn with_default_command(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsSt
         let a = args[i].to_string_lossy();
         if a == "--threads" {
             i += 2;
-        } else if a.starts_with("--threads=") || a == "-q" || a == "--quiet" {
+        } else if a.starts_with("--threads=") || matches!(&*a, "-q" | "--quiet" | "--timings") {
             i += 1;
         } else {
             break;
@@ -144,6 +148,7 @@ const THREADS_PER_CORE: usize = 4;
 fn main() -> ExitCode {
     keep_freed_memory();
     let cli = Cli::parse_from(with_default_command(std::env::args_os().collect()));
+    input::TIMINGS.store(cli.timings, std::sync::atomic::Ordering::Relaxed);
     if let Some(n) = cli.threads {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         let cap = THREADS_PER_CORE * cores;

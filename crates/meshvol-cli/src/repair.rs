@@ -1,12 +1,13 @@
 //! `meshvol repair FILE -o OUT`: write the solid the mesh most plausibly bounds, and say
-//! exactly what was changed. Never silent.
+//! exactly what was changed. Never silent; and what is written is read back and must be
+//! the solid reported (`meshvol_report::written`), unless `--allow-lossy`.
 
 use crate::driver::{Driver, Output};
 use clap::Args;
-use meshvol_io::write::{self, PlyEncoding};
+use meshvol_io::write::MeshFormat;
 use meshvol_report::repair::repair;
-use std::io::BufWriter;
-use std::path::{Path, PathBuf};
+use meshvol_report::written::write_mesh;
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Args)]
@@ -14,9 +15,15 @@ pub struct RepairArgs {
     /// The mesh to repair.
     #[arg(value_name = "FILE")]
     file: PathBuf,
-    /// Where to write the result: .stl (binary), .obj, .ply (binary) or .glb.
+    /// Where to write the result: .stl (binary), .obj, .ply (binary) or .glb. The file is
+    /// read back and must be the solid reported: STL and GLB store float32 coordinates,
+    /// which can change a solid far from the origin; such a write is refused (exit 1).
     #[arg(short, long, value_name = "OUT", value_parser = parse_out)]
     out: PathBuf,
+    /// Write OUT even when its format changes the solid (float32 rounding): warn, and
+    /// report the volume written beside the volume intended.
+    #[arg(long)]
+    allow_lossy: bool,
     /// Cap each hole with a fan of triangles from its centroid.
     #[arg(long)]
     cap: bool,
@@ -30,19 +37,16 @@ pub struct RepairArgs {
     weld_tolerance: Option<f64>,
 }
 
-fn extension(path: &Path) -> Option<String> {
-    path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)
-}
-
 fn parse_out(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
-    match extension(&path).as_deref() {
-        Some("stl" | "obj" | "ply" | "glb") => Ok(path),
-        _ => Err(format!("'{s}': the output must end in .stl, .obj, .ply or .glb")),
+    match MeshFormat::of_path(&path) {
+        Some(_) => Ok(path),
+        None => Err(format!("'{s}': the output must end in .stl, .obj, .ply or .glb")),
     }
 }
 
-/// Runs the command: a file without faces is an error (and nothing is written).
+/// Runs the command: a file without faces is an error, and so is a file written that is
+/// not the solid reported (without `--allow-lossy`); nothing is written then.
 pub fn run(args: RepairArgs, quiet: bool) -> ExitCode {
     let options = crate::solid::check_options(args.weld_tolerance, false);
     let files = std::slice::from_ref(&args.file);
@@ -51,20 +55,10 @@ pub fn run(args: RepairArgs, quiet: bool) -> ExitCode {
         crate::solid::read(&args.file, Some(options), &driver.progress).and_then(|input| {
             let check = input.check.as_ref().ok_or("no check")?;
             let mesh = check.solid_mesh(args.cap);
-            let out = &args.out;
-            let written = std::fs::File::create(out).and_then(|f| {
-                let mut w = BufWriter::new(f);
-                match extension(out).as_deref() {
-                    Some("obj") => write::obj(&mut w, &mesh),
-                    Some("ply") => write::ply(&mut w, &mesh, PlyEncoding::BinaryLittleEndian),
-                    Some("glb") => write::glb(&mut w, &mesh),
-                    _ => write::stl_binary(&mut w, &mesh),
-                }?;
-                std::io::Write::flush(&mut w)
-            });
-            written.map_err(|e| format!("{}: {e}", out.display()))?;
-            let out = out.display().to_string();
-            Ok(repair(&input.source, &input.surface, check, &mesh, args.cap, &out))
+            driver.progress.stage("writing and reading back", &args.out);
+            let written = write_mesh(&mesh, &args.out, args.allow_lossy)
+                .map_err(|e| e.message("--allow-lossy"))?;
+            Ok(repair(&input.source, &input.surface, check, &mesh, args.cap, written))
         });
     match repaired {
         Ok(report) => driver.report(&report),

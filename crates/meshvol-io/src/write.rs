@@ -5,10 +5,78 @@
 //!   fan triangles with unshared vertices, GLB one indexed triangle primitive;
 //! - OBJ and ASCII PLY write coordinates in Rust's shortest round-trip form, binary PLY as
 //!   `double`: both read back exactly, polygon faces kept.
+//!
+//! [`MeshFormat`] names the formats a command writes a mesh in (`repair -o`, `hull
+//! --out`, Python's `Mesh.save`) and [`mesh`] writes one. Whether the file holds the
+//! solid that was meant is decided elsewhere (readers and writers never measure):
+//! `meshvol_report::written` reads it back and compares.
 
 use std::io::{self, Write};
+use std::path::Path;
 
 use meshvol::{Mesh, Surface};
+
+/// A format a mesh is written in, chosen by the output's extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// `.stl`: binary STL ([`stl_binary`]), float32 coordinates.
+    Stl,
+    /// `.obj` ([`obj`]): shortest round-trip decimals, float64 exactly.
+    Obj,
+    /// `.ply`: binary little-endian PLY ([`ply`]), float64 (`double`) coordinates.
+    Ply,
+    /// `.glb` ([`glb`]): float32 coordinates.
+    Glb,
+}
+
+impl MeshFormat {
+    /// The format of `path` by its extension (any case): `.stl`, `.obj`, `.ply`, `.glb`.
+    pub fn of_path(path: &Path) -> Option<MeshFormat> {
+        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match extension.as_str() {
+            "stl" => MeshFormat::Stl,
+            "obj" => MeshFormat::Obj,
+            "ply" => MeshFormat::Ply,
+            "glb" => MeshFormat::Glb,
+            _ => return None,
+        })
+    }
+
+    /// The name messages use: `STL`, `OBJ`, `PLY`, `GLB`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFormat::Stl => "STL",
+            MeshFormat::Obj => "OBJ",
+            MeshFormat::Ply => "PLY",
+            MeshFormat::Glb => "GLB",
+        }
+    }
+
+    /// Whether the format stores coordinates as float32 (rounding the mesh's float64
+    /// ones): STL and GLB. OBJ and PLY as written here keep every bit.
+    pub fn is_float32(self) -> bool {
+        matches!(self, MeshFormat::Stl | MeshFormat::Glb)
+    }
+
+    /// The coordinates' type in the file: `float32` or `float64`.
+    pub fn coordinates(self) -> &'static str {
+        if self.is_float32() {
+            "float32"
+        } else {
+            "float64"
+        }
+    }
+}
+
+/// Writes `mesh` in `format` (PLY binary little-endian).
+pub fn mesh(out: &mut impl Write, mesh: &Mesh, format: MeshFormat) -> io::Result<()> {
+    match format {
+        MeshFormat::Stl => stl_binary(out, mesh),
+        MeshFormat::Obj => obj(out, mesh),
+        MeshFormat::Ply => ply(out, mesh, PlyEncoding::BinaryLittleEndian),
+        MeshFormat::Glb => glb(out, mesh),
+    }
+}
 
 /// A binary STL: an 80-byte header of spaces, the count, and every fan triangle.
 pub fn stl_binary(out: &mut impl Write, surface: &impl Surface) -> io::Result<()> {

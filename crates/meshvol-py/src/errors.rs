@@ -38,6 +38,16 @@ create_exception!(
 
 create_exception!(
     meshvol,
+    LossyWriteError,
+    MeshError,
+    "Mesh.save refused to keep a file that does not read back as the mesh's solid: its \
+     format (STL and GLB store float32 coordinates) changed the volume beyond the stated \
+     tolerance, or collapsed or duplicated faces. Nothing was written. The message names \
+     the file and the change; save as .ply or .obj (float64), or pass allow_lossy=True."
+);
+
+create_exception!(
+    meshvol,
     MeshWarning,
     pyo3::exceptions::PyUserWarning,
     "A measurement was made, but of a solid that may not be the one meant: the surface is \
@@ -68,6 +78,18 @@ pub fn invalid(message: impl Display) -> PyErr {
 /// A `ValueError` for an argument out of range.
 pub fn bad_argument(message: impl Display) -> PyErr {
     PyValueError::new_err(message.to_string())
+}
+
+/// The exception for a mesh that was not written: `OSError` when the file could not be
+/// written, [`LossyWriteError`] when it was not the solid meant, [`MeshError`] otherwise.
+pub fn write_error(e: &meshvol_report::written::WriteError) -> PyErr {
+    use meshvol_report::written::WriteError;
+    let message = e.message("allow_lossy=True");
+    match e {
+        WriteError::Io(_) => pyo3::exceptions::PyOSError::new_err(message),
+        WriteError::Failed(_) => MeshError::new_err(message),
+        WriteError::Changed(_) => LossyWriteError::new_err(message),
+    }
 }
 
 /// A [`ReadError`] carrying the file's path and the place of the problem.

@@ -34,6 +34,7 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MeshError", py.get_type::<errors::MeshError>())?;
     m.add("ReadError", py.get_type::<errors::ReadError>())?;
     m.add("InvalidMeshError", py.get_type::<errors::InvalidMeshError>())?;
+    m.add("LossyWriteError", py.get_type::<errors::LossyWriteError>())?;
     m.add("MeshWarning", py.get_type::<errors::MeshWarning>())?;
     m.add_class::<mesh::PyMesh>()?;
     m.add_class::<properties::PyMassProperties>()?;

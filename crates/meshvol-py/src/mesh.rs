@@ -344,6 +344,38 @@ impl PyMesh {
         Ok(profile)
     }
 
+    /// Writes the mesh to path, in the format its extension names: .ply (binary, float64
+    /// coordinates), .obj (every bit, as decimals), .stl (binary, float32) or .glb
+    /// (float32); Check.solid_mesh(caps=True).save("part.ply") writes what `meshvol repair
+    /// --cap -o part.ply` writes.
+    ///
+    /// The file is then read back (as meshvol.load reads it), checked and measured, and
+    /// must be the same solid as this mesh: the same volume within the stated tolerance
+    /// (rounding bounds, caps, and for float32 formats 1e-6 of the volume), the same
+    /// triangles and shells, no face collapsed or duplicated. float32 coordinates far
+    /// from the origin for the mesh's size break that. Then nothing is written (a file
+    /// already at path is left as it was) and LossyWriteError says what changed; with
+    /// allow_lossy=True the file is kept and a MeshWarning says what changed.
+    ///
+    /// Returns what was written, as read back: a dict with the keys of the `written`
+    /// object of `meshvol repair --json` (file, format, coordinates, intended_volume,
+    /// volume, tolerance, intended_triangles, triangles, collapsed_faces,
+    /// duplicate_faces, closed, same_solid). Raises OSError when the file cannot be
+    /// written, MeshError for an extension it cannot write.
+    #[pyo3(signature = (path, allow_lossy = false))]
+    fn save<'py>(
+        &self,
+        py: Python<'py>,
+        path: PathBuf,
+        allow_lossy: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let written = py
+            .detach(|| meshvol_report::written::write_mesh(&self.mesh, &path, allow_lossy))
+            .map_err(|e| crate::errors::write_error(&e))?;
+        crate::errors::warn_all(py, &written.warning().into_iter().collect::<Vec<_>>())?;
+        crate::dict::Fields::new(&written)?.to_dict(py)
+    }
+
     /// The same surface with every face replaced by its fan of triangles.
     fn triangulated(&self, py: Python<'_>) -> PyMesh {
         PyMesh::from(py.detach(|| self.mesh.triangulated()))

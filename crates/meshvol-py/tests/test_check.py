@@ -13,7 +13,8 @@ from solids import BOX_TRIANGLES, OPENSCAD_CUBE_FACES, OPENSCAD_CUBE_POINTS, box
 
 CHECK_KEYS = [
     "bounds_a_volume", "verdict", "closed", "weld_tolerance", "welded_vertices", "edges",
-    "boundary_edges", "boundary_loops", "non_manifold_edges", "non_manifold_vertices",
+    "boundary_edges", "boundary_loops", "non_manifold_edges", "unpaired_at_non_manifold_edges",
+    "non_manifold_vertices",
     "degenerate_faces", "flat_faces", "duplicate_faces", "double_wall_faces",
     "consistently_oriented", "orientation", "winding",
     "shells", "cavities", "shell_details", "overlapping_shells", "self_intersections",
@@ -27,6 +28,20 @@ def two_boxes(lo_a, hi_a, lo_b, hi_b, inward_b=False):
     if inward_b:
         fb = fb[:, ::-1]
     return np.vstack([va, vb]), np.vstack([fa, fb + 8])
+
+
+def test_boxes_touching_along_an_edge_are_two_closed_bodies():
+    # The second box wound inward: the faces around the shared edge pair by body, so
+    # each box is a closed shell turned outward, and every measure gives 2.
+    v, f = two_boxes((0, 0, 0), (1, 1, 1), (1, 1, 0), (2, 2, 1), inward_b=True)
+    m = meshvol.Mesh(v, f)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", meshvol.MeshWarning)
+        c = m.check()
+        assert (c.non_manifold_edges, c.unpaired_at_non_manifold_edges, c.shells) == (1, 0, 2)
+        assert all(s.closed and s.volume == 1.0 for s in c.shell_details)
+        assert m.mass_properties().volume == 2.0
+        assert abs(m.grid(cells=(4, 4, 2)).sum() - 2.0) < 1e-12
 
 
 def test_closed_box():

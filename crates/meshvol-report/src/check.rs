@@ -53,6 +53,8 @@ pub struct CheckFacts {
     pub boundary_edges: usize,
     pub boundary_loops: usize,
     pub non_manifold_edges: usize,
+    /// Faces left alone at non-manifold edges (odd counts), capped like holes.
+    pub unpaired_at_non_manifold_edges: usize,
     pub non_manifold_vertices: usize,
     pub degenerate_faces: usize,
     /// Degenerate faces with distinct vertices (zero area): kept in the edge table.
@@ -89,6 +91,7 @@ impl CheckFacts {
             boundary_edges: c.boundary_edges,
             boundary_loops: c.boundary_loops,
             non_manifold_edges: c.non_manifold_edges,
+            unpaired_at_non_manifold_edges: c.unpaired_at_non_manifold_edges,
             non_manifold_vertices: c.non_manifold_vertices,
             degenerate_faces: c.degenerate_faces,
             flat_faces: c.flat_faces,

@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 
 use crate::number::{num, vector};
+use crate::written::WrittenReport;
 use crate::Report;
 use meshvol::hull::Hull;
 use meshvol::Mesh;
@@ -27,6 +28,19 @@ pub struct HullReport {
     /// `collinear` or `coplanar`.
     pub degenerate: Option<&'static str>,
     pub warnings: Vec<String>,
+    /// The hull as written by `--out`, read back and measured (absent without `--out`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub written: Option<WrittenReport>,
+}
+
+impl HullReport {
+    /// The report with the hull's mesh `written` to a file (and its warning when the file
+    /// is not the hull).
+    pub fn with_written(mut self, written: WrittenReport) -> HullReport {
+        self.warnings.extend(written.warning());
+        self.written = Some(written);
+        self
+    }
 }
 
 /// The report of `hull`, the hull of `points` points of the file named `file` in the
@@ -61,6 +75,7 @@ pub fn hull(
         centroid: hull.properties.centroid,
         degenerate,
         warnings,
+        written: None,
     }
 }
 
@@ -97,6 +112,9 @@ impl Report for HullReport {
                 let _ = writeln!(s, "  area       {}", num(r.area, 15));
                 if let Some(c) = r.centroid {
                     let _ = writeln!(s, "  centroid   {}", vector(c, 15));
+                }
+                if let Some(w) = &r.written {
+                    let _ = writeln!(s, "  written    {}", w.text());
                 }
             }
         }

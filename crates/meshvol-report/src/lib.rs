@@ -9,7 +9,9 @@
 //! Python bindings' `to_dict()`, and rendered as text by the [`Report`] trait. Unit
 //! conversion ([`units`]) and the widening of error bounds it needs, the memory estimate
 //! of a grid, the reasons to doubt a solid and the rule that makes bodies of a union
-//! ([`subject`]) live here and nowhere else.
+//! ([`subject`]) live here and nowhere else. So does the rule that a mesh written
+//! (`repair -o`, `hull --out`, Python's `Mesh.save`) is read back and compared with the
+//! solid reported before it is kept ([`written`]).
 //!
 //! Data flows one way: the CLI and Python read or build a surface, check it, wrap it as a
 //! [`subject::Subject`], and hand it to a report function; they print or convert what
@@ -42,9 +44,11 @@ pub mod profile;
 pub mod repair;
 pub mod section;
 pub mod subject;
+pub mod timings;
 pub mod union;
 pub mod units;
 pub mod volume;
+pub mod written;
 
 use serde::Serialize;
 

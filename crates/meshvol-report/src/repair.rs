@@ -2,6 +2,7 @@
 
 use crate::number::{count, num};
 use crate::subject::Source;
+use crate::written::WrittenReport;
 use crate::Report;
 use meshvol::topology::Check;
 use meshvol::{mass_properties, Mesh, Surface};
@@ -29,19 +30,23 @@ pub struct RepairReport {
     pub signed_volume_before: f64,
     pub signed_volume_after: f64,
     pub verdict_before: String,
-    /// The reader's warnings, and what the repaired mesh still lacks.
+    /// The reader's warnings, what the repaired mesh still lacks, and what writing
+    /// changed when a lossy write was allowed.
     pub warnings: Vec<String>,
+    /// The file as written, read back and measured: `written.volume` beside
+    /// `written.intended_volume`, the volume of the solid meant.
+    pub written: WrittenReport,
 }
 
 /// The report of writing `repaired` (the checked solid of `surface`, with caps when
-/// `capped`) to `out`.
+/// `capped`) as `written` ([`crate::written::write_mesh`]).
 pub fn repair<S: Surface>(
     source: &Source,
     surface: &S,
     check: &Check,
     repaired: &Mesh,
     capped: bool,
-    out: &str,
+    written: WrittenReport,
 ) -> RepairReport {
     let (flipped, dropped, cap_triangles) = check.repairs();
     let holes_left = if capped { 0 } else { check.boundary_loops };
@@ -52,9 +57,10 @@ pub fn repair<S: Surface>(
             count(holes_left, "hole is", "holes are")
         ));
     }
+    warnings.extend(written.warning());
     RepairReport {
         file: source.file.clone(),
-        out: out.to_string(),
+        out: written.file.clone(),
         faces_in: surface.face_count(),
         faces_out: repaired.face_count(),
         faces_flipped: flipped,
@@ -71,6 +77,7 @@ pub fn repair<S: Surface>(
         signed_volume_after: mass_properties(repaired).signed_volume,
         verdict_before: check.verdict(),
         warnings,
+        written,
     }
 }
 
@@ -114,6 +121,7 @@ impl Report for RepairReport {
             num(r.signed_volume_before, 15),
             num(r.signed_volume_after, 15)
         );
+        let _ = writeln!(s, "  written            {}", r.written.text());
         s
     }
 }

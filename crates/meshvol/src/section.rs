@@ -318,7 +318,9 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
         while end < order.len() && segments[order[end] as usize].from == edge {
             end += 1;
         }
-        ambiguous_edges += end - start - 1;
+        if end - start > 1 {
+            ambiguous_edges += 1;
+        }
         runs.insert(edge, (start, end));
         start = end;
     }

@@ -23,9 +23,11 @@ Mesh.profile() is `meshvol profile`, union() is `meshvol union`, polygon_area() 
 solid takes the checked solid (welded, shells turned outward, cavities subtracted,
 holes capped) and issues a MeshWarning naming why that solid may not be the one
 meant; check=False measures the surface as wound (`--no-check`). Errors raise
-MeshError (a ValueError) or one of its subclasses, ReadError and InvalidMeshError,
-with the command's messages. Computations
-release the GIL, so threads measure in parallel.
+MeshError (a ValueError) or one of its subclasses, ReadError, InvalidMeshError and
+LossyWriteError, with the command's messages. Mesh.save() writes a mesh and reads it
+back: a file that is not the same solid (float32 STL far from the origin) is refused,
+as `meshvol repair -o` refuses it. Computations release the GIL, so threads measure in
+parallel.
 """
 
 from ._meshvol import (
@@ -35,6 +37,7 @@ from ._meshvol import (
     CutFill,
     Hull,
     InvalidMeshError,
+    LossyWriteError,
     MassProperties,
     Mesh,
     MeshError,
@@ -59,6 +62,7 @@ __all__ = [
     "CutFill",
     "Hull",
     "InvalidMeshError",
+    "LossyWriteError",
     "MassProperties",
     "Mesh",
     "MeshError",

@@ -35,6 +35,9 @@ class ReadError(MeshError):
 class InvalidMeshError(MeshError):
     """Arrays that cannot be used as given: shape, dtype, non-finite value, index range."""
 
+class LossyWriteError(MeshError):
+    """Mesh.save refused a file that does not read back as the mesh's solid (float32)."""
+
 class MeshWarning(UserWarning):
     """A measurement of a solid that may not be the one meant (open, overlapping, ...)."""
 
@@ -122,6 +125,10 @@ class Mesh:
         """Every face replaced by its fan of triangles."""
     def flipped(self) -> Mesh:
         """Every face's winding reversed."""
+    def save(
+        self, path: _Union[str, "os.PathLike[str]"], allow_lossy: bool = False
+    ) -> dict[str, Any]:
+        """Write .ply/.obj/.stl/.glb, read it back, refuse it unless it is the same solid."""
 
 class _CheckFacts:
     """The facts of `meshvol check` that Check and (checked) MassProperties share."""
@@ -135,6 +142,7 @@ class _CheckFacts:
     boundary_edges: int
     boundary_loops: int
     non_manifold_edges: int
+    unpaired_at_non_manifold_edges: int
     non_manifold_vertices: int
     degenerate_faces: int
     flat_faces: int

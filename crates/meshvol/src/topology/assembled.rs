@@ -124,6 +124,7 @@ fn compose(assembly: &Assembly, parts: &[Check], examples: usize) -> Check {
         boundary_edges: sum(|c| c.boundary_edges),
         boundary_loops: sum(|c| c.boundary_loops),
         non_manifold_edges: sum(|c| c.non_manifold_edges),
+        unpaired_at_non_manifold_edges: sum(|c| c.unpaired_at_non_manifold_edges),
         non_manifold_vertices: sum(|c| c.non_manifold_vertices),
         degenerate_faces: sum(|c| c.degenerate_faces),
         flat_faces: sum(|c| c.flat_faces),

@@ -7,7 +7,8 @@
 //! (a [`UnionFind`] over the corners). A vertex in more than one fan is a bowtie:
 //! *non-manifold*. Sorting v's uses by (w, corner) makes each edge's uses a run, in
 //! face order; an edge with one use is *boundary*, two *manifold* (and *consistent*
-//! when traversed in opposite directions), more *non-manifold*.
+//! when traversed in opposite directions), more *non-manifold* (its uses are then
+//! paired into sheets by `sheets.rs`).
 //!
 //! This table is the check's peak of memory, so it is kept small: 8 bytes a corner by
 //! vertex, 12 bytes an edge use (v is implied by the group a use is in).
@@ -17,6 +18,7 @@ use super::weld::Welded;
 use crate::buckets::{for_each_range_mut, starts, Buckets, SharedItems};
 use crate::union_find::UnionFind;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
 /// One use of an undirected edge (v, w), v < w, listed under v: by a face, from corner
 /// `corner` to the next. Faces are numbered below 2³¹ ([`super::check`] refuses more),
@@ -68,6 +70,21 @@ impl Edges {
 
     pub fn par_iter(&self) -> impl ParallelIterator<Item = &[EdgeUse]> {
         (0..self.len()).into_par_iter().map(|i| self.get(i))
+    }
+
+    /// Runs `f` on every edge's uses, in parallel, letting it reorder them; returns the
+    /// sum of what `f` returns.
+    pub fn groups_mut(&mut self, f: impl Fn(&mut [EdgeUse]) -> usize + Sync) -> usize {
+        let total = AtomicUsize::new(0);
+        let start = &self.start;
+        let range = |i: usize| start[i] as usize..start[i + 1] as usize;
+        for_each_range_mut(&mut self.uses, start.len() - 1, &range, &|_, uses| {
+            let n = f(uses);
+            if n > 0 {
+                total.fetch_add(n, Relaxed);
+            }
+        });
+        total.into_inner()
     }
 }
 
@@ -186,9 +203,10 @@ pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, Ve
 pub(super) struct EdgeCounts {
     pub boundary: usize,
     pub non_manifold: usize,
-    /// Every manifold edge's two faces traverse it in opposite directions.
+    /// Every sheet's two faces at an edge (a manifold edge's two faces, or a pair at a
+    /// non-manifold edge) traverse it in opposite directions.
     pub consistently_oriented: bool,
-    /// Per face: wound the same way as a neighbour across a manifold edge.
+    /// Per face: wound the same way as a neighbour across a sheet's edge.
     pub face_inconsistent: Vec<bool>,
 }
 
@@ -200,15 +218,16 @@ pub(super) fn count(edges: &Edges, faces: usize) -> EdgeCounts {
     for g in edges.iter() {
         match g.len() {
             1 => boundary += 1,
-            2 => {
-                let same = g[0].forward() == g[1].forward();
-                if same {
-                    consistently_oriented = false;
-                    face_inconsistent[g[0].face() as usize] = true;
-                    face_inconsistent[g[1].face() as usize] = true;
-                }
-            }
+            2 => {}
             _ => non_manifold += 1,
+        }
+        // Each sheet's two faces (see `sheets.rs`): a manifold edge is one sheet.
+        for pair in g.chunks_exact(2) {
+            if pair[0].forward() == pair[1].forward() {
+                consistently_oriented = false;
+                face_inconsistent[pair[0].face() as usize] = true;
+                face_inconsistent[pair[1].face() as usize] = true;
+            }
         }
     }
     EdgeCounts { boundary, non_manifold, consistently_oriented, face_inconsistent }
@@ -236,18 +255,21 @@ impl Neighbour {
     }
 }
 
-/// Each face's neighbours across manifold edges, for orientation propagation: at the
-/// corner that starts the edge in the face (so laid out like the corners, and found
-/// without sorting); [`Neighbour::NONE`] elsewhere.
+/// Each face's neighbours across its sheets' edges (manifold edges, and pairs at
+/// non-manifold edges), for orientation propagation: at the corner that starts the edge
+/// in the face (so laid out like the corners, and found without sorting);
+/// [`Neighbour::NONE`] elsewhere.
 pub(super) fn neighbours(edges: &Edges, corners: usize) -> Vec<Neighbour> {
     let mut neighbour = vec![Neighbour::NONE; corners];
     let shared = SharedItems::new(&mut neighbour);
-    edges.par_iter().filter(|g| g.len() == 2).for_each(|g| {
-        let same = g[0].forward() == g[1].forward();
-        // SAFETY: every corner starts one edge use, which is in one group.
-        unsafe {
-            shared.write(g[0].corner as usize, Neighbour::new(g[1].face(), same));
-            shared.write(g[1].corner as usize, Neighbour::new(g[0].face(), same));
+    edges.par_iter().filter(|g| g.len() >= 2).for_each(|g| {
+        for pair in g.chunks_exact(2) {
+            let same = pair[0].forward() == pair[1].forward();
+            // SAFETY: every corner starts one edge use, which is in one group.
+            unsafe {
+                shared.write(pair[0].corner as usize, Neighbour::new(pair[1].face(), same));
+                shared.write(pair[1].corner as usize, Neighbour::new(pair[0].face(), same));
+            }
         }
     });
     neighbour

@@ -1,8 +1,8 @@
 //! Stage 8, Euler characteristic: χ = V − E + F per shell, and the genus (2 − χ)/2 of a
 //! closed orientable one (a sphere 0, a torus 1).
 //!
-//! F counts the shell's kept faces, E its edges (an edge belongs to the shell of its
-//! first use), V its vertices: a vertex is counted once per run of consecutive kept
+//! F counts the shell's kept faces, E its edges (an edge belongs to each shell that
+//! has a sheet there), V its vertices: a vertex is counted once per run of consecutive kept
 //! faces of one shell that use it, which is exact for manifold meshes (a vertex is
 //! shared by shells only at non-manifold points).
 
@@ -31,9 +31,18 @@ pub(super) fn per_shell(
     for f in (0..kept.len()).filter(|&f| kept[f]) {
         faces[shell_of_face[f] as usize] += 1;
     }
+    // An edge counts once in each shell that has a sheet there (a non-manifold edge
+    // between two bodies is an edge of each).
     let mut edges_in = vec![0usize; shells.count];
+    let mut here = Vec::new();
     for g in edges.iter() {
-        edges_in[shell_of_face[g[0].face() as usize] as usize] += 1;
+        here.clear();
+        here.extend(g.chunks(2).map(|sheet| shell_of_face[sheet[0].face() as usize]));
+        here.sort_unstable();
+        here.dedup();
+        for &s in &here {
+            edges_in[s as usize] += 1;
+        }
     }
     let mut vertices = vec![0i64; shells.count];
     let mut last_shell_of_vertex = vec![u32::MAX; welded.positions.len()];

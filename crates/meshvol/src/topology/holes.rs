@@ -1,17 +1,25 @@
-//! Stage 5, holes: boundary edges chained into loops, each capped with a fan from its
-//! centroid, and each shell's volume with its holes capped.
+//! Stage 5, holes: the edges the faces leave open chained into loops, each capped with
+//! a fan from its centroid, and each shell's volume with its holes capped.
 //!
-//! A boundary edge is followed in the direction its face was given by orientation
-//! propagation, so a loop runs the way its shell does and the cap (centre, q, p) over rim
-//! edge p → q closes the shell the same way round. A cap may be off by as much as its
-//! area times the rim's largest distance from the cap's plane (along the unit normal of
-//! the cap's vector area): zero for a flat hole, which is thus recovered exactly.
+//! An edge is open where a face is alone at it (a boundary edge, or the odd face out at
+//! a non-manifold edge: see `sheets.rs`), or where a sheet's two faces run it the same
+//! way after orientation propagation (the seam of a non-orientable shell, where both
+//! count). Each open edge is followed in the direction its face was given by
+//! propagation, so a loop runs the way its shell does and the cap (centre, q, p) over
+//! rim edge p → q closes the shell the same way round. With its caps every shell is then
+//! closed, as a chain: each edge is run as often one way as the other, so every measure
+//! taken of the solid (the volume about any point, a grid's columns, a profile's
+//! slabs, a part below a plane) is one and the same integral, whatever the surface.
+//!
+//! A cap may be off by as much as its area times the rim's largest distance from the
+//! cap's plane (along the unit normal of the cap's vector area): zero for a flat hole,
+//! which is thus recovered exactly.
 //!
 //! A shell's volume is (1/6) Σ (a − r)·((b − r) × (c − r)) over the fan triangles of its
 //! faces, as propagated, and of its caps, about the first corner r (terms the size of
 //! the model, not of its offset), summed with compensation in face order.
 
-use super::edges::Edges;
+use super::edges::{EdgeUse, Edges};
 use super::loops::Loops;
 use super::shells::Shells;
 use super::weld::Welded;
@@ -37,17 +45,23 @@ pub(super) struct Caps {
 pub(super) fn caps(loops: &Loops, welded: &Welded, edges: &Edges, shells: &Shells) -> Caps {
     let vid = |c: usize| welded.corner_vertex[c];
     let (flip, shell_of_face) = (&shells.flip, &shells.of_face);
-    // Boundary loops, following each face's propagated direction, and their caps.
+    // An edge use as its face runs it after propagation, with the face's shell.
+    let directed = |e: &EdgeUse| {
+        let (f, c) = (e.face() as usize, e.corner as usize);
+        let n = loops.next(f, c);
+        let (u, v) = if flip[f] { (vid(n), vid(c)) } else { (vid(c), vid(n)) };
+        (u, v, shell_of_face[f])
+    };
+    // What the propagated faces leave open: each face alone at an edge, and both faces
+    // of a sheet that propagation could not turn against each other (the seam of a
+    // non-orientable shell).
+    let after = |e: &EdgeUse| e.forward() ^ flip[e.face() as usize];
+    let open = |sheet: &&[EdgeUse]| sheet.len() == 1 || after(&sheet[0]) == after(&sheet[1]);
     let boundary: Vec<(u32, u32, u32)> = edges
         .iter()
-        .filter(|g| g.len() == 1)
-        .map(|g| {
-            let e = g[0];
-            let (f, c) = (e.face() as usize, e.corner as usize);
-            let n = loops.next(f, c);
-            let (u, v) = if flip[f] { (vid(n), vid(c)) } else { (vid(c), vid(n)) };
-            (u, v, shell_of_face[f])
-        })
+        .flat_map(|g| g.chunks(2))
+        .filter(open)
+        .flat_map(|sheet| sheet.iter().map(directed))
         .collect();
     let loops_found = boundary_loops(&boundary);
     let mut caps: Vec<[Point; 3]> = Vec::new();
@@ -130,38 +144,38 @@ pub(super) fn shell_volumes<S: Surface + ?Sized>(
     shell_six.iter().map(|s| s.value() / 6.0).collect()
 }
 
-/// Chains boundary edges (u, v, shell) into loops of vertices: following each edge's
-/// direction where the next edge continues it, against it where only that continues
-/// (across the seam of a non-orientable strip).
+/// Chains the open edges (u, v, shell) into loops of vertices, each in one shell,
+/// following each edge's direction. Per shell the open edges are the boundary of its
+/// faces as propagated, less the sheets that cancel: a cycle, so every vertex has as
+/// many open edges leaving as arriving, and a walk can only end where it began.
 fn boundary_loops(edges: &[(u32, u32, u32)]) -> Vec<(u32, Vec<u32>)> {
-    // Every edge listed at both ends: (vertex, edge, the edge starts there).
-    let mut ends: Vec<(u32, usize, bool)> =
-        edges.iter().enumerate().flat_map(|(i, e)| [(e.0, i, true), (e.1, i, false)]).collect();
-    ends.sort_unstable_by_key(|&(v, i, starts)| (v, !starts, i));
+    // Every edge listed at its start: (vertex, shell, edge).
+    let mut starts: Vec<(u32, u32, usize)> =
+        edges.iter().enumerate().map(|(i, e)| (e.0, e.2, i)).collect();
+    starts.sort_unstable();
     let mut used = vec![false; edges.len()];
+    // Per (vertex, shell): how many of its leaving edges are used, so each is taken once.
+    let mut taken = vec![0usize; edges.len()];
     let mut loops = Vec::new();
     for first in 0..edges.len() {
         if used[first] {
             continue;
         }
         used[first] = true;
+        let shell = edges[first].2;
         let mut ring = vec![edges[first].0];
         let mut at = edges[first].1;
         while at != edges[first].0 {
             ring.push(at);
-            let from = ends.partition_point(|e| e.0 < at);
-            // A loop stays in its shell: shells touching at a vertex each cap their own
-            // holes, so that each shell (and each body) is closed by its own caps.
-            let shell = edges[first].2;
-            let next = ends[from..]
-                .iter()
-                .take_while(|e| e.0 == at)
-                .find(|e| !used[e.1] && edges[e.1].2 == shell);
-            let Some(&(_, e, starts)) = next else { break }; // a broken chain: close it here
+            let from = starts.partition_point(|e| (e.0, e.1) < (at, shell));
+            let leaving = starts[from..].iter().take_while(|e| (e.0, e.1) == (at, shell));
+            let next = leaving.skip(taken[from]).find(|e| !used[e.2]);
+            let Some(&(_, _, e)) = next else { break }; // not a cycle: close it here
+            taken[from] += 1;
             used[e] = true;
-            at = if starts { edges[e].1 } else { edges[e].0 };
+            at = edges[e].1;
         }
-        loops.push((edges[first].2, ring));
+        loops.push((shell, ring));
     }
     loops
 }

@@ -22,13 +22,20 @@
 //!    *boundary*; two: *manifold*, and *consistent* when the two faces traverse it in
 //!    opposite directions; more: *non-manifold*. A vertex whose faces form more than one
 //!    fan around it (a bowtie) is a *non-manifold vertex*.
-//! 4. **Shells**: connected components of faces through shared edges. Within a shell,
-//!    orientation is propagated across manifold edges; a shell where that is impossible
-//!    (a Möbius strip, a Klein bottle) is *non-orientable*.
-//! 5. **Holes**: boundary edges chain into loops; each loop is capped with a fan from
-//!    its centroid, so open shells still get a volume. `volume_uncertainty` adds, per
-//!    cap, its area times the rim's largest distance from the cap's plane: zero for a
-//!    flat hole (a missing planar face is recovered exactly), large for a ragged one.
+//!
+//!    **Sheets**: at a non-manifold edge the faces are sorted by their angle around it
+//!    (exactly) and paired with neighbours, following the file's winding where it
+//!    allows, into locally manifold sheets; with an odd number, one face is left alone.
+//!    Two bodies touching along an edge are thus two closed shells.
+//! 4. **Shells**: connected components of faces through sheets' edges. Within a shell,
+//!    orientation is propagated across them; a shell where that is impossible (a Möbius
+//!    strip, a Klein bottle) is *non-orientable*.
+//! 5. **Holes**: the edges left open (boundary edges, faces alone at non-manifold
+//!    edges, the seams of non-orientable shells) chain into loops; each loop is capped
+//!    with a fan from its centroid, so that every shell is closed as a chain and every
+//!    command measures one and the same solid. `volume_uncertainty` adds, per cap, its
+//!    area times the rim's largest distance from the cap's plane: zero for a flat hole
+//!    (a missing planar face is recovered exactly), large for a ragged one.
 //! 6. **Nesting**: from the corners of up to 32 triangles spread over each shell, rays
 //!    count signed crossings (winding numbers) with every other closed shell whose box
 //!    overlaps, using exact orientation predicates and a [`Bvh`] (a ray that grazes an
@@ -56,8 +63,9 @@
 //! | 1. weld | vertices from corners | `weld.rs` |
 //! | 2. faces | collapsed, flat, duplicate and double-wall faces; the kept ones | `faces.rs` |
 //! | 3. edges | edge uses, boundary and non-manifold edges and vertices, neighbours | `edges.rs` |
+//! | 3b. sheets | faces around a non-manifold edge paired by their angular order | `sheets.rs` |
 //! | 4. shells | connected components, orientation propagation, open shells | `shells.rs` |
-//! | 5. holes | boundary loops, their caps, capped shell volumes | `holes.rs` |
+//! | 5. holes | open edges in loops, their caps, capped shell volumes | `holes.rs` |
 //! | 6. nesting | candidates, containment rays, overlaps, roles, the volume | `nesting.rs` |
 //! | 7. crossings | triangles in space, crossing face pairs | `crossings.rs` |
 //! | 8. Euler | χ and genus per shell | `euler.rs` |
@@ -79,6 +87,7 @@ mod holes;
 mod loops;
 mod nesting;
 mod predicates;
+mod sheets;
 mod shells;
 mod solid;
 mod verdict;
@@ -207,6 +216,10 @@ pub struct Check {
     pub boundary_edges: usize,
     pub boundary_loops: usize,
     pub non_manifold_edges: usize,
+    /// Faces left alone at non-manifold edges: where an odd number of faces meet, the
+    /// faces are paired into sheets by their order around the edge and one is left over
+    /// (a fin, a T-shaped wall); its edge there is capped like a hole's.
+    pub unpaired_at_non_manifold_edges: usize,
     pub non_manifold_vertices: usize,
     /// Faces with a repeated welded vertex (collapsed by welding; left out of
     /// everything) plus flat faces.
@@ -429,8 +442,17 @@ fn analyse<S: Surface + ?Sized>(
         let crossing = crossings::crossing_pairs(&triangles, &bvh);
         (triangles, bvh, crossing)
     });
-    let Connected { vertices, edges, edge_counts, shells, caps, shell_signed, candidates, counts } =
-        connected;
+    let Connected {
+        vertices,
+        edges,
+        edge_counts,
+        unpaired,
+        shells,
+        caps,
+        shell_signed,
+        candidates,
+        counts,
+    } = connected;
     // Triangles (fans of kept faces) in spatial order, with their corners inline, and
     // a hierarchy over their boxes: only when something asks for them.
     let (triangles, bvh, crossing) = match space {
@@ -500,6 +522,7 @@ fn analyse<S: Surface + ?Sized>(
         boundary_edges: edge_counts.boundary,
         boundary_loops: caps.per_shell.iter().sum(),
         non_manifold_edges: edge_counts.non_manifold,
+        unpaired_at_non_manifold_edges: unpaired,
         non_manifold_vertices: vertices.non_manifold,
         degenerate_faces: (0..faces).filter(|&f| classes.collapsed[f] || classes.flat[f]).count(),
         flat_faces: count(&classes.flat),
@@ -525,6 +548,8 @@ struct Connected {
     vertices: edges::VertexCounts,
     edges: usize,
     edge_counts: edges::EdgeCounts,
+    /// Faces left alone at non-manifold edges.
+    unpaired: usize,
     shells: shells::Shells,
     caps: holes::Caps,
     /// Per shell: its volume as propagated from its first face, holes capped.
@@ -540,7 +565,8 @@ fn connect<S: Surface + ?Sized>(
     welded: &weld::Welded,
     kept: &[bool],
 ) -> Connected {
-    let (edges, vertices) = edges::edges(loops, welded, kept);
+    let (mut edges, vertices) = edges::edges(loops, welded, kept);
+    let unpaired = sheets::pair(&mut edges, loops, welded);
     let edge_counts = edges::count(&edges, kept.len());
     let neighbour = edges::neighbours(&edges, loops.corner_count());
     let shells = shells::shells(loops, kept, &edges, &neighbour);
@@ -553,6 +579,7 @@ fn connect<S: Surface + ?Sized>(
         vertices,
         edges: edges.len(),
         edge_counts,
+        unpaired,
         shells,
         caps,
         shell_signed,

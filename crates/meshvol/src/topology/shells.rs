@@ -1,11 +1,13 @@
 //! Stage 4, shells: connected components of the kept faces through shared edges, and
 //! the orientation propagated over each.
 //!
-//! Faces are joined across every edge in a [`UnionFind`] and shells numbered by their
-//! first face. Then a breadth-first walk from each shell's first face gives every face
-//! the winding that agrees with it across manifold edges (`flip`); a face reached two
-//! ways that disagree makes the shell *non-orientable*. A shell with a boundary or
-//! non-manifold edge is *open*.
+//! Faces are joined across every sheet's edge (a manifold edge, or a pair of faces at a
+//! non-manifold edge: see `sheets.rs`) in a [`UnionFind`] and shells numbered by their
+//! first face, so that two bodies touching along an edge are two shells. Then a
+//! breadth-first walk from each shell's first face gives every face the winding that
+//! agrees with it across those edges (`flip`); a face reached two ways that disagree
+//! makes the shell *non-orientable*. A shell with a face alone at an edge (a boundary
+//! edge, or the odd face out at a non-manifold one) is *open*.
 
 use super::edges::{Edges, Neighbour};
 use super::loops::Loops;
@@ -20,7 +22,8 @@ pub(super) struct Shells {
     pub flip: Vec<bool>,
     /// Per shell: orientation could be propagated consistently.
     pub orientable: Vec<bool>,
-    /// Per shell: it has a boundary or non-manifold edge.
+    /// Per shell: one of its faces is alone at an edge (a boundary edge, or the odd face
+    /// out at a non-manifold edge).
     pub open: Vec<bool>,
 }
 
@@ -35,8 +38,8 @@ pub(super) fn shells(
     let faces = kept.len();
     let mut shells_of = UnionFind::new(faces);
     for g in edges.iter() {
-        for e in &g[1..] {
-            shells_of.join(g[0].face(), e.face());
+        for pair in g.chunks_exact(2) {
+            shells_of.join(pair[0].face(), pair[1].face());
         }
     }
     // Shells, numbered by their first face.
@@ -81,8 +84,9 @@ pub(super) fn shells(
     }
 
     let mut open = vec![false; shell_count];
-    for g in edges.iter().filter(|g| g.len() != 2) {
-        open[shell_of_face[g[0].face() as usize] as usize] = true;
+    for g in edges.iter().filter(|g| g.len() % 2 == 1) {
+        let alone = g[g.len() - 1];
+        open[shell_of_face[alone.face() as usize] as usize] = true;
     }
     Shells { of_face: shell_of_face, count: shell_count, flip, orientable, open }
 }

@@ -87,10 +87,18 @@ impl Check {
             });
         }
         if self.non_manifold_edges > 0 {
-            doubts.push(format!(
-                "{} (more than two faces meet): the solid is a guess",
-                plural(self.non_manifold_edges, "non-manifold edge", "non-manifold edges")
-            ));
+            let edges = plural(self.non_manifold_edges, "non-manifold edge", "non-manifold edges");
+            doubts.push(match self.unpaired_at_non_manifold_edges {
+                0 => format!(
+                    "{edges} (more than two faces meet): the faces around each were paired \
+                     by their order around it into closed sheets, a guess at the solid meant"
+                ),
+                n => format!(
+                    "{edges} (more than two faces meet): the faces around each were paired \
+                     by their order around it, {} left alone and capped; the solid is a guess",
+                    plural(n, "face", "faces")
+                ),
+            });
         }
         let non_orientable = self.shells.iter().filter(|s| !s.orientable).count();
         if non_orientable > 0 {
