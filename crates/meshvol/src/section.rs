@@ -186,8 +186,8 @@ pub struct Section {
     /// Chains that did not close: the surface is open along the plane.
     pub open_chains: usize,
     /// Edges crossed more than once in the same direction: edges shared by more than two
-    /// triangles, or inconsistent winding. Such crossings are chained in turn (the
-    /// area is the same whichever way: every segment is in one loop).
+    /// triangles, or inconsistent winding. Such crossings are chained turning most to the
+    /// left (see [`section`]).
     pub ambiguous_edges: usize,
     /// Loops whose winding disagrees with their nesting (a counter-clockwise hole or a
     /// clockwise exterior, relative to the majority): an inward-wound shell inside
@@ -198,13 +198,14 @@ pub struct Section {
 /// An edge named by its end points' coordinate bits, below end first.
 type EdgeKey = [u64; 6];
 
-/// One triangle's piece of the section: from the crossing of edge `from` to that of
-/// edge `to`.
+/// One triangle's piece of the section: from the crossing of edge `from` (`start`) to
+/// that of edge `to` (`end`).
 #[derive(Clone, Copy)]
 struct Segment {
     from: EdgeKey,
     to: EdgeKey,
     start: Point,
+    end: Point,
 }
 
 #[inline(always)]
@@ -242,12 +243,15 @@ fn triangle_segment(plane: &Plane, corners: [Point; 3]) -> Option<Segment> {
                 let point = crossing(corners[j], d[j], corners[i], d[i]);
                 from = Some((key(corners[j], corners[i]), point));
             }
-            (true, false) => to = Some(key(corners[i], corners[j])),
+            (true, false) => {
+                let point = crossing(corners[i], d[i], corners[j], d[j]);
+                to = Some((key(corners[i], corners[j]), point));
+            }
             _ => {}
         }
     }
-    let ((from, start), to) = (from?, to?);
-    Some(Segment { from, to, start })
+    let ((from, start), (to, end)) = (from?, to?);
+    Some(Segment { from, to, start, end })
 }
 
 /// The cross-section of `surface` by `plane`.
@@ -292,51 +296,86 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
     )
     .unwrap_or_default();
 
-    // Each edge's crossing is the start of one segment and the end of another; at an
-    // edge of more than two triangles (the checked solid of two bodies touching along
-    // an edge), of as many segments as end there. Segments sorted by the edge they
-    // start at, so each edge's are a run, taken in turn.
+    // Each edge's crossing is the start of one segment and the end of another; an edge
+    // shared by more than two triangles (a non-manifold edge, or a fan's diagonal lying
+    // on an edge of its face through a corner between) starts several. The segments
+    // starting at each edge form one run of `order`, and a chain arriving at an edge
+    // goes on with one of the run's unused segments, so where as many segments end at
+    // an edge as start there every one is chained. Where there is a choice, the chain
+    // turns most to the left: the solid lies to the left of its section's segments, so
+    // this traces the boundary of one piece of it around the point, and sections that
+    // touch there (two bodies sharing an edge) stay apart, whatever the face order.
     let mut order: Vec<u32> = (0..segments.len() as u32).collect();
-    order.sort_unstable_by_key(|&i| (segments[i as usize].from, i));
-    let run = |key: &EdgeKey| {
-        let start = order.partition_point(|&i| segments[i as usize].from < *key);
-        let end = start + order[start..].partition_point(|&i| segments[i as usize].from == *key);
-        start..end
-    };
-    let ambiguous_edges = (0..order.len())
-        .filter(|&k| {
-            k > 0 && segments[order[k] as usize].from == segments[order[k - 1] as usize].from
-        })
-        .map(|k| segments[order[k] as usize].from)
-        .collect::<std::collections::BTreeSet<_>>()
-        .len();
-    let mut used = vec![false; segments.len()];
-    // An unused segment starting at `key`, in the order of the run.
-    let next_from = |key: &EdgeKey, used: &[bool]| {
-        order[run(key)].iter().map(|&i| i as usize).find(|&i| !used[i])
-    };
-    // Open chains first, from the edges more segments start at than end at, so that
+    order.sort_unstable_by(|&a, &b| {
+        segments[a as usize].from.cmp(&segments[b as usize].from).then(a.cmp(&b))
+    });
+    let mut runs: HashMap<EdgeKey, (usize, usize)> = HashMap::with_capacity(segments.len());
+    let mut ambiguous_edges = 0;
+    let mut start = 0;
+    while start < order.len() {
+        let edge = segments[order[start] as usize].from;
+        let mut end = start + 1;
+        while end < order.len() && segments[order[end] as usize].from == edge {
+            end += 1;
+        }
+        if end - start > 1 {
+            ambiguous_edges += 1;
+        }
+        runs.insert(edge, (start, end));
+        start = end;
+    }
+    // Open chains first, from the edges where more segments start than end, so that
     // each is counted once; whatever is left is made of loops.
-    let mut ending: HashMap<EdgeKey, u32> = HashMap::with_capacity(segments.len());
+    let mut ending: HashMap<EdgeKey, usize> = HashMap::with_capacity(segments.len());
     for s in &segments {
         *ending.entry(s.to).or_default() += 1;
     }
-    let mut open_chains = 0;
-    for k in 0..order.len() {
-        let first = order[k] as usize;
-        let key = segments[first].from;
-        let ends = ending.get(&key).copied().unwrap_or(0) as usize;
-        // The run's segments beyond as many as end there start open chains.
-        if used[first] || k - run(&key).start < ends {
-            continue;
+    let mut sources: Vec<(usize, usize)> = Vec::new();
+    for (&edge, &(start, end)) in &runs {
+        let ends = ending.get(&edge).copied().unwrap_or(0);
+        if end - start > ends {
+            sources.push((start, end - start - ends));
         }
-        open_chains += 1;
-        let mut at = first;
-        loop {
+    }
+    sources.sort_unstable();
+    let mut used = vec![false; segments.len()];
+    let direction = |i: usize| {
+        let (a, b) = (plane.project(segments[i].start), plane.project(segments[i].end));
+        [b[0] - a[0], b[1] - a[1]]
+    };
+    // How far segment `next` turns left from segment `at` seen from the side the normal
+    // points to (an angle in (−π, π]; the `y = h` frame sees the plane from below).
+    let left = if plane.frame_is_flipped() { -1.0 } else { 1.0 };
+    let turn = |at: usize, next: usize| {
+        let (u, v) = (direction(at), direction(next));
+        (left * (u[0] * v[1] - u[1] * v[0])).atan2(u[0] * v[0] + u[1] * v[1])
+    };
+    // The segment the chain goes on with after `at` (`None`: the chain ends), marked
+    // used; `first`, the chain's first segment, is a candidate too (a loop closes).
+    let next = |used: &mut [bool], at: usize, first: Option<usize>| -> Option<usize> {
+        let &(start, end) = runs.get(&segments[at].to)?;
+        let candidates = order[start..end].iter().map(|&i| i as usize);
+        let mut free = candidates.filter(|&i| !used[i] || Some(i) == first);
+        let best = if end - start > 1 {
+            free.max_by(|&a, &b| turn(at, a).total_cmp(&turn(at, b)).then(b.cmp(&a)))
+        } else {
+            free.next()
+        }?;
+        used[best] = true;
+        Some(best)
+    };
+    let mut open_chains = 0;
+    for (start, count) in sources {
+        let (_, end) = runs[&segments[order[start] as usize].from];
+        for _ in 0..count {
+            let Some(mut at) = order[start..end].iter().map(|&i| i as usize).find(|&i| !used[i])
+            else {
+                break;
+            };
             used[at] = true;
-            match next_from(&segments[at].to, &used) {
-                Some(next) => at = next,
-                None => break,
+            open_chains += 1;
+            while let Some(following) = next(&mut used, at, None) {
+                at = following;
             }
         }
     }
@@ -346,19 +385,19 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
         if used[first] {
             continue;
         }
+        used[first] = true;
         chain.clear();
         let mut at = first;
+        // With the open chains gone, every edge starts as many unused segments as end
+        // there, so the walk can only stop where it began.
         let closed = loop {
-            used[at] = true;
             let point = plane.project(segments[at].start);
             if chain.last() != Some(&point) {
                 chain.push(point);
             }
-            if segments[at].to == segments[first].from {
-                break true;
-            }
-            match next_from(&segments[at].to, &used) {
-                Some(next) => at = next,
+            match next(&mut used, at, Some(first)) {
+                Some(following) if following == first => break true,
+                Some(following) => at = following,
                 None => break false,
             }
         };

@@ -263,3 +263,18 @@ fn a_mobius_strip_is_measured_alike_by_every_command() {
         assert!((x - m[0]).abs() <= 1e-12, "measures disagree: {m:?}");
     }
 }
+
+/// Two boxes touching along an edge are two spheres (χ = 2, genus 0) whatever the face
+/// order: the vertices of the shared edge belong to both, once each (they were counted
+/// once per run of consecutive faces of a shell, so faces of the two boxes interleaved
+/// around them gave χ from 3 to 6 and genus −1 or −2).
+#[test]
+fn bodies_touching_along_an_edge_are_spheres_in_any_face_order() {
+    let mesh =
+        joined(&[block([0.0; 3], [1.0; 3], true), block([1.0, 1.0, 0.0], [2.0, 2.0, 1.0], true)]);
+    for k in [1, 5, 7, 11] {
+        let c = check(&shuffled(&mesh, k), &CheckOptions::default()).unwrap();
+        let shells: Vec<_> = c.shells.iter().map(|s| (s.euler_characteristic, s.genus)).collect();
+        assert_eq!(shells, [(2, Some(0)); 2], "faces shuffled by {k}");
+    }
+}

@@ -137,3 +137,74 @@ fn open_and_far_surfaces() {
     assert!(Plane::new([f64::NAN, 0.0, 0.0], [0.0, 0.0, 1.0]).is_err());
     assert!(Plane::axis(3, 0.0).is_err());
 }
+
+/// A face with a corner on one of its edges (a T-junction, closed by a sliver triangle)
+/// fanned from another corner has a diagonal lying on that edge: the edge is then
+/// crossed by four triangles, two each way. Every crossing must still be chained: the
+/// section is the same whichever corner the face starts at (it was lost, area 0, for
+/// the starts whose fan has that diagonal).
+#[test]
+fn a_fan_diagonal_along_an_edge_keeps_the_section() {
+    let cube = cuboid([0.0; 3], [1.0; 3]);
+    let mut positions = cube.positions().to_vec();
+    let at = |p: [f64; 3]| positions.iter().position(|&q| q == p).unwrap() as u32;
+    let (t00, t10, t11, t01) =
+        (at([0.0, 0.0, 1.0]), at([1.0, 0.0, 1.0]), at([1.0, 1.0, 1.0]), at([0.0, 1.0, 1.0]));
+    positions.push([0.5, 0.0, 1.0]);
+    let m = positions.len() as u32 - 1;
+    let top = |f: &[u32]| f.iter().all(|&v| positions[v as usize][2] == 1.0);
+    let others: Vec<Vec<u32>> =
+        (0..cube.face_count()).map(|f| cube.face(f).to_vec()).filter(|f| !top(f)).collect();
+    for first in 0..5 {
+        let mut pentagon = vec![t00, m, t10, t11, t01];
+        pentagon.rotate_left(first);
+        let mut faces = others.clone();
+        faces.push(pentagon);
+        faces.push(vec![t00, t10, m]);
+        let mesh = Mesh::from_polygons(positions.clone(), faces.iter().map(|f| &f[..])).unwrap();
+        for (axis, level) in [(0, 0.25), (0, 0.75), (1, 0.5)] {
+            let s = section(&mesh, &Plane::axis(axis, level).unwrap());
+            let area = area_properties(&s.polygons).area;
+            assert_eq!((s.open_chains, area), (0, 1.0), "start {first}, axis {axis} at {level}");
+        }
+    }
+}
+
+/// Two unit cubes sharing an edge along each axis in turn: the planes across that edge
+/// cut two unit squares touching at a corner, whose crossings of the shared edge can
+/// be chained either way. They must stay two loops (and two polygons) for every face
+/// order, whichever way the plane's frame turns.
+#[test]
+fn sections_touching_at_a_shared_edge_stay_apart() {
+    for axis in 0..3 {
+        // The second cube is moved by 1 along the two other axes.
+        let mut far = [2.0; 3];
+        let mut near = [1.0; 3];
+        far[axis] = 1.0;
+        near[axis] = 0.0;
+        let meshes = [cuboid([0.0; 3], [1.0; 3]), cuboid(near, far)];
+        let joined = Mesh::concatenate(&meshes);
+        // One vertex per position, so that the shared edge is one edge of four faces.
+        let mut positions: Vec<[f64; 3]> = Vec::new();
+        let mut id = |p: [f64; 3]| match positions.iter().position(|&q| q == p) {
+            Some(i) => i as u32,
+            None => {
+                positions.push(p);
+                positions.len() as u32 - 1
+            }
+        };
+        let faces: Vec<Vec<u32>> = (0..joined.face_count())
+            .map(|f| joined.face(f).iter().map(|&v| id(joined.positions()[v as usize])).collect())
+            .collect();
+        for first in 0..faces.len() {
+            let mut order = faces.clone();
+            order.rotate_left(first);
+            let mesh =
+                Mesh::from_polygons(positions.clone(), order.iter().map(|f| &f[..])).unwrap();
+            let s = section(&mesh, &Plane::axis(axis, 0.5).unwrap());
+            let area = area_properties(&s.polygons).area;
+            let got = (s.loops, s.polygons.len(), s.open_chains, area);
+            assert_eq!(got, (2, 2, 0, 2.0), "edge along {axis}, faces from {first}");
+        }
+    }
+}

@@ -469,3 +469,20 @@ fn scattered_boxes_against_all_pairs() {
     assert!(nested > 0);
     assert_eq!(c.cavities, nested);
 }
+
+/// A cavity whose every corner lies on its container's surface (a square hole through
+/// a slab, modelled as a box whose top and bottom lie in the slab's): no corner can
+/// tell inside from outside, but the cavity's walls are inside the slab. It is a
+/// cavity, whichever way it is wound (it was a second solid, adding its volume).
+#[test]
+fn a_cavity_with_every_corner_on_its_container_is_a_cavity() {
+    for hole in [
+        cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 2.0]),
+        cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 2.0]).flipped(),
+    ] {
+        let mesh = Mesh::concatenate(&[cuboid([0.0; 3], [4.0, 4.0, 2.0]), hole]);
+        let c = checked(&mesh);
+        assert_eq!((c.shells.len(), c.cavities, c.volume), (2, 1, 30.0));
+        assert_eq!(mass_properties(&c.solid(&mesh)).signed_volume, 30.0);
+    }
+}

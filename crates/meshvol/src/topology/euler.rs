@@ -2,9 +2,9 @@
 //! closed orientable one (a sphere 0, a torus 1).
 //!
 //! F counts the shell's kept faces, E its edges (an edge belongs to each shell that
-//! has a sheet there), V its vertices: a vertex is counted once per run of consecutive kept
-//! faces of one shell that use it, which is exact for manifold meshes (a vertex is
-//! shared by shells only at non-manifold points).
+//! has a sheet there), V its vertices: a vertex belongs to each shell one of whose kept
+//! faces uses it, once (a vertex is shared by shells only at non-manifold points), in
+//! whatever order the faces come.
 
 use super::edges::Edges;
 use super::loops::Loops;
@@ -44,17 +44,29 @@ pub(super) fn per_shell(
             edges_in[s as usize] += 1;
         }
     }
+    // Each vertex counts in the first shell that uses it; the (vertex, shell) pairs of
+    // the other shells using it (non-manifold points only, so few) once each.
     let mut vertices = vec![0i64; shells.count];
-    let mut last_shell_of_vertex = vec![u32::MAX; welded.positions.len()];
+    let mut first_shell_of_vertex = vec![u32::MAX; welded.positions.len()];
+    let mut shared: Vec<(u32, u32)> = Vec::new();
     for f in (0..kept.len()).filter(|&f| kept[f]) {
         let s = shell_of_face[f];
         for c in loops.face(f) {
-            let v = welded.corner_vertex[c] as usize;
-            if last_shell_of_vertex[v] != s {
-                last_shell_of_vertex[v] = s;
-                vertices[s as usize] += 1;
+            let v = welded.corner_vertex[c];
+            match first_shell_of_vertex[v as usize] {
+                u32::MAX => {
+                    first_shell_of_vertex[v as usize] = s;
+                    vertices[s as usize] += 1;
+                }
+                first if first == s => {}
+                _ => shared.push((v, s)),
             }
         }
+    }
+    shared.sort_unstable();
+    shared.dedup();
+    for &(_, s) in &shared {
+        vertices[s as usize] += 1;
     }
     (0..shells.count)
         .map(|s| ShellCounts {

@@ -7,8 +7,9 @@
 //! signed crossings (winding numbers, each crossing signed as its face was propagated)
 //! with each candidate: along the six axis directions in turn until one meets no edge
 //! or vertex, else an oblique segment to beyond every box; a corner lying on another
-//! surface is skipped. Inside for every sample that could tell: *nested*; inside for
-//! some and outside for others: the two *overlap*.
+//! surface is skipped, and where no corner could tell, the triangles' centroids are
+//! tried. Inside for every sample that could tell: *nested*; inside for some and
+//! outside for others: the two *overlap*.
 //!
 //! A shell inside an odd number of others is a *cavity*; its parent is the smallest
 //! shell containing it. The solid's volume is Σ ±|shell volume| in shell order (+ for
@@ -113,13 +114,19 @@ pub(super) fn containers(
     for &f in &triangles.face {
         shell_triangles[shell_of_face[f as usize] as usize] += 1;
     }
+    // Their centroids are samples too, for the candidates no corner could tell about:
+    // a shell whose every corner lies on another surface (a cavity whose faces lie in
+    // its container's faces) is still inside or outside it.
     let mut samples: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
+    let mut centres: Vec<Vec<Point>> = vec![Vec::new(); shell_count];
     let mut seen_in_shell = vec![0usize; shell_count];
     for (i, &f) in triangles.face.iter().enumerate() {
         let s = shell_of_face[f as usize] as usize;
         let stride = shell_triangles[s].div_ceil(NESTING_SAMPLES);
         if seen_in_shell[s].is_multiple_of(stride) && !candidates[s].is_empty() {
-            samples[s].extend(triangles.points(i));
+            let [a, b, c] = triangles.points(i);
+            samples[s].extend([a, b, c]);
+            centres[s].push([0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0));
         }
         seen_in_shell[s] += 1;
     }
@@ -132,13 +139,13 @@ pub(super) fn containers(
         });
         all.map_or(1.0, |b| 4.0 * norm(b.size()) + 1.0)
     };
-    // For each shell, how many of its samples lie inside / outside each candidate.
-    let classify = |a: usize| -> Vec<(usize, usize, usize)> {
+    // For each shell, how many of `points` lie inside / outside each candidate.
+    let tally = |a: usize, points: &[Point]| -> Vec<(usize, usize, usize)> {
         let candidates = &candidates[a];
         let mut counts: Vec<(usize, usize, usize)> =
             candidates.iter().map(|&b| (b, 0, 0)).collect();
         let mut winding = vec![0i64; candidates.len()];
-        for &p in &samples[a] {
+        for &p in points {
             // Rays along each axis direction in turn, until one crosses cleanly; then
             // an oblique segment to beyond the mesh (it meets many boxes, so it is the
             // last resort, for symmetric meshes where every axis ray hits an edge).
@@ -185,6 +192,19 @@ pub(super) fn containers(
                     c.1 += 1;
                 } else {
                     c.2 += 1;
+                }
+            }
+        }
+        counts
+    };
+    // The corners first; the centroids for the candidates they told nothing about.
+    let classify = |a: usize| -> Vec<(usize, usize, usize)> {
+        let mut counts = tally(a, &samples[a]);
+        if counts.iter().any(|c| c.1 == 0 && c.2 == 0) {
+            let more = tally(a, &centres[a]);
+            for (c, m) in counts.iter_mut().zip(more) {
+                if c.1 == 0 && c.2 == 0 {
+                    *c = m;
                 }
             }
         }
