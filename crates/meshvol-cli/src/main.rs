@@ -18,6 +18,7 @@ mod repair;
 mod section;
 mod solid;
 mod union;
+mod units;
 mod volume;
 
 use clap::{CommandFactory, Parser, Subcommand};
