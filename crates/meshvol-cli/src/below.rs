@@ -32,6 +32,8 @@ pub struct BelowArgs {
     #[arg(long)]
     json: bool,
     #[command(flatten)]
+    units: crate::units::UnitArgs,
+    #[command(flatten)]
     solid: SolidArgs,
 }
 
@@ -58,9 +60,10 @@ pub fn run(args: BelowArgs, quiet: bool) -> ExitCode {
     };
     let options = BelowOptions { waterline, heel: args.heel, trim: args.trim };
     let check = args.solid.check();
+    let units = args.units.options();
     driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
         let input = solid::read(path, check, progress)?;
         progress.stage("measuring", path);
-        below(&input.subject(), &options)
+        below(&input.subject(), &options)?.in_units(&units, input.source.unit)
     })
 }

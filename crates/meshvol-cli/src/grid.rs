@@ -59,6 +59,8 @@ pub struct GridArgs {
     #[arg(long)]
     union: bool,
     #[command(flatten)]
+    units: crate::units::UnitArgs,
+    #[command(flatten)]
     solid: SolidArgs,
 }
 
@@ -169,6 +171,8 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         out: args.out.as_ref().map(|p| p.display().to_string()),
         chunks: None,
         fraction: args.fraction,
+        units: None,
+        mass: None,
         png: args.png.as_ref().map(|p| p.display().to_string()),
         warnings,
     };
@@ -179,7 +183,9 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
                         .csv with them, not .zarr"
                 .into());
         }
-        return zarr::write(&together, &grid, out, args.chunks, run, progress);
+        let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
+        return zarr::write(&together, &grid, out, args.chunks, run, progress)?
+            .in_units(&args.units.options(), &files);
     }
     if args.chunks.is_some() {
         return Err("--chunks is for a .zarr output (--out cells.zarr)".into());
@@ -214,5 +220,6 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         grid_out::png(&mut bytes, &grid, &volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
-    Ok(summary(&grid, &volumes, run))
+    let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
+    summary(&grid, &volumes, run).in_units(&args.units.options(), &files)
 }

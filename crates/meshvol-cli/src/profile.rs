@@ -38,6 +38,8 @@ pub struct ProfileArgs {
     #[arg(long)]
     csv: bool,
     #[command(flatten)]
+    units: crate::units::UnitArgs,
+    #[command(flatten)]
     solid: SolidArgs,
 }
 
@@ -66,5 +68,5 @@ fn measure(args: &ProfileArgs, progress: &Progress) -> Result<ProfileReport, Str
         (None, None) => return Err("give --levels N or --step H".into()),
     };
     progress.stage("measuring", &args.file);
-    profile(&input.subject(), axis, levels)
+    profile(&input.subject(), axis, levels)?.in_units(&args.units.options(), input.source.unit)
 }

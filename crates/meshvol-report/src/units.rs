@@ -510,6 +510,19 @@ pub fn mass_line(mass: &Option<Mass>) -> String {
     }
 }
 
+/// The text line naming the units (and the mass line with `--density`); empty when
+/// neither is known.
+pub fn units_text(names: &Option<UnitNames>, mass: &Option<Mass>) -> String {
+    let mut s = String::new();
+    if let Some(u) = names {
+        s += &format!(
+            "  units              lengths in {}, areas in {}, volumes in {} (the file in {})\n",
+            u.length, u.area, u.volume, u.file
+        );
+    }
+    s + &mass_line(mass)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
