@@ -6,13 +6,13 @@
 use std::fmt::Write as _;
 
 use crate::number::{count, num};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::polygon::{
     area_properties, polygon_issues, AreaProperties, Polygon, RingRole, SecondMoments,
 };
 use meshvol_io::PolygonFeature;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 
 /// Second moments about the centroid, and the principal ones.
 #[derive(Clone, Copy, Debug, Default, Serialize)]

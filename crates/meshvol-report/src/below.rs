@@ -4,12 +4,12 @@
 
 use crate::number::{num, vector};
 use crate::subject::Subject;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::below::{below as kernel, level_for_volume};
 use meshvol::section::Plane;
 use meshvol::Surface;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use std::fmt::Write;
 
 /// Where the plane is.

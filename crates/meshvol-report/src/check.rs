@@ -2,10 +2,10 @@
 
 use crate::number::{count, num};
 use crate::subject::Source;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::topology::{Check, Orientation, Shell};
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use std::fmt::Write;
 
 /// One shell in the report.

@@ -4,12 +4,12 @@
 
 use crate::number::num;
 use crate::subject::Source;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::cutfill::{cell_cut_fill_with, cut_fill_with, CellCutFill, Design, PlanGrid, Terrain};
 use meshvol::progress::Progress;
 use meshvol::Surface;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use std::fmt::Write;
 
 /// What the existing surface is compared with.
@@ -274,7 +274,12 @@ impl CutFillReport {
         for x in [&mut self.cut, &mut self.fill, &mut self.net] {
             *x = scale.volume(*x);
         }
-        for x in [&mut self.area_cut, &mut self.area_fill, &mut self.footprint_area, &mut self.existing_area] {
+        for x in [
+            &mut self.area_cut,
+            &mut self.area_fill,
+            &mut self.footprint_area,
+            &mut self.existing_area,
+        ] {
             *x = scale.area(*x);
         }
         self.design_area = self.design_area.map(|a| scale.area(a));

@@ -2,11 +2,11 @@
 //! and the memory estimate that refuses a grid before it is allocated.
 
 use crate::number::{count, num, vector};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::{bytes_text, occupancy, Grid, GridError, Occupancy};
 use meshvol::{Bounds, Point};
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use std::fmt::Write;
 use std::path::Path;
 

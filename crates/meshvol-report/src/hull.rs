@@ -3,12 +3,12 @@
 use std::fmt::Write as _;
 
 use crate::number::{num, vector};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::written::WrittenReport;
 use crate::Report;
 use meshvol::hull::Hull;
 use meshvol::Mesh;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 
 /// One file's report. Field names are the JSON keys.
 #[derive(Clone, Debug, Serialize)]

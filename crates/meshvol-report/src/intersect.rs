@@ -5,12 +5,12 @@
 use crate::number::{count, num};
 use crate::subject::{joined_names, Subject};
 use crate::union::{interval_text, Interval};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
 use meshvol::progress::Progress;
 use meshvol::Surface;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use std::fmt::Write;
 use std::time::Instant;
 

@@ -3,11 +3,11 @@
 
 use crate::number::num;
 use crate::subject::Subject;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::{profile as kernel, Axis, Levels};
 use meshvol::Surface;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use std::fmt::Write;
 
 /// The report. Field names are the JSON keys.

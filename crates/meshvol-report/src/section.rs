@@ -5,12 +5,12 @@ use std::fmt::Write as _;
 use crate::area::InertiaReport;
 use crate::number::{count, num, vector};
 use crate::subject::Subject;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::polygon::{area_properties, Polygon};
 use meshvol::section::{section as kernel, Plane, PlaneFrame};
 use meshvol::Surface;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 
 #[derive(Clone, Debug, Serialize)]
 pub struct PlaneReport {

@@ -3,12 +3,12 @@
 
 use crate::number::{count, num};
 use crate::subject::{joined_names, union_bodies, Subject};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::union_with as kernel;
 use meshvol::progress::Progress;
 use meshvol::Surface;
 use serde::Serialize;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use std::fmt::Write;
 use std::time::Instant;
 

@@ -569,8 +569,10 @@ mod tests {
             assert!(bad.parse::<Density>().is_err(), "{bad}");
         }
         // 7.85 g/cm³ over 1 m³ reported in L: 7.85e6 g.
-        let options =
-            UnitOptions { units: Some("mm:L".parse().unwrap()), density: Some("7.85g/cm3".parse().unwrap()) };
+        let options = UnitOptions {
+            units: Some("mm:L".parse().unwrap()),
+            density: Some("7.85g/cm3".parse().unwrap()),
+        };
         let (scale, _) = Scale::resolve(&options, None).unwrap();
         let m = scale.mass(scale.volume(1e9)).unwrap();
         assert!((m.mass - 7.85e6).abs() < 1e-6, "{m:?}");
