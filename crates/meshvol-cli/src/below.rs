@@ -9,12 +9,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Args)]
+#[command(group(clap::ArgGroup::new("waterline").required(true).args(["plane", "volume"])))]
 pub struct BelowArgs {
     /// Mesh files.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
     /// The plane n·x = D: the part where n·x ≤ D is measured.
-    #[arg(long, value_name = "NX,NY,NZ,D", value_parser = parse_numbers::<4>, allow_hyphen_values = true, required_unless_present = "volume", conflicts_with = "volume")]
+    #[arg(long, value_name = "NX,NY,NZ,D", value_parser = parse_numbers::<4>, allow_hyphen_values = true)]
     plane: Option<[f64; 4]>,
     /// The volume to hold below: finds the level D along --direction (a draft).
     #[arg(long, value_name = "V", value_parser = crate::positive_finite, allow_hyphen_values = true)]

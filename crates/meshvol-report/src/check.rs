@@ -243,7 +243,7 @@ impl Report for CheckReport {
         let _ = writeln!(s, "  euler char.        {}", r.euler_characteristic);
         let _ = writeln!(
             s,
-            "  volume             {} ± {}",
+            "  volume             {} ± {} caps",
             num(r.solid_volume, 15),
             num(r.volume_uncertainty, 3)
         );

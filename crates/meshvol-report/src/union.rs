@@ -66,10 +66,7 @@ pub fn union_with<S: Surface + Sync>(
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(format!("tolerance must be a positive number; got {tolerance}"));
     }
-    let mut warnings: Vec<String> = subjects
-        .iter()
-        .flat_map(|s| s.warnings().into_iter().map(|w| format!("{}: {w}", s.source.name())))
-        .collect();
+    let mut warnings = crate::subject::input_warnings(subjects);
     let (bodies, names): (Vec<_>, Vec<String>) =
         union_bodies(subjects).into_iter().map(|b| (b.surface, b.name)).unzip();
     if bodies.is_empty() {
