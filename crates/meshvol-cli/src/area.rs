@@ -17,6 +17,8 @@ pub struct AreaArgs {
     /// Print one JSON object per file, one per line.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    units: crate::units::LengthUnitArgs,
 }
 
 /// Runs the command.
@@ -24,6 +26,7 @@ pub fn run(args: AreaArgs, quiet: bool) -> ExitCode {
     driver::each(&args.files, Output { json: args.json, quiet }, |path, _| {
         let file = crate::input::load_polygons(path)?;
         let name = path.display().to_string();
-        area(Some(name), Some(file.format.name()), &file.features, file.warnings)
+        area(Some(name), Some(file.format.name()), &file.features, file.warnings)?
+            .in_units(&args.units.options(), None)
     })
 }

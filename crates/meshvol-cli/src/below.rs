@@ -9,12 +9,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Args)]
+#[command(group(clap::ArgGroup::new("waterline").required(true).args(["plane", "volume"])))]
 pub struct BelowArgs {
     /// Mesh files.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
     /// The plane n·x = D: the part where n·x ≤ D is measured.
-    #[arg(long, value_name = "NX,NY,NZ,D", value_parser = parse_numbers::<4>, allow_hyphen_values = true, required_unless_present = "volume", conflicts_with = "volume")]
+    #[arg(long, value_name = "NX,NY,NZ,D", value_parser = parse_numbers::<4>, allow_hyphen_values = true)]
     plane: Option<[f64; 4]>,
     /// The volume to hold below: finds the level D along --direction (a draft).
     #[arg(long, value_name = "V", value_parser = crate::positive_finite, allow_hyphen_values = true)]
@@ -31,6 +32,8 @@ pub struct BelowArgs {
     /// Print one JSON object per file, one per line.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    units: crate::units::UnitArgs,
     #[command(flatten)]
     solid: SolidArgs,
 }
@@ -58,9 +61,10 @@ pub fn run(args: BelowArgs, quiet: bool) -> ExitCode {
     };
     let options = BelowOptions { waterline, heel: args.heel, trim: args.trim };
     let check = args.solid.check();
+    let units = args.units.options();
     driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
         let input = solid::read(path, check, progress)?;
         progress.stage("measuring", path);
-        below(&input.subject(), &options)
+        below(&input.subject(), &options)?.in_units(&units, input.source.unit)
     })
 }

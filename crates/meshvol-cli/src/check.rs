@@ -26,6 +26,8 @@ pub struct CheckArgs {
     /// the bounding box diagonal (reported as `weld_tolerance`).
     #[arg(long, value_name = "T", value_parser = crate::non_negative_finite, allow_hyphen_values = true)]
     weld_tolerance: Option<f64>,
+    #[command(flatten)]
+    units: crate::units::UnitArgs,
 }
 
 /// Runs the command. A file without faces is checked too: it bounds nothing.
@@ -43,6 +45,6 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
             &progress.kernel(format!("checking {}", path.display())),
         )
         .map_err(|e| format!("{name}: {e}"))?;
-        Ok(check(&Source::of(&name, &loaded), &c))
+        check(&Source::of(&name, &loaded), &c).in_units(&args.units.options(), loaded.unit)
     })
 }

@@ -40,6 +40,8 @@ pub struct CutFillArgs {
     /// Print the report as one JSON object.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    units: crate::units::UnitArgs,
 }
 
 fn finite(s: &str) -> Result<f64, String> {
@@ -137,5 +139,8 @@ fn measure(args: &CutFillArgs, progress: &Progress) -> Result<CutFillReport, Str
                 .map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
         }
     }
-    Ok(report)
+    // The per-cell values (--out, --png) stay in the file's units.
+    let mut files = vec![(source.name(), source.unit)];
+    files.extend(design.as_ref().map(|(s, _)| (s.name(), s.unit)));
+    report.in_units(&args.units.options(), &files)
 }

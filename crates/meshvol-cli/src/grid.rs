@@ -19,13 +19,14 @@ use std::time::Instant;
 mod zarr;
 
 #[derive(Args)]
+#[command(group(clap::ArgGroup::new("spacing").required(true).args(["cells", "pitch"])))]
 pub struct GridArgs {
     /// Mesh files; several are measured together (their cell volumes add up), or with
     /// --union as the union of their solids.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
     /// Cells along x, y and z.
-    #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_cells, required_unless_present = "pitch", conflicts_with = "pitch")]
+    #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_cells)]
     cells: Option<[usize; 3]>,
     /// Cell size: H for cubic cells, or HX,HY,HZ; enough cells to cover the bounds.
     #[arg(long, value_name = "H[,HY,HZ]", value_parser = parse_pitch)]
@@ -58,6 +59,8 @@ pub struct GridArgs {
     /// file): overlaps count once.
     #[arg(long)]
     union: bool,
+    #[command(flatten)]
+    units: crate::units::UnitArgs,
     #[command(flatten)]
     solid: SolidArgs,
 }
@@ -134,15 +137,13 @@ pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
 
 fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
     let mut inputs = Vec::new();
-    let mut warnings = Vec::new();
     for path in &args.files {
         let input = solid::read(path, args.solid.check(), progress)?;
-        let subject = input.subject();
-        warnings.extend(subject.warnings().iter().map(|w| format!("{}: {w}", input.source.name())));
         progress.done(path);
         inputs.push(input);
     }
     let subjects = solid::subjects(&inputs);
+    let warnings = meshvol_report::subject::input_warnings(&subjects);
     let together = Joined::new(subjects.iter().map(Subject::measured).collect());
     let mp = mass_properties(&together);
     let bodies = if args.union { union_bodies(&subjects) } else { Vec::new() };
@@ -169,6 +170,8 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         out: args.out.as_ref().map(|p| p.display().to_string()),
         chunks: None,
         fraction: args.fraction,
+        units: None,
+        mass: None,
         png: args.png.as_ref().map(|p| p.display().to_string()),
         warnings,
     };
@@ -179,7 +182,9 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
                         .csv with them, not .zarr"
                 .into());
         }
-        return zarr::write(&together, &grid, out, args.chunks, run, progress);
+        let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
+        return zarr::write(&together, &grid, out, args.chunks, run, progress)?
+            .in_units(&args.units.options(), &files);
     }
     if args.chunks.is_some() {
         return Err("--chunks is for a .zarr output (--out cells.zarr)".into());
@@ -214,5 +219,6 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         grid_out::png(&mut bytes, &grid, &volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
-    Ok(summary(&grid, &volumes, run))
+    let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
+    summary(&grid, &volumes, run).in_units(&args.units.options(), &files)
 }

@@ -28,6 +28,8 @@ pub struct HullArgs {
     /// report the volume written beside the hull's.
     #[arg(long, requires = "out")]
     allow_lossy: bool,
+    #[command(flatten)]
+    units: crate::units::UnitArgs,
 }
 
 fn parse_out(s: &str) -> Result<PathBuf, String> {
@@ -66,9 +68,10 @@ pub fn run(args: HullArgs, quiet: bool) -> ExitCode {
         };
         let format = Some(cloud.source.name());
         let report = hull(Some(name), format, cloud.points.len(), &h, cloud.warnings);
-        Ok(match written {
+        match written {
             Some(w) => report.with_written(w),
             None => report,
-        })
+        }
+        .in_units(&args.units.options(), None)
     })
 }

@@ -32,6 +32,8 @@ pub struct IntersectArgs {
     #[arg(long)]
     json: bool,
     #[command(flatten)]
+    units: crate::units::UnitArgs,
+    #[command(flatten)]
     solid: SolidArgs,
 }
 
@@ -53,7 +55,9 @@ pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
         }
         let hook = progress.kernel("measuring the intersection".to_string());
         let subjects = solid::subjects(&inputs);
-        intersect_with(&subjects[0], &subjects[1], args.tolerance, &hook)
+        let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
+        intersect_with(&subjects[0], &subjects[1], args.tolerance, &hook)?
+            .in_units(&args.units.options(), &files)
     })
 }
 
@@ -90,7 +94,9 @@ fn pairs(args: &IntersectArgs, output: Output) -> ExitCode {
         let what = format!("intersecting {} and {}", a.source.name(), b.source.name());
         let result = {
             let hook = driver.progress.kernel(what);
+            let files = [(a.source.name(), a.source.unit), (b.source.name(), b.source.unit)];
             intersect_with(a, b, args.tolerance, &hook)
+                .and_then(|r| r.in_units(&args.units.options(), &files))
         };
         match result {
             Ok(report) => driver.report(&report),

@@ -18,6 +18,7 @@ mod repair;
 mod section;
 mod solid;
 mod union;
+mod units;
 mod volume;
 
 use clap::{CommandFactory, Parser, Subcommand};
@@ -108,7 +109,15 @@ fn with_default_command(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsSt
         command.get_subcommands().any(|c| c.get_name() == a)
             || matches!(a, "help" | "-h" | "--help" | "-V" | "--version")
     };
-    // Skip global options (and their values) to find the first real argument.
+    let i = first_argument(&args);
+    if i < args.len() && !known(&args[i].to_string_lossy()) {
+        args.insert(i, "volume".into());
+    }
+    args
+}
+
+/// Where the first argument after the global options (and their values) is.
+fn first_argument(args: &[std::ffi::OsString]) -> usize {
     let mut i = 1;
     while i < args.len() {
         let a = args[i].to_string_lossy();
@@ -120,10 +129,47 @@ fn with_default_command(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsSt
             break;
         }
     }
-    if i < args.len() && !known(&args[i].to_string_lossy()) {
-        args.insert(i, "volume".into());
+    i
+}
+
+/// The subcommand `arg` was probably meant to be, when it is not a file: one at most two
+/// edits away (`chek` → `check`), or one it begins (`vol` → `volume`).
+fn misspelt_command(arg: &std::ffi::OsStr) -> Option<String> {
+    let a = arg.to_str()?;
+    if a.len() < 2
+        || a.starts_with('-')
+        || std::path::Path::new(a).exists()
+        || a.contains(['.', '/'])
+    {
+        return None;
     }
-    args
+    let command = Cli::command();
+    if a == "help" || command.get_subcommands().any(|c| c.get_name() == a) {
+        return None;
+    }
+    command
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .map(|name| (edits(a, &name), name))
+        .filter(|(d, name)| *d <= 2 || (a.len() >= 3 && name.starts_with(a)))
+        .min()
+        .map(|(_, name)| name)
+}
+
+/// Levenshtein distance.
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut previous = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let next = (previous + usize::from(ca != cb)).min(row[j] + 1).min(row[j + 1] + 1);
+            previous = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
 }
 
 /// mimalloc reuses the large short-lived arrays of a check instead of returning them to
@@ -151,7 +197,18 @@ const THREADS_PER_CORE: usize = 4;
 
 fn main() -> ExitCode {
     keep_freed_memory();
-    let cli = Cli::parse_from(with_default_command(std::env::args_os().collect()));
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    // `meshvol chek part.obj`: a typo of a subcommand, not a file to measure.
+    if let Some(first) = args.get(first_argument(&args)) {
+        if let Some(name) = misspelt_command(first) {
+            eprintln!(
+                "meshvol: error: '{}' is not a subcommand or a file: did you mean `{name}`?",
+                first.to_string_lossy()
+            );
+            return ExitCode::from(2);
+        }
+    }
+    let cli = Cli::parse_from(with_default_command(args));
     input::TIMINGS.store(cli.timings, std::sync::atomic::Ordering::Relaxed);
     if let Some(n) = cli.threads {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());

@@ -18,6 +18,7 @@ pub enum AxisArg {
 }
 
 #[derive(Args)]
+#[command(group(clap::ArgGroup::new("spacing").required(true).args(["levels", "step"])))]
 pub struct ProfileArgs {
     /// The mesh file.
     #[arg(value_name = "FILE")]
@@ -26,7 +27,7 @@ pub struct ProfileArgs {
     #[arg(long, value_enum, default_value = "z")]
     axis: AxisArg,
     /// N slabs: N + 1 equally spaced levels from the mesh's minimum to its maximum.
-    #[arg(long, value_name = "N", required_unless_present = "step", conflicts_with = "step", value_parser = clap::value_parser!(u64).range(1..=(meshvol::grid::MAX_LEVELS as u64 - 1)))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=(meshvol::grid::MAX_LEVELS as u64 - 1)))]
     levels: Option<u64>,
     /// A level every H from the minimum, up to the first at or above the maximum.
     #[arg(long, value_name = "H", value_parser = crate::positive_finite, allow_hyphen_values = true)]
@@ -37,6 +38,8 @@ pub struct ProfileArgs {
     /// Print CSV: level,volume_below,slab_volume,section_area.
     #[arg(long)]
     csv: bool,
+    #[command(flatten)]
+    units: crate::units::UnitArgs,
     #[command(flatten)]
     solid: SolidArgs,
 }
@@ -66,5 +69,5 @@ fn measure(args: &ProfileArgs, progress: &Progress) -> Result<ProfileReport, Str
         (None, None) => return Err("give --levels N or --step H".into()),
     };
     progress.stage("measuring", &args.file);
-    profile(&input.subject(), axis, levels)
+    profile(&input.subject(), axis, levels)?.in_units(&args.units.options(), input.source.unit)
 }

@@ -33,6 +33,8 @@ pub struct SectionArgs {
     #[arg(long, short, value_name = "OUT")]
     out: Option<PathBuf>,
     #[command(flatten)]
+    units: crate::units::LengthUnitArgs,
+    #[command(flatten)]
     solid: crate::solid::SolidArgs,
 }
 
@@ -121,6 +123,8 @@ fn measure(
     } else {
         None
     };
+    // The outline (WKT, GeoJSON) stays in the file's coordinates.
+    let report = report.in_units(&args.units.options(), input.source.unit)?;
     Ok((report, printed))
 }
 

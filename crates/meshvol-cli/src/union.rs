@@ -21,6 +21,8 @@ pub struct UnionArgs {
     #[arg(long)]
     json: bool,
     #[command(flatten)]
+    units: crate::units::UnitArgs,
+    #[command(flatten)]
     solid: SolidArgs,
 }
 
@@ -33,6 +35,8 @@ pub fn run(args: UnionArgs, quiet: bool) -> ExitCode {
             progress.done(path);
         }
         let hook = progress.kernel("measuring the union".to_string());
-        union_with(&solid::subjects(&inputs), args.tolerance, &hook)
+        let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
+        union_with(&solid::subjects(&inputs), args.tolerance, &hook)?
+            .in_units(&args.units.options(), &files)
     })
 }

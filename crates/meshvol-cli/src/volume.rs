@@ -5,7 +5,7 @@ use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::{Args, ValueEnum};
 use meshvol_report::inertial::{inertial, RobotFormat};
-use meshvol_report::units::UnitsArg;
+use meshvol_report::units::Density;
 use meshvol_report::volume::{volume, VolumeOptions};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -24,15 +24,8 @@ pub struct VolumeArgs {
     /// SI units: give --units FILE:m and --density in kg/m³).
     #[arg(long, value_enum)]
     format: Option<Format>,
-    /// Density, in mass per reported volume unit; scales `mass` and `inertia`.
-    #[arg(long, default_value_t = 1.0, value_parser = crate::positive_finite, allow_hyphen_values = true)]
-    density: f64,
-    /// The file's length unit and the unit to report in: FILE[:REPORT], e.g. `mm`,
-    /// `mm:cm`, `in:mL`, or `:REPORT` to convert from the unit the file declares (3MF,
-    /// glTF). Units: um, mm, cm, m, in, ft; REPORT may also be mL (lengths in cm) or L
-    /// (lengths in dm). Files that declare a unit are reported in it by default.
-    #[arg(long, value_name = "FILE[:REPORT]")]
-    units: Option<UnitsArg>,
+    #[command(flatten)]
+    units: crate::units::UnitArgs,
     /// Report the correctly rounded exact signed volume (exact arithmetic; a few times
     /// slower than the default, which is already within `volume_error_bound`).
     #[arg(long)]
@@ -57,7 +50,11 @@ enum Format {
 
 /// Runs the command.
 pub fn run(args: VolumeArgs, quiet: bool) -> ExitCode {
-    let options = VolumeOptions { density: args.density, units: args.units, exact: args.exact };
+    let options = VolumeOptions {
+        density: args.units.density.unwrap_or(Density::plain(1.0)),
+        units: args.units.units,
+        exact: args.exact,
+    };
     let check = args.solid.check();
     let measure = |path: &Path, progress: &Progress| {
         let input = solid::read(path, check, progress)?;

@@ -65,6 +65,7 @@ fn a_flat_surface_against_a_ramp() {
         "existing_area",
         "design_area",
         "grid",
+        "units",
         "warnings",
     ];
     let at: Vec<usize> = keys.iter().map(|k| line.find(&format!("\"{k}\":")).unwrap()).collect();

@@ -269,7 +269,16 @@ fn profile_json_and_csv() {
     let v = json(&meshvol(&["profile", p(&mesh), "--levels", "4", "--json"]));
     assert_eq!(
         keys(&v),
-        ["axis", "file", "levels", "section_area", "slab_volume", "volume_below", "warnings"]
+        [
+            "axis",
+            "file",
+            "levels",
+            "section_area",
+            "slab_volume",
+            "units",
+            "volume_below",
+            "warnings"
+        ]
     );
     assert_eq!(v["axis"], "z");
     assert_eq!(v["levels"], serde_json::json!([0.0, 1.0, 2.0, 3.0, 4.0]));
@@ -316,6 +325,7 @@ fn union_of_files_and_of_shells() {
                 "lower",
                 "seconds",
                 "sum_of_volumes",
+                "units",
                 "upper",
                 "volume",
                 "volume_uncertainty",

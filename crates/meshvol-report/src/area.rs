@@ -6,6 +6,7 @@
 use std::fmt::Write as _;
 
 use crate::number::{count, num};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::polygon::{
     area_properties, polygon_issues, AreaProperties, Polygon, RingRole, SecondMoments,
@@ -86,6 +87,12 @@ pub struct AreaReport {
     /// geometries); the totals above cover all of them.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub features: Option<Vec<FeatureReport>>,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -169,6 +176,8 @@ fn measure(
         inertia: inertia(&total),
         rings,
         features: many.then_some(features),
+        units: None,
+        mass: None,
         warnings,
     }
 }
@@ -259,6 +268,7 @@ impl Report for AreaReport {
                 num(ring.perimeter, 15)
             );
         }
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
     }
 }
@@ -309,4 +319,46 @@ fn overflow(r: &mut AreaReport, features: &[PolygonFeature]) -> Result<(), Strin
     }
     r.warnings.extend(warnings);
     Ok(())
+}
+
+impl AreaReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// a file declaring `declared`.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        declared: Option<meshvol_io::LengthUnit>,
+    ) -> Result<Self, String> {
+        let (scale, warning) = Scale::resolve(options, declared)
+            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
+        self.warnings.extend(warning);
+        self.area = scale.area(self.area);
+        self.perimeter = scale.length(self.perimeter);
+        self.centroid = self.centroid.map(|c| scale.point(c));
+        self.inertia = self.inertia.map(|i| i.scaled(&scale));
+        for r in &mut self.rings {
+            r.signed_area = scale.area(r.signed_area);
+            r.perimeter = scale.length(r.perimeter);
+        }
+        for f in self.features.iter_mut().flatten() {
+            f.area = scale.area(f.area);
+            f.perimeter = scale.length(f.perimeter);
+            f.centroid = f.centroid.map(|c| scale.point(c));
+            f.inertia = f.inertia.map(|i| i.scaled(&scale));
+        }
+        self.units = scale.names();
+        Ok(self)
+    }
+}
+
+impl InertiaReport {
+    /// The moments in the units of `scale` (area × length²).
+    pub fn scaled(mut self, scale: &Scale) -> InertiaReport {
+        self.ix = scale.area_moment(self.ix);
+        self.iy = scale.area_moment(self.iy);
+        self.ixy = scale.area_moment(self.ixy);
+        self.polar = scale.area_moment(self.polar);
+        self.principal = self.principal.map(|x| scale.area_moment(x));
+        self
+    }
 }

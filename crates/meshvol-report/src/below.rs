@@ -4,6 +4,7 @@
 
 use crate::number::{num, vector};
 use crate::subject::Subject;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::below::{below as kernel, level_for_volume};
 use meshvol::section::Plane;
@@ -44,6 +45,12 @@ pub struct BelowReport {
     /// The area of the solid's section by the plane (waterplane area), and its centroid.
     pub section_area: f64,
     pub section_centroid: Option<[f64; 3]>,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -100,6 +107,8 @@ pub fn below<S: Surface>(
         wetted_area: part.part.area,
         section_area: part.section_area,
         section_centroid: part.section_centroid,
+        units: None,
+        mass: None,
         warnings,
     })
 }
@@ -124,7 +133,31 @@ impl Report for BelowReport {
         if let Some(c) = self.section_centroid {
             let _ = writeln!(s, "  section centroid   {}", vector(c, 12));
         }
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl BelowReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// a file declaring `declared`.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        declared: Option<meshvol_io::LengthUnit>,
+    ) -> Result<Self, String> {
+        let (scale, warning) = Scale::resolve(options, declared)
+            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
+        self.warnings.extend(warning);
+        self.level = scale.length(self.level);
+        self.volume = scale.volume(self.volume);
+        self.centroid = self.centroid.map(|c| scale.point(c));
+        self.wetted_area = scale.area(self.wetted_area);
+        self.section_area = scale.area(self.section_area);
+        self.section_centroid = self.section_centroid.map(|c| scale.point(c));
+        self.mass = scale.mass(self.volume);
+        self.units = scale.names();
+        Ok(self)
     }
 }
 

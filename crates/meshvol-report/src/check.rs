@@ -2,6 +2,7 @@
 
 use crate::number::{count, num};
 use crate::subject::Source;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::topology::{Check, Orientation, Shell};
 use serde::Serialize;
@@ -129,6 +130,12 @@ pub struct CheckReport {
     pub format: Option<&'static str>,
     #[serde(flatten)]
     pub facts: CheckFacts,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -138,6 +145,8 @@ pub fn check(source: &Source, c: &Check) -> CheckReport {
         file: source.file.clone(),
         format: source.format,
         facts: CheckFacts::of(c),
+        units: None,
+        mass: None,
         warnings: source.warnings.clone(),
     }
 }
@@ -234,10 +243,30 @@ impl Report for CheckReport {
         let _ = writeln!(s, "  euler char.        {}", r.euler_characteristic);
         let _ = writeln!(
             s,
-            "  volume             {} ± {}",
+            "  volume             {} ± {} caps",
             num(r.solid_volume, 15),
             num(r.volume_uncertainty, 3)
         );
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl CheckReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// a file declaring `declared`.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        declared: Option<meshvol_io::LengthUnit>,
+    ) -> Result<Self, String> {
+        let (scale, warning) = Scale::resolve(options, declared)
+            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
+        self.warnings.extend(warning);
+        self.facts.scale_volumes(scale.volume(1.0));
+        self.facts.weld_tolerance = self.facts.weld_tolerance.map(|t| scale.length(t));
+        self.mass = scale.mass(self.facts.solid_volume);
+        self.units = scale.names();
+        Ok(self)
     }
 }

@@ -4,6 +4,7 @@
 
 use crate::number::num;
 use crate::subject::Source;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::cutfill::{cell_cut_fill_with, cut_fill_with, CellCutFill, Design, PlanGrid, Terrain};
 use meshvol::progress::Progress;
@@ -63,6 +64,12 @@ pub struct CutFillReport {
     pub design_area: Option<f64>,
     /// The plan grid of the per-cell values; null without one.
     pub grid: Option<GridInfo>,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -209,6 +216,8 @@ pub fn cutfill_with<S: Surface, T: Surface>(
             origin: g.origin(),
             cell: g.cell(),
         }),
+        units: None,
+        mass: None,
         warnings,
     };
     Ok((report, cells.map(|(_, c)| c)))
@@ -246,7 +255,43 @@ impl Report for CutFillReport {
                 num(g.origin[1], 12)
             );
         }
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl CutFillReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// files (named, with the unit each declares) that must agree on their unit.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        files: &[(&str, Option<meshvol_io::LengthUnit>)],
+    ) -> Result<Self, String> {
+        let (scale, warnings) = Scale::resolve_all(options, files)?;
+        self.warnings.extend(warnings);
+        self.level = self.level.map(|z| scale.length(z));
+        for x in [&mut self.cut, &mut self.fill, &mut self.net] {
+            *x = scale.volume(*x);
+        }
+        for x in [
+            &mut self.area_cut,
+            &mut self.area_fill,
+            &mut self.footprint_area,
+            &mut self.existing_area,
+        ] {
+            *x = scale.area(*x);
+        }
+        self.design_area = self.design_area.map(|a| scale.area(a));
+        self.footprint_bounds = self.footprint_bounds.map(|b| b.map(|p| scale.point(p)));
+        if let Some(g) = &mut self.grid {
+            g.origin = scale.point(g.origin);
+            g.cell = scale.point(g.cell);
+        }
+        // The mass of the fill (material brought in), with --density.
+        self.mass = scale.mass(self.fill);
+        self.units = scale.names();
+        Ok(self)
     }
 }
 

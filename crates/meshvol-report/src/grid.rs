@@ -2,6 +2,7 @@
 //! and the memory estimate that refuses a grid before it is allocated.
 
 use crate::number::{count, num, vector};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::{bytes_text, occupancy, Grid, GridError, Occupancy};
 use meshvol::{Bounds, Point};
@@ -122,6 +123,12 @@ pub struct GridRun {
     pub fraction: bool,
     pub png: Option<String>,
     /// The readers' warnings and the reasons to doubt each file's solid, as
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     /// `FILE: warning`.
     pub warnings: Vec<String>,
 }
@@ -256,6 +263,30 @@ impl Report for GridReport {
             let _ = writeln!(s, "  picture        {png}");
         }
         let _ = writeln!(s, "  time           {:.3} s", r.seconds);
+        s.push_str(&crate::units::units_text(&self.run.units, &self.run.mass));
         s
+    }
+}
+
+impl GridReport {
+    /// The summary in the units `options` ask for (and with `--density`, the mass), for
+    /// files (named, with the unit each declares) that must agree on their unit. (The
+    /// cell values written to `--out` stay in the file's units.)
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        files: &[(&str, Option<meshvol_io::LengthUnit>)],
+    ) -> Result<Self, String> {
+        let (scale, warnings) = Scale::resolve_all(options, files)?;
+        self.run.warnings.extend(warnings);
+        let c = &mut self.cells;
+        c.bounds.min = scale.point(c.bounds.min);
+        c.bounds.max = scale.point(c.bounds.max);
+        c.cell_size = scale.point(c.cell_size);
+        c.total = scale.volume(c.total);
+        self.run.mesh_volume = scale.volume(self.run.mesh_volume);
+        self.run.mass = scale.mass(c.total);
+        self.run.units = scale.names();
+        Ok(self)
     }
 }

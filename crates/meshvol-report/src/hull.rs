@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 
 use crate::number::{num, vector};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::written::WrittenReport;
 use crate::Report;
 use meshvol::hull::Hull;
@@ -27,6 +28,12 @@ pub struct HullReport {
     /// Why the hull has no volume, when it has none: `no points`, `coincident`,
     /// `collinear` or `coplanar`.
     pub degenerate: Option<&'static str>,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
     /// The hull as written by `--out`, read back and measured (absent without `--out`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -74,6 +81,8 @@ pub fn hull(
         area: hull.properties.area,
         centroid: hull.properties.centroid,
         degenerate,
+        units: None,
+        mass: None,
         warnings,
         written: None,
     }
@@ -118,6 +127,28 @@ impl Report for HullReport {
                 }
             }
         }
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl HullReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// a file declaring `declared`.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        declared: Option<meshvol_io::LengthUnit>,
+    ) -> Result<Self, String> {
+        let (scale, warning) = Scale::resolve(options, declared)
+            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
+        self.warnings.extend(warning);
+        self.volume = scale.volume(self.volume);
+        self.volume_error_bound = scale.volume(self.volume_error_bound);
+        self.area = scale.area(self.area);
+        self.centroid = self.centroid.map(|c| scale.point(c));
+        self.mass = scale.mass(self.volume);
+        self.units = scale.names();
+        Ok(self)
     }
 }

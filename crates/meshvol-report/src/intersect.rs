@@ -5,6 +5,7 @@
 use crate::number::{count, num};
 use crate::subject::{joined_names, Subject};
 use crate::union::{interval_text, Interval};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
 use meshvol::progress::Progress;
@@ -58,6 +59,12 @@ pub struct IntersectReport {
     /// The base grid's cells (`[1, 1, 1]` when disjoint).
     pub grid: [usize; 3],
     pub seconds: f64,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -141,6 +148,8 @@ pub fn intersect_with<S: Surface + Sync>(
         volume_uncertainty: uncertainty,
         grid: i.grid.counts,
         seconds,
+        units: None,
+        mass: None,
         warnings,
     })
 }
@@ -197,6 +206,40 @@ impl Report for IntersectReport {
             );
         }
         let _ = writeln!(s, "  time             {:.3} s", self.seconds);
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl IntersectReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// files (named, with the unit each declares) that must agree on their unit.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        files: &[(&str, Option<meshvol_io::LengthUnit>)],
+    ) -> Result<Self, String> {
+        let (scale, warnings) = Scale::resolve_all(options, files)?;
+        self.warnings.extend(warnings);
+        for x in [
+            &mut self.lower,
+            &mut self.upper,
+            &mut self.volume,
+            &mut self.volume_a,
+            &mut self.volume_b,
+            &mut self.union,
+            &mut self.union_lower,
+            &mut self.union_upper,
+            &mut self.a_minus_b,
+            &mut self.b_minus_a,
+            &mut self.volume_uncertainty,
+        ] {
+            *x = scale.volume(*x);
+        }
+        self.centroid = self.centroid.map(|c| scale.point(c));
+        self.inertia = self.inertia.map(|m| m.map(|row| row.map(|x| scale.volume_moment(x))));
+        self.mass = scale.mass(self.volume);
+        self.units = scale.names();
+        Ok(self)
     }
 }

@@ -3,6 +3,7 @@
 
 use crate::number::num;
 use crate::subject::Subject;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::{profile as kernel, Axis, Levels};
 use meshvol::Surface;
@@ -21,6 +22,12 @@ pub struct ProfileReport {
     pub slab_volume: Vec<f64>,
     pub section_area: Vec<f64>,
     /// The reader's warnings and the reasons to doubt the solid.
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -49,6 +56,8 @@ pub fn profile<S: Surface>(
         volume_below: p.volume_below,
         slab_volume: p.slab_volume,
         section_area: p.section_area,
+        units: None,
+        mass: None,
         warnings,
     })
 }
@@ -98,6 +107,28 @@ impl Report for ProfileReport {
                 num(self.section_area[k], 15)
             );
         }
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl ProfileReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// a file declaring `declared`.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        declared: Option<meshvol_io::LengthUnit>,
+    ) -> Result<Self, String> {
+        let (scale, warning) = Scale::resolve(options, declared)
+            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
+        self.warnings.extend(warning);
+        self.levels.iter_mut().for_each(|x| *x = scale.length(*x));
+        self.volume_below.iter_mut().for_each(|x| *x = scale.volume(*x));
+        self.slab_volume.iter_mut().for_each(|x| *x = scale.volume(*x));
+        self.section_area.iter_mut().for_each(|x| *x = scale.area(*x));
+        self.mass = scale.mass(self.volume_below.last().copied().unwrap_or(0.0));
+        self.units = scale.names();
+        Ok(self)
     }
 }

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use crate::area::InertiaReport;
 use crate::number::{count, num, vector};
 use crate::subject::Subject;
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::polygon::{area_properties, Polygon};
 use meshvol::section::{section as kernel, Plane, PlaneFrame};
@@ -43,6 +44,12 @@ pub struct SectionReport {
     /// Triangles crossing the plane.
     pub segments: usize,
     pub open_chains: usize,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -109,6 +116,8 @@ pub fn section<S: Surface>(
         loops: cut.loops,
         segments: cut.segments,
         open_chains: cut.open_chains,
+        units: None,
+        mass: None,
         warnings,
     };
     (report, cut.polygons)
@@ -162,6 +171,30 @@ impl Report for SectionReport {
                 let _ = writeln!(s, "  centroid   undefined (no area)");
             }
         }
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl SectionReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// a file declaring `declared`.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        declared: Option<meshvol_io::LengthUnit>,
+    ) -> Result<Self, String> {
+        let (scale, warning) = Scale::resolve(options, declared)
+            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
+        self.warnings.extend(warning);
+        self.plane.origin = scale.point(self.plane.origin);
+        self.area = scale.area(self.area);
+        self.signed_area = scale.area(self.signed_area);
+        self.perimeter = scale.length(self.perimeter);
+        self.centroid = self.centroid.map(|c| scale.point(c));
+        self.centroid_3d = self.centroid_3d.map(|c| scale.point(c));
+        self.inertia = self.inertia.map(|i| i.scaled(&scale));
+        self.units = scale.names();
+        Ok(self)
     }
 }

@@ -128,6 +128,18 @@ pub fn union_bodies<'a, S: Surface>(subjects: &[Subject<'a, S>]) -> Vec<Body<'a,
     }
 }
 
+/// The warnings of inputs measured together, naming each file once: a single input's as
+/// they are (the report names its file), several inputs' each after its file's name.
+pub fn input_warnings<S: Surface>(subjects: &[Subject<'_, S>]) -> Vec<String> {
+    match subjects {
+        [one] => one.warnings(),
+        many => many
+            .iter()
+            .flat_map(|s| s.warnings().into_iter().map(|w| format!("{}: {w}", s.source.name())))
+            .collect(),
+    }
+}
+
 /// The names of several inputs as one `file` value: joined by `, `.
 pub fn joined_names<S>(subjects: &[Subject<'_, S>]) -> String {
     subjects.iter().map(|s| s.source.name()).collect::<Vec<_>>().join(", ")

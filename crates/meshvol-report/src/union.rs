@@ -3,6 +3,7 @@
 
 use crate::number::{count, num};
 use crate::subject::{joined_names, union_bodies, Subject};
+use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::grid::union_with as kernel;
 use meshvol::progress::Progress;
@@ -38,6 +39,12 @@ pub struct UnionReport {
     /// The base grid's cells.
     pub grid: [usize; 3],
     pub seconds: f64,
+    /// The units the numbers are in (`--units`, or the unit the file declares); null:
+    /// the file's own numbers, unit unknown.
+    pub units: Option<UnitNames>,
+    /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
+    #[serde(flatten)]
+    pub mass: Option<Mass>,
     pub warnings: Vec<String>,
 }
 
@@ -59,10 +66,7 @@ pub fn union_with<S: Surface + Sync>(
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(format!("tolerance must be a positive number; got {tolerance}"));
     }
-    let mut warnings: Vec<String> = subjects
-        .iter()
-        .flat_map(|s| s.warnings().into_iter().map(|w| format!("{}: {w}", s.source.name())))
-        .collect();
+    let mut warnings = crate::subject::input_warnings(subjects);
     let (bodies, names): (Vec<_>, Vec<String>) =
         union_bodies(subjects).into_iter().map(|b| (b.surface, b.name)).unzip();
     if bodies.is_empty() {
@@ -104,6 +108,8 @@ pub fn union_with<S: Surface + Sync>(
         volume_uncertainty: uncertainty,
         grid: u.grid.counts,
         seconds,
+        units: None,
+        mass: None,
         warnings,
     })
 }
@@ -207,6 +213,32 @@ impl Report for UnionReport {
             self.cells_resolved_exactly
         );
         let _ = writeln!(s, "  time             {:.3} s", self.seconds);
+        s.push_str(&crate::units::units_text(&self.units, &self.mass));
         s
+    }
+}
+
+impl UnionReport {
+    /// The report in the units `options` ask for (and with `--density`, the mass), for
+    /// files (named, with the unit each declares) that must agree on their unit.
+    pub fn in_units(
+        mut self,
+        options: &UnitOptions,
+        files: &[(&str, Option<meshvol_io::LengthUnit>)],
+    ) -> Result<Self, String> {
+        let (scale, warnings) = Scale::resolve_all(options, files)?;
+        self.warnings.extend(warnings);
+        for x in [
+            &mut self.lower,
+            &mut self.upper,
+            &mut self.volume,
+            &mut self.sum_of_volumes,
+            &mut self.volume_uncertainty,
+        ] {
+            *x = scale.volume(*x);
+        }
+        self.mass = scale.mass(self.volume);
+        self.units = scale.names();
+        Ok(self)
     }
 }

@@ -1,58 +1,84 @@
-//! `--units FILE[:REPORT]` or `--units :REPORT`: the length unit the file uses and the
-//! unit to report in.
+//! Units, in one place for every command: `--units FILE[:REPORT]` (or `--units :REPORT`),
+//! the length unit the file uses and the unit to report in, and `--density VALUE[UNIT]`,
+//! which turns volumes into masses.
 //!
 //! A file that declares its unit (3MF's `unit` attribute; glTF, which is in metres) gives
 //! the file unit when `--units` does not: no `--units` reports in the declared unit,
 //! `--units :cm` converts from it. An explicit FILE unit wins over the declaration, with
 //! a warning when they differ. `:REPORT` for a file that declares nothing is an error.
+//!
+//! A report unit is a length (areas and volumes follow it) or a volume unit that implies
+//! a length and an area: mL (cm), L (dm), m3 (m), yd3 (yd), gal (US gallon; in),
+//! acre-ft (ft, areas in acres). Every report converts through [`Scale`]: lengths by f,
+//! areas by the area factor, volumes by the volume factor, second moments by volume ×
+//! length², masses by the density.
+//!
+//! Arguments that are places or sizes (`--plane`, `--step`, `--pitch`, `--bounds`,
+//! `--level`, `below --volume`) stay in the file's own coordinates: `--units` changes what
+//! is reported, not what is asked.
 
 use meshvol_io::LengthUnit;
 use serde::Serialize;
 use std::str::FromStr;
 
-/// A unit to report in: a length (areas and volumes follow it), or a volume unit that
-/// implies one (mL = cm³, L = dm³). Lengths are [`LengthUnit`]s, the type the readers use
-/// for what a file declares: there is one length unit type.
+/// The units `--units` and `--density` know, for error messages.
+pub const KNOWN_UNITS: &str = "lengths um, mm, cm, dm, m, km, in, ft, yd; volumes (to \
+    report in) mL, L, m3, cm3, mm3, in3, ft3, yd3, gal, acre-ft";
+
+/// The units `--density` knows for its mass.
+pub const KNOWN_MASSES: &str = "mg, g, kg, t, oz, lb";
+
+/// A unit to report in: the symbols and sizes (in SI) of its length, area and volume.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Unit {
-    Length(LengthUnit),
-    Millilitre,
-    Litre,
+pub struct Unit {
+    length: &'static str,
+    metres: f64,
+    area: &'static str,
+    square_metres: f64,
+    volume: &'static str,
+    cubic_metres: f64,
 }
 
 impl Unit {
-    /// The length unit lengths are reported in.
-    fn length(self) -> Length {
-        match self {
-            Unit::Length(l) => Length::Unit(l),
-            Unit::Millilitre => Length::Unit(LengthUnit::Centimetre),
-            Unit::Litre => Length::Decimetre,
-        }
+    /// The unit of lengths `l`, areas l² and volumes l³.
+    const fn cube(length: &'static str, area: &'static str, volume: &'static str, m: f64) -> Unit {
+        Unit { length, metres: m, area, square_metres: m * m, volume, cubic_metres: m * m * m }
     }
-}
 
-/// A reported length unit: a [`LengthUnit`], or the decimetre that litres imply.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Length {
-    Unit(LengthUnit),
-    Decimetre,
-}
-
-impl Length {
-    fn metres(self) -> f64 {
-        match self {
-            Length::Unit(l) => l.metres(),
-            Length::Decimetre => 0.1,
+    /// The unit a file unit reports in unconverted.
+    pub fn of(l: LengthUnit) -> Unit {
+        match l {
+            LengthUnit::Micrometre => UM,
+            LengthUnit::Millimetre => MM,
+            LengthUnit::Centimetre => CM,
+            LengthUnit::Metre => M,
+            LengthUnit::Inch => IN,
+            LengthUnit::Foot => FT,
         }
     }
 
-    fn symbol(self) -> &'static str {
-        match self {
-            Length::Unit(l) => l.symbol(),
-            Length::Decimetre => "dm",
-        }
+    /// The volume unit's symbol (`mm^3`, `L`, `acre-ft`).
+    pub fn volume_symbol(&self) -> &'static str {
+        self.volume
+    }
+
+    /// Cubic metres per volume unit.
+    pub fn cubic_metres(&self) -> f64 {
+        self.cubic_metres
     }
 }
+
+const UM: Unit = Unit::cube("um", "um^2", "um^3", 1e-6);
+const MM: Unit = Unit::cube("mm", "mm^2", "mm^3", 1e-3);
+const CM: Unit = Unit::cube("cm", "cm^2", "cm^3", 1e-2);
+const DM: Unit = Unit::cube("dm", "dm^2", "dm^3", 0.1);
+const M: Unit = Unit::cube("m", "m^2", "m^3", 1.0);
+const KM: Unit = Unit::cube("km", "km^2", "km^3", 1e3);
+const IN: Unit = Unit::cube("in", "in^2", "in^3", 0.0254);
+const FT: Unit = Unit::cube("ft", "ft^2", "ft^3", 0.3048);
+const YD: Unit = Unit::cube("yd", "yd^2", "yd^3", 0.9144);
+/// A US survey-independent international acre: 43,560 ft².
+const ACRE_M2: f64 = 43_560.0 * 0.3048 * 0.3048;
 
 /// Parses a length unit's name: um (or µm, micron), mm, cm, m, in (inch), ft (foot).
 fn length_unit(s: &str) -> Option<LengthUnit> {
@@ -67,17 +93,52 @@ fn length_unit(s: &str) -> Option<LengthUnit> {
     })
 }
 
+/// A length unit to report in (one a file's unit may not be: dm, km, yd).
+fn report_length(s: &str) -> Option<Unit> {
+    if let Some(l) = length_unit(s) {
+        return Some(Unit::of(l));
+    }
+    match s.to_ascii_lowercase().as_str() {
+        "dm" => Some(DM),
+        "km" => Some(KM),
+        "yd" | "yard" => Some(YD),
+        _ => None,
+    }
+}
+
 impl FromStr for Unit {
     type Err = String;
     fn from_str(s: &str) -> Result<Unit, String> {
-        if let Some(l) = length_unit(s) {
-            return Ok(Unit::Length(l));
+        if let Some(u) = report_length(s) {
+            return Ok(u);
         }
+        // A length cubed: cm3, m^3, in³.
+        let cubed = ["^3", "³", "3"].iter().find_map(|suffix| s.strip_suffix(suffix));
+        if let Some(u) = cubed.and_then(report_length) {
+            return Ok(u);
+        }
+        let mut u = match s.to_ascii_lowercase().as_str() {
+            "ml" | "cc" => CM,
+            "l" => DM,
+            "gal" => IN,
+            "acre-ft" | "acre-foot" | "acreft" | "af" => FT,
+            _ => return Err(format!("unknown unit '{s}': known units are {KNOWN_UNITS}")),
+        };
         match s.to_ascii_lowercase().as_str() {
-            "ml" => Ok(Unit::Millilitre),
-            "l" => Ok(Unit::Litre),
-            _ => Err(format!("unknown unit '{s}' (use um, mm, cm, m, in, ft, or mL/L to report)")),
+            "ml" | "cc" => u.volume = "mL",
+            "l" => u.volume = "L",
+            "gal" => {
+                u.volume = "gal";
+                u.cubic_metres = 231.0 * 0.0254 * 0.0254 * 0.0254;
+            }
+            _ => {
+                u.area = "acre";
+                u.square_metres = ACRE_M2;
+                u.volume = "acre-ft";
+                u.cubic_metres = ACRE_M2 * 0.3048;
+            }
         }
+        Ok(u)
     }
 }
 
@@ -107,12 +168,14 @@ impl FromStr for UnitsArg {
         let file = match file {
             "" => None,
             f => Some(length_unit(f).ok_or_else(|| match f.parse::<Unit>() {
-                Ok(_) => format!("'{s}': the file's unit must be a length (um, mm, cm, m, in, ft)"),
+                Ok(_) => format!(
+                    "'{s}': the file's unit must be one a file can be in: um, mm, cm, m, in, ft"
+                ),
                 Err(e) => e,
             })?),
         };
         let report = match (report, file) {
-            ("", Some(file)) => Unit::Length(file),
+            ("", Some(file)) => Unit::of(file),
             ("", None) => return Err(format!("'{s}': no unit given")),
             (report, _) => report.parse()?,
         };
@@ -129,7 +192,7 @@ pub fn resolve(
     let units = |file, report| Some(Units { file, report, declared });
     Ok(match (arg, declared) {
         (None, None) => (None, None),
-        (None, Some(d)) => (units(d, Unit::Length(d)), None),
+        (None, Some(d)) => (units(d, Unit::of(d)), None),
         (Some(UnitsArg { file: Some(f), report }), d) => {
             let warning = d.filter(|&d| d != f).map(|d| {
                 format!(
@@ -163,24 +226,301 @@ pub struct UnitNames {
 impl Units {
     /// Reported length per file length.
     pub fn length_factor(&self) -> f64 {
-        self.file.metres() / self.report.length().metres()
+        self.file.metres() / self.report.metres
+    }
+
+    /// Reported area per file area.
+    pub fn area_factor(&self) -> f64 {
+        let m = self.file.metres();
+        m * m / self.report.square_metres
+    }
+
+    /// Reported volume per file volume.
+    pub fn volume_factor(&self) -> f64 {
+        let m = self.file.metres();
+        m * m * m / self.report.cubic_metres
     }
 
     pub fn names(&self) -> UnitNames {
-        let length = self.report.length().symbol();
-        let volume = match self.report {
-            Unit::Millilitre => "mL".to_string(),
-            Unit::Litre => "L".to_string(),
-            _ => format!("{length}^3"),
-        };
         UnitNames {
-            length: length.to_string(),
-            area: format!("{length}^2"),
-            volume,
+            length: self.report.length.to_string(),
+            area: self.report.area.to_string(),
+            volume: self.report.volume.to_string(),
             file: self.file.symbol().to_string(),
             file_declared: self.declared.map(|d| d.symbol().to_string()),
         }
     }
+}
+
+/// A mass unit: its symbol and kilograms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MassUnit {
+    pub symbol: &'static str,
+    pub kilograms: f64,
+}
+
+fn mass_unit(s: &str) -> Option<MassUnit> {
+    let (symbol, kilograms) = match s {
+        "mg" => ("mg", 1e-6),
+        "g" => ("g", 1e-3),
+        "kg" => ("kg", 1.0),
+        "t" | "tonne" => ("t", 1e3),
+        "oz" => ("oz", 0.028349523125),
+        "lb" | "lbs" => ("lb", 0.45359237),
+        _ => return None,
+    };
+    Some(MassUnit { symbol, kilograms })
+}
+
+/// `--density VALUE[MASS/VOLUME]`: `2.5` (mass per reported volume unit), `7.85g/cm3`,
+/// `7850kg/m3`, `62.4lb/ft3`, `1kg/L`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Density {
+    pub value: f64,
+    /// The mass and volume units, when given.
+    pub unit: Option<(MassUnit, Unit)>,
+}
+
+impl Density {
+    /// A density without a unit: mass per reported volume unit.
+    pub fn plain(value: f64) -> Density {
+        Density { value, unit: None }
+    }
+
+    /// The unit as written: `g/cm^3`.
+    pub fn unit_name(&self) -> Option<String> {
+        self.unit.map(|(m, v)| format!("{}/{}", m.symbol, v.volume))
+    }
+
+    /// Checks the value: positive and finite.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.value.is_finite() && self.value > 0.0 {
+            Ok(())
+        } else {
+            Err(format!("density must be a positive number; got {}", self.value))
+        }
+    }
+}
+
+impl FromStr for Density {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Density, String> {
+        let t = s.trim();
+        // The longest prefix that is a number; the rest is the unit.
+        let split = (1..=t.len())
+            .rev()
+            .filter(|&i| t.is_char_boundary(i))
+            .find(|&i| t[..i].parse::<f64>().is_ok())
+            .ok_or_else(|| format!("'{s}': expected a number, e.g. 2.5, 7.85g/cm3 or 7850kg/m3"))?;
+        let value: f64 = t[..split].parse().map_err(|_| format!("'{s}': not a number"))?;
+        let rest = t[split..].trim();
+        let unit = if rest.is_empty() {
+            None
+        } else {
+            let (mass, volume) = rest.split_once('/').ok_or_else(|| {
+                format!("'{s}': a density's unit is MASS/VOLUME, e.g. g/cm3 or kg/m3")
+            })?;
+            let mass = mass_unit(mass.trim()).ok_or_else(|| {
+                format!("'{s}': unknown mass unit '{mass}': known units are {KNOWN_MASSES}")
+            })?;
+            let volume: Unit = volume.trim().parse().map_err(|e| format!("'{s}': {e}"))?;
+            Some((mass, volume))
+        };
+        let density = Density { value, unit };
+        density.validate().map_err(|e| format!("'{s}': {e}"))?;
+        Ok(density)
+    }
+}
+
+/// What a command was asked about units: `--units` and `--density`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UnitOptions {
+    pub units: Option<UnitsArg>,
+    pub density: Option<Density>,
+}
+
+/// A mass and how it was found: flattened into reports as `density`, `density_unit`,
+/// `mass`, `mass_unit` (present when `--density` was given).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Mass {
+    /// The density as given.
+    pub density: f64,
+    /// Its unit as given (`g/cm^3`), or null: mass per reported volume unit.
+    pub density_unit: Option<String>,
+    pub mass: f64,
+    /// The mass's unit (`g`), or null for a density without one.
+    pub mass_unit: Option<String>,
+}
+
+/// The conversion one report makes: from the file's numbers to the units asked for, and
+/// from volumes to masses. The identity when no unit is known or asked.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scale {
+    pub units: Option<Units>,
+    length: f64,
+    area: f64,
+    volume: f64,
+    /// Mass per reported volume unit, in the density's mass unit.
+    rho: Option<f64>,
+    density: Option<Density>,
+}
+
+impl Default for Scale {
+    fn default() -> Self {
+        Scale { units: None, length: 1.0, area: 1.0, volume: 1.0, rho: None, density: None }
+    }
+}
+
+impl Scale {
+    /// The scale for a file declaring `declared`, and a warning when `--units` overrides
+    /// the declaration. Errors: `:REPORT` with nothing declared, a density with a unit
+    /// and no length unit to convert from, a density that is not positive.
+    pub fn resolve(
+        options: &UnitOptions,
+        declared: Option<LengthUnit>,
+    ) -> Result<(Scale, Option<String>), String> {
+        let (units, warning) = resolve(options.units, declared)?;
+        let mut scale = match units {
+            None => Scale::default(),
+            Some(u) => Scale {
+                units: Some(u),
+                length: u.length_factor(),
+                area: u.area_factor(),
+                volume: u.volume_factor(),
+                rho: None,
+                density: None,
+            },
+        };
+        if let Some(d) = options.density {
+            d.validate()?;
+            scale.rho = Some(match (d.unit, units) {
+                (None, _) => d.value,
+                (Some((_, per)), Some(u)) => d.value * u.report.cubic_metres / per.cubic_metres,
+                (Some(_), None) => {
+                    return Err(format!(
+                        "--density {}{} has a unit, but the file's length unit is not known: \
+                         give it with --units (e.g. --units mm)",
+                        d.value,
+                        d.unit_name().unwrap_or_default()
+                    ))
+                }
+            });
+            scale.density = Some(d);
+        }
+        Ok((scale, warning))
+    }
+
+    /// The one scale of several files measured together (a grid, a union): each file's
+    /// units must agree.
+    pub fn resolve_all(
+        options: &UnitOptions,
+        files: &[(&str, Option<LengthUnit>)],
+    ) -> Result<(Scale, Vec<String>), String> {
+        let mut first: Option<(Scale, &str)> = None;
+        let mut warnings = Vec::new();
+        for &(name, declared) in files {
+            let (scale, warning) =
+                Scale::resolve(options, declared).map_err(|e| format!("{name}: {e}"))?;
+            warnings.extend(warning.map(|w| format!("{name}: {w}")));
+            match first {
+                None => first = Some((scale, name)),
+                Some((s, other)) if s.units.map(|u| u.file) != scale.units.map(|u| u.file) => {
+                    let unit = |s: Scale| s.units.map_or("none".into(), |u| u.file.to_string());
+                    return Err(format!(
+                        "{name} is in {}, {other} in {}: measure them in one unit (give --units)",
+                        unit(scale),
+                        unit(s)
+                    ));
+                }
+                Some(_) => {}
+            }
+        }
+        Ok((first.map_or_else(Scale::default, |(s, _)| s), warnings))
+    }
+
+    pub fn length(&self, x: f64) -> f64 {
+        x * self.length
+    }
+    pub fn area(&self, x: f64) -> f64 {
+        x * self.area
+    }
+    pub fn volume(&self, x: f64) -> f64 {
+        x * self.volume
+    }
+    pub fn point<const N: usize>(&self, p: [f64; N]) -> [f64; N] {
+        p.map(|x| x * self.length)
+    }
+    /// A second moment of area (length⁴): area × length².
+    pub fn area_moment(&self, x: f64) -> f64 {
+        x * self.area * self.length * self.length
+    }
+    /// A second moment of volume (length⁵): volume × length².
+    pub fn volume_moment(&self, x: f64) -> f64 {
+        x * self.volume * self.length * self.length
+    }
+    /// Whether anything changes.
+    pub fn converts(&self) -> bool {
+        self.volume != 1.0 || self.length != 1.0 || self.area != 1.0
+    }
+
+    /// The names of the reported units, when known.
+    pub fn names(&self) -> Option<UnitNames> {
+        self.units.map(|u| u.names())
+    }
+
+    /// Mass per reported volume unit (1 without `--density`).
+    pub fn density(&self) -> f64 {
+        self.rho.unwrap_or(1.0)
+    }
+
+    /// The mass of `volume` (in reported units), with `--density`.
+    pub fn mass(&self, volume: f64) -> Option<Mass> {
+        let (rho, d) = (self.rho?, self.density?);
+        Some(Mass {
+            density: d.value,
+            density_unit: d.unit_name(),
+            mass: rho * volume,
+            mass_unit: d.unit.map(|(m, _)| m.symbol.to_string()),
+        })
+    }
+
+    /// The suffixes text puts after a length, an area and a volume: ` mm`, or nothing.
+    pub fn suffixes(names: &Option<UnitNames>) -> (String, String, String) {
+        match names {
+            Some(u) => (format!(" {}", u.length), format!(" {}", u.area), format!(" {}", u.volume)),
+            None => Default::default(),
+        }
+    }
+}
+
+/// The text line of a mass: `  mass               12.5 kg  (density 7.85 g/cm^3)`.
+pub fn mass_line(mass: &Option<Mass>) -> String {
+    use crate::number::num;
+    match mass {
+        None => String::new(),
+        Some(m) => {
+            let mu = m.mass_unit.as_ref().map(|u| format!(" {u}")).unwrap_or_default();
+            let du = m.density_unit.as_ref().map(|u| format!(" {u}")).unwrap_or_default();
+            format!(
+                "  mass               {}{mu}  (density {}{du})\n",
+                num(m.mass, 12),
+                num(m.density, 15)
+            )
+        }
+    }
+}
+
+/// The text line naming the units (and the mass line with `--density`); empty when
+/// neither is known.
+pub fn units_text(names: &Option<UnitNames>, mass: &Option<Mass>) -> String {
+    let mut s = String::new();
+    if let Some(u) = names {
+        s += &format!(
+            "  units              lengths in {}, areas in {}, volumes in {} (the file in {})\n",
+            u.length, u.area, u.volume, u.file
+        );
+    }
+    s + &mass_line(mass)
 }
 
 #[cfg(test)]
@@ -207,6 +547,42 @@ mod tests {
     }
 
     #[test]
+    fn volume_units_and_densities() {
+        // 1000 mm cube = 1 m³ = 1000 L = 1.307950619 yd³ = 1/1233.48183754752 acre-ft.
+        let v = |s: &str| units(s, None).volume_factor() * 1e9;
+        assert!((v("mm:L") - 1000.0).abs() < 1e-9);
+        assert!((v("mm:m3") - 1.0).abs() < 1e-15);
+        assert!((v("mm:yd3") - 1.0 / 0.9144f64.powi(3)).abs() < 1e-12);
+        assert!((v("mm:acre-ft") - 1.0 / 1233.48183754752).abs() < 1e-15);
+        assert!((v("mm:gal") - 1.0 / 0.003785411784).abs() < 1e-9);
+        assert_eq!(units("mm:acre-ft", None).names().area, "acre");
+        assert_eq!(units("mm:cm3", None).names().volume, "cm^3");
+        let e = "mm:furlong".parse::<UnitsArg>().unwrap_err();
+        assert!(e.contains("mL") && e.contains("acre-ft"), "{e}");
+        let d: Density = "7.85g/cm3".parse().unwrap();
+        assert_eq!((d.value, d.unit_name().as_deref()), (7.85, Some("g/cm^3")));
+        let d: Density = "7850kg/m3".parse().unwrap();
+        assert_eq!(d.unit_name().as_deref(), Some("kg/m^3"));
+        assert_eq!("2.5".parse::<Density>().unwrap(), Density::plain(2.5));
+        assert_eq!("1e3kg/L".parse::<Density>().unwrap().value, 1000.0);
+        for bad in ["0", "-1g/cm3", "inf", "NaN", "abc", "2furlong/cm3", "2g/parsec"] {
+            assert!(bad.parse::<Density>().is_err(), "{bad}");
+        }
+        // 7.85 g/cm³ over 1 m³ reported in L: 7.85e6 g.
+        let options = UnitOptions {
+            units: Some("mm:L".parse().unwrap()),
+            density: Some("7.85g/cm3".parse().unwrap()),
+        };
+        let (scale, _) = Scale::resolve(&options, None).unwrap();
+        let m = scale.mass(scale.volume(1e9)).unwrap();
+        assert!((m.mass - 7.85e6).abs() < 1e-6, "{m:?}");
+        assert_eq!(m.mass_unit.as_deref(), Some("g"));
+        // A density with a unit needs a length unit.
+        let options = UnitOptions { units: None, density: Some("7.85g/cm3".parse().unwrap()) };
+        assert!(Scale::resolve(&options, None).unwrap_err().contains("--units"));
+    }
+
+    #[test]
     fn declared_units() {
         use LengthUnit as L;
         // Nothing given: the declaration, reported as is.
@@ -214,7 +590,7 @@ mod tests {
         let u = u.unwrap();
         assert_eq!(
             (u.file, u.report, u.length_factor(), w),
-            (L::Inch, Unit::Length(L::Inch), 1.0, None)
+            (L::Inch, Unit::of(L::Inch), 1.0, None)
         );
         assert_eq!(u.names().file_declared.as_deref(), Some("in"));
         // A report unit only: converted from the declaration.

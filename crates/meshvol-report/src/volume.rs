@@ -7,7 +7,7 @@
 use crate::check::CheckFacts;
 use crate::number::{num, vector};
 use crate::subject::Subject;
-use crate::units::{UnitNames, UnitsArg};
+use crate::units::{Density, Scale, UnitNames, UnitOptions, UnitsArg};
 use crate::Report;
 use meshvol::accumulate::UNIT_ROUNDOFF;
 use meshvol::surface::FaceRange;
@@ -18,8 +18,9 @@ use std::fmt::Write;
 /// What shapes a volume report besides the input.
 #[derive(Clone, Copy, Debug)]
 pub struct VolumeOptions {
-    /// Mass per reported volume unit; must be positive and finite.
-    pub density: f64,
+    /// Mass per reported volume unit, or with a unit (`7.85g/cm3`); must be positive and
+    /// finite.
+    pub density: Density,
     /// `--units`, resolved per input against the unit its file declares.
     pub units: Option<UnitsArg>,
     /// The correctly rounded exact signed volume (exact arithmetic).
@@ -28,7 +29,7 @@ pub struct VolumeOptions {
 
 impl Default for VolumeOptions {
     fn default() -> Self {
-        VolumeOptions { density: 1.0, units: None, exact: false }
+        VolumeOptions { density: Density::plain(1.0), units: None, exact: false }
     }
 }
 
@@ -59,7 +60,11 @@ pub struct VolumeReport {
     pub principal_moments: [f64; 3],
     pub principal_axes: [[f64; 3]; 3],
     pub density: f64,
+    /// The density's unit as given (`g/cm^3`), or null: mass per reported volume unit.
+    pub density_unit: Option<String>,
     pub mass: f64,
+    /// The mass's unit (the density's: `g`), or null.
+    pub mass_unit: Option<String>,
     pub bounds: Option<BoundsReport>,
     pub units: Option<UnitNames>,
     pub warnings: Vec<String>,
@@ -86,7 +91,7 @@ pub struct ObjectReport {
 }
 
 /// Each object's properties, scaled by the length factor `f`.
-fn objects<S: Surface>(subject: &Subject<'_, S>, f: f64) -> Option<Vec<ObjectReport>> {
+fn objects<S: Surface>(subject: &Subject<'_, S>, scale: &Scale) -> Option<Vec<ObjectReport>> {
     let objects = &subject.source.objects;
     if objects.is_empty() {
         return None;
@@ -99,10 +104,10 @@ fn objects<S: Surface>(subject: &Subject<'_, S>, f: f64) -> Option<Vec<ObjectRep
                 name: o.name.clone(),
                 faces: [o.faces.start, o.faces.end],
                 triangles: mp.triangles,
-                volume: mp.signed_volume.abs() * f * f * f,
-                signed_volume: mp.signed_volume * f * f * f,
-                area: mp.area * f * f,
-                centroid: mp.centroid.map(|c| c.map(|x| x * f)),
+                volume: scale.volume(mp.signed_volume.abs()),
+                signed_volume: scale.volume(mp.signed_volume),
+                area: scale.area(mp.area),
+                centroid: mp.centroid.map(|c| scale.point(c)),
             }
         })
         .collect();
@@ -129,18 +134,18 @@ pub fn volume<S: Surface>(
     options: &VolumeOptions,
 ) -> Result<VolumeReport, String> {
     let name = subject.source.name();
-    let rho = options.density;
-    if !(rho.is_finite() && rho > 0.0) {
-        return Err(format!("density must be a positive number; got {rho}"));
-    }
+    options.density.validate()?;
     if subject.surface.face_count() == 0 {
         return Err(format!("{name}: {NO_FACES}"));
     }
     let exact = options.exact;
     let as_wound = measure(subject.surface, exact).map_err(|e| format!("{name}: {e}"))?;
     let mut warnings = subject.warnings();
-    let (units, unit_warning) = crate::units::resolve(options.units, subject.source.unit)
-        .map_err(|e| format!("{name}: {e}"))?;
+    let unit_options = UnitOptions { units: options.units, density: Some(options.density) };
+    let (scale, unit_warning) =
+        Scale::resolve(&unit_options, subject.source.unit).map_err(|e| format!("{name}: {e}"))?;
+    // Mass per reported volume unit, in the density's mass unit.
+    let rho = scale.density();
     warnings.extend(unit_warning);
     // Checked, the properties are the solid's: shells turned outward, cavities
     // subtracted, degenerate and duplicate faces dropped, holes capped.
@@ -152,12 +157,11 @@ pub fn volume<S: Surface>(
     };
     warnings.extend(meshvol::topology::volume_warnings(subject.check, &as_wound, &mp));
 
-    let f = units.map_or(1.0, |u| u.length_factor());
-    let (f2, f3) = (f * f, f * f * f);
-    let volume = mp.signed_volume.abs() * f3;
+    let f = scale.length(1.0);
+    let volume = scale.volume(mp.signed_volume.abs());
     // Converting rounds a few more times: widen the bound by that.
-    let conversion = if f == 1.0 { 0.0 } else { 4.0 * UNIT_ROUNDOFF * volume };
-    let inertia = mp.inertia.map(|row| row.map(|x| x * rho * f3 * f2));
+    let conversion = if scale.converts() { 4.0 * UNIT_ROUNDOFF * volume } else { 0.0 };
+    let inertia = mp.inertia.map(|row| row.map(|x| scale.volume_moment(x) * rho));
     // Density times volume or second moments beyond f64 would print as null: refuse
     // (before the eigen-solver, which wants a finite tensor).
     if !(rho * volume).is_finite() || inertia.iter().flatten().any(|x| !x.is_finite()) {
@@ -167,7 +171,7 @@ pub fn volume<S: Surface>(
         ));
     }
     let principal = mp.principal();
-    let principal_moments = principal.moments.map(|x| x * rho * f3 * f2);
+    let principal_moments = principal.moments.map(|x| scale.volume_moment(x) * rho);
     if principal_moments.iter().any(|x| !x.is_finite()) {
         return Err(format!(
             "{name}: the principal moments overflow f64 with density {rho:e}: use a smaller \
@@ -176,7 +180,7 @@ pub fn volume<S: Surface>(
     }
     let check = subject.check.map(|c| {
         let mut facts = CheckFacts::of(c);
-        facts.scale_volumes(f3);
+        facts.scale_volumes(scale.volume(1.0));
         facts
     });
     Ok(VolumeReport {
@@ -187,22 +191,24 @@ pub fn volume<S: Surface>(
         faces: as_wound.faces,
         triangles: as_wound.triangles,
         volume,
-        signed_volume: as_wound.signed_volume * f3,
-        volume_error_bound: mp.volume_error_bound * f3 + conversion,
+        signed_volume: scale.volume(as_wound.signed_volume),
+        volume_error_bound: scale.volume(mp.volume_error_bound) + conversion,
         exact,
-        area: mp.area * f2,
+        area: scale.area(mp.area),
         centroid: mp.centroid.map(|c| c.map(|x| x * f)),
         inertia,
         principal_moments,
         principal_axes: principal.axes,
-        density: rho,
+        density: options.density.value,
+        density_unit: options.density.unit_name(),
         mass: rho * volume,
+        mass_unit: options.density.unit.map(|(m, _)| m.symbol.to_string()),
         bounds: mp
             .bounds
             .map(|b| BoundsReport { min: b.min.map(|x| x * f), max: b.max.map(|x| x * f) }),
-        units: units.map(|u| u.names()),
+        units: scale.names(),
         warnings,
-        objects: objects(subject, f),
+        objects: objects(subject, &scale),
         check,
     })
 }
@@ -231,7 +237,7 @@ impl Report for VolumeReport {
             (true, false) => "exact, correctly rounded".to_string(),
             // Exact arithmetic on a guessed surface: the caps' uncertainty dominates.
             (true, true) => "exact for the capped solid".to_string(),
-            (false, _) => format!("± {}", num(r.volume_error_bound, 2)),
+            (false, _) => format!("± {} rounding", num(r.volume_error_bound, 2)),
         };
         let _ = writeln!(s, "  volume             {}{vol}  ({how})", num(r.volume, 15));
         if r.signed_volume < 0.0 {
@@ -248,10 +254,12 @@ impl Report for VolumeReport {
             }
         }
         let _ = writeln!(s, "  area               {}{area}", num(r.area, 15));
-        if r.density != 1.0 {
+        if r.density != 1.0 || r.density_unit.is_some() {
+            let mu = r.mass_unit.as_ref().map(|u| format!(" {u}")).unwrap_or_default();
+            let du = r.density_unit.as_ref().map(|u| format!(" {u}")).unwrap_or_default();
             let _ = writeln!(
                 s,
-                "  mass               {}  (density {})",
+                "  mass               {}{mu}  (density {}{du})",
                 num(r.mass, 12),
                 num(r.density, 15)
             );
