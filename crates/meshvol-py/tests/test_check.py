@@ -19,6 +19,7 @@ CHECK_KEYS = [
     "consistently_oriented", "orientation", "winding",
     "shells", "cavities", "shell_details", "overlapping_shells", "self_intersections",
     "intersection_examples", "euler_characteristic", "solid_volume", "volume_uncertainty",
+    "units",
 ]
 
 

@@ -181,7 +181,10 @@ class MassProperties(_CheckFacts):
     exact: bool
     area: float
     density: float
+    density_unit: Optional[str]
+    """The density's unit (None: mass in the file's units cubed times the density)."""
     mass: float
+    mass_unit: Optional[str]
     warnings: list[str]
     """Why the measured solid may not be the one meant (the command's warnings)."""
     @property
@@ -228,6 +231,8 @@ class Check(_CheckFacts):
 
     file: Optional[str]
     format: Optional[str]
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None (the file's own units) for a check."""
     warnings: list[str]
     shell_details: list[Shell]
     overlapping_shells: list[Tuple[int, int]]
@@ -244,6 +249,8 @@ class Check(_CheckFacts):
 
 class Profile:
     """Volume below each level (`meshvol profile --json`'s keys)."""
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None: the file's own units."""
 
     axis: str
     file: Optional[str]
@@ -261,6 +268,8 @@ class Profile:
 
 class Union:
     """The union's volume as a certified interval (`meshvol union --json`'s keys)."""
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None: the file's own units."""
 
     lower: float
     upper: float
@@ -285,6 +294,8 @@ class Union:
 
 class AreaProperties:
     """Area, perimeter, centroid and second moments of plane polygons."""
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None: the file's own units."""
 
     area: float
     perimeter: float
@@ -312,6 +323,8 @@ class AreaProperties:
 
 class Below:
     """The part of a solid below a plane (`meshvol below --json`'s keys)."""
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None: the file's own units."""
 
     file: Optional[str]
     level: float
@@ -333,6 +346,8 @@ class Below:
 
 class CutFill:
     """Cut and fill between two surfaces (`meshvol cutfill --json`'s keys)."""
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None: the file's own units."""
 
     file: Optional[str]
     design: str
@@ -359,6 +374,8 @@ class CutFill:
 
 class Hull:
     """A convex hull (`meshvol hull --json`'s keys) and its mesh."""
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None: the file's own units."""
 
     points: int
     hull_vertices: int
