@@ -21,6 +21,7 @@ mod dict;
 mod errors;
 mod grid;
 mod hull;
+mod intersect;
 mod mesh;
 mod polygon;
 mod properties;
@@ -46,8 +47,10 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<hull::PyHull>()?;
     m.add_class::<below::PyBelow>()?;
     m.add_class::<cutfill::PyCutFill>()?;
+    m.add_class::<intersect::PyIntersection>()?;
     m.add_function(wrap_pyfunction!(mesh::load, m)?)?;
     m.add_function(wrap_pyfunction!(grid::union, m)?)?;
+    m.add_function(wrap_pyfunction!(intersect::intersection, m)?)?;
     m.add_function(wrap_pyfunction!(polygon::polygon_area, m)?)?;
     m.add_function(wrap_pyfunction!(hull::convex_hull, m)?)?;
     m.add_function(wrap_pyfunction!(hull::hull_volume, m)?)?;

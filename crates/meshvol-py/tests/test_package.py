@@ -34,6 +34,7 @@ def samples():
         "Shell": mesh.check().shell_details[0],
         "Profile": mesh.profile(levels=2),
         "Union": meshvol.union(mesh),
+        "Intersection": meshvol.intersection(mesh, mesh),
         "Hull": meshvol.convex_hull(mesh.vertices),
         "AreaProperties": meshvol.polygon_area(square),
         "Below": mesh.below(volume=0.5),

@@ -7,8 +7,10 @@ use crate::subject::{joined_names, Subject};
 use crate::union::{interval_text, Interval};
 use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
+use meshvol::assembly::Affine;
 use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
 use meshvol::progress::Progress;
+use meshvol::surface::Moved;
 use meshvol::Surface;
 use serde::Serialize;
 use std::fmt::Write;
@@ -85,6 +87,68 @@ pub fn intersect_with<S: Surface + Sync>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<IntersectReport, String> {
+    intersect_posed(a, b, [None, None], tolerance, progress)
+}
+
+/// How far a pose's rotation may be from orthonormal (each entry of `RᵀR − I`) and
+/// still be taken as rigid: room for rotations rounded to float32. The volumes are
+/// those of the bodies as moved (their coordinates after the pose, rounded to f64), so
+/// a rotation that far off scales them by up to about 1.5·10⁻⁶ relative.
+pub const POSE_TOLERANCE: f64 = 1e-6;
+
+/// A 4×4 homogeneous matrix as a rigid motion (rotation, then translation), or why it is
+/// not one: a non-finite entry, a last row other than `0 0 0 1`, a rotation part that is
+/// not orthonormal within [`POSE_TOLERANCE`] (a scale or a shear), or a mirror.
+pub fn rigid_pose(m: &[[f64; 4]; 4]) -> Result<Affine, String> {
+    for (r, row) in m.iter().enumerate() {
+        for (c, x) in row.iter().enumerate() {
+            if !x.is_finite() {
+                return Err(format!("entry [{r}][{c}] is {x}; a pose must be finite"));
+            }
+        }
+    }
+    if m[3] != [0.0, 0.0, 0.0, 1.0] {
+        let row: Vec<String> = m[3].iter().map(|x| x.to_string()).collect();
+        return Err(format!(
+            "its last row is {}; a rigid pose's last row is 0 0 0 1",
+            row.join(" ")
+        ));
+    }
+    let pose = Affine([m[0], m[1], m[2]]);
+    let mut defect: f64 = 0.0;
+    for i in 0..3 {
+        for j in 0..3 {
+            let dot: f64 = (0..3).map(|k| m[k][i] * m[k][j]).sum();
+            defect = defect.max((dot - if i == j { 1.0 } else { 0.0 }).abs());
+        }
+    }
+    let det = pose.determinant();
+    if defect > POSE_TOLERANCE {
+        return Err(format!(
+            "its 3×3 part is not a rotation (RᵀR differs from the identity by {defect:e}: \
+             a scale or a shear); a rigid pose's rotation must be orthonormal within \
+             {POSE_TOLERANCE:e}"
+        ));
+    }
+    if det < 0.0 {
+        return Err(format!(
+            "its 3×3 part has determinant {det}: a mirror, not a rotation (determinant +1)"
+        ));
+    }
+    Ok(pose)
+}
+
+/// [`intersect_with`] with each body placed by a pose (`None`: where it is): each
+/// body's checked solid, as the check made it, moved rigidly (nothing is checked
+/// again), so a loop over poses reuses the checks. Poses must be rigid ([`rigid_pose`]):
+/// a rigid motion keeps the solid, its winding and its caps' uncertainty.
+pub fn intersect_posed<S: Surface + Sync>(
+    a: &Subject<'_, S>,
+    b: &Subject<'_, S>,
+    poses: [Option<Affine>; 2],
+    tolerance: f64,
+    progress: &dyn Progress,
+) -> Result<IntersectReport, String> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(format!("tolerance must be a positive number; got {tolerance}"));
     }
@@ -94,7 +158,9 @@ pub fn intersect_with<S: Surface + Sync>(
         .flat_map(|s| s.warnings().into_iter().map(|w| format!("{}: {w}", s.source.name())))
         .collect();
     let names: Vec<String> = subjects.iter().map(|s| s.source.name().to_string()).collect();
-    let (body_a, body_b) = (a.whole().surface, b.whole().surface);
+    let [pose_a, pose_b] = poses;
+    let (body_a, body_b) =
+        (Moved::new(a.whole().surface, pose_a), Moved::new(b.whole().surface, pose_b));
     let start = Instant::now();
     let mut i = kernel(&body_a, &body_b, tolerance, progress).map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();

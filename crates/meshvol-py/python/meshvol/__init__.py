@@ -17,7 +17,8 @@ trimesh.Trimesh), or read one with load(); then measure it:
 
 The answers and names are those of the meshvol command: Mesh.mass_properties() is
 `meshvol volume`, Mesh.check() is `meshvol check`, Mesh.grid() is `meshvol grid`,
-Mesh.profile() is `meshvol profile`, union() is `meshvol union`, polygon_area() is
+Mesh.profile() is `meshvol profile`, union() is `meshvol union`, intersection() is
+`meshvol intersect` (with optional rigid poses), polygon_area() is
 `meshvol area`, convex_hull() is `meshvol hull` and cutfill() is `meshvol cutfill`
 (which reads surfaces as terrains, not solids). Like the commands, every measure of a
 solid takes the checked solid (welded, shells turned outward, cavities subtracted,
@@ -36,6 +37,7 @@ from ._meshvol import (
     Check,
     CutFill,
     Hull,
+    Intersection,
     InvalidMeshError,
     LossyWriteError,
     MassProperties,
@@ -50,6 +52,7 @@ from ._meshvol import (
     convex_hull,
     cutfill,
     hull_volume,
+    intersection,
     load,
     polygon_area,
     union,
@@ -61,6 +64,7 @@ __all__ = [
     "Check",
     "CutFill",
     "Hull",
+    "Intersection",
     "InvalidMeshError",
     "LossyWriteError",
     "MassProperties",
@@ -75,6 +79,7 @@ __all__ = [
     "convex_hull",
     "cutfill",
     "hull_volume",
+    "intersection",
     "load",
     "polygon_area",
     "union",

@@ -292,6 +292,47 @@ class Union:
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol union --json`."""
 
+class Intersection:
+    """The intersection of two bodies, certified (`meshvol intersect --json`'s keys)."""
+    units: Optional[dict[str, Any]]
+    """Names of the reported units; None: the file's own units."""
+
+    lower: float
+    upper: float
+    volume: float
+    """The midpoint of [lower, upper], which holds |A∩B|."""
+    volume_a: float
+    volume_b: float
+    union: float
+    union_lower: float
+    union_upper: float
+    a_minus_b: float
+    b_minus_a: float
+    iou: float
+    iou_lower: float
+    iou_upper: float
+    dice: float
+    disjoint: bool
+    """The bodies' boxes (as placed) are apart or only touch: volume is exactly 0."""
+    cells_refined: int
+    cells_resolved_exactly: int
+    columns_unresolved: int
+    flipped: list[int]
+    volume_uncertainty: float
+    """The caps on holes' uncertainty, included in [lower, upper]."""
+    warnings: list[str]
+    file: str
+    """The meshes' names (their files, or 'mesh'), joined by ', '."""
+    files: list[str]
+    grid: list[int]
+    seconds: float
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol intersect --json`."""
+    @property
+    def centroid(self) -> Optional[_F64]: ...
+    @property
+    def inertia(self) -> Optional[_F64]: ...
+
 class AreaProperties:
     """Area, perimeter, centroid and second moments of plane polygons."""
     units: Optional[dict[str, Any]]
@@ -400,6 +441,17 @@ def union(
     meshes: _Union[Any, Iterable[Any]], tolerance: float = 1e-6, check: bool = True
 ) -> Union:
     """Volume of the union of closed bodies, certified (`meshvol union`)."""
+
+def intersection(
+    a: Any,
+    b: Any,
+    pose_a: Optional[_ArrayLike] = None,
+    pose_b: Optional[_ArrayLike] = None,
+    tolerance: float = 1e-9,
+    check: bool = True,
+) -> Intersection:
+    """Volume of the intersection of two bodies, each placed by an optional 4×4 rigid
+    pose, certified, with IoU, Dice and moments (`meshvol intersect`)."""
 
 def polygon_area(
     exterior: _Union[_ArrayLike, Mapping[str, Any], Any],

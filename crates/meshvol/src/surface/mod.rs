@@ -7,6 +7,7 @@
 //! | [`FaceSubset`] | any list of a surface's faces (one part or body) | `subsets.rs` |
 //! | [`Oriented`] | a surface with every face reversed, or as it is | `oriented.rs` |
 //! | [`Joined`] | several surfaces as one, their faces one after another | `joined.rs` |
+//! | [`Moved`] | a surface with every vertex moved by an affine map (a body's pose) | `moved.rs` |
 //! | [`connected_parts`] | faces joined at shared vertex positions, before any check | `parts.rs` |
 //!
 //! Two surfaces built by the check stay in [`crate::topology`], because they read the
@@ -15,11 +16,13 @@
 //! surface as wound).
 
 mod joined;
+mod moved;
 mod oriented;
 mod parts;
 mod subsets;
 
 pub use joined::Joined;
+pub use moved::Moved;
 pub use oriented::Oriented;
 pub use parts::connected_parts;
 pub use subsets::{FaceRange, FaceSubset};
