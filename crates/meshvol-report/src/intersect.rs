@@ -125,7 +125,7 @@ pub fn rigid_pose(m: &[[f64; 4]; 4]) -> Result<Affine, String> {
     let det = pose.determinant();
     if defect > POSE_TOLERANCE {
         return Err(format!(
-            "its 3×3 part is not a rotation (RᵀR differs from the identity by {defect:e}: \
+            "its 3×3 part is not a rotation (RᵀR differs from the identity by {defect:.1e}: \
              a scale or a shear); a rigid pose's rotation must be orthonormal within \
              {POSE_TOLERANCE:e}"
         ));
