@@ -112,3 +112,16 @@ def test_cutfill(tmp_path):
     ours = meshvol.cutfill(meshvol.load(existing), level=0.1)
     theirs = command("cutfill", str(existing), "--level", "0.1")
     assert ours.to_dict() == theirs
+
+
+def test_intersect(tmp_path):
+    paths = [tmp_path / "a.obj", tmp_path / "b.obj"]
+    write_obj(paths[0], *box((0, 0, 0), (2, 2, 2)))
+    write_obj(paths[1], *box((1, 0.5, 1), (3, 2.5, 2.5)))
+    ours = meshvol.intersection(*(meshvol.load(p) for p in paths)).to_dict()
+    theirs = command("intersect", *map(str, paths))
+    assert list(ours) == list(theirs)
+    timing = {"seconds"}
+    assert {k: v for k, v in ours.items() if k not in timing} == {
+        k: v for k, v in theirs.items() if k not in timing
+    }

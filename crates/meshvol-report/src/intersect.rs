@@ -309,3 +309,63 @@ impl IntersectReport {
         Ok(self)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::subject::Source;
+    use meshvol::shapes::cuboid;
+    use meshvol::topology::{check, CheckOptions};
+
+    fn translation(t: [f64; 3]) -> [[f64; 4]; 4] {
+        let mut m = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0; 4]];
+        m[3][3] = 1.0;
+        (0..3).for_each(|k| m[k][3] = t[k]);
+        m
+    }
+
+    #[test]
+    fn a_pose_moves_the_checked_solid_as_moving_the_mesh_does() {
+        let (a, b) = (cuboid([0.0; 3], [2.0; 3]), cuboid([0.0; 3], [1.0, 2.0, 2.0]));
+        let moved_b = cuboid([1.5, 0.5, 0.5], [2.5, 2.5, 2.5]);
+        let source = Source::arrays(8);
+        let options = CheckOptions::default();
+        let checks = [&a, &b, &moved_b].map(|m| check(m, &options).unwrap());
+        let subject = |m, c| Subject { source: &source, surface: m, check: Some(c) };
+        let (sa, sb, sm) =
+            (subject(&a, &checks[0]), subject(&b, &checks[1]), subject(&moved_b, &checks[2]));
+        let pose = rigid_pose(&translation([1.5, 0.5, 0.5])).unwrap();
+        let posed = intersect_posed(&sa, &sb, [None, Some(pose)], 1e-9, &()).unwrap();
+        let direct = intersect(&sa, &sm, 1e-9).unwrap();
+        // 0.5 × 1.5 × 1.5 in common.
+        assert!(posed.lower <= 1.125 && 1.125 <= posed.upper);
+        assert_eq!((posed.lower, posed.upper), (direct.lower, direct.upper));
+        assert_eq!(posed.centroid, direct.centroid);
+        let far = rigid_pose(&translation([10.0, 0.0, 0.0])).unwrap();
+        let apart = intersect_posed(&sa, &sb, [Some(far), None], 1e-9, &()).unwrap();
+        assert!(apart.disjoint && apart.upper == 0.0);
+    }
+
+    #[test]
+    fn poses_that_are_not_rigid_say_why() {
+        let why = |m: [[f64; 4]; 4]| rigid_pose(&m).unwrap_err();
+        let mut scaled = translation([0.0; 3]);
+        scaled[0][0] = 2.0;
+        assert!(why(scaled).contains("not a rotation"), "{}", why(scaled));
+        let mut mirrored = translation([0.0; 3]);
+        mirrored[2][2] = -1.0;
+        assert!(why(mirrored).contains("mirror"));
+        assert!(why(translation([f64::NAN, 0.0, 0.0])).contains("finite"));
+        let mut projective = translation([0.0; 3]);
+        projective[3][0] = 1.0;
+        assert!(why(projective).contains("last row"));
+        // A quarter turn is rigid, and exact.
+        let turn = [
+            [0.0, -1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ];
+        assert_eq!(rigid_pose(&turn).unwrap().apply([1.0, 2.0, 3.0]), [-2.0, 1.0, 3.0]);
+    }
+}
