@@ -219,6 +219,18 @@ def test_union_holds_the_volume(pair):
         assert u.lower - REL * want <= want <= u.upper + REL * want
 
 
+def test_intersection_with_itself_holds_the_volume(pair):
+    # A∩A = A, the solid moved as arrays (any transform of the suite) or by one rigid
+    # pose on both (a quarter turn about z, then a shift).
+    name, before, after, t, volume, _ = pair
+    v = before.mass_properties().volume
+    pose = np.array([[0.0, -1, 0, 3.5], [1, 0, 0, -2.25], [0, 0, 1, 0.5], [0, 0, 0, 1]])
+    for mesh, want in [(before, v), (after, t.scale**3 * v)]:
+        for p in (None, pose):
+            i = meshvol.intersection(mesh, mesh, pose_a=p, pose_b=p)
+            assert i.lower - REL * want <= want <= i.upper + REL * want, (name, p is None)
+
+
 def test_hull_of_points_moves_with_them():
     vertices, _, _ = sphere()
     points = np.vstack([vertices, vertices.mean(axis=0), vertices[:5]])
