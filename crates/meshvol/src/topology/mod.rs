@@ -64,7 +64,7 @@
 //! | 2. faces | collapsed, flat, duplicate and double-wall faces; the kept ones | `faces.rs` |
 //! | 3. edges | edge uses, boundary and non-manifold edges and vertices, neighbours | `edges.rs` |
 //! | 3b. sheets | faces around a non-manifold edge paired by their angular order | `sheets.rs` |
-//! | 4. shells | connected components, orientation propagation, open shells | `shells.rs` |
+//! | 4. shells | connected components and orientation (a parallel union–find with parities), open shells | `shells.rs` |
 //! | 5. holes | open edges in loops, their caps, capped shell volumes | `holes.rs` |
 //! | 6. nesting | candidates, containment rays, overlaps, roles, the volume | `nesting.rs` |
 //! | 7. crossings | triangles in space, crossing face pairs | `crossings.rs` |
