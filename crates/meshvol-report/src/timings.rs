@@ -13,7 +13,7 @@ use std::fmt::Write;
 /// One stage. Field names are the JSON keys of the `timings` list.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StageTiming {
-    /// What the stage does (`reading`, `welding`, `finding edges, shells and crossings`).
+    /// What the stage does (`reading`, `welding`, `finding edges`, `finding crossings`).
     pub stage: String,
     pub wall_s: f64,
     /// CPU seconds (user + system) of the process during the stage: up to the thread

@@ -486,3 +486,93 @@ fn a_cavity_with_every_corner_on_its_container_is_a_cavity() {
         assert_eq!(mass_properties(&c.solid(&mesh)).signed_volume, 30.0);
     }
 }
+
+/// A large Möbius strip of `n` quads (non-orientable, one boundary loop), offset by `at`.
+fn mobius(n: u32, at: f64) -> Mesh {
+    let mut p = Vec::new();
+    for i in 0..n {
+        let t = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+        let (dx, dz) = ((t / 2.0).cos() * 0.3, (t / 2.0).sin() * 0.3);
+        let r = [t.cos(), t.sin(), 0.0];
+        p.push([at + r[0] * (1.0 + dx), r[1] * (1.0 + dx), dz]);
+        p.push([at + r[0] * (1.0 - dx), r[1] * (1.0 - dx), -dz]);
+    }
+    let quads: Vec<[u32; 4]> = (0..n)
+        .map(|i| {
+            let (a, b) = (2 * i, 2 * i + 1);
+            let (c, d) = if i + 1 == n { (1, 0) } else { (2 * i + 2, 2 * i + 3) };
+            [a, c, d, b]
+        })
+        .collect();
+    Mesh::from_polygons(p, quads.iter().map(|q| &q[..])).unwrap()
+}
+
+#[test]
+fn messy_surfaces_check_the_same_at_any_thread_count() {
+    // Large enough that every parallel stage splits (tens of thousands of faces per
+    // part): nested spheres, one with faces wound against their neighbours, a Möbius
+    // strip (orientation then comes from the walk), a bowtie, a fin, duplicates and a
+    // double wall, scattered over the face order.
+    let mut wound = uv_sphere(1.0, 160, 80).triangulated();
+    let faces: Vec<Vec<u32>> = (0..wound.face_count())
+        .map(|f| {
+            let mut face = wound.face(f).to_vec();
+            if f % 7 == 3 {
+                face.reverse();
+            }
+            face
+        })
+        .collect();
+    wound = Mesh::from_polygons(wound.positions().to_vec(), faces.iter().map(|f| &f[..])).unwrap();
+    let tetra = |s: f64, x: f64| {
+        Mesh::from_triangles(
+            vec![[x, 0.0, 0.0], [x + s, 0.0, 0.0], [x, s, 0.0], [x, 0.0, s]],
+            vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+        )
+        .unwrap()
+    };
+    let fin = Mesh::from_triangles(
+        vec![[9.0, 0.0, 0.0], [10.0, 0.0, 0.0], [9.0, 1.0, 0.0], [9.0, -1.0, 0.0], [9.0, 0.0, 1.0]],
+        vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]],
+    )
+    .unwrap();
+    let parts = Mesh::concatenate(&[
+        uv_sphere(3.0, 160, 80),
+        wound,
+        mobius(4_000, 20.0),
+        tetra(1.0, -9.0),
+        tetra(-1.0, -9.0).flipped(),
+        fin,
+    ]);
+    // Interleave the faces (shells then run in many pieces through the face order) and
+    // repeat some: copies wound alike, and opposite ones (double walls).
+    let n = parts.face_count();
+    let mut order: Vec<Vec<u32>> = (0..n).map(|i| parts.face((i * 7919) % n).to_vec()).collect();
+    for f in (0..n).step_by(997) {
+        let face = parts.face(f).to_vec();
+        order.push(face.clone());
+        let mut back = face;
+        back.reverse();
+        if f % 2 == 0 {
+            order.push(back);
+        }
+    }
+    let mesh =
+        Mesh::from_polygons(parts.positions().to_vec(), order.iter().map(|f| &f[..])).unwrap();
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let c = checked(&mesh);
+            let solid = c.solid_mesh(true);
+            (format!("{c:?}"), format!("{:?}", (solid.positions(), c.bodies())), c)
+        })
+    };
+    let (one, one_solid, c) = run(1);
+    assert!(c.shells.iter().any(|s| !s.orientable));
+    assert!(c.non_manifold_vertices > 0 && c.non_manifold_edges > 0);
+    assert!(c.duplicate_faces > 0 && c.double_wall_faces > 0 && !c.consistently_oriented);
+    for threads in [2, 3, 8] {
+        let (many, many_solid, _) = run(threads);
+        assert!(one == many && one_solid == many_solid, "{threads} threads differ");
+    }
+}

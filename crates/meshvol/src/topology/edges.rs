@@ -64,10 +64,6 @@ impl Edges {
         &self.uses[self.start[i] as usize..self.start[i + 1] as usize]
     }
 
-    pub fn iter(&self) -> impl Iterator<Item = &[EdgeUse]> {
-        (0..self.len()).map(|i| self.get(i))
-    }
-
     pub fn par_iter(&self) -> impl ParallelIterator<Item = &[EdgeUse]> {
         (0..self.len()).into_par_iter().map(|i| self.get(i))
     }
@@ -91,7 +87,8 @@ impl Edges {
 /// A kept corner, seen from its vertex. (The vertices before and after it in its face
 /// are looked up when needed: storing them doubled this table, which is at the check's
 /// peak of memory.)
-#[derive(Clone, Copy, Default)]
+/// Ordered by corner: the order corners are listed in (face by face).
+#[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
 struct Around {
     corner: u32,
     face: u32,
@@ -110,7 +107,7 @@ pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, Ve
     // Each kept corner by its vertex, with its face: the edges and the fans around a
     // vertex are then read from one place.
     let vertex_count = welded.positions.len();
-    let around = Buckets::new(vertex_count, faces, |range| {
+    let around = Buckets::new_increasing(vertex_count, faces, |range| {
         range.filter(|&f| kept[f]).flat_map(|f| {
             loops.face(f).map(move |c| (vid(c), Around { corner: c as u32, face: f as u32 }))
         })
@@ -212,25 +209,35 @@ pub(super) struct EdgeCounts {
 
 /// Counts the `edges` (each its uses) of `faces` faces.
 pub(super) fn count(edges: &Edges, faces: usize) -> EdgeCounts {
-    let (mut boundary, mut non_manifold) = (0, 0);
-    let mut consistently_oriented = true;
+    // Per edge: (boundary, non-manifold) counts, and the faces of sheets wound the same
+    // way (rare), gathered in parallel; integer sums and a list in edge order.
+    let (boundary, non_manifold) = edges
+        .par_iter()
+        .map(|g| match g.len() {
+            1 => (1, 0),
+            2 => (0, 0),
+            _ => (0, 1),
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    // Each sheet's two faces (see `sheets.rs`): a manifold edge is one sheet.
+    let against: Vec<u32> = edges
+        .par_iter()
+        .flat_map_iter(|g| {
+            g.chunks_exact(2)
+                .filter(|pair| pair[0].forward() == pair[1].forward())
+                .flat_map(|pair| [pair[0].face(), pair[1].face()])
+        })
+        .collect();
     let mut face_inconsistent = vec![false; faces];
-    for g in edges.iter() {
-        match g.len() {
-            1 => boundary += 1,
-            2 => {}
-            _ => non_manifold += 1,
-        }
-        // Each sheet's two faces (see `sheets.rs`): a manifold edge is one sheet.
-        for pair in g.chunks_exact(2) {
-            if pair[0].forward() == pair[1].forward() {
-                consistently_oriented = false;
-                face_inconsistent[pair[0].face() as usize] = true;
-                face_inconsistent[pair[1].face() as usize] = true;
-            }
-        }
+    for &f in &against {
+        face_inconsistent[f as usize] = true;
     }
-    EdgeCounts { boundary, non_manifold, consistently_oriented, face_inconsistent }
+    EdgeCounts {
+        boundary,
+        non_manifold,
+        consistently_oriented: against.is_empty(),
+        face_inconsistent,
+    }
 }
 
 /// A face across a manifold edge, and whether the two faces traverse the edge the same

@@ -8,8 +8,11 @@
 
 use super::edges::Edges;
 use super::loops::Loops;
+use super::shells::fold_runs;
 use super::shells::Shells;
 use super::weld::Welded;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 /// One shell's counts.
 pub(super) struct ShellCounts {
@@ -27,47 +30,37 @@ pub(super) fn per_shell(
     edges: &Edges,
 ) -> Vec<ShellCounts> {
     let shell_of_face = &shells.of_face;
-    let mut faces = vec![0usize; shells.count];
-    for f in (0..kept.len()).filter(|&f| kept[f]) {
-        faces[shell_of_face[f] as usize] += 1;
-    }
+    let faces: Vec<usize> = shells.fold_faces(kept, |n, _| *n += 1, |n, m| *n += m);
     // An edge counts once in each shell that has a sheet there (a non-manifold edge
-    // between two bodies is an edge of each).
-    let mut edges_in = vec![0usize; shells.count];
-    let mut here = Vec::new();
-    for g in edges.iter() {
-        here.clear();
-        here.extend(g.chunks(2).map(|sheet| shell_of_face[sheet[0].face() as usize]));
-        here.sort_unstable();
-        here.dedup();
-        for &s in &here {
-            edges_in[s as usize] += 1;
-        }
-    }
-    // Each vertex counts in the first shell that uses it; the (vertex, shell) pairs of
-    // the other shells using it (non-manifold points only, so few) once each.
-    let mut vertices = vec![0i64; shells.count];
-    let mut first_shell_of_vertex = vec![u32::MAX; welded.positions.len()];
-    let mut shared: Vec<(u32, u32)> = Vec::new();
-    for f in (0..kept.len()).filter(|&f| kept[f]) {
-        let s = shell_of_face[f];
-        for c in loops.face(f) {
-            let v = welded.corner_vertex[c];
-            match first_shell_of_vertex[v as usize] {
-                u32::MAX => {
-                    first_shell_of_vertex[v as usize] = s;
-                    vertices[s as usize] += 1;
+    // between two bodies is an edge of each). Integer counts, in parallel.
+    let edges_in: Vec<usize> = {
+        const CHUNK: usize = 1 << 14;
+        let runs: Vec<Vec<(u32, usize)>> = (0..edges.len().div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let (mut runs, mut here) = (Vec::<(u32, usize)>::new(), Vec::new());
+                for g in (c * CHUNK..((c + 1) * CHUNK).min(edges.len())).map(|i| edges.get(i)) {
+                    here.clear();
+                    here.extend(g.chunks(2).map(|sheet| shell_of_face[sheet[0].face() as usize]));
+                    here.sort_unstable();
+                    here.dedup();
+                    for &s in &here {
+                        match runs.last_mut() {
+                            Some((last, n)) if *last == s => *n += 1,
+                            _ => runs.push((s, 1)),
+                        }
+                    }
                 }
-                first if first == s => {}
-                _ => shared.push((v, s)),
-            }
+                runs
+            })
+            .collect();
+        let mut edges_in = vec![0usize; shells.count];
+        for &(s, n) in runs.iter().flatten() {
+            edges_in[s as usize] += n;
         }
-    }
-    shared.sort_unstable();
-    shared.dedup();
-    for &(_, s) in &shared {
-        vertices[s as usize] += 1;
-    }
+        edges_in
+    };
+    let vertices = vertices_per_shell(loops, welded, kept, shells);
     (0..shells.count)
         .map(|s| ShellCounts {
             faces: faces[s],
@@ -80,4 +73,53 @@ pub(super) fn per_shell(
 pub(super) fn genus(closed: bool, orientable: bool, euler_characteristic: i64) -> Option<i64> {
     let chi = euler_characteristic;
     (closed && orientable && chi % 2 == 0).then_some((2 - chi) / 2)
+}
+
+/// Per shell: its vertices, each counted once per run of consecutive kept faces of the
+/// shell that use it (faces in order). A vertex used by one shell only counts once
+/// there: those are found in parallel (each vertex's shell settled by compare-and-swap),
+/// and only the corners of vertices shared by shells are walked in order.
+fn vertices_per_shell(loops: &Loops, welded: &Welded, kept: &[bool], shells: &Shells) -> Vec<i64> {
+    const NONE: u32 = u32::MAX;
+    const SHARED: u32 = u32::MAX - 1;
+    let shell_of_face = &shells.of_face;
+    let only: Vec<AtomicU32> =
+        (0..welded.positions.len()).into_par_iter().map(|_| AtomicU32::new(NONE)).collect();
+    (0..kept.len()).into_par_iter().filter(|&f| kept[f]).for_each(|f| {
+        let s = shell_of_face[f];
+        for c in loops.face(f) {
+            let v = &only[welded.corner_vertex[c] as usize];
+            let mut seen = v.load(Relaxed);
+            while seen != s && seen != SHARED {
+                let next = if seen == NONE { s } else { SHARED };
+                match v.compare_exchange(seen, next, Relaxed, Relaxed) {
+                    Ok(_) => break,
+                    Err(now) => seen = now,
+                }
+            }
+        }
+    });
+    let only: Vec<u32> = only.into_par_iter().map(AtomicU32::into_inner).collect();
+    let key = |v: usize| (only[v] < SHARED).then_some(only[v]);
+    let mut vertices: Vec<i64> =
+        fold_runs(only.len(), shells.count, key, |n, _| *n += 1, |n, m| *n += m);
+    // Shared vertices: each counts once in every shell that uses it.
+    let mut shared: Vec<(u32, u32)> = (0..kept.len())
+        .into_par_iter()
+        .filter(|&f| kept[f])
+        .flat_map_iter(|f| {
+            let only = &only;
+            loops.face(f).filter_map(move |c| {
+                let v = welded.corner_vertex[c];
+                (only[v as usize] == SHARED).then_some((v, shell_of_face[f]))
+            })
+        })
+        .collect();
+    // Each (vertex, shell) pair once, whatever order the faces come in.
+    shared.par_sort_unstable();
+    shared.dedup();
+    for (_, s) in shared {
+        vertices[s as usize] += 1;
+    }
+    vertices
 }

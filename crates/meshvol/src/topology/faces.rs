@@ -10,9 +10,12 @@
 
 use super::loops::Loops;
 use super::weld::Welded;
-use crate::buckets::{for_each_range_mut, Buckets};
+use crate::buckets::{for_each_range_mut, Buckets, SharedItems};
 use crate::vector::{add, cross, sub};
 use rayon::prelude::*;
+
+/// Groups of faces (by smallest vertex) settled per parallel task.
+const GROUPS_PER_TASK: usize = 4096;
 
 /// Per face: what stage 2 found.
 pub(super) struct FaceClasses {
@@ -58,7 +61,7 @@ pub(super) fn classify(loops: &Loops, welded: &Welded) -> FaceClasses {
     // Duplicates: the same vertex set as another face. Faces grouped by their smallest
     // vertex, each group sorted by (sorted vertex list, face): faces with one vertex set
     // form a run, in face order.
-    let mut by_vertices = Buckets::new(welded.positions.len(), faces, |range| {
+    let mut by_vertices = Buckets::new_increasing(welded.positions.len(), faces, |range| {
         range.filter(|&f| !collapsed[f]).map(|f| (ids_of(f as u32)[0], f as u32))
     });
     by_vertices.for_each_mut(|group| {
@@ -66,35 +69,55 @@ pub(super) fn classify(loops: &Loops, welded: &Welded) -> FaceClasses {
             group.sort_unstable_by(|&a, &b| ids_of(a).cmp(ids_of(b)).then(a.cmp(&b)))
         }
     });
+    // A vertex set's copies share their smallest vertex, so each run lies in one group:
+    // groups are settled in parallel, each face (in one group) written once.
     let mut duplicate = vec![false; faces];
     let mut double_wall = vec![false; faces];
-    let items = &by_vertices.items;
-    let mut i = 0;
-    while i < items.len() {
-        let run = items[i..].iter().take_while(|&&g| ids_of(g) == ids_of(items[i])).count();
-        if run > 1 {
-            let corners = |f: u32| &welded.corner_vertex[loops.face(f as usize)];
-            let first = corners(items[i]);
-            let (same, opposite): (Vec<u32>, Vec<u32>) =
-                items[i..i + run].iter().partition(|&&g| !opposite_direction(first, corners(g)));
-            // Opposite copies cancel in pairs (an internal double wall); of the rest, one
-            // copy stays.
-            let pairs = same.len().min(opposite.len());
-            for &g in same[..pairs].iter().chain(&opposite[..pairs]) {
-                double_wall[g as usize] = true;
-                duplicate[g as usize] = true;
+    let (duplicate_out, double_wall_out) =
+        (SharedItems::new(&mut duplicate), SharedItems::new(&mut double_wall));
+    let settle = |items: &[u32]| {
+        let mut i = 0;
+        while i < items.len() {
+            let run = items[i..].iter().take_while(|&&g| ids_of(g) == ids_of(items[i])).count();
+            if run > 1 {
+                let corners = |f: u32| &welded.corner_vertex[loops.face(f as usize)];
+                let first = corners(items[i]);
+                let (same, opposite): (Vec<u32>, Vec<u32>) = items[i..i + run]
+                    .iter()
+                    .partition(|&&g| !opposite_direction(first, corners(g)));
+                // Opposite copies cancel in pairs (an internal double wall); of the rest,
+                // one copy stays.
+                let pairs = same.len().min(opposite.len());
+                for &g in same[..pairs].iter().chain(&opposite[..pairs]) {
+                    // SAFETY: each face is in one group, settled by one task.
+                    unsafe {
+                        double_wall_out.write(g as usize, true);
+                        duplicate_out.write(g as usize, true);
+                    }
+                }
+                let rest = if same.len() > pairs { &same[pairs..] } else { &opposite[pairs..] };
+                for &g in rest.iter().skip(1) {
+                    // SAFETY: as above.
+                    unsafe { duplicate_out.write(g as usize, true) };
+                }
             }
-            let rest = if same.len() > pairs { &same[pairs..] } else { &opposite[pairs..] };
-            for &g in rest.iter().skip(1) {
-                duplicate[g as usize] = true;
+            i += run;
+        }
+    };
+    let groups = by_vertices.start.len() - 1;
+    (0..groups.div_ceil(GROUPS_PER_TASK)).into_par_iter().for_each(|t| {
+        for k in t * GROUPS_PER_TASK..((t + 1) * GROUPS_PER_TASK).min(groups) {
+            let group = by_vertices.get(k);
+            if group.len() > 1 {
+                settle(group);
             }
         }
-        i += run;
-    }
+    });
     drop((sorted_ids, by_vertices));
-    let kept: Vec<bool> = (0..faces).map(|f| !collapsed[f] && !duplicate[f]).collect();
+    let kept: Vec<bool> =
+        (0..faces).into_par_iter().map(|f| !collapsed[f] && !duplicate[f]).collect();
     // The faces with an interior: those the crossing search and nesting rays see.
-    let spatial: Vec<bool> = (0..faces).map(|f| kept[f] && !flat[f]).collect();
+    let spatial: Vec<bool> = (0..faces).into_par_iter().map(|f| kept[f] && !flat[f]).collect();
     FaceClasses { collapsed, flat, duplicate, double_wall, kept, spatial }
 }
 

@@ -57,11 +57,10 @@ pub(super) fn caps(loops: &Loops, welded: &Welded, edges: &Edges, shells: &Shell
     // non-orientable shell).
     let after = |e: &EdgeUse| e.forward() ^ flip[e.face() as usize];
     let open = |sheet: &&[EdgeUse]| sheet.len() == 1 || after(&sheet[0]) == after(&sheet[1]);
+    // (In parallel over the edges, collected in edge order.)
     let boundary: Vec<(u32, u32, u32)> = edges
-        .iter()
-        .flat_map(|g| g.chunks(2))
-        .filter(open)
-        .flat_map(|sheet| sheet.iter().map(directed))
+        .par_iter()
+        .flat_map_iter(|g| g.chunks(2).filter(open).flat_map(|sheet| sheet.iter().map(directed)))
         .collect();
     let loops_found = boundary_loops(&boundary);
     let mut caps: Vec<[Point; 3]> = Vec::new();

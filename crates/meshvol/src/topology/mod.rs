@@ -64,7 +64,7 @@
 //! | 2. faces | collapsed, flat, duplicate and double-wall faces; the kept ones | `faces.rs` |
 //! | 3. edges | edge uses, boundary and non-manifold edges and vertices, neighbours | `edges.rs` |
 //! | 3b. sheets | faces around a non-manifold edge paired by their angular order | `sheets.rs` |
-//! | 4. shells | connected components, orientation propagation, open shells | `shells.rs` |
+//! | 4. shells | connected components and orientation (a parallel union–find with parities), open shells | `shells.rs` |
 //! | 5. holes | open edges in loops, their caps, capped shell volumes | `holes.rs` |
 //! | 6. nesting | candidates, containment rays, overlaps, roles, the volume | `nesting.rs` |
 //! | 7. crossings | triangles in space, crossing face pairs | `crossings.rs` |
@@ -364,7 +364,7 @@ pub fn check<S: Surface + ?Sized>(
 
 /// What a long check is doing, for a progress display: its
 /// [`Progress::stage`](crate::progress::Progress::stage) is called with the name of each
-/// stage as it starts (`welding`, `finding edges, shells and crossings`, ...); a closure
+/// stage as it starts (`welding`, `finding edges`, `finding shells`, ...); a closure
 /// taking the name will do.
 pub use crate::progress::StageReport;
 
@@ -431,13 +431,9 @@ fn analyse<S: Surface + ?Sized>(
     // are never held at once. (Run side by side on 2 cores, a 5M-triangle check peaked
     // at 283–297 bytes a triangle, one after the other at 227–231; a 1M check takes
     // 0.54–0.57 s this way against 0.47–0.49 s.)
-    stage.stage(if options.intersections {
-        "finding edges, shells and crossings"
-    } else {
-        "finding edges and shells"
-    });
-    let connected = connect(surface, loops, welded, kept);
+    let connected = connect(surface, loops, welded, kept, stage);
     let space = options.intersections.then(|| {
+        stage.stage("finding crossings");
         let (triangles, bvh) = crossings::triangles_in_space(loops, &classes.spatial, welded);
         let crossing = crossings::crossing_pairs(&triangles, &bvh);
         (triangles, bvh, crossing)
@@ -504,14 +500,14 @@ fn analyse<S: Surface + ?Sized>(
             kept,
             flip: &face_flip,
             shell: shell_of_face,
-            corners: welded.corner_vertex.clone(),
-            start: loops.start.iter().map(|&s| s as usize).collect(),
+            corners: welded.corner_vertex.par_iter().copied().collect(),
+            start: loops.start.par_iter().map(|&s| s as usize).collect(),
         },
         solid_vertices,
         solid::Caps { points: caps.points, ids: caps.ids, flip: &cap_flip, shell: &caps.shell },
     );
 
-    let count = |flags: &[bool]| flags.iter().filter(|&&f| f).count();
+    let count = |flags: &[bool]| flags.par_iter().filter(|&&f| f).count();
     let kept_faces = count(kept);
     Check {
         weld_tolerance: tolerance,
@@ -524,7 +520,10 @@ fn analyse<S: Surface + ?Sized>(
         non_manifold_edges: edge_counts.non_manifold,
         unpaired_at_non_manifold_edges: unpaired,
         non_manifold_vertices: vertices.non_manifold,
-        degenerate_faces: (0..faces).filter(|&f| classes.collapsed[f] || classes.flat[f]).count(),
+        degenerate_faces: (0..faces)
+            .into_par_iter()
+            .filter(|&f| classes.collapsed[f] || classes.flat[f])
+            .count(),
         flat_faces: count(&classes.flat),
         duplicate_faces: count(&classes.duplicate),
         double_wall_faces: count(&classes.double_wall),
@@ -564,15 +563,18 @@ fn connect<S: Surface + ?Sized>(
     loops: &Loops,
     welded: &weld::Welded,
     kept: &[bool],
+    stage: StageReport<'_>,
 ) -> Connected {
+    stage.stage("finding edges");
     let (mut edges, vertices) = edges::edges(loops, welded, kept);
     let unpaired = sheets::pair(&mut edges, loops, welded);
     let edge_counts = edges::count(&edges, kept.len());
-    let neighbour = edges::neighbours(&edges, loops.corner_count());
-    let shells = shells::shells(loops, kept, &edges, &neighbour);
-    drop(neighbour);
+    stage.stage("finding shells");
+    let shells = shells::shells(loops, kept, &edges);
+    stage.stage("capping holes");
     let caps = holes::caps(loops, welded, &edges, &shells);
     let shell_signed = holes::shell_volumes(surface, welded, kept, &shells, &caps);
+    stage.stage("counting shells");
     let candidates = nesting::candidates(loops, welded, kept, &shells);
     let counts = euler::per_shell(loops, welded, kept, &shells, &edges);
     Connected {

@@ -56,19 +56,29 @@ pub(super) fn candidates(
     kept: &[bool],
     shells: &Shells,
 ) -> Candidates {
-    let (faces, shell_count, shell_of_face) = (kept.len(), shells.count, &shells.of_face);
+    let shell_count = shells.count;
     let vid = |c: usize| welded.corner_vertex[c];
     // Nesting and overlap concern closed, orientable shells.
     let solid_shell: Vec<bool> =
         (0..shell_count).map(|s| shells.orientable[s] && !shells.open[s]).collect();
-    let mut shell_bounds: Vec<Option<Bounds>> = vec![None; shell_count];
-    for f in (0..faces).filter(|&f| kept[f]) {
-        let bounds = &mut shell_bounds[shell_of_face[f] as usize];
-        for c in loops.face(f) {
-            let p = welded.positions[vid(c) as usize];
-            bounds.get_or_insert(Bounds::of(p)).include(p);
-        }
-    }
+    // (Boxes are minima and maxima: the same in any order.)
+    let shell_bounds: Vec<Option<Bounds>> = shells.fold_faces(
+        kept,
+        |bounds: &mut Option<Bounds>, f| {
+            for c in loops.face(f) {
+                let p = welded.positions[vid(c) as usize];
+                bounds.get_or_insert(Bounds::of(p)).include(p);
+            }
+        },
+        |all, b| {
+            if let Some(b) = b {
+                match all {
+                    Some(all) => all.merge(b),
+                    None => *all = Some(*b),
+                }
+            }
+        },
+    );
     // For each shell, the closed shells whose boxes overlap its own, found through a
     // hierarchy over the closed shells' boxes (files with 100 000 parts are common), in
     // spatial order: over shells in file order, a soup of scattered open triangles made
@@ -108,6 +118,9 @@ pub(super) fn containers(
     overlapping_shells: &mut BTreeSet<[usize; 2]>,
 ) -> Vec<Vec<usize>> {
     let (shell_count, shell_of_face, flip) = (shells.count, &shells.of_face, &shells.flip);
+    if !candidates.any() {
+        return vec![Vec::new(); shell_count]; // nothing to contain or overlap
+    }
     let (candidates, shell_bounds) = (&candidates.of_shell, &candidates.bounds);
     // Sample up to NESTING_SAMPLES triangles' corners spread over each shell.
     let mut shell_triangles = vec![0usize; shell_count];
@@ -250,10 +263,8 @@ pub(super) fn roles(
     face_inconsistent: &[bool],
 ) -> Roles {
     let (shell_count, orientable) = (shells.count, &shells.orientable);
-    let mut inconsistent = vec![false; shell_count];
-    for f in (0..kept.len()).filter(|&f| kept[f]) {
-        inconsistent[shells.of_face[f] as usize] |= face_inconsistent[f];
-    }
+    let inconsistent: Vec<bool> =
+        shells.fold_faces(kept, |any, f| *any |= face_inconsistent[f], |any, b| *any |= b);
     let mut roles = Vec::with_capacity(shell_count);
     let mut flip_shell = vec![false; shell_count];
     let mut volume = CompensatedSum::default();

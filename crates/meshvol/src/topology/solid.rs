@@ -60,11 +60,13 @@ impl Solid {
         let Faces { kept, flip, shell, corners, start } = faces;
         let kept_faces: Vec<(usize, bool)> =
             (0..kept.len()).into_par_iter().filter(|&f| kept[f]).map(|f| (f, flip[f])).collect();
-        let shell = kept_faces.iter().map(|&(f, _)| shell[f]).chain(caps.shell.iter().copied());
+        let mut shell_of: Vec<u32> = Vec::with_capacity(kept_faces.len() + caps.shell.len());
+        shell_of.par_extend(kept_faces.par_iter().map(|&(f, _)| shell[f]));
+        shell_of.extend_from_slice(caps.shell);
         Solid {
-            shell: shell.collect(),
+            shell: shell_of,
             dropped: kept.len() - kept_faces.len(),
-            flipped: flip.iter().filter(|&&x| x).count(),
+            flipped: flip.par_iter().filter(|&&x| x).count(),
             faces: kept_faces,
             caps: caps.points.into_iter().zip(caps.flip).map(|(c, &f)| turn(c, f)).collect(),
             vertices,
