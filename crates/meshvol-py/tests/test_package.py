@@ -89,3 +89,10 @@ def test_stubs_describe_the_runtime_api():
 def test_module_docstring_examples_run():
     failures, tried = doctest.testmod(meshvol)
     assert tried > 0 and failures == 0
+
+
+def test_docs_python_md_examples_run(recwarn):
+    # docs/python.md says every example in it is a doctest: it must stay true.
+    page = Path(__file__).resolve().parents[3] / "docs" / "python.md"
+    results = doctest.testfile(str(page), module_relative=False)
+    assert results.attempted > 0 and results.failed == 0, results
