@@ -78,40 +78,34 @@ pub(super) fn pair(edges: &mut Edges, loops: &Loops, welded: &Welded) -> usize {
 /// The uses around the edge v → w, each with its anchor point, reordered into sheets.
 fn sheets_around(v: Point, w: Point, uses: &[(EdgeUse, Option<Point>)]) -> Vec<EdgeUse> {
     let ccw = |p: Point, q: Point| -orient3d(v, w, p, q); // det[w − v, p − v, q − v]
-    type Anchored<'a> = &'a (EdgeUse, Option<Point>);
-    let (mut around, unanchored): (Vec<Anchored>, Vec<Anchored>) =
-        uses.iter().partition(|u| u.1.is_some());
-    let reference = around.first().and_then(|u| u.1).unwrap_or(w);
-    let d = sub(w, v);
-    // Half-turns from the reference: 0 on its ray, 1 the half it turns into
-    // counter-clockwise, 2 the opposite ray, 3 the other half.
-    let half = |p: Point| {
-        let side = ccw(reference, p);
-        if side > 0.0 {
-            1
-        } else if side < 0.0 {
-            3
-        } else {
-            // In the reference's plane: the same ray or the opposite one, told by the
-            // sign of the perpendicular parts' dot product.
-            let (r, q) = (sub(reference, v), sub(p, v));
-            let along = dot(r, d) * dot(q, d) / dot(d, d);
-            if dot(r, q) - along >= 0.0 {
-                0
-            } else {
-                2
-            }
-        }
+    let anchored: Vec<(EdgeUse, Point)> = uses.iter().filter_map(|&(u, p)| Some((u, p?))).collect();
+    let unanchored = uses.iter().filter(|u| u.1.is_none()).map(|u| u.0);
+    let reference = anchored.first().map_or(w, |u| u.1);
+    let (d, r) = (sub(w, v), sub(reference, v));
+    // Where p lies about the edge seen from the reference, in floating point: the dot
+    // product of the two's parts across the edge, and |r⊥| |q⊥| sin of the angle between.
+    let across = |p: Point| {
+        let q = sub(p, v);
+        (dot(r, q) - dot(r, d) * dot(q, d) / dot(d, d), dot(d, cross(r, q)) / dot(d, d).sqrt())
     };
-    let order = |x: &Anchored, y: &Anchored| {
-        let (p, q) = (x.1.unwrap_or(w), y.1.unwrap_or(w));
-        half(p).cmp(&half(q)).then_with(|| match ccw(p, q) {
+    // Half-turns from the reference: 0 on its ray, 1 the half it turns into
+    // counter-clockwise, 2 the opposite ray, 3 the other half (exactly, but for telling
+    // the two rays in the reference's plane apart).
+    let half = |p: Point| match ccw(reference, p) {
+        s if s > 0.0 => 1u8,
+        s if s < 0.0 => 3,
+        _ if across(p).0 >= 0.0 => 0,
+        _ => 2,
+    };
+    let mut around: Vec<(EdgeUse, Point, u8)> =
+        anchored.into_iter().map(|(u, p)| (u, p, half(p))).collect();
+    around.sort_by(|x, y| {
+        x.2.cmp(&y.2).then_with(|| match ccw(x.1, y.1) {
             s if s > 0.0 => Ordering::Less,
             s if s < 0.0 => Ordering::Greater,
             _ => (x.0.forward(), x.0.face()).cmp(&(y.0.forward(), y.0.face())),
         })
-    };
-    around.sort_by(order);
+    });
 
     // Brackets: backward faces open, forward faces close, from just after the lowest
     // prefix count, so that every pair found is one wedge of material.
@@ -142,24 +136,16 @@ fn sheets_around(v: Point, w: Point, uses: &[(EdgeUse, Option<Point>)]) -> Vec<E
     // walk order, they are in order around the edge.
     leftover.extend(open);
     let angle = |i: usize| {
-        let q = sub(around[i].1.unwrap_or(w), v);
-        let r = sub(reference, v);
-        let (x, y) = (dot(r, q) - dot(r, d) * dot(q, d) / dot(d, d), ccw_length(d, r, q));
+        let (x, y) = across(around[i].1);
         y.atan2(x)
     };
     let mut rest: Vec<EdgeUse> = leftover.iter().map(|&i| around[i].0).collect();
     let angles: Vec<f64> = leftover.iter().map(|&i| angle(i)).collect();
     let shift = cheapest_start(&angles);
     rest.rotate_left(shift);
-    rest.extend(unanchored.iter().map(|u| u.0));
+    rest.extend(unanchored);
     sheets.extend(rest);
     sheets
-}
-
-/// |r⊥| |q⊥| sin of the angle from r⊥ to q⊥ about d: det[d, r, q] / |d|, in floating
-/// point (for choosing where to start pairing leftovers only).
-fn ccw_length(d: Point, r: Point, q: Point) -> f64 {
-    dot(d, cross(r, q)) / dot(d, d).sqrt()
 }
 
 /// Where to start pairing the leftovers at `angles` (in order around the edge) two by
