@@ -91,8 +91,10 @@ def test_module_docstring_examples_run():
     assert tried > 0 and failures == 0
 
 
-def test_docs_python_md_examples_run(recwarn):
+def test_docs_python_md_examples_run(recwarn, tmp_path, monkeypatch):
     # docs/python.md says every example in it is a doctest: it must stay true.
+    # Its examples write files (tetra.obj, bad.obj): they land in a temporary folder.
     page = Path(__file__).resolve().parents[3] / "docs" / "python.md"
+    monkeypatch.chdir(tmp_path)
     results = doctest.testfile(str(page), module_relative=False)
     assert results.attempted > 0 and results.failed == 0, results
