@@ -38,7 +38,7 @@ mod profile;
 mod union;
 
 pub use intersect::{
-    intersection, intersection_with, overlapping_boxes, Bounded, Intersection, Moments,
+    intersection, intersection_with, overlapping_boxes, Bounded, Contact, Intersection, Moments,
 };
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
 pub use union::{

@@ -35,6 +35,12 @@
 //! in the interval (within 10⁻⁹ of it); otherwise, or if a column fails to resolve, no
 //! moments are given.
 //!
+//! # Contact
+//! The same kept pieces, those of one body inside the other, are the interface: their
+//! area and vector area (∫ n dA over ∂B inside A, the derivative of the overlap under a
+//! translation of B) are added up in the same pass; the faces the plan pass sees badly
+//! are counted in two more passes with the bodies' axes turned ([`contact`]).
+//!
 //! # Interval
 //! `[lower, upper]` adds exact columns, exact cells and open leaves' bounds, is clamped
 //! to `[0, min(|A|, |B|)]`, and is widened for rounding by `2⁻³⁶ · Σ ∫|n_z| dA · H` over
@@ -44,12 +50,17 @@
 //! `IoU = |A∩B| / |A∪B|`, `Dice = 2|A∩B| / (|A| + |B|)`; their intervals widen by the
 //! volumes' rounding bounds.
 
+pub(crate) mod contact;
 pub(crate) mod moments;
 
-use super::union::{combine, Rule, UnionError};
+pub use contact::Contact;
+
+use super::union::{boundary_in_frame, combine, Rule, UnionError};
 use super::Grid;
 use crate::progress::Progress;
+use crate::surface::Moved;
 use crate::{mass_properties, Bounds, Point, Surface};
+use contact::{Frame, Interface};
 
 /// The intersection of two bodies: the certified interval of its volume, the bodies'
 /// volumes, and how the interval was found.
@@ -81,6 +92,10 @@ pub struct Intersection {
     /// The moments of A∩B from its boundary (module docs, [`moments`]); `None` for no
     /// volume, or where a column could not be resolved.
     pub moments: Option<Moments>,
+    /// The interface of A and B ([`contact`]): zero when the boxes are apart or touch;
+    /// `None` where the moments are not given, or a column of one of the three frames
+    /// could not be resolved.
+    pub contact: Option<Contact>,
 }
 
 /// The volume, centroid and inertia (about the centroid, unit density) of A∩B.
@@ -205,11 +220,14 @@ pub fn intersection_with<S: Surface>(
             flipped,
             bodies_not_solid: Vec::new(),
             moments: None,
+            contact: Some(Contact { area: 0.0, vector: [0.0; 3], vector_a: [0.0; 3] }),
         });
     }
     let (u, sums) = combine(&[a, b], Rule::Intersection, tolerance, true, progress)?;
-    let moments = sums.and_then(|(origin, sums)| moments::finish(&sums, origin)).and_then(
-        |(volume, centroid, inertia)| {
+    let interface_z = sums.as_ref().map(|(_, total)| total.interface());
+    let moments = sums
+        .and_then(|(origin, sums)| moments::finish(&sums.moments(), origin))
+        .and_then(|(volume, centroid, inertia)| {
             // The same pieces' volume: it must agree with the interval, else the
             // classification went wrong somewhere and the moments are not given.
             let slack = 1e-9 * u.upper.max(f64::MIN_POSITIVE);
@@ -218,8 +236,23 @@ pub fn intersection_with<S: Surface>(
                 centroid,
                 inertia,
             })
-        },
-    );
+        });
+    // The faces the plan pass cannot count well (module docs of [`contact`]) are counted
+    // with the bodies turned so that their normals' largest component is vertical.
+    let contact = match (&moments, interface_z) {
+        (Some(_), Some(z)) => {
+            let mut parts = vec![z];
+            for frame in [Frame::XUp, Frame::YUp] {
+                let turned = [Moved::new(a, frame.turn()), Moved::new(b, frame.turn())];
+                match boundary_in_frame(&turned, Rule::Intersection, frame, progress)? {
+                    Some(total) => parts.push(total.interface()),
+                    None => break,
+                }
+            }
+            (parts.len() == 3).then(|| Contact::from_interface(&Interface::total(&parts)))
+        }
+        _ => None,
+    };
     Ok(Intersection {
         lower: u.lower,
         upper: u.upper,
@@ -235,6 +268,7 @@ pub fn intersection_with<S: Surface>(
         flipped,
         bodies_not_solid: u.bodies_not_solid,
         moments,
+        contact,
     })
 }
 

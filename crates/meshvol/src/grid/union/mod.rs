@@ -109,7 +109,7 @@ pub use resolve::COPLANAR_TOLERANCE;
 
 use super::{Grid, GridError};
 use crate::accumulate::CompensatedSum;
-use crate::grid::intersect::moments::Sums;
+use crate::grid::intersect::contact::{BoundarySums, BoundaryTotal, Frame};
 use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
 use crate::{mass_properties, Point, Surface};
@@ -212,20 +212,22 @@ pub fn union_with<S: Surface>(
     combine(bodies, Rule::Union, tolerance, false, progress).map(|(u, _)| u)
 }
 
-/// The union's or the intersection's volume (module docs; `intersect` for the
-/// intersection's bounds and grid) and, with `moments`, the moments of the solid from
-/// its boundary's pieces kept in every column (`None` where a column fails to resolve,
-/// and for no volume: then the volume is 0).
-pub(crate) fn combine<S: Surface>(
-    bodies: &[S],
-    rule: Rule,
-    tolerance: f64,
-    moments: bool,
-    progress: &dyn Progress,
-) -> Result<(UnionVolume, Option<(Point, Sums)>), UnionError> {
-    if bodies.is_empty() {
-        return Err(UnionError::NoBodies);
-    }
+/// The bodies as [`combine`] measures them: turned outward, with the box its grid
+/// covers and what the interval's final clamp needs of their volumes.
+struct Setup<'a, S> {
+    oriented: Vec<Oriented<'a, S>>,
+    flipped: Vec<usize>,
+    sum_of_volumes: f64,
+    largest: f64,
+    smallest: f64,
+    triangles: usize,
+    min: Point,
+    max: Point,
+    /// No volume to find: no body encloses any, or (intersection) their boxes are apart.
+    flat: bool,
+}
+
+fn setup<S: Surface>(bodies: &[S], rule: Rule) -> Setup<'_, S> {
     let mut oriented = Vec::new();
     let mut flipped = Vec::new();
     let mut sum_of_volumes = CompensatedSum::default();
@@ -262,12 +264,47 @@ pub(crate) fn combine<S: Surface>(
             (min[a], max[a]) = (min[a] - room, max[a] + room);
         }
     }
-    let sum_of_volumes = sum_of_volumes.value();
     // Also true for no vertices at all (min = +∞), and for bodies whose boxes are apart.
     let flat = (0..3).any(|a| max[a] <= min[a] || max[a].is_nan() || min[a].is_nan())
         || (rule == Rule::Intersection && (0..3).any(|a| common_max[a] <= common_min[a]));
-    if flat {
-        // No volume: no body encloses any, or (intersection) their boxes are apart.
+    Setup {
+        oriented,
+        flipped,
+        sum_of_volumes: sum_of_volumes.value(),
+        largest,
+        smallest,
+        triangles,
+        min,
+        max,
+        flat,
+    }
+}
+
+impl<S> Setup<'_, S> {
+    /// The base grid: about one cell per triangle, between 2¹⁵ and 2¹⁸ cells.
+    fn grid(&self) -> Result<Grid, GridError> {
+        base_grid(self.min, self.max, self.triangles.clamp(1 << 15, 1 << 18))
+    }
+}
+
+/// The union's or the intersection's volume (module docs; `intersect` for the
+/// intersection's bounds and grid) and, with `boundary`, the sums of its boundary's
+/// pieces kept in every column (moments and interface, [`BoundarySums`]; `None` where a
+/// column fails to resolve, and for no volume: then the volume is 0).
+pub(crate) fn combine<S: Surface>(
+    bodies: &[S],
+    rule: Rule,
+    tolerance: f64,
+    boundary: bool,
+    progress: &dyn Progress,
+) -> Result<(UnionVolume, Option<(Point, BoundaryTotal)>), UnionError> {
+    if bodies.is_empty() {
+        return Err(UnionError::NoBodies);
+    }
+    let setup = setup(bodies, rule);
+    let (min, max) = (setup.min, setup.max);
+    let Setup { sum_of_volumes, largest, smallest, .. } = setup;
+    if setup.flat {
         let grid = Grid::new([0.0; 3], [1.0; 3], [1, 1, 1])?;
         return Ok((
             UnionVolume {
@@ -279,7 +316,7 @@ pub(crate) fn combine<S: Surface>(
                 cells_resolved_exactly: 0,
                 columns_unresolved: 0,
                 grid,
-                flipped,
+                flipped: setup.flipped,
                 bodies_not_solid: Vec::new(),
             },
             None,
@@ -300,10 +337,10 @@ pub(crate) fn combine<S: Surface>(
             });
         }
     }
-    let target = triangles.clamp(1 << 15, 1 << 18);
-    let grid = base_grid(min, max, target)?;
+    let grid = setup.grid()?;
     let allowance = projected * (max[2] - min[2]) * 2f64.powi(-36);
-    let model = Bodies::new(oriented, rule, grid, progress)?;
+    let flipped = setup.flipped;
+    let model = Bodies::new(setup.oriented, rule, grid, progress)?;
     let [_, _, nz] = grid.counts;
     let columns = grid.counts[0] * grid.counts[1];
 
@@ -452,7 +489,7 @@ pub(crate) fn combine<S: Surface>(
     // Ordered for any input: per-column bounds are updated in place (rounding), and a
     // body that is not a solid makes the bounds meaningless (then it is listed).
     let (low, high) = (low.min(high), low.max(high));
-    let sums = if moments { column_moments(&model, progress) } else { None };
+    let sums = if boundary { boundary_pass(&model, Frame::Identity, progress) } else { None };
     let volume = UnionVolume {
         lower: low - allowance,
         upper: high + allowance,
@@ -468,28 +505,49 @@ pub(crate) fn combine<S: Surface>(
     Ok((volume, sums.map(|s| (grid.origin, s))))
 }
 
-/// The moments of the kept pieces of every column (about the grid's origin), summed in
-/// column order; `None` when some column cannot be resolved.
-fn column_moments<S: Surface>(model: &Bodies<'_, S>, progress: &dyn Progress) -> Option<Sums> {
+/// The sums of the kept pieces of every column ([`BoundarySums`] in `frame`; moments
+/// about the grid's origin), added in column order; `None` when some column cannot be
+/// resolved.
+fn boundary_pass<S: Surface>(
+    model: &Bodies<'_, S>,
+    frame: Frame,
+    progress: &dyn Progress,
+) -> Option<BoundaryTotal> {
     let columns = model.grid.counts[0] * model.grid.counts[1];
-    progress.stage("moments");
+    progress.stage(if frame == Frame::Identity { "moments" } else { "contact" });
     let done = Counter::new(progress, columns);
-    let per_column: Vec<Option<Sums>> = (0..columns)
+    let per_column: Vec<Option<BoundarySums>> = (0..columns)
         .into_par_iter()
         .map(|c| {
-            let mut sums = [0.0; 10];
+            let mut sums = BoundarySums::new(frame);
             let resolved = model.exact_column_with(c, Some(&mut sums)).map(|_| sums);
             done.add(1);
             resolved
         })
         .collect();
-    let mut total = [CompensatedSum::default(); 10];
+    let mut total = BoundaryTotal::default();
     for sums in per_column {
-        for (t, x) in total.iter_mut().zip(sums?) {
-            t.add(x);
-        }
+        total.add(&sums?);
     }
-    Some(total.map(|t| t.value()))
+    Some(total)
+}
+
+/// [`boundary_pass`] over the combination of `bodies` (already turned into `frame`) on
+/// their own base grid, without the volume's refinement: `None` for no volume or where
+/// a column fails to resolve.
+pub(crate) fn boundary_in_frame<S: Surface>(
+    bodies: &[S],
+    rule: Rule,
+    frame: Frame,
+    progress: &dyn Progress,
+) -> Result<Option<BoundaryTotal>, UnionError> {
+    let setup = setup(bodies, rule);
+    if setup.flat {
+        return Ok(None);
+    }
+    let grid = setup.grid()?;
+    let model = Bodies::new(setup.oriented, rule, grid, progress)?;
+    Ok(boundary_pass(&model, frame, progress))
 }
 
 /// The union's volume in every cell of `grid`: exact where at most one body touches a

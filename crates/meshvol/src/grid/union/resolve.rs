@@ -13,7 +13,7 @@ use crate::grid::cells::{
     cover, finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece,
 };
 use crate::grid::clip::Polygon;
-use crate::grid::intersect::moments::{add_piece, Sums};
+use crate::grid::intersect::contact::BoundarySums;
 use crate::vector::{cross, dot, orient2d, orient3d, sub};
 use crate::{Point, Surface};
 
@@ -28,12 +28,12 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         self.exact_column_with(c, None)
     }
 
-    /// [`Self::exact_column`], adding the moments of the kept pieces (the boundary of
-    /// the union or intersection in the column) to `moments` where given.
+    /// [`Self::exact_column`], adding the kept pieces (the boundary of the union or
+    /// intersection in the column) to `boundary` where given.
     pub(crate) fn exact_column_with(
         &self,
         c: usize,
-        mut moments: Option<&mut Sums>,
+        mut boundary: Option<&mut BoundarySums>,
     ) -> Option<(Vec<f64>, usize)> {
         let [_, ny, nz] = self.grid.counts;
         let whole = Block::whole(self.grid.counts);
@@ -131,7 +131,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                             direct: &mut direct,
                             area: &mut area,
                             failed: &mut failed,
-                            moments: moments.as_deref_mut(),
+                            boundary: boundary.as_deref_mut(),
                         };
                         sweep_layers(piece, piece.range(2), nz, &mut sink);
                     });
@@ -230,8 +230,9 @@ struct Scratch {
     pieces: Vec<Polygon<SUB>>,
     coplanar: Vec<usize>,
     near: Vec<u32>,
-    /// The pieces [`resolve`] kept, by index into `pieces`.
-    kept: Vec<usize>,
+    /// The pieces [`resolve`] kept, by index into `pieces`, and whether each was kept
+    /// off every other body's faces (inside or outside them), not on a shared face.
+    kept: Vec<(usize, bool)>,
 }
 
 /// A point's plan coordinates.
@@ -326,7 +327,7 @@ struct KeptSink<'s, 'a, S: ?Sized> {
     direct: &'s mut [f64],
     area: &'s mut [f64],
     failed: &'s mut bool,
-    moments: Option<&'s mut Sums>,
+    boundary: Option<&'s mut BoundarySums>,
 }
 
 impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
@@ -339,8 +340,10 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
         }
         let cell_size = self.owner.grid.cell;
         let Some(open) = &self.open[layer] else {
-            if let Some(sums) = self.moments.as_deref_mut() {
-                add_piece(part.vertices(), cell_size, sums);
+            // Its body alone touches the cell: inside the other bodies (which fill it,
+            // else the cell would be settled).
+            if let Some(sums) = self.boundary.as_deref_mut() {
+                sums.add(self.body, &self.triangle, part.vertices(), cell_size, true);
             }
             return part.area_and_moment(layer as f64);
         };
@@ -348,9 +351,10 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
         let rule = self.owner.rule;
         match resolve(part, layer as f64, self.body, own, open, rule, self.rays, self.scratch) {
             Some(kept) => {
-                if let Some(sums) = self.moments.as_deref_mut() {
-                    for &k in &self.scratch.kept {
-                        add_piece(self.scratch.pieces[k].vertices(), cell_size, sums);
+                if let Some(sums) = self.boundary.as_deref_mut() {
+                    for &(k, interface) in &self.scratch.kept {
+                        let piece = self.scratch.pieces[k].vertices();
+                        sums.add(self.body, &self.triangle, piece, cell_size, interface);
                     }
                 }
                 kept
@@ -437,6 +441,7 @@ fn resolve<const N: usize>(
             continue;
         }
         let point = centroid(piece, a);
+        let mut off_faces = true;
         let kept = open.bodies.iter().filter(|&&other| other != body).all(|&other| {
             let on = coplanar_cutters
                 .iter()
@@ -444,6 +449,7 @@ fn resolve<const N: usize>(
                 .find(|t| t.body == other && inside_triangle(&t.unit, point));
             match on {
                 Some(t) => {
+                    off_faces = false;
                     let up = faces_up(&t.world);
                     up == own_up && body < other
                 }
@@ -456,7 +462,7 @@ fn resolve<const N: usize>(
         if kept {
             area += a;
             moment += m;
-            kept_pieces.push(index);
+            kept_pieces.push((index, off_faces));
         }
     }
     Some((area, moment))
