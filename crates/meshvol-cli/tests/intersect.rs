@@ -63,6 +63,14 @@ fn two_boxes_give_every_key() {
     for (k, want) in diagonal.into_iter().enumerate() {
         assert!((f(&i[k][k]) - want).abs() < 1e-9 * want, "{v}");
     }
+    // The interface: B's faces x = 1.5 (−x), y = 1 (+y), z = 0.25 (−z) inside A, of
+    // areas 0.75, 0.375 and 0.5, and A's faces x = 2, y = 0, z = 1 inside B, the same.
+    assert!((f(&v["contact_area"]) - 2.0 * (0.75 + 0.375 + 0.5)).abs() < 1e-9, "{v}");
+    let n = (0.75f64 * 0.75 + 0.375 * 0.375 + 0.5 * 0.5).sqrt();
+    for (k, want) in [-0.75, 0.375, -0.5].into_iter().enumerate() {
+        assert!((f(&v["contact_vector"][k]) - want).abs() < 1e-9, "{v}");
+        assert!((f(&v["contact_normal"][k]) - want / n).abs() < 1e-9, "{v}");
+    }
     // Swapped, the same volume.
     let w = json(&["intersect", &b, &a, "--json"]);
     holds(&w, exact, 1e-9);
@@ -82,6 +90,9 @@ fn boxes_apart_are_zero_without_a_grid() {
     assert_eq!(v["disjoint"], true);
     assert!(v["centroid"].is_null() && v["inertia"].is_null(), "{v}");
     assert_eq!(f(&v["a_minus_b"]), 1.0);
+    assert_eq!(f(&v["contact_area"]), 0.0);
+    assert_eq!(v["contact_vector"], serde_json::json!([0.0, 0.0, 0.0]));
+    assert!(v["contact_normal"].is_null(), "{v}");
 }
 
 #[test]

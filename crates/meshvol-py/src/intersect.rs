@@ -14,7 +14,8 @@ use pyo3::prelude::*;
 /// whose keys are its attributes and the keys of to_dict(): lower <= |A∩B| <= upper
 /// (volume the midpoint), volume_a, volume_b, union (with union_lower, union_upper),
 /// a_minus_b, b_minus_a, iou (with iou_lower, iou_upper), dice, centroid and inertia of
-/// A∩B (None without volume), disjoint, the grid's facts, warnings.
+/// A∩B (None without volume), the interface (contact_area, contact_vector,
+/// contact_normal), disjoint, the grid's facts, warnings.
 #[pyclass(module = "meshvol", name = "Intersection", frozen)]
 pub struct PyIntersection {
     report: IntersectReport,
@@ -34,6 +35,19 @@ impl PyIntersection {
     #[getter]
     fn inertia<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
         self.report.inertia.map(|m| arr2(&m).into_pyarray(py))
+    }
+
+    /// ∫ n dA over the part of B's surface inside A (n: B's outward normal): the rate of
+    /// change of the overlap volume as B moves, a float64 array of 3, or None.
+    #[getter]
+    fn contact_vector<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.report.contact_vector.map(|c| PyArray1::from_slice(py, &c))
+    }
+
+    /// contact_vector scaled to length 1, or None where it is 0 or not known.
+    #[getter]
+    fn contact_normal<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.report.contact_normal.map(|c| PyArray1::from_slice(py, &c))
     }
 
     fn __repr__(&self) -> String {

@@ -49,6 +49,7 @@ A_LO, A_HI = (0.0, 0.0, 0.0), (1.0, 1.5, 2.0)
 B_LO, B_HI = (0.25, 0.5, 1.0), (1.5, 2.0, 2.5)
 OVERLAP, OVERLAP_CENTROID, OVERLAP_SIZE = 0.75, [0.625, 1.0, 1.5], (0.75, 1.0, 1.0)
 VOLUME_A, VOLUME_B = 3.0, 2.8125
+CONTACT_VECTOR = [-1.0, -0.75, -0.75]
 
 
 def assert_overlap_report(r):
@@ -66,6 +67,13 @@ def assert_overlap_report(r):
     np.testing.assert_allclose(r.centroid, OVERLAP_CENTROID, rtol=1e-9)
     assert isinstance(r.inertia, np.ndarray) and r.inertia.shape == (3, 3)
     np.testing.assert_allclose(r.inertia, box_inertia(OVERLAP_SIZE), rtol=1e-9, atol=1e-12)
+    # The interface: B's faces x = 0.25, y = 0.5, z = 1 inside A (areas 1, 0.75, 0.75,
+    # normals −x, −y, −z), and A's faces x = 1, y = 1.5, z = 2 inside B, the same areas.
+    assert r.contact_area == pytest.approx(2 * 2.5, rel=1e-9)
+    np.testing.assert_allclose(r.contact_vector, CONTACT_VECTOR, rtol=1e-9)
+    np.testing.assert_allclose(
+        r.contact_normal, np.divide(CONTACT_VECTOR, np.linalg.norm(CONTACT_VECTOR)), rtol=1e-9
+    )
     assert r.warnings == []
 
 
@@ -213,3 +221,21 @@ def test_closed_bodies_do_not_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         meshvol.intersection(mesh(A_LO, A_HI), mesh(B_LO, B_HI), pose_b=rotation_z(1))
+
+
+def test_the_contact_turns_with_the_bodies():
+    # Both bodies turned by one rotation: the interface's area stays, its vector turns,
+    # and it is the derivative of the overlap under a small motion of B (a second way).
+    pose = rotation((1.0, 2.0, -0.5), 0.7, t=(0.3, -0.2, 0.1))
+    a, b = mesh(A_LO, A_HI), mesh(B_LO, B_HI)
+    r = meshvol.intersection(a, b, pose_a=pose, pose_b=pose)
+    assert r.contact_area == pytest.approx(5.0, rel=1e-9)
+    np.testing.assert_allclose(r.contact_vector, pose[:3, :3] @ CONTACT_VECTOR, atol=1e-9)
+    step = 1e-4
+    for axis in range(3):
+        moved = pose.copy()
+        moved[axis, 3] += step
+        plus = meshvol.intersection(a, b, pose_a=pose, pose_b=moved).volume
+        moved[axis, 3] -= 2 * step
+        minus = meshvol.intersection(a, b, pose_a=pose, pose_b=moved).volume
+        assert (plus - minus) / (2 * step) == pytest.approx(r.contact_vector[axis], abs=1e-6)

@@ -46,6 +46,14 @@ pub struct IntersectReport {
     /// `null` without volume or where the boundary could not be resolved everywhere.
     pub centroid: Option<[f64; 3]>,
     pub inertia: Option<[[f64; 3]; 3]>,
+    /// The interface: the area of ∂A inside B plus ∂B inside A; ∫ n dA over ∂B inside A
+    /// (n: B's outward normal), which is the rate of change of the overlap volume as B
+    /// moves (`d|A∩B|/dt = e · contact_vector` for a motion `t·e` of B); and its
+    /// direction (`null` when it is 0). 0 when the boxes are apart; `null` where the
+    /// moments are.
+    pub contact_area: Option<f64>,
+    pub contact_vector: Option<[f64; 3]>,
+    pub contact_normal: Option<[f64; 3]>,
     /// The bodies' boxes are apart (or only touch): the intersection is 0, found
     /// without a grid.
     pub disjoint: bool,
@@ -206,6 +214,9 @@ pub fn intersect_posed<S: Surface + Sync>(
         dice: i.dice().value,
         centroid: i.moments.map(|m| m.centroid),
         inertia: i.moments.map(|m| m.inertia),
+        contact_area: i.contact.map(|c| c.area),
+        contact_vector: i.contact.map(|c| c.vector),
+        contact_normal: i.contact.and_then(|c| c.normal()),
         disjoint: i.disjoint,
         cells_refined: i.cells_refined,
         cells_resolved_exactly: i.cells_resolved_exactly,
@@ -253,6 +264,11 @@ impl Report for IntersectReport {
                 "  inertia (diag)   ({})  (about the centroid, unit density)",
                 d.join(", ")
             );
+        }
+        if let (Some(area), Some(v)) = (self.contact_area, self.contact_vector) {
+            let v: Vec<String> = v.iter().map(|&x| num(x, 10)).collect();
+            let _ = writeln!(s, "  contact area     {}", num(area, 12));
+            let _ = writeln!(s, "  contact vector   ({})  (∫ n dA over B inside A)", v.join(", "));
         }
         let _ = writeln!(s, "  IoU              {}", num(self.iou, 12));
         let _ = writeln!(s, "  Dice             {}", num(self.dice, 12));
@@ -304,6 +320,8 @@ impl IntersectReport {
         }
         self.centroid = self.centroid.map(|c| scale.point(c));
         self.inertia = self.inertia.map(|m| m.map(|row| row.map(|x| scale.volume_moment(x))));
+        self.contact_area = self.contact_area.map(|x| scale.area(x));
+        self.contact_vector = self.contact_vector.map(|v| v.map(|x| scale.area(x)));
         self.mass = scale.mass(self.volume);
         self.units = scale.names();
         Ok(self)

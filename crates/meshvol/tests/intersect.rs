@@ -250,7 +250,7 @@ fn the_same_bits_at_any_thread_count() {
         pool.install(|| intersection(&a, &b, 1e-9).unwrap())
     };
     let one = run(1);
-    assert!(one.moments.is_some());
+    assert!(one.moments.is_some() && one.contact.is_some());
     for threads in [2, 3, 8] {
         assert_eq!(run(threads), one, "{threads} threads");
     }

@@ -312,6 +312,8 @@ class Intersection:
     iou_lower: float
     iou_upper: float
     dice: float
+    contact_area: Optional[float]
+    """Area of A's surface inside B plus B's inside A (0 when apart)."""
     disjoint: bool
     """The bodies' boxes (as placed) are apart or only touch: volume is exactly 0."""
     cells_refined: int
@@ -332,6 +334,12 @@ class Intersection:
     def centroid(self) -> Optional[_F64]: ...
     @property
     def inertia(self) -> Optional[_F64]: ...
+    @property
+    def contact_vector(self) -> Optional[_F64]:
+        """∫ n dA over B's surface inside A: d|A∩B|/dt = e · contact_vector as B moves by t·e."""
+    @property
+    def contact_normal(self) -> Optional[_F64]:
+        """contact_vector scaled to length 1 (None where it is 0)."""
 
 class AreaProperties:
     """Area, perimeter, centroid and second moments of plane polygons."""
