@@ -5,7 +5,7 @@ use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::{mesh_of, PyMesh};
 use meshvol::assembly::Affine;
-use meshvol_report::intersect::{intersect_posed, rigid_pose, IntersectReport};
+use meshvol_report::intersect::{intersect_posed, intersect_poses, rigid_pose, IntersectReport};
 use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -66,21 +66,59 @@ impl PyIntersection {
 /// argument) and why it is not one.
 fn pose_of(pose: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Affine>> {
     let Some(pose) = pose.filter(|p| !p.is_none()) else { return Ok(None) };
-    let numpy = pose.py().import("numpy")?;
-    let array = numpy.call_method1("asarray", (pose, "float64")).map_err(|e| {
+    let (matrices, many) = matrices_of(pose, what)?;
+    if many {
+        return Err(bad_argument(format!(
+            "{what} must be a 4×4 rigid transform; got {} of them (meshvol.intersections \
+             takes many)",
+            matrices.len()
+        )));
+    }
+    rigid(&matrices[0], what).map(Some)
+}
+
+/// `poses` (None, one 4×4 array-like, or an (N, 4, 4) one) as rigid motions: `None`
+/// for none, else one per pose; ValueError naming `what[k]` for a pose that is not one.
+fn poses_of(poses: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Vec<Affine>>> {
+    let Some(poses) = poses.filter(|p| !p.is_none()) else { return Ok(None) };
+    let (matrices, many) = matrices_of(poses, what)?;
+    let name = |k: usize| if many { format!("{what}[{k}]") } else { what.to_string() };
+    matrices.iter().enumerate().map(|(k, m)| rigid(m, &name(k))).collect::<PyResult<_>>().map(Some)
+}
+
+/// The 4×4 matrices in `value`, a (4, 4) or (N, 4, 4) array-like of numbers, and
+/// whether it was the latter; ValueError naming `what` otherwise.
+fn matrices_of(value: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<[[f64; 4]; 4]>, bool)> {
+    let numpy = value.py().import("numpy")?;
+    let array = numpy.call_method1("asarray", (value, "float64")).map_err(|e| {
         bad_argument(format!("{what} cannot be read as a 4×4 array of numbers: {e}"))
     })?;
     let shape: Vec<usize> = array.getattr("shape")?.extract()?;
-    if shape != [4, 4] {
-        let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
-        return Err(bad_argument(format!(
-            "{what} must be a 4×4 rigid transform; got an array of shape ({})",
-            dims.join(", ") + if shape.len() == 1 { "," } else { "" }
-        )));
+    let matrix = |rows: &[Vec<f64>]| -> [[f64; 4]; 4] {
+        std::array::from_fn(|r| std::array::from_fn(|c| rows[r][c]))
+    };
+    match shape[..] {
+        [4, 4] => {
+            let rows: Vec<Vec<f64>> = array.call_method0("tolist")?.extract()?;
+            Ok((vec![matrix(&rows)], false))
+        }
+        [_, 4, 4] => {
+            let all: Vec<Vec<Vec<f64>>> = array.call_method0("tolist")?.extract()?;
+            Ok((all.iter().map(|rows| matrix(rows)).collect(), true))
+        }
+        _ => {
+            let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+            Err(bad_argument(format!(
+                "{what} must be a 4×4 rigid transform (or, for many, an (N, 4, 4) array); got \
+                 an array of shape ({})",
+                dims.join(", ") + if shape.len() == 1 { "," } else { "" }
+            )))
+        }
     }
-    let rows: Vec<Vec<f64>> = array.call_method0("tolist")?.extract()?;
-    let m: [[f64; 4]; 4] = std::array::from_fn(|r| std::array::from_fn(|c| rows[r][c]));
-    rigid_pose(&m).map(Some).map_err(|why| bad_argument(format!("{what} is not rigid: {why}")))
+}
+
+fn rigid(m: &[[f64; 4]; 4], what: &str) -> PyResult<Affine> {
+    rigid_pose(m).map_err(|why| bad_argument(format!("{what} is not rigid: {why}")))
 }
 
 /// The volume of the intersection of two bodies as a certified interval, with IoU,
@@ -116,6 +154,58 @@ pub fn intersection(
         py.detach(|| intersect_posed(&sa, &sb, poses, tolerance, &())).map_err(mesh_error)?;
     a.get().warn(py, &report.warnings)?;
     Ok(PyIntersection { fields: Fields::new(&report)?, report })
+}
+
+/// The intersection of a and b for many poses at once, in parallel: a list of
+/// Intersection, one per pose, each the one meshvol.intersection gives for that pose
+/// alone (the same bits at any thread count).
+///
+/// poses_a and poses_b are each None (the body where it is), one 4×4 rigid transform
+/// (used for every pose), or an (N, 4, 4) array of them; two arrays must have the same
+/// N. Each mesh is checked once (the check the Mesh keeps) and its checked solid moved
+/// by each pose. A pose that is not rigid raises ValueError naming it (poses_b[3]). The
+/// check's warnings, and the intervals' (each once), are issued as MeshWarning.
+#[pyfunction]
+#[pyo3(signature = (a, b, poses_a = None, poses_b = None, tolerance = 1e-9, check = true))]
+pub fn intersections(
+    py: Python<'_>,
+    a: &Bound<'_, PyAny>,
+    b: &Bound<'_, PyAny>,
+    poses_a: Option<&Bound<'_, PyAny>>,
+    poses_b: Option<&Bound<'_, PyAny>>,
+    tolerance: f64,
+    check: bool,
+) -> PyResult<Vec<PyIntersection>> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
+    }
+    let (pa, pb) = (poses_of(poses_a, "poses_a")?, poses_of(poses_b, "poses_b")?);
+    let count = |p: &Option<Vec<Affine>>| p.as_ref().map_or(1, Vec::len);
+    let n = count(&pa).max(count(&pb));
+    for (p, what) in [(&pa, "poses_a"), (&pb, "poses_b")] {
+        if !matches!(count(p), 1) && count(p) != n {
+            return Err(bad_argument(format!(
+                "{what} holds {} poses and the other {n}: give one pose or the same number",
+                count(p)
+            )));
+        }
+    }
+    let pick = |p: &Option<Vec<Affine>>, k: usize| p.as_ref().map(|v| v[k.min(v.len() - 1)]);
+    let pairs: Vec<[Option<Affine>; 2]> = (0..n).map(|k| [pick(&pa, k), pick(&pb, k)]).collect();
+    let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
+    let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let reports = py.detach(|| intersect_poses(&sa, &sb, &pairs, tolerance)).map_err(mesh_error)?;
+    let mut warnings: Vec<String> = Vec::new();
+    for w in reports.iter().flat_map(|r| &r.warnings) {
+        if !warnings.contains(w) {
+            warnings.push(w.clone());
+        }
+    }
+    a.get().warn(py, &warnings)?;
+    reports
+        .into_iter()
+        .map(|report| Ok(PyIntersection { fields: Fields::new(&report)?, report }))
+        .collect()
 }
 
 crate::dict::report_methods!(PyIntersection, "Intersection");

@@ -51,6 +51,7 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(mesh::load, m)?)?;
     m.add_function(wrap_pyfunction!(grid::union, m)?)?;
     m.add_function(wrap_pyfunction!(intersect::intersection, m)?)?;
+    m.add_function(wrap_pyfunction!(intersect::intersections, m)?)?;
     m.add_function(wrap_pyfunction!(polygon::polygon_area, m)?)?;
     m.add_function(wrap_pyfunction!(hull::convex_hull, m)?)?;
     m.add_function(wrap_pyfunction!(hull::hull_volume, m)?)?;

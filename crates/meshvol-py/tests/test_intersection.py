@@ -239,3 +239,40 @@ def test_the_contact_turns_with_the_bodies():
         moved[axis, 3] -= 2 * step
         minus = meshvol.intersection(a, b, pose_a=pose, pose_b=moved).volume
         assert (plus - minus) / (2 * step) == pytest.approx(r.contact_vector[axis], abs=1e-6)
+
+
+def test_many_poses_give_what_each_pose_gives_alone():
+    a, b = mesh(A_LO, A_HI), mesh(B_LO, B_HI)
+    poses = np.stack([translation((0.25 * k, 0.0, -0.5 * k)) for k in range(5)])
+    many = meshvol.intersections(a, b, poses_b=poses)
+    assert len(many) == 5
+    for k, r in enumerate(many):
+        alone = meshvol.intersection(a, b, pose_b=poses[k])
+        assert (r.lower, r.upper) == (alone.lower, alone.upper)
+        np.testing.assert_array_equal(r.contact_vector, alone.contact_vector)
+        # B shifted by (k/4, 0, −k/2): the overlap is [0.25 + k/4, 1] × [0.5, 1.5] ×
+        # [max(0, 1 − k/2), min(2, 2.5 − k/2)].
+        height = min(2.0, 2.5 - 0.5 * k) - max(0.0, 1.0 - 0.5 * k)
+        exact = max(0.75 - 0.25 * k, 0.0) * 1.0 * height
+        assert r.lower <= exact <= r.upper, (k, exact)
+    # One pose for A and many for B: A's pose is used for each.
+    shift = translation((5.0, 5.0, 5.0))
+    both = meshvol.intersections(a, b, poses_a=shift, poses_b=poses + shift - np.eye(4))
+    assert [r.volume for r in both] == pytest.approx([r.volume for r in many], rel=1e-9)
+    # No poses: the bodies where they are, once.
+    (only,) = meshvol.intersections(a, b)
+    assert_overlap_report(only)
+
+
+def test_many_poses_refuse_what_is_not_a_pose():
+    a, b = mesh(A_LO, A_HI), mesh(B_LO, B_HI)
+    poses = np.stack([np.eye(4)] * 3)
+    poses[2, 0, 0] = 2.0
+    with pytest.raises(ValueError, match=r"poses_b\[2\] is not rigid"):
+        meshvol.intersections(a, b, poses_b=poses)
+    with pytest.raises(ValueError, match="2 poses and the other 3"):
+        meshvol.intersections(a, b, poses_a=np.stack([np.eye(4)] * 3), poses_b=np.stack([np.eye(4)] * 2))
+    with pytest.raises(ValueError, match=r"\(N, 4, 4\)"):
+        meshvol.intersections(a, b, poses_b=np.zeros((2, 3, 4)))
+    with pytest.raises(ValueError, match="meshvol.intersections takes many"):
+        meshvol.intersection(a, b, pose_b=np.stack([np.eye(4)] * 2))

@@ -12,6 +12,7 @@ use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
 use meshvol::progress::Progress;
 use meshvol::surface::Moved;
 use meshvol::Surface;
+use rayon::prelude::*;
 use serde::Serialize;
 use std::fmt::Write;
 use std::time::Instant;
@@ -231,6 +232,18 @@ pub fn intersect_posed<S: Surface + Sync>(
     })
 }
 
+/// [`intersect_posed`] for many pairs of poses, in parallel over the pairs: each report
+/// is the one [`intersect_posed`] gives for its pair alone, bit for bit, at any thread
+/// count (the kernel's reductions are in a fixed order), in the order of `poses`.
+pub fn intersect_poses<S: Surface + Sync>(
+    a: &Subject<'_, S>,
+    b: &Subject<'_, S>,
+    poses: &[[Option<Affine>; 2]],
+    tolerance: f64,
+) -> Result<Vec<IntersectReport>, String> {
+    poses.par_iter().map(|&pair| intersect_posed(a, b, pair, tolerance, &())).collect()
+}
+
 /// The pairs `(i, j)`, `i < j`, of `subjects` (each measured whole) whose boxes overlap:
 /// the only pairs that can hold common volume.
 pub fn overlapping_pairs<S: Surface + Sync>(subjects: &[Subject<'_, S>]) -> Vec<(usize, usize)> {
@@ -362,6 +375,31 @@ mod tests {
         let far = rigid_pose(&translation([10.0, 0.0, 0.0])).unwrap();
         let apart = intersect_posed(&sa, &sb, [Some(far), None], 1e-9, &()).unwrap();
         assert!(apart.disjoint && apart.upper == 0.0);
+    }
+
+    #[test]
+    fn many_poses_give_what_each_pose_gives_alone() {
+        let (a, b) = (cuboid([0.0; 3], [2.0; 3]), cuboid([0.0; 3], [1.0, 2.0, 2.0]));
+        let source = Source::arrays(8);
+        let options = CheckOptions::default();
+        let checks = [&a, &b].map(|m| check(m, &options).unwrap());
+        let (sa, sb) = (
+            Subject { source: &source, surface: &a, check: Some(&checks[0]) },
+            Subject { source: &source, surface: &b, check: Some(&checks[1]) },
+        );
+        let poses: Vec<[Option<Affine>; 2]> = (0..6)
+            .map(|k| [None, Some(rigid_pose(&translation([0.5 * k as f64, 0.25, 0.0])).unwrap())])
+            .collect();
+        let many = intersect_poses(&sa, &sb, &poses, 1e-9).unwrap();
+        for (k, (report, pair)) in many.iter().zip(&poses).enumerate() {
+            let alone = intersect_posed(&sa, &sb, *pair, 1e-9, &()).unwrap();
+            assert_eq!((report.lower, report.upper), (alone.lower, alone.upper), "pose {k}");
+            assert_eq!(report.contact_vector, alone.contact_vector, "pose {k}");
+            // B (1 × 2 × 2) moved 0.5k along x into A (2 × 2 × 2), 0.25 along y: the
+            // overlap is min(1, 2 − 0.5k)⁺ × 1.75 × 2.
+            let exact = (2.0 - 0.5 * k as f64).clamp(0.0, 1.0) * 1.75 * 2.0;
+            assert!(report.lower <= exact && exact <= report.upper, "pose {k}: {exact}");
+        }
     }
 
     #[test]

@@ -461,6 +461,17 @@ def intersection(
     """Volume of the intersection of two bodies, each placed by an optional 4×4 rigid
     pose, certified, with IoU, Dice and moments (`meshvol intersect`)."""
 
+def intersections(
+    a: Any,
+    b: Any,
+    poses_a: Optional[_ArrayLike] = None,
+    poses_b: Optional[_ArrayLike] = None,
+    tolerance: float = 1e-9,
+    check: bool = True,
+) -> list[Intersection]:
+    """`intersection` for many poses in parallel: poses_a/poses_b each None, one 4×4
+    rigid transform, or an (N, 4, 4) array; one Intersection per pose."""
+
 def polygon_area(
     exterior: _Union[_ArrayLike, Mapping[str, Any], Any],
     holes: Optional[Iterable[_ArrayLike]] = None,
