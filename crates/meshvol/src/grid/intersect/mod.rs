@@ -59,6 +59,7 @@ use super::union::{boundary_in_frame, combine, Rule, UnionError};
 use super::Grid;
 use crate::progress::Progress;
 use crate::surface::Moved;
+use crate::vector::{cross, sub};
 use crate::{mass_properties, Bounds, Point, Surface};
 use contact::{Frame, Interface};
 
@@ -237,19 +238,24 @@ pub fn intersection_with<S: Surface>(
                 inertia,
             })
         });
-    // The faces the plan pass cannot count well (module docs of [`contact`]) are counted
-    // with the bodies turned so that their normals' largest component is vertical.
+    // Steep faces (module docs of [`contact`]) are counted with the bodies turned, in
+    // the frames some face of theirs in the common box is counted in.
     let contact = match (&moments, interface_z) {
         (Some(_), Some(z)) => {
+            let common = (pa.bounds, pb.bounds);
             let mut parts = vec![z];
+            let mut resolved = true;
             for frame in [Frame::XUp, Frame::YUp] {
+                if !counts_in(a, frame, common) && !counts_in(b, frame, common) {
+                    continue;
+                }
                 let turned = [Moved::new(a, frame.turn()), Moved::new(b, frame.turn())];
                 match boundary_in_frame(&turned, Rule::Intersection, frame, progress)? {
                     Some(total) => parts.push(total.interface()),
-                    None => break,
+                    None => resolved = false,
                 }
             }
-            (parts.len() == 3).then(|| Contact::from_interface(&Interface::total(&parts)))
+            resolved.then(|| Contact::from_interface(&Interface::total(&parts)))
         }
         _ => None,
     };
@@ -270,6 +276,28 @@ pub fn intersection_with<S: Surface>(
         moments,
         contact,
     })
+}
+
+/// Whether some triangle of `body` whose box meets the common box of `boxes` is counted
+/// in `frame` ([`contact::counted_in`]).
+fn counts_in<S: Surface>(body: &S, frame: Frame, boxes: (Option<Bounds>, Option<Bounds>)) -> bool {
+    let (Some(p), Some(q)) = boxes else { return false };
+    let lo = [0, 1, 2].map(|k| p.min[k].max(q.min[k]));
+    let hi = [0, 1, 2].map(|k| p.max[k].min(q.max[k]));
+    let mut found = false;
+    for f in 0..body.face_count() {
+        body.fan(f, |a, b, c| {
+            let meets = (0..3)
+                .all(|k| a[k].min(b[k]).min(c[k]) <= hi[k] && a[k].max(b[k]).max(c[k]) >= lo[k]);
+            if meets && !found {
+                found = contact::counted_in(cross(sub(b, a), sub(c, a))) == frame;
+            }
+        });
+        if found {
+            return true;
+        }
+    }
+    false
 }
 
 /// The pairs `(i, j)`, `i < j`, of `boxes` whose interiors overlap (boxes that only

@@ -516,11 +516,26 @@ fn boundary_pass<S: Surface>(
     let columns = model.grid.counts[0] * model.grid.counts[1];
     progress.stage(if frame == Frame::Identity { "moments" } else { "contact" });
     let done = Counter::new(progress, columns);
+    // A turned frame counts only the steep faces: columns without one add nothing.
+    let counts_here = |c: usize| {
+        frame == Frame::Identity
+            || model.bodies.iter().zip(&model.bins).any(|(body, bins)| {
+                bins.column(c).iter().any(|&f| {
+                    let mut counted = false;
+                    body.fan(f as usize, |p, q, r| counted |= frame.counts(p, q, r));
+                    counted
+                })
+            })
+    };
     let per_column: Vec<Option<BoundarySums>> = (0..columns)
         .into_par_iter()
         .map(|c| {
             let mut sums = BoundarySums::new(frame);
-            let resolved = model.exact_column_with(c, Some(&mut sums)).map(|_| sums);
+            let resolved = if counts_here(c) {
+                model.exact_column_with(c, Some(&mut sums)).map(|_| sums)
+            } else {
+                Some(sums)
+            };
             done.add(1);
             resolved
         })
