@@ -47,15 +47,6 @@ pub(crate) enum Frame {
 }
 
 impl Frame {
-    /// The axis of the bodies' own frame that is vertical in this one.
-    fn vertical(self) -> usize {
-        match self {
-            Frame::Identity => 2,
-            Frame::XUp => 0,
-            Frame::YUp => 1,
-        }
-    }
-
     /// The rotation taking the bodies' coordinates to this frame's (`None`: identity).
     pub(crate) fn turn(self) -> Option<Affine> {
         match self {
@@ -243,13 +234,22 @@ impl Contact {
 mod tests {
     use super::*;
 
+    /// The axis of the bodies' own frame that is vertical in `frame`.
+    fn vertical(frame: Frame) -> usize {
+        match frame {
+            Frame::Identity => 2,
+            Frame::XUp => 0,
+            Frame::YUp => 1,
+        }
+    }
+
     #[test]
     fn the_frames_turn_coordinates_and_turn_them_back() {
         let p = [1.0, 2.0, 3.0];
         for frame in [Frame::Identity, Frame::XUp, Frame::YUp] {
             let turned = frame.turn().map_or(p, |t| t.apply(p));
             assert_eq!(frame.back(turned), p, "{frame:?}");
-            assert_eq!(turned[2], p[frame.vertical()], "{frame:?}");
+            assert_eq!(turned[2], p[vertical(frame)], "{frame:?}");
         }
     }
 
@@ -265,7 +265,7 @@ mod tests {
             assert_eq!(counted_in(n), frame, "{n:?}");
             // In its frame, the vertical component is the one it was counted by.
             let turned = frame.turn().map_or(n, |t| t.apply(n));
-            assert_eq!(turned[2], n[frame.vertical()]);
+            assert_eq!(turned[2], n[vertical(frame)]);
         }
     }
 }
