@@ -25,6 +25,8 @@ pub struct GridArgs {
     /// --union as the union of their solids.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// Cells along x, y and z.
     #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_cells)]
     cells: Option<[usize; 3]>,
@@ -131,13 +133,14 @@ fn extension(path: &Path) -> Option<String> {
 
 /// Runs the command: one summary for all the files.
 pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
-    let output = Output { json: args.json, quiet };
-    driver::once(&args.files, output, |progress| measure(&args, progress))
+    let output = Output { json: args.json, quiet, csv: false };
+    let files = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
+    driver::once(&files, output, |progress| measure(&args, &files.files, progress))
 }
 
-fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
+fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<GridReport, String> {
     let mut inputs = Vec::new();
-    for path in &args.files {
+    for path in files {
         let input = solid::read(path, args.solid.check(), progress)?;
         progress.done(path);
         inputs.push(input);
@@ -160,7 +163,7 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         mp.signed_volume
     };
     let mut run = GridRun {
-        files: args.files.iter().map(|p| p.display().to_string()).collect(),
+        files: files.iter().map(|p| p.display().to_string()).collect(),
         bounds_from,
         mesh_volume,
         union: args.union,

@@ -20,6 +20,7 @@ mod solid;
 mod union;
 mod units;
 mod volume;
+mod walk;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
