@@ -191,35 +191,6 @@ fn slice_of(at: SliceAt, grid: &meshvol::grid::Grid) -> Result<Slice, String> {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn slices_by_coordinate_pick_the_layer_holding_it() {
-        let grid = meshvol::grid::Grid::new([0.0, 0.0, -1.0], [1.0, 1.0, 0.1], [2, 2, 30]).unwrap();
-        let at = |s: &str| slice_of(parse_slice(s).unwrap(), &grid);
-        assert_eq!(at("z=-1").unwrap(), Slice { axis: 2, index: 0 });
-        assert_eq!(at("z=0.25").unwrap(), Slice { axis: 2, index: 12 });
-        // On a boundary: the layer above it; on the far face: the last layer.
-        assert_eq!(at("x=1").unwrap(), Slice { axis: 0, index: 1 });
-        assert_eq!(at("z=2").unwrap(), Slice { axis: 2, index: 29 });
-        // Each boundary c_k picks layer k, with c_k computed as the grid computes it.
-        for k in 0..30 {
-            let c = -1.0 + k as f64 * 0.1;
-            assert_eq!(
-                slice_of(SliceAt::Coordinate { axis: 2, value: c }, &grid).unwrap().index,
-                k
-            );
-        }
-        assert_eq!(at("k=29").unwrap(), Slice { axis: 2, index: 29 });
-        assert!(at("k=30").unwrap_err().contains("k from 0 to 29"));
-        assert!(at("z=2.01").unwrap_err().contains("outside the grid"));
-        assert!(parse_slice("k=1.5").unwrap_err().contains("z=1.5"));
-        assert!(parse_slice("w=1").is_err() && parse_slice("z=nan").is_err());
-    }
-}
-
 fn extension(path: &Path) -> Option<String> {
     path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)
 }
@@ -318,4 +289,33 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     }
     let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
     summary(&grid, &volumes, run).in_units(&args.units.options(), &files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slices_by_coordinate_pick_the_layer_holding_it() {
+        let grid = meshvol::grid::Grid::new([0.0, 0.0, -1.0], [1.0, 1.0, 0.1], [2, 2, 30]).unwrap();
+        let at = |s: &str| slice_of(parse_slice(s).unwrap(), &grid);
+        assert_eq!(at("z=-1").unwrap(), Slice { axis: 2, index: 0 });
+        assert_eq!(at("z=0.25").unwrap(), Slice { axis: 2, index: 12 });
+        // On a boundary: the layer above it; on the far face: the last layer.
+        assert_eq!(at("x=1").unwrap(), Slice { axis: 0, index: 1 });
+        assert_eq!(at("z=2").unwrap(), Slice { axis: 2, index: 29 });
+        // Each boundary c_k picks layer k, with c_k computed as the grid computes it.
+        for k in 0..30 {
+            let c = -1.0 + k as f64 * 0.1;
+            assert_eq!(
+                slice_of(SliceAt::Coordinate { axis: 2, value: c }, &grid).unwrap().index,
+                k
+            );
+        }
+        assert_eq!(at("k=29").unwrap(), Slice { axis: 2, index: 29 });
+        assert!(at("k=30").unwrap_err().contains("k from 0 to 29"));
+        assert!(at("z=2.01").unwrap_err().contains("outside the grid"));
+        assert!(parse_slice("k=1.5").unwrap_err().contains("z=1.5"));
+        assert!(parse_slice("w=1").is_err() && parse_slice("z=nan").is_err());
+    }
 }
