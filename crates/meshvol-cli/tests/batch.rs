@@ -266,13 +266,31 @@ fn compressed_files_measure_as_the_file_they_hold() {
         ("part.stl.gz", gz(&sample)),
         ("part.STL.BZ2", bz2(&sample)),
         ("part.stl.zst", zst(&sample)),
-        ("part.zip", zip(&[("readme.txt", b"hello"), ("inner/part.stl", &sample)])),
+        (
+            "part.zip",
+            zip(&[
+                ("readme.txt", b"hello"),
+                ("__MACOSX/inner/._part.stl", b"fork"),
+                ("inner/part.stl", &sample),
+            ]),
+        ),
     ] {
         let path = write(d, name, bytes);
         let (code, got, err) = measured(&path, &[]);
         assert_eq!(code, Some(0), "{name}: {err}");
         assert_eq!(got, expected, "{name}");
     }
+    // A 3MF package named .zip is read as the 3MF it is.
+    let model = r#"<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>
+        <object id="1" type="model"><mesh><vertices>
+        <vertex x="0" y="0" z="0"/><vertex x="1" y="0" z="0"/><vertex x="0" y="1" z="0"/><vertex x="0" y="0" z="0.75"/>
+        </vertices><triangles><triangle v1="0" v2="2" v3="1"/><triangle v1="0" v2="1" v3="3"/>
+        <triangle v1="0" v2="3" v3="2"/><triangle v1="1" v2="2" v3="3"/></triangles></mesh></object>
+        </resources><build><item objectid="1"/></build></model>"#;
+    let (_, as_3mf, _) = measured(&write(d, "tet.3mf", common::three_mf(model)), &[]);
+    let (code, as_zip, err) = measured(&write(d, "tet.zip", common::three_mf(model)), &[]);
+    assert_eq!(code, Some(0), "{err}");
+    assert_eq!((as_zip, as_3mf["volume"].as_f64()), (as_3mf.clone(), Some(0.125)));
     // A gzip of two members (as `cat a.gz b.gz` makes) is both.
     let half = TETRA.len() / 2;
     let two = [gz(&TETRA.as_bytes()[..half]), gz(&TETRA.as_bytes()[half..])].concat();

@@ -5,8 +5,10 @@
 //! for `.gz`, `.bz2` and `.zst` the format is the one the name names without the last
 //! extension (`part.stl.gz` is STL), else the content's; a `.zip` must hold exactly one
 //! file the reader reads (by extension: for meshes `.stl`, `.obj`, `.off`, `.ply`,
-//! `.3mf`, `.gltf`, `.glb`), which is read as `archive.zip/member.stl`: a zip with none,
-//! or with several, is an error listing its members.
+//! `.3mf`, `.gltf`, `.glb`; hidden members and macOS's `__MACOSX/` folder are passed
+//! over), which is read as `archive.zip/member.stl`: a zip with none, or with several, is
+//! an error listing its members. (A glTF's external buffers are looked for beside the
+//! archive's name, not inside it: zip a `.glb`.)
 //!
 //! Decompression is bounded as streams are: a file that inflates past
 //! [`stream_limit`](crate::stream_limit) bytes (2 GiB, `MESHVOL_MAX_STREAM_BYTES`) is
@@ -116,6 +118,12 @@ fn bounded(path: &Path, reader: impl Read) -> std::io::Result<Result<Vec<u8>, Re
     Ok(Ok(data))
 }
 
+/// Whether a zip member is hidden or an archiver's own: a name starting with `.` in any
+/// folder (`._part.stl`, macOS's resource forks) or under `__MACOSX/`.
+fn hidden(name: &str) -> bool {
+    name.split('/').any(|part| part.starts_with('.') || part == "__MACOSX")
+}
+
 /// The one member of a zip archive that `wanted` accepts, decompressed.
 fn unzip(
     path: &Path,
@@ -126,8 +134,10 @@ fn unzip(
     let mut archive =
         zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| damaged(e.to_string()))?;
     let names: Vec<String> = archive.file_names().map(str::to_string).collect();
-    let mut members: Vec<&String> =
-        names.iter().filter(|n| !n.ends_with('/') && wanted(Path::new(n.as_str()))).collect();
+    let mut members: Vec<&String> = names
+        .iter()
+        .filter(|n| !n.ends_with('/') && !hidden(n) && wanted(Path::new(n.as_str())))
+        .collect();
     members.sort();
     let list = |names: &[&String]| {
         const SHOWN: usize = 10;
@@ -141,6 +151,12 @@ fn unzip(
     };
     let member = match members.as_slice() {
         [one] => (*one).clone(),
+        // A 3MF package named .zip is read as the 3MF it is.
+        [] if names.iter().any(|n| n.starts_with("3D/") && n.ends_with(".model"))
+            && wanted(Path::new("model.3mf")) =>
+        {
+            return Ok((path.with_extension("3mf"), bytes.to_vec()));
+        }
         [] => {
             let all: Vec<&String> = names.iter().filter(|n| !n.ends_with('/')).collect();
             return Err(error(
