@@ -214,6 +214,55 @@ mod tests {
         assert!(err.to_string().contains("Zstandard"), "{err}");
     }
 
+    /// Damaged streams of every form (bytes changed, cut short) are errors or data, never
+    /// a panic.
+    #[test]
+    fn damaged_streams_never_panic() {
+        let data: Vec<u8> = (0..4000u32).map(|i| (i * 7 % 251) as u8).collect();
+        let bz = {
+            let mut e = bzip2::write::BzEncoder::new(Vec::new(), bzip2::Compression::fast());
+            e.write_all(&data).unwrap();
+            e.finish().unwrap()
+        };
+        let zst = ruzstd::encoding::compress_to_vec(
+            &data[..],
+            ruzstd::encoding::CompressionLevel::Fastest,
+        );
+        let zip = {
+            let mut z = zip::ZipWriter::new(Cursor::new(Vec::new()));
+            z.start_file("a.stl", zip::write::SimpleFileOptions::default()).unwrap();
+            z.write_all(&data).unwrap();
+            z.finish().unwrap().into_inner()
+        };
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = move || {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            state.wrapping_mul(0x2545_F491_4F6C_DD1D)
+        };
+        for (compression, good) in [
+            (Compression::Gzip, gz(&data)),
+            (Compression::Bzip2, bz),
+            (Compression::Zstd, zst),
+            (Compression::Zip, zip),
+        ] {
+            let (_, back) = decompress(Path::new("a.stl.x"), &good, compression, |_| true).unwrap();
+            assert_eq!(back, data, "{compression:?}");
+            for _ in 0..300 {
+                let mut bad = good.clone();
+                for _ in 0..1 + next() % 4 {
+                    let at = (next() % bad.len() as u64) as usize;
+                    bad[at] = next() as u8;
+                }
+                if next() % 3 == 0 {
+                    bad.truncate((next() % bad.len() as u64) as usize);
+                }
+                let _ = decompress(Path::new("a.stl.x"), &bad, compression, |_| true);
+            }
+        }
+    }
+
     #[test]
     fn extensions_name_compressions() {
         assert_eq!(Compression::of_path(Path::new("a.STL.GZ")), Some(Compression::Gzip));
