@@ -8,7 +8,9 @@
 //! zip (3MF) magic bytes, a glTF JSON object, an OFF header, the binary STL size rule, a
 //! `solid` line, OBJ statements. [`Loaded::format_source`] says which decided. Each
 //! format's rules are in its module: [`stl`], [`obj`], [`off`], [`ply`], [`threemf`],
-//! [`gltf`].
+//! [`gltf`]. A compressed file (`part.stl.gz`, `.bz2`, `.zst`, a `.zip` of one mesh) is
+//! decompressed first, within the stream limit, and read as the file it holds
+//! ([`compressed`]).
 //!
 //! A binary STL is not copied: it stays memory-mapped and is read as a [`StlSoup`]. The
 //! other formats are parsed (in parallel where the format allows) into a
