@@ -182,6 +182,19 @@ fn folders_give_their_mesh_files_sorted() {
     let named = meshvol(&["volume", "--json", p(&d.join("b.obj")), p(d), "-g", "*.gz"]);
     assert_eq!(files(&named), [name("b.obj"), name("e.obj.gz")]);
 
+    // `hull` takes point files and meshes from a folder; `area` polygon files.
+    let clouds = d.join("clouds");
+    std::fs::create_dir(&clouds).unwrap();
+    write(&clouds, "p.xyz", "0 0 0\n2 0 0\n0 2 0\n0 0 2\n");
+    write(&clouds, "t.obj", TETRA);
+    write(&clouds, "ring.wkt", "POLYGON((0 0,1 0,1 1,0 0))");
+    let hulls = json_lines(&meshvol(&["hull", "--json", p(&clouds)]));
+    let volumes: Vec<f64> = hulls.iter().map(|h| h["volume"].as_f64().unwrap()).collect();
+    assert_eq!(volumes.len(), 2);
+    assert!((volumes[0] - 8.0 / 6.0).abs() < 1e-14 && (volumes[1] - 1.0 / 6.0).abs() < 1e-15);
+    let areas = json_lines(&meshvol(&["area", "--json", p(&clouds)]));
+    assert_eq!((areas.len(), areas[0]["area"].as_f64()), (1, Some(0.5)));
+
     // A command over all its inputs together: the folder is its files.
     let grid = |inputs: &[&str]| {
         let out = meshvol(&[&["grid", "--cells", "2,2,2", "--json"][..], inputs].concat());
