@@ -14,6 +14,8 @@ pub struct AreaArgs {
     /// (format from the content).
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// Print one JSON object per file, one per line.
     #[arg(long)]
     json: bool,
@@ -23,7 +25,8 @@ pub struct AreaArgs {
 
 /// Runs the command.
 pub fn run(args: AreaArgs, quiet: bool) -> ExitCode {
-    driver::each(&args.files, Output { json: args.json, quiet }, |path, _| {
+    let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Polygons);
+    driver::each(&inputs, Output { json: args.json, quiet, csv: false }, |path, _| {
         let file = crate::input::load_polygons(path)?;
         let name = path.display().to_string();
         area(Some(name), Some(file.format.name()), &file.features, file.warnings)?

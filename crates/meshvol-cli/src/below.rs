@@ -11,9 +11,12 @@ use std::process::ExitCode;
 #[derive(Args)]
 #[command(group(clap::ArgGroup::new("waterline").required(true).args(["plane", "volume"])))]
 pub struct BelowArgs {
-    /// Mesh files.
+    /// Mesh files (or those compressed: .gz, .bz2, .zst, a .zip of one), or folders of
+    /// them.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// The plane n·x = D: the part where n·x ≤ D is measured.
     #[arg(long, value_name = "NX,NY,NZ,D", value_parser = parse_numbers::<4>, allow_hyphen_values = true)]
     plane: Option<[f64; 4]>,
@@ -29,9 +32,13 @@ pub struct BelowArgs {
     /// Trim: the plane's normal turned by DEG degrees about y (after the heel).
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
     trim: f64,
-    /// Print one JSON object per file, one per line.
-    #[arg(long)]
+    /// Print one JSON object per file, one per line (`--format json`).
+    #[arg(long, conflicts_with = "format")]
     json: bool,
+    /// What to print: `text` (the default), `json` (one object per file), or `csv` (one
+    /// table: a header, then a row per file, the JSON keys as columns).
+    #[arg(long, value_enum)]
+    format: Option<driver::Format>,
     #[command(flatten)]
     units: crate::units::UnitArgs,
     #[command(flatten)]
@@ -62,7 +69,8 @@ pub fn run(args: BelowArgs, quiet: bool) -> ExitCode {
     let options = BelowOptions { waterline, heel: args.heel, trim: args.trim };
     let check = args.solid.check();
     let units = args.units.options();
-    driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
+    let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
+    driver::each(&inputs, Output::of(args.json, args.format, quiet), |path, progress| {
         let input = solid::read(path, check, progress)?;
         progress.stage("measuring", path);
         below(&input.subject(), &options)?.in_units(&units, input.source.unit)

@@ -11,12 +11,19 @@ use std::process::ExitCode;
 
 #[derive(Args)]
 pub struct CheckArgs {
-    /// Mesh files.
+    /// Mesh files (or those compressed: .gz, .bz2, .zst, a .zip of one), or folders of
+    /// them.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
-    /// Print one JSON object per file, one per line.
-    #[arg(long)]
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
+    /// Print one JSON object per file, one per line (`--format json`).
+    #[arg(long, conflicts_with = "format")]
     json: bool,
+    /// What to print: `text` (the default), `json` (one object per file), or `csv` (one
+    /// table: a header, then a row per file, the JSON keys as columns).
+    #[arg(long, value_enum)]
+    format: Option<driver::Format>,
     /// Skip the search for crossing triangles (self-intersections; overlapping shells
     /// are then found only by the ray tests).
     #[arg(long)]
@@ -33,7 +40,9 @@ pub struct CheckArgs {
 /// Runs the command. A file without faces is checked too: it bounds nothing.
 pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
     let options = crate::solid::check_options(args.weld_tolerance, !args.no_intersections);
-    driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
+    let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
+    let output = Output::of(args.json, args.format, quiet);
+    driver::each(&inputs, output, |path, progress| {
         let name = path.display().to_string();
         progress.stage("reading", path);
         let loaded = input::load(path)?;

@@ -76,7 +76,11 @@ fn parse_out(s: &str) -> Result<PathBuf, String> {
 pub fn run(args: CutFillArgs, quiet: bool) -> ExitCode {
     let inputs: Vec<PathBuf> =
         std::iter::once(args.existing.clone()).chain(args.design.clone()).collect();
-    driver::once(&inputs, Output { json: args.json, quiet }, |progress| measure(&args, progress))
+    driver::once(
+        &crate::walk::Inputs::plain(inputs),
+        Output { json: args.json, quiet, csv: false },
+        |progress| measure(&args, progress),
+    )
 }
 
 fn read(path: &Path, progress: &Progress) -> Result<(Source, meshvol_io::LoadedSurface), String> {

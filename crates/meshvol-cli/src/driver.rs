@@ -4,9 +4,13 @@
 //! (silenced by `--quiet`), the report as text or one JSON line on stdout, a failed input
 //! as an error on stderr and, under `--json`, a `{"file": ..., "error": ...}` line on
 //! stdout, a closed stdout (piped into `head`) ending the run quietly, and the exit
-//! status: 0 when every input was measured and passed, 1 otherwise.
+//! status: 0 when every input was measured and passed, 1 otherwise. With `--format csv`
+//! the reports (and failed inputs, with an `error` column) are rows of one table, printed
+//! when the run ends: its header is the union of the rows' columns.
 
 use crate::input::Progress;
+use crate::walk::Inputs;
+use meshvol_report::table::Table;
 use meshvol_report::timings::{self, StageTiming};
 use meshvol_report::{error_line, json_line, Report};
 use std::io::Write;
@@ -18,6 +22,24 @@ use std::process::ExitCode;
 pub struct Output {
     pub json: bool,
     pub quiet: bool,
+    /// One CSV table for the run (`--format csv`), printed at its end.
+    pub csv: bool,
+}
+
+/// `--format` of the commands that print text, JSON lines or one CSV table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    Text,
+    Json,
+    Csv,
+}
+
+impl Output {
+    /// The output `--json` or `--format` asks for.
+    pub fn of(json: bool, format: Option<Format>, quiet: bool) -> Output {
+        let json = json || format == Some(Format::Json);
+        Output { json, quiet, csv: format == Some(Format::Csv) }
+    }
 }
 
 /// Prints reports and errors, and remembers what decides the exit status.
@@ -27,6 +49,8 @@ pub struct Driver {
     failed: bool,
     /// stdout was closed: nothing more is printed.
     closed: bool,
+    /// With `--format csv`: the rows so far.
+    table: Option<Table>,
 }
 
 impl Driver {
@@ -37,6 +61,7 @@ impl Driver {
             output,
             failed: false,
             closed: false,
+            table: output.csv.then(Table::new),
         }
     }
 
@@ -44,7 +69,7 @@ impl Driver {
     /// `--timings`, the stages' timings as the JSON's `timings` list, or on stderr).
     pub fn report(&mut self, report: &impl Report) {
         let timings = self.progress.take_timings();
-        let body = if self.output.json {
+        let body = if self.output.json || self.output.csv {
             json_line(report).and_then(|line| match &timings {
                 Some(t) => timings::with_timings(&line, t),
                 None => Ok(line),
@@ -54,8 +79,21 @@ impl Driver {
             Ok(report.text())
         };
         match body {
+            Ok(body) if self.table.is_some() => self.row(report, &body),
             Ok(body) => self.show(report, &body),
             Err(e) => self.fail(report.file(), &e),
+        }
+    }
+
+    /// With `--format csv`: `report`'s warnings, and its JSON line as a row.
+    fn row(&mut self, report: &impl Report, line: &str) {
+        for w in report.warnings() {
+            self.progress.warn(report.file(), w);
+        }
+        self.failed |= !report.passed();
+        match serde_json::from_str::<serde_json::Value>(line) {
+            Ok(value) => self.table.get_or_insert_with(Table::new).push(&value),
+            Err(e) => self.fail(report.file(), &format!("{}: {e}", report.file())),
         }
     }
 
@@ -88,7 +126,11 @@ impl Driver {
         let _ = self.progress.take_timings();
         self.failed = true;
         self.progress.error(error);
-        if self.output.json {
+        if let Some(table) = &mut self.table {
+            if let Ok(value) = serde_json::from_str(&error_line(file, error)) {
+                table.push(&value);
+            }
+        } else if self.output.json {
             self.emit(&error_line(file, error));
         }
     }
@@ -110,7 +152,10 @@ impl Driver {
     }
 
     /// Clears the progress bar and gives the exit status.
-    pub fn finish(self) -> ExitCode {
+    pub fn finish(mut self) -> ExitCode {
+        if let Some(table) = self.table.take() {
+            self.emit(&table.to_csv());
+        }
         self.progress.finish();
         if self.failed {
             ExitCode::FAILURE
@@ -120,14 +165,23 @@ impl Driver {
     }
 }
 
+/// A driver for `inputs`, which has reported the folders that held no input.
+pub fn start(inputs: &Inputs, output: Output) -> Driver {
+    let mut driver = Driver::new(&inputs.files, output);
+    for (name, error) in &inputs.problems {
+        driver.fail(name, error);
+    }
+    driver
+}
+
 /// Runs `measure` on each input in turn and prints what it gives.
 pub fn each<R: Report>(
-    inputs: &[PathBuf],
+    inputs: &Inputs,
     output: Output,
     mut measure: impl FnMut(&Path, &Progress) -> Result<R, String>,
 ) -> ExitCode {
-    let mut driver = Driver::new(inputs, output);
-    for path in inputs {
+    let mut driver = start(inputs, output);
+    for path in &inputs.files {
         if driver.closed() {
             break;
         }
@@ -141,13 +195,18 @@ pub fn each<R: Report>(
     driver.finish()
 }
 
-/// Runs `measure` once over all `inputs` (a grid, a union) and prints its report.
+/// Runs `measure` once over all `inputs` (a grid, a union) and prints its report; not at
+/// all when a folder given held no input (the result would leave it out).
 pub fn once<R: Report>(
-    inputs: &[PathBuf],
+    inputs: &Inputs,
     output: Output,
     measure: impl FnOnce(&Progress) -> Result<R, String>,
 ) -> ExitCode {
-    let mut driver = Driver::new(inputs, output);
+    let mut driver = start(inputs, output);
+    if !inputs.problems.is_empty() {
+        return driver.finish();
+    }
+    let inputs = &inputs.files;
     match measure(&driver.progress) {
         Ok(report) => driver.report(&report),
         Err(e) => {

@@ -25,6 +25,8 @@ pub struct GridArgs {
     /// --union as the union of their solids.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// Cells along x, y and z.
     #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_cells)]
     cells: Option<[usize; 3]>,
@@ -49,9 +51,11 @@ pub struct GridArgs {
     /// Write a PNG picture of the fractions in one slice (with --slice).
     #[arg(long, value_name = "FILE", requires = "slice")]
     png: Option<PathBuf>,
-    /// The slice for --png: x=I, y=J or z=K (a cell index).
-    #[arg(long, value_name = "AXIS=INDEX", value_parser = parse_slice, requires = "png")]
-    slice: Option<Slice>,
+    /// The slice for --png: a coordinate, x=X, y=Y or z=Z (the layer of cells that holds
+    /// it; on a boundary between two layers, the one above it), or a cell index, i=I,
+    /// j=J or k=K (from 0), as `section --plane z=H` takes a coordinate.
+    #[arg(long, value_name = "AXIS=VALUE", value_parser = parse_slice, requires = "png", allow_hyphen_values = true)]
+    slice: Option<SliceAt>,
     /// Print the summary as one JSON object.
     #[arg(long)]
     json: bool,
@@ -111,18 +115,80 @@ fn parse_out(s: &str) -> Result<PathBuf, String> {
     }
 }
 
-fn parse_slice(s: &str) -> Result<Slice, String> {
-    let (axis, index) =
-        s.split_once('=').ok_or_else(|| format!("'{s}': expected x=I, y=J or z=K"))?;
-    let axis = match axis.trim() {
-        "x" => 0,
-        "y" => 1,
-        "z" => 2,
-        _ => return Err(format!("'{s}': the axis must be x, y or z")),
-    };
-    let index =
-        index.trim().parse().map_err(|_| format!("'{s}': the index must be a whole number"))?;
-    Ok(Slice { axis, index })
+/// `--slice`: a coordinate along an axis, or a cell index along one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum SliceAt {
+    /// `x=X`, `y=Y`, `z=Z`: the layer of cells holding the coordinate.
+    Coordinate { axis: usize, value: f64 },
+    /// `i=I`, `j=J`, `k=K`: the layer with this index.
+    Index { axis: usize, index: usize },
+}
+
+const SLICE_FORMS: &str = "x=X, y=Y or z=Z (a coordinate) or i=I, j=J or k=K (a cell index)";
+
+fn parse_slice(s: &str) -> Result<SliceAt, String> {
+    let (axis, value) =
+        s.split_once('=').ok_or_else(|| format!("'{s}': expected {SLICE_FORMS}"))?;
+    let value = value.trim();
+    match axis.trim() {
+        a @ ("x" | "y" | "z") => {
+            let axis = usize::from(a.as_bytes()[0] - b'x');
+            match value.parse::<f64>() {
+                Ok(value) if value.is_finite() => Ok(SliceAt::Coordinate { axis, value }),
+                _ => Err(format!("'{s}': the coordinate must be a number")),
+            }
+        }
+        a @ ("i" | "j" | "k") => {
+            let axis = usize::from(a.as_bytes()[0] - b'i');
+            let index = value.parse().map_err(|_| {
+                format!("'{s}': a cell index must be a whole number from 0 (for a coordinate use {}={value})", ["x", "y", "z"][axis])
+            })?;
+            Ok(SliceAt::Index { axis, index })
+        }
+        _ => Err(format!("'{s}': expected {SLICE_FORMS}")),
+    }
+}
+
+/// The layer of cells `at` names in `grid`: a coordinate's is the cell [c_k, c_(k+1))
+/// holding it, where c_k = origin + k · cell (so a coordinate on the boundary of two
+/// layers picks the upper one), and the grid's far face the last layer.
+fn slice_of(at: SliceAt, grid: &meshvol::grid::Grid) -> Result<Slice, String> {
+    let name = |axis: usize| ["x", "y", "z"][axis];
+    match at {
+        SliceAt::Index { axis, index } => {
+            let n = grid.counts[axis];
+            if index >= n {
+                let letter = ["i", "j", "k"][axis];
+                return Err(format!(
+                    "--slice {letter}={index} is outside the grid ({letter} from 0 to {})",
+                    n - 1
+                ));
+            }
+            Ok(Slice { axis, index })
+        }
+        SliceAt::Coordinate { axis, value } => {
+            let n = grid.counts[axis];
+            let plane = |k: usize| grid.origin[axis] + k as f64 * grid.cell[axis];
+            if !(value >= plane(0) && value <= plane(n)) {
+                return Err(format!(
+                    "--slice {}={value} is outside the grid ({} from {} to {})",
+                    name(axis),
+                    name(axis),
+                    plane(0),
+                    plane(n)
+                ));
+            }
+            let guess = ((value - plane(0)) / grid.cell[axis]).floor();
+            let mut k = if guess > 0.0 { (guess as usize).min(n - 1) } else { 0 };
+            while k > 0 && value < plane(k) {
+                k -= 1;
+            }
+            while k + 1 < n && value >= plane(k + 1) {
+                k += 1;
+            }
+            Ok(Slice { axis, index: k })
+        }
+    }
 }
 
 fn extension(path: &Path) -> Option<String> {
@@ -131,13 +197,14 @@ fn extension(path: &Path) -> Option<String> {
 
 /// Runs the command: one summary for all the files.
 pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
-    let output = Output { json: args.json, quiet };
-    driver::once(&args.files, output, |progress| measure(&args, progress))
+    let output = Output { json: args.json, quiet, csv: false };
+    let files = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
+    driver::once(&files, output, |progress| measure(&args, &files.files, progress))
 }
 
-fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
+fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<GridReport, String> {
     let mut inputs = Vec::new();
-    for path in &args.files {
+    for path in files {
         let input = solid::read(path, args.solid.check(), progress)?;
         progress.done(path);
         inputs.push(input);
@@ -160,7 +227,7 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         mp.signed_volume
     };
     let mut run = GridRun {
-        files: args.files.iter().map(|p| p.display().to_string()).collect(),
+        files: files.iter().map(|p| p.display().to_string()).collect(),
         bounds_from,
         mesh_volume,
         union: args.union,
@@ -214,11 +281,41 @@ fn measure(args: &GridArgs, progress: &Progress) -> Result<GridReport, String> {
         };
         written.and_then(|()| w.flush()).map_err(|e| format!("{}: {e}", out.display()))?;
     }
-    if let (Some(png), Some(slice)) = (&args.png, args.slice) {
+    if let (Some(png), Some(at)) = (&args.png, args.slice) {
+        let slice = slice_of(at, &grid)?;
         let mut bytes = Vec::new();
         grid_out::png(&mut bytes, &grid, &volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
     let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
     summary(&grid, &volumes, run).in_units(&args.units.options(), &files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slices_by_coordinate_pick_the_layer_holding_it() {
+        let grid = meshvol::grid::Grid::new([0.0, 0.0, -1.0], [1.0, 1.0, 0.1], [2, 2, 30]).unwrap();
+        let at = |s: &str| slice_of(parse_slice(s).unwrap(), &grid);
+        assert_eq!(at("z=-1").unwrap(), Slice { axis: 2, index: 0 });
+        assert_eq!(at("z=0.25").unwrap(), Slice { axis: 2, index: 12 });
+        // On a boundary: the layer above it; on the far face: the last layer.
+        assert_eq!(at("x=1").unwrap(), Slice { axis: 0, index: 1 });
+        assert_eq!(at("z=2").unwrap(), Slice { axis: 2, index: 29 });
+        // Each boundary c_k picks layer k, with c_k computed as the grid computes it.
+        for k in 0..30 {
+            let c = -1.0 + k as f64 * 0.1;
+            assert_eq!(
+                slice_of(SliceAt::Coordinate { axis: 2, value: c }, &grid).unwrap().index,
+                k
+            );
+        }
+        assert_eq!(at("k=29").unwrap(), Slice { axis: 2, index: 29 });
+        assert!(at("k=30").unwrap_err().contains("k from 0 to 29"));
+        assert!(at("z=2.01").unwrap_err().contains("outside the grid"));
+        assert!(parse_slice("k=1.5").unwrap_err().contains("z=1.5"));
+        assert!(parse_slice("w=1").is_err() && parse_slice("z=nan").is_err());
+    }
 }

@@ -16,6 +16,8 @@ pub struct HullArgs {
     /// input (format from the content).
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// Print one JSON object per file, one per line.
     #[arg(long)]
     json: bool,
@@ -42,11 +44,12 @@ fn parse_out(s: &str) -> Result<PathBuf, String> {
 
 /// Runs the command.
 pub fn run(args: HullArgs, quiet: bool) -> ExitCode {
-    if args.out.is_some() && args.files.len() != 1 {
+    let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Points);
+    if args.out.is_some() && inputs.files.len() + inputs.problems.len() != 1 {
         eprintln!("meshvol: error: --out writes one hull: give one FILE");
         return ExitCode::from(2);
     }
-    driver::each(&args.files, Output { json: args.json, quiet }, |path, progress| {
+    driver::each(&inputs, Output { json: args.json, quiet, csv: false }, |path, progress| {
         let name = path.display().to_string();
         progress.stage("reading", path);
         let cloud = crate::input::load_points(path)?;

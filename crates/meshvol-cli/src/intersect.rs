@@ -3,7 +3,7 @@
 //! differences, without a boolean mesh; with `--pairs`, of every pair of several files
 //! whose boxes overlap.
 
-use crate::driver::{self, Driver, Output};
+use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol_report::intersect::{intersect_with, overlapping_pairs};
@@ -14,8 +14,10 @@ use std::process::ExitCode;
 pub struct IntersectArgs {
     /// Two mesh files A and B, each one body (every shell of the file); with --pairs,
     /// any number.
-    #[arg(required = true, num_args = 2.., value_name = "FILE")]
+    #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// Every pair of the files whose boxes overlap, each once (one report per pair, in
     /// the files' order); pairs whose boxes are apart hold no volume and are not
     /// printed.
@@ -39,17 +41,23 @@ pub struct IntersectArgs {
 
 /// Runs the command: one report for the pair, or one per overlapping pair.
 pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
-    let output = Output { json: args.json, quiet };
+    let output = Output { json: args.json, quiet, csv: false };
+    let files = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
     if args.pairs {
-        return pairs(&args, output);
+        return pairs(&args, &files, output);
     }
-    if args.files.len() != 2 {
-        eprintln!("meshvol: error: intersect takes two files A B (several with --pairs)");
+    if files.files.len() + files.problems.len() != 2 {
+        let found = if args.files.iter().any(|f| f.is_dir()) {
+            format!(" (the arguments give {})", files.files.len())
+        } else {
+            String::new()
+        };
+        eprintln!("meshvol: error: intersect takes two files A B{found} (several with --pairs)");
         return ExitCode::from(2);
     }
-    driver::once(&args.files, output, |progress| {
+    driver::once(&files, output, |progress| {
         let mut inputs = Vec::new();
-        for path in &args.files {
+        for path in &files.files {
             inputs.push(solid::read(path, args.solid.check(), progress)?);
             progress.done(path);
         }
@@ -63,10 +71,10 @@ pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
 
 /// `--pairs`: each file read and checked once; a file that fails is reported and left
 /// out of the pairs.
-fn pairs(args: &IntersectArgs, output: Output) -> ExitCode {
-    let mut driver = Driver::new(&args.files, output);
+fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> ExitCode {
+    let mut driver = driver::start(files, output);
     let mut inputs = Vec::new();
-    for path in &args.files {
+    for path in &files.files {
         match solid::read(path, args.solid.check(), &driver.progress) {
             Ok(input) => inputs.push(input),
             Err(e) => driver.fail(&path.display().to_string(), &e),
@@ -76,7 +84,7 @@ fn pairs(args: &IntersectArgs, output: Output) -> ExitCode {
     let subjects = solid::subjects(&inputs);
     let pairs = overlapping_pairs(&subjects);
     if pairs.len() > args.max_pairs {
-        let names: Vec<String> = args.files.iter().map(|p| p.display().to_string()).collect();
+        let names: Vec<String> = files.files.iter().map(|p| p.display().to_string()).collect();
         let error = format!(
             "{}: {} pairs of boxes overlap, more than --max-pairs {}; raise it to measure them",
             names.join(", "),

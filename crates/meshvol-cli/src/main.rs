@@ -20,6 +20,7 @@ mod solid;
 mod union;
 mod units;
 mod volume;
+mod walk;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
@@ -29,7 +30,10 @@ use std::process::ExitCode;
     name = "meshvol",
     version,
     about = "Measure solids: volume, area, centroid and inertia of mesh files, exactly and fast.",
-    after_help = "`meshvol FILE...` is short for `meshvol volume FILE...`."
+    after_help = "`meshvol FILE...` is short for `meshvol volume FILE...`; a folder stands for the \
+                  mesh files in it (--recursive: in its subfolders too).\n\nExamples:\n  \
+                  meshvol samples/flanged-bushing.stl\n  meshvol check samples/ --format csv\n  \
+                  meshvol help grid"
 )]
 struct Cli {
     /// Worker threads (default: one per core). Results are identical for any count.
@@ -49,41 +53,128 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Volume, area, centroid, inertia, principal axes, mass and bounds of each file.
+    #[command(after_help = EXAMPLES_VOLUME)]
     Volume(volume::VolumeArgs),
     /// Can the volume be trusted? Closed, manifold, wound which way, shells, cavities,
     /// overlaps, self-intersections. Exits 1 when a file does not bound a volume.
+    #[command(after_help = EXAMPLES_CHECK)]
     Check(check::CheckArgs),
     /// Write the mesh with shells turned outward (cavities inward), degenerate and
     /// duplicate faces removed, vertices welded, and with --cap, holes capped. Says what
     /// changed.
+    #[command(after_help = EXAMPLES_REPAIR)]
     Repair(repair::RepairArgs),
     /// Area, perimeter, centroid and second moments of polygons (WKT, GeoJSON, x y
     /// lines), per feature and in total; reports self-intersecting and crossing rings.
+    #[command(after_help = EXAMPLES_AREA)]
     Area(area::AreaArgs),
     /// The cross-section of a mesh by a plane: its outline (as WKT or GeoJSON on
     /// request), area, centroid and second moments.
+    #[command(after_help = EXAMPLES_SECTION)]
     Section(section::SectionArgs),
     /// Volume, area and centroid of the convex hull of a point cloud (.xyz, .csv, PLY,
     /// or any mesh's vertices); --out writes the hull.
+    #[command(after_help = EXAMPLES_HULL)]
     Hull(hull::HullArgs),
     /// The volume of the solid in each cell of a regular grid (exact, not voxels): .npy,
     /// .vti or .csv, a summary, and a PNG of a slice.
+    #[command(after_help = EXAMPLES_GRID)]
     Grid(grid::GridArgs),
     /// Volume below each level along an axis, slab volumes and section areas (a
     /// strapping table).
+    #[command(after_help = EXAMPLES_PROFILE)]
     Profile(profile::ProfileArgs),
     /// The volume of the union of overlapping bodies (files, or one file's shells) as a
     /// certified interval, without a boolean mesh.
+    #[command(after_help = EXAMPLES_UNION)]
     Union(union::UnionArgs),
     /// The volume of the intersection of two bodies as a certified interval, with IoU,
     /// Dice and the differences A − B, B − A, without a boolean mesh.
+    #[command(after_help = EXAMPLES_INTERSECT)]
     Intersect(intersect::IntersectArgs),
     /// The part of the solid below a plane: volume, centroid (centre of buoyancy),
     /// wetted area, section (waterplane); or the level that holds a given volume.
+    #[command(after_help = EXAMPLES_BELOW)]
     Below(below::BelowArgs),
     /// Cut and fill between an existing surface and a design surface or level
     /// (earthwork volumes), exactly; per plan cell with --cells or --pitch.
+    #[command(after_help = EXAMPLES_CUTFILL)]
     Cutfill(cutfill::CutFillArgs),
+    /// Print a completion script for a shell to stdout (`meshvol completions bash >
+    /// ~/.local/share/bash-completion/completions/meshvol`).
+    #[command(after_help = EXAMPLES_COMPLETIONS)]
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
+    /// Print the manual page (roff) to stdout: the command's, or with COMMAND that
+    /// subcommand's (`meshvol man > meshvol.1 && man ./meshvol.1`).
+    #[command(after_help = EXAMPLES_MAN)]
+    Man {
+        /// A subcommand: its own page (`meshvol-volume(1)`).
+        #[arg(value_name = "COMMAND")]
+        command: Option<String>,
+    },
+}
+
+/// `--help`'s examples, per command.
+const EXAMPLES_VOLUME: &str = "Examples:\n  meshvol volume samples/flanged-bushing.stl\n  meshvol volume samples/ --recursive --glob '*.stl' --format csv > volumes.csv\n  meshvol volume samples/flanged-bushing.stl --units mm:cm --density 7.85g/cm3 --json";
+const EXAMPLES_CHECK: &str = "Examples:\n  meshvol check samples/flanged-bushing.stl\n  meshvol check samples/ -r --format csv\n  meshvol check part.stl.gz --no-intersections --json";
+const EXAMPLES_REPAIR: &str = "Examples:\n  meshvol repair samples/flanged-bushing.stl -o bushing.ply\n  meshvol repair scan.obj --cap -o closed.obj --json";
+const EXAMPLES_AREA: &str = "Examples:\n  meshvol area parcel.wkt lots.geojson\n  meshvol area parcels/ --glob '*.wkt' --json\n  cat lots.wkt | meshvol area -";
+const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt";
+const EXAMPLES_HULL: &str = "Examples:\n  meshvol hull samples/flanged-bushing.stl\n  meshvol hull scan.xyz --out hull.stl --json";
+const EXAMPLES_GRID: &str = "Examples:\n  meshvol grid samples/flanged-bushing.stl --cells 60,60,30 --out cells.npy\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png z.png --slice z=12.5\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png mid.png --slice k=15 --json";
+const EXAMPLES_PROFILE: &str = "Examples:\n  meshvol profile samples/flanged-bushing.stl --levels 10\n  meshvol profile samples/flanged-bushing.stl --step 0.5 --units mm:mL --csv";
+const EXAMPLES_UNION: &str = "Examples:\n  meshvol union a.stl b.stl c.stl --json\n  meshvol union samples/flanged-bushing.stl       # one file: its shells are the bodies";
+const EXAMPLES_INTERSECT: &str =
+    "Examples:\n  meshvol intersect a.stl b.stl --json\n  meshvol intersect parts/ --pairs";
+const EXAMPLES_BELOW: &str = "Examples:\n  meshvol below samples/flanged-bushing.stl --plane 0,0,1,10\n  meshvol below samples/flanged-bushing.stl --volume 10000 --units mm:mL\n  meshvol below hulls/ --volume 4 --heel 10 --format csv";
+const EXAMPLES_CUTFILL: &str = "Examples:\n  meshvol cutfill terrain.obj --level 5\n  meshvol cutfill existing.stl --design design.stl --pitch 10 --out cells.npy";
+const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish";
+const EXAMPLES_MAN: &str = "Examples:\n  meshvol man > meshvol.1 && man ./meshvol.1\n  meshvol man volume > meshvol-volume.1";
+
+/// Writes the completion script for `shell` to stdout.
+fn completions(shell: clap_complete::Shell) -> ExitCode {
+    let mut out = Vec::new();
+    clap_complete::generate(shell, &mut Cli::command(), "meshvol", &mut out);
+    emit(&out)
+}
+
+/// Writes the manual page of the command, or of its subcommand `name`, to stdout.
+fn man(name: Option<&str>) -> ExitCode {
+    let mut command = Cli::command();
+    command.build();
+    let page = match name {
+        None => command,
+        Some(name) => match command.find_subcommand(name) {
+            // The page is printed once by a process that then ends: its name may live as long.
+            Some(sub) => sub.clone().name(&*format!("meshvol-{name}").leak()),
+            None => {
+                let names: Vec<&str> = command.get_subcommands().map(|c| c.get_name()).collect();
+                eprintln!(
+                    "meshvol: error: '{name}' is not a subcommand: one of {}",
+                    names.join(", ")
+                );
+                return ExitCode::from(2);
+            }
+        },
+    };
+    let mut out = Vec::new();
+    if let Err(e) = clap_mangen::Man::new(page).render(&mut out) {
+        eprintln!("meshvol: error: cannot write the manual page: {e}");
+        return ExitCode::FAILURE;
+    }
+    emit(&out)
+}
+
+/// Writes `bytes` to stdout; a closed stdout (piped into `head`) ends quietly.
+fn emit(bytes: &[u8]) -> ExitCode {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let _ = stdout.write_all(bytes).and_then(|()| stdout.flush());
+    ExitCode::SUCCESS
 }
 
 fn non_negative_finite(s: &str) -> Result<f64, String> {
@@ -242,5 +333,7 @@ fn main() -> ExitCode {
         Command::Intersect(args) => intersect::run(args, cli.quiet),
         Command::Below(args) => below::run(args, cli.quiet),
         Command::Cutfill(args) => cutfill::run(args, cli.quiet),
+        Command::Completions { shell } => completions(shell),
+        Command::Man { command } => man(command.as_deref()),
     }
 }

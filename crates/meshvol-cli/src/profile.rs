@@ -47,7 +47,7 @@ pub struct ProfileArgs {
 /// Runs the command: the table, CSV or JSON on stdout.
 pub fn run(args: ProfileArgs, quiet: bool) -> ExitCode {
     let files = std::slice::from_ref(&args.file);
-    let mut driver = Driver::new(files, Output { json: args.json, quiet });
+    let mut driver = Driver::new(files, Output { json: args.json, quiet, csv: false });
     match measure(&args, &driver.progress) {
         Ok(report) if args.csv => driver.print(&report, &report.csv()),
         Ok(report) => driver.report(&report),

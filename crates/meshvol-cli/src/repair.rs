@@ -50,7 +50,7 @@ fn parse_out(s: &str) -> Result<PathBuf, String> {
 pub fn run(args: RepairArgs, quiet: bool) -> ExitCode {
     let options = crate::solid::check_options(args.weld_tolerance, false);
     let files = std::slice::from_ref(&args.file);
-    let mut driver = Driver::new(files, Output { json: args.json, quiet });
+    let mut driver = Driver::new(files, Output { json: args.json, quiet, csv: false });
     let repaired =
         crate::solid::read(&args.file, Some(options), &driver.progress).and_then(|input| {
             let check = input.check.as_ref().ok_or("no check")?;

@@ -95,7 +95,7 @@ fn out_is_geojson(out: &Path) -> Result<bool, String> {
 /// Runs `meshvol section`.
 pub fn run(args: SectionArgs, quiet: bool) -> ExitCode {
     let files = std::slice::from_ref(&args.file);
-    let mut driver = Driver::new(files, Output { json: args.json, quiet });
+    let mut driver = Driver::new(files, Output { json: args.json, quiet, csv: false });
     match measure(&args, &driver.progress) {
         Ok((report, Some(geometry))) => driver.print(&report, &geometry),
         Ok((report, None)) => driver.report(&report),

@@ -13,6 +13,8 @@ pub struct UnionArgs {
     /// Mesh files: each is one body; a single file's shells are the bodies.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// Stop refining once (upper − lower) ≤ REL · lower.
     #[arg(long, value_name = "REL", default_value_t = 1e-6, value_parser = crate::positive_finite, allow_hyphen_values = true)]
     tolerance: f64,
@@ -28,9 +30,10 @@ pub struct UnionArgs {
 
 /// Runs the command: one report for all the bodies.
 pub fn run(args: UnionArgs, quiet: bool) -> ExitCode {
-    driver::once(&args.files, Output { json: args.json, quiet }, |progress| {
+    let files = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
+    driver::once(&files, Output { json: args.json, quiet, csv: false }, |progress| {
         let mut inputs = Vec::new();
-        for path in &args.files {
+        for path in &files.files {
             inputs.push(solid::read(path, args.solid.check(), progress)?);
             progress.done(path);
         }

@@ -1,6 +1,6 @@
 //! `meshvol volume`: mass properties of each file's solid.
 
-use crate::driver::{self, Driver, Output};
+use crate::driver::{self, Output};
 use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::{Args, ValueEnum};
@@ -12,16 +12,20 @@ use std::process::ExitCode;
 
 #[derive(Args)]
 pub struct VolumeArgs {
-    /// Mesh files: STL (binary or ASCII), OBJ, OFF, PLY, 3MF, glTF/GLB; `-` reads
-    /// standard input (format from the content).
+    /// Mesh files: STL (binary or ASCII), OBJ, OFF, PLY, 3MF, glTF/GLB, or those
+    /// compressed (.gz, .bz2, .zst, a .zip of one); folders (the mesh files in them,
+    /// sorted by path); `-` reads standard input (format from the content).
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
+    #[command(flatten)]
+    walk: crate::walk::WalkArgs,
     /// Print one JSON object per file, one per line (`--format json`).
     #[arg(long, conflicts_with = "format")]
     json: bool,
-    /// What to print: `text` (the default), `json`, or the `<inertial>` element of a
-    /// robot description, `urdf`, `sdf` or `mjcf` (mass, centre of mass and inertia in
-    /// SI units: give --units FILE:m and --density in kg/m³).
+    /// What to print: `text` (the default), `json`, `csv` (one table: a header, then a
+    /// row per file, the JSON keys as columns, nested ones as `parent.child`), or the
+    /// `<inertial>` element of a robot description, `urdf`, `sdf` or `mjcf` (mass, centre
+    /// of mass and inertia in SI units: give --units FILE:m and --density in kg/m³).
     #[arg(long, value_enum)]
     format: Option<Format>,
     #[command(flatten)]
@@ -43,6 +47,7 @@ pub struct VolumeArgs {
 enum Format {
     Text,
     Json,
+    Csv,
     Urdf,
     Sdf,
     Mjcf,
@@ -56,6 +61,7 @@ pub fn run(args: VolumeArgs, quiet: bool) -> ExitCode {
         exact: args.exact,
     };
     let check = args.solid.check();
+    let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
     let measure = |path: &Path, progress: &Progress| {
         let input = solid::read(path, check, progress)?;
         progress.stage("measuring", path);
@@ -67,12 +73,13 @@ pub fn run(args: VolumeArgs, quiet: bool) -> ExitCode {
         Some(Format::Mjcf) => RobotFormat::Mjcf,
         format => {
             let json = args.json || format == Some(Format::Json);
-            return driver::each(&args.files, Output { json, quiet }, measure);
+            let output = Output { json, quiet, csv: format == Some(Format::Csv) };
+            return driver::each(&inputs, output, measure);
         }
     };
     // One element per file, after a comment naming it.
-    let mut driver = Driver::new(&args.files, Output { json: false, quiet });
-    for path in &args.files {
+    let mut driver = driver::start(&inputs, Output { json: false, quiet, csv: false });
+    for path in &inputs.files {
         let name = path.display().to_string();
         let printed = measure(path, &driver.progress).and_then(|report| {
             let element = inertial(&report, robot)?;

@@ -8,7 +8,9 @@
 //! zip (3MF) magic bytes, a glTF JSON object, an OFF header, the binary STL size rule, a
 //! `solid` line, OBJ statements. [`Loaded::format_source`] says which decided. Each
 //! format's rules are in its module: [`stl`], [`obj`], [`off`], [`ply`], [`threemf`],
-//! [`gltf`].
+//! [`gltf`]. A compressed file (`part.stl.gz`, `.bz2`, `.zst`, a `.zip` of one mesh) is
+//! decompressed first, within the stream limit, and read as the file it holds
+//! ([`compressed`]).
 //!
 //! A binary STL is not copied: it stays memory-mapped and is read as a [`StlSoup`]. The
 //! other formats are parsed (in parallel where the format allows) into a
@@ -54,6 +56,7 @@ use std::path::{Path, PathBuf};
 
 use meshvol::{Mesh, Point, Surface};
 
+pub mod compressed;
 mod error;
 pub mod geojson;
 pub mod gltf;
@@ -286,8 +289,14 @@ impl Loaded {
     }
 }
 
-/// Reads a mesh file, choosing the format by extension and content.
+/// Reads a mesh file, choosing the format by extension and content. A compressed file
+/// (`.gz`, `.bz2`, `.zst`, `.zip`) is decompressed first, within the stream limit
+/// ([`compressed`]).
 pub fn read(path: &Path) -> Result<Loaded, ReadError> {
+    if let Some(compression) = compressed::Compression::of_path(path) {
+        let (inner, data) = compressed::open(path, compression, has_mesh_extension)?;
+        return load(&inner, Bytes::Owned(data)).map_err(|e| named(e, path, &inner));
+    }
     let bytes = Bytes::open(path).map_err(|e| ReadError {
         path: path.to_path_buf(),
         location: None,
@@ -302,6 +311,52 @@ pub fn read(path: &Path) -> Result<Loaded, ReadError> {
 /// a path such as `-`: no extension, so the content decides.
 pub fn read_bytes(path: &Path, bytes: Vec<u8>) -> Result<Loaded, ReadError> {
     load(path, Bytes::Owned(bytes))
+}
+
+/// An error about the decompressed `inner` named as the file given (`part.stl.gz`); a zip
+/// member keeps its name (`parts.zip/part.stl`), which names the archive.
+fn named(mut e: ReadError, given: &Path, inner: &Path) -> ReadError {
+    if e.path == inner && !inner.starts_with(given) {
+        e.path = given.to_path_buf();
+    }
+    e
+}
+
+/// What a command reads, for choosing the files in a folder by their names
+/// ([`InputKind::accepts`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputKind {
+    /// Meshes ([`read`]).
+    Mesh,
+    /// Point clouds ([`read_points`]): text points and meshes.
+    Points,
+    /// Polygons ([`read_polygons`]).
+    Polygons,
+}
+
+impl InputKind {
+    /// The extensions read (without the dot, lower case), before compression.
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            InputKind::Mesh => &["stl", "obj", "off", "ply", "3mf", "gltf", "glb"],
+            InputKind::Points => {
+                &["xyz", "txt", "csv", "pts", "stl", "obj", "off", "ply", "3mf", "gltf", "glb"]
+            }
+            InputKind::Polygons => &["wkt", "geojson", "json", "txt", "xy", "csv"],
+        }
+    }
+
+    /// Whether a file of this name is read: one of [`extensions`](Self::extensions), that
+    /// compressed (`part.stl.gz`, `.bz2`, `.zst`), or a `.zip`.
+    pub fn accepts(self, path: &Path) -> bool {
+        let ext = |p: &Path| p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let known = |p: &Path| ext(p).is_some_and(|e| self.extensions().contains(&e.as_str()));
+        match compressed::Compression::of_path(path) {
+            Some(compressed::Compression::Zip) => true,
+            Some(_) => known(&path.with_extension("")),
+            None => known(path),
+        }
+    }
 }
 
 /// The format families an extension or a sniff can name.

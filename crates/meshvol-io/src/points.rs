@@ -72,6 +72,11 @@ fn is_text_points(path: &Path) -> bool {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_points(path: &Path) -> Result<PointCloud, ReadError> {
+    if let Some(compression) = crate::compressed::Compression::of_path(path) {
+        let wanted = |p: &Path| crate::InputKind::Points.accepts(p);
+        let (inner, data) = crate::compressed::open(path, compression, wanted)?;
+        return points(&inner, Bytes::Owned(data)).map_err(|e| crate::named(e, path, &inner));
+    }
     let bytes = Bytes::open(path).map_err(|e| ReadError {
         path: path.to_path_buf(),
         location: None,

@@ -78,6 +78,11 @@ pub struct PolygonFile {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_polygons(path: &Path) -> Result<PolygonFile, ReadError> {
+    if let Some(compression) = crate::compressed::Compression::of_path(path) {
+        let wanted = |p: &Path| crate::InputKind::Polygons.accepts(p);
+        let (inner, data) = crate::compressed::open(path, compression, wanted)?;
+        return read_polygons_bytes(&inner, &data).map_err(|e| crate::named(e, path, &inner));
+    }
     let bytes = Bytes::open(path).map_err(|e| ReadError {
         path: path.to_path_buf(),
         location: None,

@@ -327,12 +327,24 @@ fn a_zip_that_is_not_a_3mf_package_says_so() {
         let e = read_err(name, zip.clone());
         assert_eq!(e.to_string(), format!("{name}: not a 3MF package (no 3D/3dmodel.model)"));
     }
-    // The corpus's zipped sets, where present.
+    // A `.zip` file (not bytes) is an archive of one mesh: read as the STL it holds.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("box.zip");
+    std::fs::write(&path, &zip).unwrap();
+    let loaded = meshvol_io::read(&path).unwrap();
+    assert_eq!(loaded.face_count(), read_as("box.stl", stl.as_bytes()).unwrap().face_count());
+    // The corpus's zipped sets, where present: its one STL (the `__MACOSX/._` copy passed
+    // over), as the member read alone.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/trimesh-models");
     let zipped = dir.join("ascii.stl.zip");
     if zipped.is_file() {
-        let e = meshvol_io::read(&zipped).unwrap_err();
-        assert_eq!(e.message, "not a 3MF package (no 3D/3dmodel.model)");
+        let loaded = meshvol_io::read(&zipped).unwrap();
+        let mut archive = zip::ZipArchive::new(std::fs::File::open(&zipped).unwrap()).unwrap();
+        let mut member = Vec::new();
+        std::io::Read::read_to_end(&mut archive.by_name("fuji_obj.stl").unwrap(), &mut member)
+            .unwrap();
+        let alone = read_as("fuji_obj.stl", member).unwrap();
+        assert_eq!((loaded.format, loaded.face_count()), (alone.format, alone.face_count()));
     } else {
         println!("corpus not found at {}, skipping", dir.display());
     }

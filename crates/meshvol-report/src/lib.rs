@@ -45,6 +45,7 @@ pub mod profile;
 pub mod repair;
 pub mod section;
 pub mod subject;
+pub mod table;
 pub mod timings;
 pub mod union;
 pub mod units;
