@@ -35,7 +35,7 @@ use crate::Point;
 use super::moments::{add_piece, Sums};
 
 /// A frame of the boundary pass: the bodies' coordinates turned cyclically so that
-/// `vertical()` (an axis of the bodies' own frame) is the pass's z.
+/// one axis of the bodies' own frame is the pass's z.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Frame {
     /// (x, y, z) as they are.
