@@ -16,7 +16,10 @@
 //! whatever an example writes (`--out cells.npy`) lands in the scratch folder.
 //!
 //! To refresh the expected outputs after a deliberate change:
-//! `TRYCMD=overwrite cargo test -p meshvol-cli --test docs`, then read the diff.
+//! `TRYCMD=overwrite cargo test -p meshvol-cli --test docs`, then read the diff and put
+//! back the `[..]` of timings (overwrite writes the output as it came). trycmd compares the
+//! output's final newline too: a block shows it as an empty line before the next `$` or
+//! the closing fence.
 
 use std::path::{Path, PathBuf};
 
