@@ -5,7 +5,7 @@
 #   meshvol-VERSION-x86_64-unknown-linux-musl
 #       the `meshvol` command, statically linked against musl (runs on any x86-64 Linux,
 #       whatever its glibc), stripped. Install: copy it onto the PATH.
-#   meshvol-VERSION-cp39-abi3-manylinux_2_17_x86_64.manylinux2014_x86_64.whl
+#   meshvol-VERSION-cp39-abi3-manylinux2014_x86_64.manylinux_2_17_x86_64.whl
 #       the Python package: one wheel for CPython 3.9 and later (abi3), linked by zig
 #       against glibc 2.17 (manylinux2014: any Linux from 2014 on). Install: pip install.
 #
@@ -69,6 +69,12 @@ wheel() {
     PATH=$venv/bin:$PATH "$venv/bin/maturin" build --release --locked --strip --zig \
         --compatibility manylinux2014 --manifest-path crates/meshvol-py/Cargo.toml \
         --out "$dist"
+    # It installs and measures (in target/dist-venv, with the pinned NumPy).
+    "$venv/bin/python" -m pip install --quiet --disable-pip-version-check --no-index --no-deps \
+        --force-reinstall "$dist"/meshvol-*.whl
+    "$venv/bin/python" -c 'import meshvol, sys
+v = meshvol.load("samples/flanged-bushing.stl").mass_properties().volume
+sys.exit(abs(v - 26183.29623547592) > 1e-9)'
 }
 
 case $what in
