@@ -18,8 +18,23 @@ pub struct PyShell {
     fields: Fields,
 }
 
+impl PyShell {
+    /// A Shell object of a report's shell.
+    pub fn new(s: &ShellReport) -> PyResult<PyShell> {
+        Ok(PyShell { fields: Fields::new(s)?, report: s.clone() })
+    }
+}
+
 #[pymethods]
 impl PyShell {
+    /// shell["volume"]: a key of the report, as a dict entry (shell_details were dicts
+    /// once; code that indexes them keeps working).
+    fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.fields
+            .get(py, "Shell", key)
+            .map_err(|_| pyo3::exceptions::PyKeyError::new_err(key.to_string()))
+    }
+
     fn __repr__(&self) -> String {
         let r = &self.report;
         let py_bool = |b: bool| if b { "True" } else { "False" };
@@ -80,12 +95,7 @@ impl PyCheck {
     /// Each shell's facts, as Shell objects.
     #[getter]
     fn shell_details(&self) -> PyResult<Vec<PyShell>> {
-        self.report
-            .facts
-            .shell_details
-            .iter()
-            .map(|s| Ok(PyShell { fields: Fields::new(s)?, report: s.clone() }))
-            .collect()
+        self.report.facts.shell_details.iter().map(PyShell::new).collect()
     }
 
     /// Pairs of shells whose surfaces cross, as (i, j) tuples with i < j.

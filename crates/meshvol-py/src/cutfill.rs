@@ -54,6 +54,12 @@ impl PyCutFill {
         self.cells(py, |c| &c.fill)
     }
 
+    /// The footprint's plan box as a (2, 2) float64 array [[x0, y0], [x1, y1]], or None.
+    #[getter]
+    fn footprint_bounds<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.report.footprint_bounds.map(|b| numpy::ndarray::arr2(&b).into_pyarray(py))
+    }
+
     fn __repr__(&self) -> String {
         let r = &self.report;
         format!("CutFill(cut={:?}, fill={:?}, net={:?})", r.cut, r.fill, r.net)
@@ -66,8 +72,8 @@ crate::dict::report_methods!(PyCutFill, "CutFill");
 /// read here (its reader's warnings not yet given).
 fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)> {
     if obj.cast::<PyMesh>().is_err() {
-        if let Ok(path) = obj.extract::<PathBuf>() {
-            return Ok((Bound::new(obj.py(), load(obj.py(), path)?)?, true));
+        if obj.extract::<PathBuf>().is_ok() {
+            return Ok((Bound::new(obj.py(), load(obj.py(), obj, None)?)?, true));
         }
     }
     Ok((mesh_of(obj)?, false))
@@ -87,9 +93,13 @@ pub fn cutfill(
     existing: &Bound<'_, PyAny>,
     design: Option<&Bound<'_, PyAny>>,
     level: Option<f64>,
-    cells: Option<[i64; 2]>,
+    cells: Option<&Bound<'_, PyAny>>,
     pitch: Option<f64>,
 ) -> PyResult<PyCutFill> {
+    let cells = cells
+        .map(|c| crate::convert::int_argument(c, "cells", &[2], "(nx, ny)"))
+        .transpose()?
+        .map(|c| [c[0], c[1]]);
     let spacing = match (cells, pitch) {
         (Some(_), Some(_)) => return Err(bad_argument("give cells=(nx, ny) or pitch=p, not both")),
         (Some(counts), None) => {

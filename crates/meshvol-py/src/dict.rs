@@ -26,14 +26,37 @@ impl Fields {
     }
 
     /// The value of key `name`, as a new Python object; AttributeError without it.
+    ///
+    /// Counts are also `*_count` attributes ([`COUNTS`]: `vertex_count` is the key
+    /// `vertices`); where the key is the name of an array elsewhere (`Mesh.vertices`,
+    /// `Mesh.faces`), the key as an attribute still gives the count but with a
+    /// DeprecationWarning (`to_dict()` keeps the command's keys).
     pub fn get<'py>(
         &self,
         py: Python<'py>,
         owner: &str,
         name: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
+        if let Some((_, key)) = COUNTS.iter().find(|(alias, _)| *alias == name) {
+            if let Some(v @ Value::Number(_)) = self.values.get(*key) {
+                return to_python(py, v);
+            }
+        }
         match self.values.get(name) {
-            Some(v) => to_python(py, v),
+            Some(v) => {
+                if let (Value::Number(_), Some((alias, _))) =
+                    (v, COUNTS.iter().find(|(_, key)| *key == name && DEPRECATED.contains(key)))
+                {
+                    crate::errors::deprecated(
+                        py,
+                        &format!(
+                            "{owner}.{name} is a count and is now {owner}.{alias} ({name} names \
+                             an array elsewhere, as Mesh.{name}); {owner}.{name} will be removed"
+                        ),
+                    )?;
+                }
+                to_python(py, v)
+            }
             None => Err(PyAttributeError::new_err(format!(
                 "'{owner}' object has no attribute '{name}'"
             ))),
@@ -44,7 +67,12 @@ impl Fields {
     /// the keys, so that tab completion and `inspect` see every attribute.
     pub fn dir(&self, object: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
         let mut names: Vec<String> = object.get_type().dir()?.extract()?;
-        names.extend(self.values.keys().cloned());
+        names.extend(self.values.keys().filter(|k| !self.is_deprecated(k)).cloned());
+        for (alias, key) in COUNTS {
+            if matches!(self.values.get(key), Some(Value::Number(_))) {
+                names.push(alias.to_string());
+            }
+        }
         names.sort();
         names.dedup();
         Ok(names)
@@ -57,6 +85,26 @@ impl Fields {
         Ok(json.call_method1("loads", (&self.json,))?.cast_into::<PyDict>()?)
     }
 }
+
+impl Fields {
+    /// Whether the attribute `key` is a count kept under an array's name.
+    fn is_deprecated(&self, key: &str) -> bool {
+        DEPRECATED.contains(&key) && matches!(self.values.get(key), Some(Value::Number(_)))
+    }
+}
+
+/// Counts as attributes: (attribute, the report's key).
+const COUNTS: [(&str, &str); 6] = [
+    ("vertex_count", "vertices"),
+    ("face_count", "faces"),
+    ("triangle_count", "triangles"),
+    ("point_count", "points"),
+    ("hull_vertex_count", "hull_vertices"),
+    ("hull_face_count", "hull_faces"),
+];
+
+/// Keys that are counts in a report but arrays on a Mesh: deprecated as attributes.
+const DEPRECATED: [&str; 2] = ["vertices", "faces"];
 
 /// A JSON value as plain Python values: None, bool, int, float, str, list, dict.
 fn to_python<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {

@@ -10,7 +10,7 @@ use meshvol::topology::{self, Check, CheckError, CheckOptions};
 use meshvol::{Faces, Mesh, MeshError};
 use meshvol_report::subject::{Source, Subject};
 use numpy::ndarray::ArrayView2;
-use numpy::{Element, PyArray2, PyArray3};
+use numpy::{Element, PyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -281,18 +281,23 @@ impl PyMesh {
         check::check(slf, weld_tolerance, intersections)
     }
 
-    /// The volume of the solid in each cell of a regular grid: an (nx, ny, nz) float64
-    /// array, exact up to rounding (negative where the surface is wound inward).
+    /// The volume of the solid in each cell of a regular grid, as a meshvol.Grid: its
+    /// values are an (nx, ny, nz) float64 array, exact up to rounding (negative where the
+    /// surface is wound inward), and it says where the cells are (origin, spacing,
+    /// bounds). np.asarray(grid) is the array; NumPy functions and operators take the
+    /// Grid as it.
     ///
-    /// cells=(nx, ny, nz) cells between bounds=((x0, y0, z0), (x1, y1, z1)) (default: the
-    /// mesh's bounding box); or pitch=h (or (hx, hy, hz)): cells of that size from the
-    /// lower bound, enough of them to cover the upper one. fraction=True divides each
-    /// cell's volume by the cell's.
+    /// cells=(nx, ny, nz) cells between bounds=[[x0, y0, z0], [x1, y1, z1]] (any (2, 3)
+    /// array-like, such as trimesh's mesh.bounds; default: the mesh's bounding box); or
+    /// pitch=h (or (hx, hy, hz)): cells of that size from the lower bound, enough of
+    /// them to cover the upper one (the grid's bounds then reach past it). fraction=True
+    /// divides each cell's volume by the cell's.
     ///
     /// region=((i0, i1), (j0, j1), (k0, k1)) returns only the block of cells i0 <= i <
     /// i1, j0 <= j < j1, k0 <= k < k1 of that grid: the same bits as the whole grid's
     /// [i0:i1, j0:j1, k0:k1], computed from the faces over the block's columns alone
-    /// (meshvol.dask spreads a grid's blocks over workers this way).
+    /// (meshvol.dask spreads a grid's blocks over workers this way); its origin is the
+    /// block's first corner.
     ///
     /// check=True (the default) measures the checked solid, as `meshvol grid` does;
     /// check=False the surface as wound.
@@ -301,17 +306,17 @@ impl PyMesh {
     fn grid<'py>(
         &self,
         py: Python<'py>,
-        cells: Option<[i64; 3]>,
-        bounds: Option<([f64; 3], [f64; 3])>,
+        cells: Option<&Bound<'py, PyAny>>,
+        bounds: Option<&Bound<'py, PyAny>>,
         fraction: bool,
         pitch: Option<&Bound<'py, PyAny>>,
         check: bool,
-        region: Option<[(i64, i64); 3]>,
-    ) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        region: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         properties::require_faces(&self.mesh)?;
         let subject = self.subject(py, check)?;
         self.warn(py, &subject.warnings())?;
-        grid::cell_volumes(py, &subject.measured(), cells, bounds, fraction, pitch, region)
+        grid::cell_volumes(py, &subject.measured(), cells, bounds, fraction, pitch, region, 1.0)
     }
 
     /// Pickling (multiprocessing, Dask): a Mesh travels as its vertex and face arrays and
@@ -398,17 +403,128 @@ impl PyMesh {
     }
 }
 
+/// The extensions `file_type` may name.
+const FILE_TYPES: [&str; 7] = ["stl", "obj", "off", "ply", "3mf", "gltf", "glb"];
+
+/// `file_type` checked: an extension, without its dot, lower case.
+fn file_type_of(file_type: Option<&str>) -> PyResult<Option<String>> {
+    let Some(t) = file_type else { return Ok(None) };
+    let t = t.trim().trim_start_matches('.').to_ascii_lowercase();
+    if FILE_TYPES.contains(&t.as_str()) {
+        Ok(Some(t))
+    } else {
+        Err(crate::errors::bad_argument(format!(
+            "file_type must be one of {}; got '{t}'",
+            FILE_TYPES.join(", ")
+        )))
+    }
+}
+
+/// A path given as str, bytes or os.PathLike.
+fn path_of(file: &Bound<'_, PyAny>) -> PyResult<Option<PathBuf>> {
+    let os = file.py().import("os")?;
+    let Ok(path) = os.call_method1("fspath", (file,)) else { return Ok(None) };
+    let path = os.call_method1("fsdecode", (path,))?;
+    Ok(Some(path.extract()?))
+}
+
+/// What `load` reads: the bytes of a file object (with the name it goes by), or a path.
+enum LoadSource {
+    Path(PathBuf),
+    Stream { name: String, bytes: Vec<u8> },
+}
+
+fn load_source(file: &Bound<'_, PyAny>) -> PyResult<LoadSource> {
+    if let Some(path) = path_of(file)? {
+        return Ok(LoadSource::Path(path));
+    }
+    if !file.hasattr("read")? {
+        return Err(PyTypeError::new_err(format!(
+            "load() takes a path (str, bytes or os.PathLike) or a binary file object; got {}",
+            file.get_type().name()?
+        )));
+    }
+    let data = file.call_method0("read")?;
+    let bytes: Vec<u8> = if let Ok(b) = data.cast::<pyo3::types::PyBytes>() {
+        b.as_bytes().to_vec()
+    } else if data.is_instance_of::<pyo3::types::PyString>() {
+        return Err(PyTypeError::new_err(
+            "load() read text from the file object: open it in binary mode ('rb'), or pass io.BytesIO",
+        ));
+    } else {
+        file.py().import("builtins")?.getattr("bytes")?.call1((data,))?.extract()?
+    };
+    let name = match file.getattr("name").ok().and_then(|n| path_of(&n).ok().flatten()) {
+        Some(p) => p.display().to_string(),
+        None => "<file object>".to_string(),
+    };
+    Ok(LoadSource::Stream { name, bytes })
+}
+
 /// Reads a mesh file: STL (binary or ASCII), OBJ, OFF, PLY, 3MF, glTF/GLB, the format
-/// chosen by extension and content as the command does. Raises ReadError naming the
-/// file and the place of the problem.
+/// chosen by extension and content as the command does.
+///
+/// file is a path (str, bytes or os.PathLike) or a binary file object (anything with
+/// read() returning bytes: open(path, "rb"), io.BytesIO, a zip member). file_type
+/// ('stl', 'obj', 'off', 'ply', '3mf', 'gltf', 'glb') names the format when the name
+/// does not (a file object without a name is otherwise recognised by its content).
+///
+/// A file that cannot be opened raises the OSError Python raises for it
+/// (FileNotFoundError, PermissionError, IsADirectoryError: meshvol.MeshFileNotFoundError
+/// and its siblings), which is also a meshvol.ReadError; a file that cannot be read as a
+/// mesh raises ReadError naming the file and the place of the problem.
 #[pyfunction]
-pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyMesh> {
-    let loaded = py.detach(|| meshvol_io::read(&path)).map_err(|e| read_error(py, &e))?;
-    let source = Source::of(&path.display().to_string(), &loaded);
+#[pyo3(signature = (file, file_type = None))]
+pub fn load(py: Python<'_>, file: &Bound<'_, PyAny>, file_type: Option<&str>) -> PyResult<PyMesh> {
+    let file_type = file_type_of(file_type)?;
+    let (name, loaded) = match load_source(file)? {
+        LoadSource::Path(path) => {
+            let opened = std::fs::metadata(&path).and_then(|m| {
+                if m.is_dir() {
+                    Err(std::io::Error::from(std::io::ErrorKind::IsADirectory))
+                } else {
+                    std::fs::File::open(&path).map(drop)
+                }
+            });
+            if let Err(e) = opened {
+                return Err(crate::errors::open_error(py, &path, &e));
+            }
+            let loaded = match &file_type {
+                None => py.detach(|| meshvol_io::read(&path)),
+                Some(t) => {
+                    let bytes = std::fs::read(&path)
+                        .map_err(|e| crate::errors::open_error(py, &path, &e))?;
+                    let typed = path.with_extension(t);
+                    py.detach(|| meshvol_io::read_bytes(&typed, bytes)).map_err(|mut e| {
+                        e.path.clone_from(&path);
+                        e
+                    })
+                }
+            };
+            (path.display().to_string(), loaded)
+        }
+        LoadSource::Stream { name, bytes } => {
+            let typed = match &file_type {
+                Some(t) => PathBuf::from(format!("stream.{t}")),
+                None => PathBuf::from(&name),
+            };
+            let loaded = py.detach(|| meshvol_io::read_bytes(&typed, bytes)).map_err(|mut e| {
+                e.path = PathBuf::from(&name);
+                e
+            });
+            (name, loaded)
+        }
+    };
+    let loaded = loaded.map_err(|e| read_error(py, &e))?;
+    let source = Source::of(&name, &loaded);
     let assembly = loaded.assembly.map(Arc::new);
     let surface = loaded.surface;
     let mesh = py.detach(|| surface.into_mesh()).map_err(|e| {
-        let error = meshvol_io::ReadError { path, location: None, message: e.to_string() };
+        let error = meshvol_io::ReadError {
+            path: PathBuf::from(&name),
+            location: None,
+            message: e.to_string(),
+        };
         read_error(py, &error)
     })?;
     Ok(PyMesh { mesh, source, assembly, checked: OnceLock::new() })

@@ -7,7 +7,7 @@ use crate::errors::{invalid, mesh_error};
 use meshvol::polygon::{polygon_issues, Point2, Polygon};
 use meshvol_io::PolygonFeature;
 use meshvol_report::area::{area, AreaReport, InertiaReport};
-use numpy::PyArray1;
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -71,13 +71,23 @@ impl PyAreaProperties {
         self.inertia().polar
     }
 
-    /// The principal second moments, larger first.
+    /// The principal second moments, ascending (as MassProperties.principal_moments);
+    /// principal_axes[k] is the axis of principal_moments[k]. (The command's JSON lists
+    /// them larger first, in inertia.principal.)
     #[getter]
     fn principal_moments<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.inertia().principal)
+        PyArray1::from_slice(py, &ascending(&self.inertia()).0)
     }
 
-    /// The angle of the first principal axis, counter-clockwise from x, in degrees.
+    /// The principal axes as a (2, 2) float64 array: row k is the unit axis (through the
+    /// centroid) of principal_moments[k], a right-handed pair.
+    #[getter]
+    fn principal_axes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        numpy::ndarray::arr2(&ascending(&self.inertia()).1).into_pyarray(py)
+    }
+
+    /// The angle of the axis of the larger principal moment (principal_axes[1]),
+    /// counter-clockwise from x, in degrees.
     #[getter]
     fn principal_angle_degrees(&self) -> f64 {
         self.inertia().principal_angle_degrees
@@ -94,6 +104,14 @@ impl PyAreaProperties {
             r.area, r.perimeter
         )
     }
+}
+
+/// The principal moments ascending and their axes (rows), from the report's (larger
+/// first, about the axis at principal_angle_degrees).
+pub fn ascending(i: &InertiaReport) -> ([f64; 2], [[f64; 2]; 2]) {
+    let (sin, cos) = i.principal_angle_degrees.to_radians().sin_cos();
+    let [larger, smaller] = i.principal;
+    ([smaller, larger], [[sin, -cos], [cos, sin]])
 }
 
 /// A ring's points, checked finite, without a closing copy of the first point.

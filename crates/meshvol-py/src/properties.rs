@@ -12,9 +12,6 @@ use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 
-/// A box's (min, max) corners as NumPy arrays.
-type Corners<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
-
 /// Volume, area, centroid and inertia of a solid: the report of `meshvol volume --json`,
 /// whose keys are its attributes and the keys of to_dict().
 ///
@@ -106,11 +103,21 @@ impl PyMassProperties {
         arr2(&self.report.principal_axes).into_pyarray(py)
     }
 
-    /// The vertices' bounding box as (min, max) float64 arrays of 3.
+    /// The vertices' bounding box as a (2, 3) float64 array, [min, max] (as trimesh's
+    /// mesh.bounds; `lo, hi = mp.bounds` unpacks it); None without vertices. In
+    /// to_dict() (the command's JSON) it is {"min": [...], "max": [...]}.
     #[getter]
-    fn bounds<'py>(&self, py: Python<'py>) -> Option<Corners<'py>> {
+    fn bounds<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
         let b = self.report.bounds.as_ref()?;
-        Some((PyArray1::from_slice(py, &b.min), PyArray1::from_slice(py, &b.max)))
+        Some(arr2(&[b.min, b.max]).into_pyarray(py))
+    }
+
+    /// Each shell's facts as Shell objects (as Check.shell_details), checked; [] with
+    /// check=False.
+    #[getter]
+    fn shell_details(&self) -> PyResult<Vec<crate::check::PyShell>> {
+        let Some(facts) = &self.report.check else { return Ok(Vec::new()) };
+        facts.shell_details.iter().map(crate::check::PyShell::new).collect()
     }
 
     /// The `<inertial>` element of a URDF link: mass, centre of mass and inertia tensor.

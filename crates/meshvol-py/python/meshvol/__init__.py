@@ -46,6 +46,7 @@ from ._meshvol import (
     MeshWarning,
     Profile,
     ReadError,
+    Section,
     Shell,
     Union,
     __version__,
@@ -57,12 +58,16 @@ from ._meshvol import (
     polygon_area,
     union,
 )
+from ._batch import measure
+from ._errors import MeshFileNotFoundError, MeshIsADirectoryError, MeshOSError, MeshPermissionError
+from ._grid import Grid
 
 __all__ = [
     "AreaProperties",
     "Below",
     "Check",
     "CutFill",
+    "Grid",
     "Hull",
     "Intersection",
     "InvalidMeshError",
@@ -70,9 +75,14 @@ __all__ = [
     "MassProperties",
     "Mesh",
     "MeshError",
+    "MeshFileNotFoundError",
+    "MeshIsADirectoryError",
+    "MeshOSError",
+    "MeshPermissionError",
     "MeshWarning",
     "Profile",
     "ReadError",
+    "Section",
     "Shell",
     "Union",
     "__version__",
@@ -81,6 +91,7 @@ __all__ = [
     "hull_volume",
     "intersection",
     "load",
+    "measure",
     "polygon_area",
     "union",
 ]

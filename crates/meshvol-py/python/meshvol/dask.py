@@ -66,7 +66,8 @@ def _block(
     with warnings.catch_warnings():
         # The client issued the mesh's warnings once, when it fixed the bounds.
         warnings.simplefilter("ignore", MeshWarning)
-        return mesh.grid(cells=cells, bounds=bounds, fraction=fraction, check=check, region=region)
+        block = mesh.grid(cells=cells, bounds=bounds, fraction=fraction, check=check, region=region)
+        return block.values
 
 
 def grid(
