@@ -206,11 +206,15 @@ impl PyMesh {
     /// inward, and islands in them), caps on holes included, so that
     /// body.mass_properties() is that body's volume, area, centroid, inertia and mass
     /// (trimesh's split() then mass_properties). The volumes add up to the solid's.
-    /// check=False: the surface's connected parts as wound.
+    /// check=False: the surface's connected parts as wound. The reasons to doubt the
+    /// solid are issued as MeshWarnings, as by every measure.
     #[pyo3(signature = (check = true))]
     fn bodies(&self, py: Python<'_>, check: bool) -> PyResult<Vec<PyMesh>> {
         require_faces(&self.mesh)?;
         let subject = self.subject(py, check)?;
+        // The reasons to doubt the solid are the bodies' too (their meshes are closed:
+        // measuring them again would not say that caps were added).
+        self.warn(py, &subject.warnings())?;
         let meshes = py.detach(|| {
             subject.bodies().iter().map(|b| body_mesh(&b.surface)).collect::<Result<Vec<_>, _>>()
         });
