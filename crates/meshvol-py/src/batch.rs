@@ -5,7 +5,7 @@
 use crate::errors::bad_argument;
 use meshvol::topology::{self, CheckOptions};
 use meshvol_report::subject::{Source, Subject};
-use meshvol_report::units::{Density, UnitsArg};
+use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions, NO_FACES};
 use meshvol_report::{error_line, json_line};
 use pyo3::prelude::*;
@@ -47,19 +47,19 @@ fn measure_one(path: &Path, check: bool, options: &VolumeOptions) -> String {
 /// Each file's JSON line, in order: files measured `workers` at a time (None: one per
 /// core), every one in its own thread of a rayon pool, the GIL released throughout.
 #[pyfunction]
-#[pyo3(signature = (paths, workers = None, check = true, density = 1.0, units = None, exact = false))]
+#[pyo3(signature = (paths, workers = None, check = true, density = None, units = None, exact = false), text_signature = "(paths, workers=None, check=True, density=1.0, units=None, exact=False)")]
 pub fn _measure_files(
     py: Python<'_>,
     paths: Vec<PathBuf>,
     workers: Option<usize>,
     check: bool,
-    density: f64,
+    density: Option<&Bound<'_, PyAny>>,
     units: Option<&str>,
     exact: bool,
 ) -> PyResult<Vec<String>> {
-    crate::properties::check_density(density)?;
+    let density = crate::units::density_or_one(density)?;
     let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
-    let options = VolumeOptions { density: Density::plain(density), units, exact };
+    let options = VolumeOptions { density, units, exact };
     if workers == Some(0) {
         return Err(bad_argument("workers must be at least 1 (or None: one per core)"));
     }

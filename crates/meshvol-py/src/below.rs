@@ -53,10 +53,12 @@ impl PyMesh {
     /// degrees about x, then about y. check=True (the default) measures the checked
     /// solid, as every command does.
     ///
-    /// plane and direction take any sequence or NumPy array of 4 and 3 numbers.
+    /// plane and direction take any sequence or NumPy array of 4 and 3 numbers. units
+    /// and density as the command's --units and --density ('mm:m', '1025kg/m3': the
+    /// displaced mass).
     #[pyo3(
-        signature = (plane = None, volume = None, direction = None, heel = 0.0, trim = 0.0, check = true),
-        text_signature = "(self, plane=None, volume=None, direction=(0.0, 0.0, 1.0), heel=0.0, trim=0.0, check=True)"
+        signature = (plane = None, volume = None, direction = None, heel = 0.0, trim = 0.0, check = true, units = None, density = None),
+        text_signature = "(self, plane=None, volume=None, direction=(0.0, 0.0, 1.0), heel=0.0, trim=0.0, check=True, units=None, density=None)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn below(
@@ -68,7 +70,10 @@ impl PyMesh {
         heel: f64,
         trim: f64,
         check: bool,
+        units: Option<&str>,
+        density: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyBelow> {
+        let unit_options = crate::units::options(units, density)?;
         require_faces(&self.mesh)?;
         let plane = plane
             .map(|p| crate::convert::float_argument(p, "plane", &[4], "(nx, ny, nz, d)"))
@@ -88,6 +93,7 @@ impl PyMesh {
         let options = BelowOptions { waterline, heel, trim };
         let subject = self.subject(py, check)?;
         let report = py.detach(|| below(&subject, &options)).map_err(mesh_error)?;
+        let report = report.in_units(&unit_options, self.source.unit).map_err(mesh_error)?;
         self.warn(py, &report.warnings)?;
         Ok(PyBelow { fields: Fields::new(&report)?, report })
     }

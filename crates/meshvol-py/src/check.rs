@@ -72,6 +72,7 @@ pub fn check(
     mesh: &Bound<'_, PyMesh>,
     weld_tolerance: Option<f64>,
     intersections: bool,
+    units: &meshvol_report::units::UnitOptions,
 ) -> PyResult<PyCheck> {
     let weld = match weld_tolerance {
         None => Weld::Auto,
@@ -86,7 +87,9 @@ pub fn check(
     let options = CheckOptions { weld, intersections, ..CheckOptions::default() };
     let m = mesh.get();
     let c = mesh.py().detach(|| m.check_with(&options)).map_err(mesh_error)?;
-    let report = meshvol_report::check::check(&m.source, &c);
+    let report = meshvol_report::check::check(&m.source, &c)
+        .in_units(units, m.source.unit)
+        .map_err(mesh_error)?;
     Ok(PyCheck { fields: Fields::new(&report)?, report, check: c, mesh: mesh.clone().unbind() })
 }
 
@@ -115,11 +118,11 @@ impl PyCheck {
     /// outward, cavities subtracted, degenerate and duplicate faces dropped, holes capped;
     /// signed_volume, faces and triangles are the surface's as wound, and warnings say
     /// why the solid may not be the one meant.
-    #[pyo3(signature = (density = 1.0, exact = false, units = None))]
+    #[pyo3(signature = (density = None, exact = false, units = None), text_signature = "(self, density=1.0, exact=False, units=None)")]
     fn mass_properties(
         &self,
         py: Python<'_>,
-        density: f64,
+        density: Option<&Bound<'_, PyAny>>,
         exact: bool,
         units: Option<&str>,
     ) -> PyResult<PyMassProperties> {

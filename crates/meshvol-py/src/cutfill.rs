@@ -85,9 +85,10 @@ fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)>
 /// (meshvol.Mesh, or an object with .vertices and .faces); give design, or level=Z for
 /// the plane z = Z. cells=(nx, ny) or pitch=p adds per-cell volumes over the common
 /// footprint's box (cut_cells, fill_cells). A surface that folds over itself in plan
-/// raises MeshError naming its faces.
+/// raises MeshError naming its faces. units as the command's --units ('m:yd': cubic
+/// yards, also for cut_cells and fill_cells; level and pitch in the files' units).
 #[pyfunction]
-#[pyo3(signature = (existing, design = None, level = None, cells = None, pitch = None))]
+#[pyo3(signature = (existing, design = None, level = None, cells = None, pitch = None, units = None))]
 pub fn cutfill(
     py: Python<'_>,
     existing: &Bound<'_, PyAny>,
@@ -95,7 +96,9 @@ pub fn cutfill(
     level: Option<f64>,
     cells: Option<&Bound<'_, PyAny>>,
     pitch: Option<f64>,
+    units: Option<&str>,
 ) -> PyResult<PyCutFill> {
+    let options = crate::units::options(units, None)?;
     let cells = cells
         .map(|c| crate::convert::int_argument(c, "cells", &[2], "(nx, ny)"))
         .transpose()?
@@ -126,9 +129,17 @@ pub fn cutfill(
         (None, Some(z)) => Against::Level(z),
         _ => return Err(bad_argument("give design=SURFACE or level=Z, not both")),
     };
-    let (report, cells) = py
+    let (report, mut cells) = py
         .detach(|| report(&existing.source, &existing.mesh, against, spacing))
         .map_err(mesh_error)?;
+    let mut files = vec![(existing.source.name(), existing.source.unit)];
+    files.extend(design_mesh.map(|d| (d.source.name(), d.source.unit)));
+    let report = report.in_units(&options, &files).map_err(mesh_error)?;
+    let (scale, _) =
+        meshvol_report::units::Scale::resolve_all(&options, &files).map_err(mesh_error)?;
+    if let Some(c) = cells.as_mut() {
+        c.cut.iter_mut().chain(c.fill.iter_mut()).for_each(|v| *v = scale.volume(*v));
+    }
     // The reader's warnings of a mesh loaded before were given then.
     let new: Vec<String> = if read_here {
         report.warnings.clone()

@@ -75,7 +75,7 @@ pub fn cell_volumes<'py, S: Surface>(
     fraction: bool,
     pitch: Option<&Bound<'py, PyAny>>,
     region: Option<&Bound<'py, PyAny>>,
-    scale: f64,
+    scale: &meshvol_report::units::Scale,
 ) -> PyResult<Bound<'py, PyAny>> {
     let spacing = match (cells, pitch) {
         (Some(_), Some(_)) => return Err(bad_argument("give cells or pitch, not both")),
@@ -106,13 +106,20 @@ pub fn cell_volumes<'py, S: Surface>(
     if fraction {
         let cell = grid.cell_volume();
         volumes.iter_mut().for_each(|v| *v /= cell);
-    } else if scale != 1.0 {
-        volumes.iter_mut().for_each(|v| *v *= scale);
+    } else {
+        // Volumes in the report's unit, and with a density, masses.
+        let rho = scale.mass(1.0).map_or(1.0, |m| m.mass);
+        volumes.iter_mut().for_each(|v| *v = scale.volume(*v) * rho);
     }
     let array = Array3::from_shape_vec(shape, volumes).map_err(mesh_error)?;
     let origin: [f64; 3] = [0, 1, 2].map(|a| grid.origin[a] + start[a] as f64 * grid.cell[a]);
     let class = py.import("meshvol._grid")?.getattr("Grid")?;
-    class.call1((array.into_pyarray(py), origin, grid.cell, fraction))
+    class.call1((
+        array.into_pyarray(py),
+        scale.point(origin),
+        grid.cell.map(|h| scale.length(h)),
+        fraction,
+    ))
 }
 
 /// A profile along an axis, with the names of the keys of `meshvol profile --json`:
@@ -171,6 +178,7 @@ pub fn profile(
     axis: &str,
     levels: Option<i64>,
     step: Option<f64>,
+    units: &meshvol_report::units::UnitOptions,
 ) -> PyResult<PyProfile> {
     let axis = match axis {
         "x" | "X" => Axis::X,
@@ -192,6 +200,8 @@ pub fn profile(
     };
     let report = py
         .detach(|| meshvol_report::profile::profile(subject, axis, levels))
+        .map_err(mesh_error)?
+        .in_units(units, subject.source.unit)
         .map_err(mesh_error)?;
     Ok(PyProfile { fields: Fields::new(&report)?, report })
 }
@@ -225,15 +235,19 @@ impl PyUnion {
 /// outermost shell with its cavities), as a single file does for the command.
 /// Refinement stops once upper - lower <= tolerance * lower. check=True (the default)
 /// measures each mesh's checked solid, with holes capped and the caps' uncertainty
-/// widening the interval; check=False the surfaces as wound.
+/// widening the interval; check=False the surfaces as wound. units and density as the
+/// command's --units and --density.
 #[pyfunction]
-#[pyo3(signature = (meshes, tolerance = 1e-6, check = true))]
+#[pyo3(signature = (meshes, tolerance = 1e-6, check = true, units = None, density = None))]
 pub fn union(
     py: Python<'_>,
     meshes: &Bound<'_, PyAny>,
     tolerance: f64,
     check: bool,
+    units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyUnion> {
+    let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
@@ -250,6 +264,9 @@ pub fn union(
         meshes.iter().map(|m| m.get().subject(py, check)).collect::<PyResult<Vec<_>>>()?;
     let report =
         py.detach(|| meshvol_report::union::union(&subjects, tolerance)).map_err(mesh_error)?;
+    let files: Vec<(&str, Option<meshvol_io::LengthUnit>)> =
+        subjects.iter().map(|s| (s.source.name(), s.source.unit)).collect();
+    let report = report.in_units(&options, &files).map_err(mesh_error)?;
     meshes[0].get().warn(py, &report.warnings)?;
     Ok(PyUnion { fields: Fields::new(&report)?, report })
 }

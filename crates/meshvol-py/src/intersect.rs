@@ -80,9 +80,11 @@ fn pose_of(pose: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Affin
 /// poses checks nothing again. A pose that is not rigid (a scale, a shear, a mirror, a
 /// non-finite entry, another shape) raises ValueError naming it. Refinement stops once
 /// upper - lower <= tolerance * lower. check=True (the default) measures each mesh's
-/// checked solid; check=False the surfaces as wound.
+/// checked solid; check=False the surfaces as wound. units and density as the command's
+/// --units and --density.
 #[pyfunction]
-#[pyo3(signature = (a, b, pose_a = None, pose_b = None, tolerance = 1e-9, check = true))]
+#[pyo3(signature = (a, b, pose_a = None, pose_b = None, tolerance = 1e-9, check = true, units = None, density = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn intersection(
     py: Python<'_>,
     a: &Bound<'_, PyAny>,
@@ -91,7 +93,10 @@ pub fn intersection(
     pose_b: Option<&Bound<'_, PyAny>>,
     tolerance: f64,
     check: bool,
+    units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyIntersection> {
+    let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
@@ -100,6 +105,8 @@ pub fn intersection(
     let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
     let report =
         py.detach(|| intersect_posed(&sa, &sb, poses, tolerance, &())).map_err(mesh_error)?;
+    let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
+    let report = report.in_units(&options, &files).map_err(mesh_error)?;
     a.get().warn(py, &report.warnings)?;
     Ok(PyIntersection { fields: Fields::new(&report)?, report })
 }

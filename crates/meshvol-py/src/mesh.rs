@@ -247,16 +247,18 @@ impl PyMesh {
     /// --no-check`). signed_volume is always the surface's as wound (negative for
     /// inward winding), as in the command's JSON.
     ///
-    /// density scales mass, inertia and principal moments. exact=True replaces the
+    /// density scales mass, inertia and principal moments: a number, or text with a unit
+    /// as the command's --density takes it ('7.85g/cm3', with units naming the file's
+    /// length unit). exact=True replaces the
     /// volume by the correctly rounded exact one (a few times slower). units converts
     /// as the command's --units does: 'FILE[:REPORT]' ('mm:cm', 'in:mL') or ':REPORT'
     /// from the unit the file declares (3MF, glTF); files that declare one are reported
     /// in it by default.
-    #[pyo3(signature = (density = 1.0, exact = false, check = true, units = None))]
+    #[pyo3(signature = (density = None, exact = false, check = true, units = None), text_signature = "(self, density=1.0, exact=False, check=True, units=None)")]
     fn mass_properties(
         &self,
         py: Python<'_>,
-        density: f64,
+        density: Option<&Bound<'_, PyAny>>,
         exact: bool,
         check: bool,
         units: Option<&str>,
@@ -272,13 +274,19 @@ impl PyMesh {
     /// again within 1e-9 of the bounding box diagonal; 0 welds exact positions only; a
     /// positive number welds positions that close. intersections=False skips the search
     /// for crossing triangles.
-    #[pyo3(signature = (weld_tolerance = None, intersections = true))]
+    ///
+    /// units and density as the command's --units and --density (the solid's volume in
+    /// those units, and its mass).
+    #[pyo3(signature = (weld_tolerance = None, intersections = true, units = None, density = None))]
     fn check(
         slf: &Bound<'_, Self>,
         weld_tolerance: Option<f64>,
         intersections: bool,
+        units: Option<&str>,
+        density: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyCheck> {
-        check::check(slf, weld_tolerance, intersections)
+        let options = crate::units::options(units, density)?;
+        check::check(slf, weld_tolerance, intersections, &options)
     }
 
     /// The volume of the solid in each cell of a regular grid, as a meshvol.Grid: its
@@ -301,7 +309,11 @@ impl PyMesh {
     ///
     /// check=True (the default) measures the checked solid, as `meshvol grid` does;
     /// check=False the surface as wound.
-    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None))]
+    ///
+    /// units as the command's --units ('mm:mL': values in mL, origin and spacing in the
+    /// report's length unit; bounds and pitch are given in the file's units); density
+    /// makes the values masses (a mass per cell; not with fraction=True).
+    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None, units = None, density = None))]
     #[allow(clippy::too_many_arguments)]
     fn grid<'py>(
         &self,
@@ -312,11 +324,22 @@ impl PyMesh {
         pitch: Option<&Bound<'py, PyAny>>,
         check: bool,
         region: Option<&Bound<'py, PyAny>>,
+        units: Option<&str>,
+        density: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         properties::require_faces(&self.mesh)?;
+        let options = crate::units::options(units, density)?;
+        if fraction && options.density.is_some() {
+            return Err(crate::errors::bad_argument("give density or fraction=True, not both"));
+        }
+        let (scale, warning) = meshvol_report::units::Scale::resolve(&options, self.source.unit)
+            .map_err(crate::errors::bad_argument)?;
         let subject = self.subject(py, check)?;
-        self.warn(py, &subject.warnings())?;
-        grid::cell_volumes(py, &subject.measured(), cells, bounds, fraction, pitch, region, 1.0)
+        let mut warnings = subject.warnings();
+        warnings.extend(warning);
+        self.warn(py, &warnings)?;
+        let measured = subject.measured();
+        grid::cell_volumes(py, &measured, cells, bounds, fraction, pitch, region, &scale)
     }
 
     /// Pickling (multiprocessing, Dask): a Mesh travels as its vertex and face arrays and
@@ -333,7 +356,11 @@ impl PyMesh {
     /// slabs between the mesh's extremes, step=h a level every h. check=True (the
     /// default) measures the checked solid, as `meshvol profile` does; check=False the
     /// surface as wound.
-    #[pyo3(signature = (axis = "z", levels = None, step = None, check = true))]
+    ///
+    /// units and density as the command's --units and --density ('mm:L' for a strapping
+    /// table in litres; step is in the file's units).
+    #[pyo3(signature = (axis = "z", levels = None, step = None, check = true, units = None, density = None))]
+    #[allow(clippy::too_many_arguments)]
     fn profile(
         &self,
         py: Python<'_>,
@@ -341,10 +368,13 @@ impl PyMesh {
         levels: Option<i64>,
         step: Option<f64>,
         check: bool,
+        units: Option<&str>,
+        density: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyProfile> {
         properties::require_faces(&self.mesh)?;
+        let options = crate::units::options(units, density)?;
         let subject = self.subject(py, check)?;
-        let profile = grid::profile(py, &subject, axis, levels, step)?;
+        let profile = grid::profile(py, &subject, axis, levels, step, &options)?;
         self.warn(py, profile.warnings())?;
         Ok(profile)
     }

@@ -184,13 +184,17 @@ fn polygons_of_geojson(geometry: &Bound<'_, PyAny>) -> PyResult<Vec<Polygon>> {
 /// point is dropped), holes a list of such arrays. Instead of arrays, a GeoJSON
 /// Polygon or MultiPolygon geometry can be given: a dict, or any object with
 /// `__geo_interface__` (shapely and geopandas geometries).
+///
+/// units as the command's --units ('m:ft': areas in ft²).
 #[pyfunction]
-#[pyo3(signature = (exterior, holes = None))]
+#[pyo3(signature = (exterior, holes = None, units = None))]
 pub fn polygon_area(
     py: Python<'_>,
     exterior: &Bound<'_, PyAny>,
     holes: Option<&Bound<'_, PyAny>>,
+    units: Option<&str>,
 ) -> PyResult<PyAreaProperties> {
+    let options = crate::units::options(units, None)?;
     let geometry = if exterior.hasattr("__geo_interface__")? {
         Some(exterior.getattr("__geo_interface__")?)
     } else if exterior.cast::<PyDict>().is_ok() {
@@ -226,7 +230,7 @@ pub fn polygon_area(
             polygon_issues(&features[0].polygons).iter().map(ToString::to_string).collect();
         (area(None, None, &features, Vec::new()), issues)
     });
-    let report = report.map_err(mesh_error)?;
+    let report = report.map_err(mesh_error)?.in_units(&options, None).map_err(mesh_error)?;
     Ok(PyAreaProperties { fields: Fields::new(&report)?, report, issues })
 }
 

@@ -6,7 +6,7 @@ use crate::mesh::PyMesh;
 use meshvol::topology::Check;
 use meshvol_report::inertial::{inertial, RobotFormat};
 use meshvol_report::subject::Subject;
-use meshvol_report::units::{Density, UnitsArg};
+use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions, VolumeReport, NO_FACES};
 use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
@@ -63,14 +63,14 @@ pub fn measure(
     py: Python<'_>,
     mesh: &PyMesh,
     check: Option<&Check>,
-    density: f64,
+    density: Option<&Bound<'_, PyAny>>,
     exact: bool,
     units: Option<&str>,
 ) -> PyResult<PyMassProperties> {
     require_faces(&mesh.mesh)?;
-    check_density(density)?;
+    let density = crate::units::density_or_one(density)?;
     let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
-    let options = VolumeOptions { density: Density::plain(density), units, exact };
+    let options = VolumeOptions { density, units, exact };
     let subject = Subject { source: &mesh.source, surface: &mesh.mesh, check };
     let report = py.detach(|| volume(&subject, &options)).map_err(mesh_error)?;
     mesh.warn(py, &report.warnings)?;

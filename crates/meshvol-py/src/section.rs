@@ -9,7 +9,6 @@ use meshvol::polygon::Polygon;
 use meshvol::section::Plane;
 use meshvol::{Faces, Mesh, Surface};
 use meshvol_report::section::{section, SectionReport};
-use meshvol_report::units::{UnitOptions, UnitsArg};
 use numpy::ndarray::{arr2, Array2};
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -191,12 +190,10 @@ impl PyMesh {
     ) -> PyResult<PySection> {
         require_faces(&self.mesh)?;
         let plane = plane_of(plane)?;
-        let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
+        let options = crate::units::options(units, None)?;
         let subject = self.subject(py, check)?;
         let (report, polygons) = py.detach(|| section(&subject, &plane));
-        let report = report
-            .in_units(&UnitOptions { units, density: None }, self.source.unit)
-            .map_err(mesh_error)?;
+        let report = report.in_units(&options, self.source.unit).map_err(mesh_error)?;
         self.warn(py, &report.warnings)?;
         Ok(PySection { fields: Fields::new(&report)?, report, polygons })
     }
