@@ -55,10 +55,10 @@ impl PyMesh {
     ///
     /// plane and direction take any sequence or NumPy array of 4 and 3 numbers. units
     /// and density as the command's --units and --density ('mm:m', '1025kg/m3': the
-    /// displaced mass).
+    /// displaced mass). timings=True adds `timings`, as in mass_properties.
     #[pyo3(
-        signature = (plane = None, volume = None, direction = None, heel = 0.0, trim = 0.0, check = true, units = None, density = None),
-        text_signature = "(self, plane=None, volume=None, direction=(0.0, 0.0, 1.0), heel=0.0, trim=0.0, check=True, units=None, density=None)"
+        signature = (plane = None, volume = None, direction = None, heel = 0.0, trim = 0.0, check = true, units = None, density = None, timings = false),
+        text_signature = "(self, plane=None, volume=None, direction=(0.0, 0.0, 1.0), heel=0.0, trim=0.0, check=True, units=None, density=None, timings=False)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn below(
@@ -72,6 +72,7 @@ impl PyMesh {
         check: bool,
         units: Option<&str>,
         density: Option<&Bound<'_, PyAny>>,
+        timings: bool,
     ) -> PyResult<PyBelow> {
         let unit_options = crate::units::options(units, density)?;
         require_faces(&self.mesh)?;
@@ -91,10 +92,13 @@ impl PyMesh {
             return Err(bad_argument("heel and trim must be finite numbers of degrees"));
         }
         let options = BelowOptions { waterline, heel, trim };
-        let subject = self.subject(py, check)?;
-        let report = py.detach(|| below(&subject, &options)).map_err(mesh_error)?;
+        let clock = timings.then(crate::timings::Clock::new);
+        let report = self.with_subject(py, check, clock.as_ref(), |subject| {
+            py.detach(|| below(&subject, &options)).map_err(mesh_error)
+        })?;
         let report = report.in_units(&unit_options, self.source.unit).map_err(mesh_error)?;
         self.warn(py, &report.warnings)?;
-        Ok(PyBelow { fields: Fields::new(&report)?, report })
+        let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+        Ok(PyBelow { fields, report })
     }
 }

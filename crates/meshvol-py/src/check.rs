@@ -73,6 +73,7 @@ pub fn check(
     weld_tolerance: Option<f64>,
     intersections: bool,
     units: &meshvol_report::units::UnitOptions,
+    timings: bool,
 ) -> PyResult<PyCheck> {
     let weld = match weld_tolerance {
         None => Weld::Auto,
@@ -86,11 +87,23 @@ pub fn check(
     };
     let options = CheckOptions { weld, intersections, ..CheckOptions::default() };
     let m = mesh.get();
-    let c = mesh.py().detach(|| m.check_with(&options)).map_err(mesh_error)?;
+    let clock = timings.then(crate::timings::Clock::new);
+    crate::timings::stage(clock.as_ref(), "checking");
+    let c = mesh
+        .py()
+        .detach(|| match &clock {
+            Some(clock) => {
+                meshvol::topology::check_assembled(&m.mesh, m.assembly.as_deref(), &options, clock)
+            }
+            None => m.check_with(&options),
+        })
+        .map_err(mesh_error)?;
+    crate::timings::stage(clock.as_ref(), "reporting");
     let report = meshvol_report::check::check(&m.source, &c)
         .in_units(units, m.source.unit)
         .map_err(mesh_error)?;
-    Ok(PyCheck { fields: Fields::new(&report)?, report, check: c, mesh: mesh.clone().unbind() })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyCheck { fields, report, check: c, mesh: mesh.clone().unbind() })
 }
 
 #[pymethods]

@@ -25,6 +25,22 @@ impl Fields {
         }
     }
 
+    /// The same object with a `timings` list as its last key (`timings=True`, as the
+    /// command's `--timings` adds it).
+    pub fn with_timings(
+        self,
+        timings: Option<Vec<meshvol_report::timings::StageTiming>>,
+    ) -> PyResult<Fields> {
+        let Some(t) = timings else { return Ok(self) };
+        let line = meshvol_report::timings::with_timings(&self.json, &t)
+            .map_err(crate::errors::mesh_error)?;
+        let json = line.trim_end().to_string();
+        match serde_json::from_str(&json) {
+            Ok(Value::Object(values)) => Ok(Fields { json, values }),
+            _ => Err(crate::errors::mesh_error("a report with timings is not a JSON object")),
+        }
+    }
+
     /// The value of key `name`, as a new Python object; AttributeError without it.
     ///
     /// Counts are also `*_count` attributes ([`COUNTS`]: `vertex_count` is the key

@@ -133,6 +133,14 @@ pub struct PyProfile {
 }
 
 impl PyProfile {
+    /// With `timings`, the same with the stages' timings as its last key.
+    pub fn timed(
+        self,
+        timings: Option<Vec<meshvol_report::timings::StageTiming>>,
+    ) -> PyResult<Self> {
+        Ok(PyProfile { fields: self.fields.with_timings(timings)?, report: self.report })
+    }
+
     /// The report's warnings.
     pub fn warnings(&self) -> &[String] {
         &self.report.warnings

@@ -27,6 +27,7 @@ mod mesh;
 mod polygon;
 mod properties;
 mod section;
+mod timings;
 mod units;
 
 use pyo3::prelude::*;

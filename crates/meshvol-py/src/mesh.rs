@@ -72,6 +72,35 @@ impl PyMesh {
         Ok(Subject { source: &self.source, surface: &self.mesh, check })
     }
 
+    /// `f` of the subject, as [`PyMesh::subject`] gives it; with a clock (`timings=True`)
+    /// the check runs again, its stages timed (and is kept when none was), then
+    /// `measuring` starts.
+    pub(crate) fn with_subject<R>(
+        &self,
+        py: Python<'_>,
+        check: bool,
+        clock: Option<&crate::timings::Clock>,
+        f: impl FnOnce(Subject<'_, Mesh>) -> PyResult<R>,
+    ) -> PyResult<R> {
+        let Some(clock) = clock.filter(|_| check) else {
+            let subject = self.subject(py, check)?;
+            crate::timings::stage(clock, "measuring");
+            return f(subject);
+        };
+        clock.start("checking");
+        let options = CheckOptions::default();
+        let owned = py
+            .detach(|| {
+                topology::check_assembled(&self.mesh, self.assembly.as_deref(), &options, clock)
+            })
+            .map_err(crate::errors::mesh_error)?;
+        if self.checked.get().is_none() {
+            let _ = self.checked.set(owned.clone());
+        }
+        clock.start("measuring");
+        f(Subject { source: &self.source, surface: &self.mesh, check: Some(&owned) })
+    }
+
     /// Issues a report's warnings as MeshWarnings, less the reader's (given once, in
     /// `Mesh.warnings`).
     pub(crate) fn warn(&self, py: Python<'_>, warnings: &[String]) -> PyResult<()> {
@@ -254,7 +283,10 @@ impl PyMesh {
     /// as the command's --units does: 'FILE[:REPORT]' ('mm:cm', 'in:mL') or ':REPORT'
     /// from the unit the file declares (3MF, glTF); files that declare one are reported
     /// in it by default.
-    #[pyo3(signature = (density = None, exact = false, check = true, units = None), text_signature = "(self, density=1.0, exact=False, check=True, units=None)")]
+    ///
+    /// timings=True adds `timings`, the stages (the check's, then measuring) with their
+    /// wall and CPU seconds, as the command's --timings: the check then runs again.
+    #[pyo3(signature = (density = None, exact = false, check = true, units = None, timings = false), text_signature = "(self, density=1.0, exact=False, check=True, units=None, timings=False)")]
     fn mass_properties(
         &self,
         py: Python<'_>,
@@ -262,9 +294,13 @@ impl PyMesh {
         exact: bool,
         check: bool,
         units: Option<&str>,
+        timings: bool,
     ) -> PyResult<PyMassProperties> {
-        let check = if check { Some(self.checked(py)?) } else { None };
-        properties::measure(py, self, check, density, exact, units)
+        let clock = timings.then(crate::timings::Clock::new);
+        let measured = self.with_subject(py, check, clock.as_ref(), |subject| {
+            properties::measure(py, self, subject.check, density, exact, units)
+        })?;
+        measured.timed(clock.map(|c| c.finish()))
     }
 
     /// The topology facts of `meshvol check`: closed? manifold? winding? shells,
@@ -277,16 +313,18 @@ impl PyMesh {
     ///
     /// units and density as the command's --units and --density (the solid's volume in
     /// those units, and its mass).
-    #[pyo3(signature = (weld_tolerance = None, intersections = true, units = None, density = None))]
+    /// timings=True adds `timings`: the check's stages, as the command's --timings.
+    #[pyo3(signature = (weld_tolerance = None, intersections = true, units = None, density = None, timings = false))]
     fn check(
         slf: &Bound<'_, Self>,
         weld_tolerance: Option<f64>,
         intersections: bool,
         units: Option<&str>,
         density: Option<&Bound<'_, PyAny>>,
+        timings: bool,
     ) -> PyResult<PyCheck> {
         let options = crate::units::options(units, density)?;
-        check::check(slf, weld_tolerance, intersections, &options)
+        check::check(slf, weld_tolerance, intersections, &options, timings)
     }
 
     /// The volume of the solid in each cell of a regular grid, as a meshvol.Grid: its
@@ -358,8 +396,9 @@ impl PyMesh {
     /// surface as wound.
     ///
     /// units and density as the command's --units and --density ('mm:L' for a strapping
-    /// table in litres; step is in the file's units).
-    #[pyo3(signature = (axis = "z", levels = None, step = None, check = true, units = None, density = None))]
+    /// table in litres; step is in the file's units). timings=True adds `timings`, as in
+    /// mass_properties.
+    #[pyo3(signature = (axis = "z", levels = None, step = None, check = true, units = None, density = None, timings = false))]
     #[allow(clippy::too_many_arguments)]
     fn profile(
         &self,
@@ -370,11 +409,15 @@ impl PyMesh {
         check: bool,
         units: Option<&str>,
         density: Option<&Bound<'_, PyAny>>,
+        timings: bool,
     ) -> PyResult<PyProfile> {
         properties::require_faces(&self.mesh)?;
         let options = crate::units::options(units, density)?;
-        let subject = self.subject(py, check)?;
-        let profile = grid::profile(py, &subject, axis, levels, step, &options)?;
+        let clock = timings.then(crate::timings::Clock::new);
+        let profile = self.with_subject(py, check, clock.as_ref(), |subject| {
+            grid::profile(py, &subject, axis, levels, step, &options)
+        })?;
+        let profile = profile.timed(clock.map(|c| c.finish()))?;
         self.warn(py, profile.warnings())?;
         Ok(profile)
     }

@@ -37,6 +37,14 @@ impl PyMassProperties {
     pub fn new(report: VolumeReport) -> PyResult<Self> {
         Ok(PyMassProperties { fields: Fields::new(&report)?, report })
     }
+
+    /// With `timings`, the same with the stages' timings as its last key.
+    pub fn timed(
+        self,
+        timings: Option<Vec<meshvol_report::timings::StageTiming>>,
+    ) -> PyResult<Self> {
+        Ok(PyMassProperties { fields: self.fields.with_timings(timings)?, report: self.report })
+    }
 }
 
 /// Checks a density as the command does: positive and finite.

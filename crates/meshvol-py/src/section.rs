@@ -180,22 +180,27 @@ impl PyMesh {
     /// d) for the plane n·x = d (as Mesh.below takes it). check=True (the default) cuts
     /// the checked solid, as the command does; check=False the surface as wound. units
     /// as in mass_properties ('mm:cm'; the outline stays in the file's coordinates).
-    #[pyo3(signature = (plane, check = true, units = None))]
+    /// timings=True adds `timings`, as in mass_properties.
+    #[pyo3(signature = (plane, check = true, units = None, timings = false))]
     fn section(
         &self,
         py: Python<'_>,
         plane: &Bound<'_, PyAny>,
         check: bool,
         units: Option<&str>,
+        timings: bool,
     ) -> PyResult<PySection> {
         require_faces(&self.mesh)?;
         let plane = plane_of(plane)?;
         let options = crate::units::options(units, None)?;
-        let subject = self.subject(py, check)?;
-        let (report, polygons) = py.detach(|| section(&subject, &plane));
+        let clock = timings.then(crate::timings::Clock::new);
+        let (report, polygons) = self.with_subject(py, check, clock.as_ref(), |subject| {
+            Ok(py.detach(|| section(&subject, &plane)))
+        })?;
         let report = report.in_units(&options, self.source.unit).map_err(mesh_error)?;
         self.warn(py, &report.warnings)?;
-        Ok(PySection { fields: Fields::new(&report)?, report, polygons })
+        let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+        Ok(PySection { fields, report, polygons })
     }
 
     /// The solid's bodies as meshes of their own, in the order `meshvol union` numbers
