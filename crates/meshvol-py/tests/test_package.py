@@ -84,7 +84,8 @@ def test_stubs_describe_the_runtime_api():
             }
             runtime = public_members(instances.get(name, getattr(meshvol, name)))
             dunders = {n for n in in_stub if n.startswith("__")}  # __init__, __array__, ...
-            assert set(runtime) == in_stub - dunders, name
+            # timings: an attribute only of reports made with timings=True.
+            assert set(runtime) - {"timings"} == in_stub - dunders - {"timings"}, name
     assert (PACKAGE / "py.typed").exists()
 
 

@@ -15,6 +15,8 @@ __all__: list[str]
 _ArrayLike = npt.ArrayLike
 _F64 = npt.NDArray[np.float64]
 _Faces = _Union[npt.ArrayLike, Sequence[Sequence[int]]]
+_Density = _Union[float, str]
+_Timings = list[dict[str, Any]]
 _Path = _Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
 class MeshError(ValueError):
@@ -97,15 +99,21 @@ class Mesh:
         """(name, first face, end face) of each named part, when there are two or more."""
     def mass_properties(
         self,
-        density: float = 1.0,
+        density: _Density = 1.0,
         exact: bool = False,
         check: bool = True,
         units: Optional[str] = None,
+        timings: bool = False,
     ) -> MassProperties:
         """Mass properties of the checked solid (`meshvol volume`); check=False: as wound;
-        units: as --units ('mm:cm', ':in', ...)."""
+        units: as --units ('mm:cm', ':in', ...); density: 2.5 or '7.85g/cm3'."""
     def check(
-        self, weld_tolerance: Optional[float] = None, intersections: bool = True
+        self,
+        weld_tolerance: Optional[float] = None,
+        intersections: bool = True,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Check:
         """Topology facts (`meshvol check`)."""
     def grid(
@@ -116,6 +124,8 @@ class Mesh:
         pitch: _Union[float, _ArrayLike, None] = None,
         check: bool = True,
         region: Optional[_ArrayLike] = None,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
     ) -> Grid:
         """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
         grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
@@ -126,6 +136,9 @@ class Mesh:
         levels: Optional[int] = None,
         step: Optional[float] = None,
         check: bool = True,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Profile:
         """Volume below each level along an axis (`meshvol profile`)."""
     def below(
@@ -136,10 +149,17 @@ class Mesh:
         heel: float = 0.0,
         trim: float = 0.0,
         check: bool = True,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Below:
         """The solid below a plane, or below the level holding `volume` (`meshvol below`)."""
     def section(
-        self, plane: _Union[str, _ArrayLike], check: bool = True, units: Optional[str] = None
+        self,
+        plane: _Union[str, _ArrayLike],
+        check: bool = True,
+        units: Optional[str] = None,
+        timings: bool = False,
     ) -> Section:
         """The cross-section by a plane: 'z=H', [point, normal] or (nx, ny, nz, d)
         (`meshvol section`)."""
@@ -237,6 +257,8 @@ class MassProperties(_CheckFacts):
         """SDF's <inertial> element."""
     def to_mjcf(self) -> str:
         """MuJoCo's <inertial pos mass fullinertia> element."""
+    timings: _Timings
+    """With timings=True: the stages' {stage, wall_s, cpu_s} (else absent)."""
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol volume --json`."""
 
@@ -270,11 +292,12 @@ class Check(_CheckFacts):
     intersection_examples: list[Tuple[int, int]]
     repairs: Tuple[int, int, int]
     def mass_properties(
-        self, density: float = 1.0, exact: bool = False, units: Optional[str] = None
+        self, density: _Density = 1.0, exact: bool = False, units: Optional[str] = None
     ) -> MassProperties:
         """Mass properties of the repaired solid (`meshvol volume`)."""
     def solid_mesh(self, caps: bool = False) -> Mesh:
         """The repaired solid as a welded mesh (`meshvol repair`)."""
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol check --json`."""
 
@@ -286,6 +309,7 @@ class Profile:
     axis: str
     file: Optional[str]
     warnings: list[str]
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol profile --json`."""
     @property
@@ -416,6 +440,7 @@ class Below:
     @property
     def section_centroid(self) -> Optional[_F64]:
         """Shape (3,): the waterplane's centroid; None without a section."""
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol below --json`."""
 
@@ -510,6 +535,7 @@ class Section:
         """A WKT MULTIPOLYGON (`meshvol section --wkt`)."""
     def to_geojson(self) -> dict[str, Any]:
         """A GeoJSON Feature (`meshvol section --geojson`)."""
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol section --json`."""
 
@@ -556,7 +582,7 @@ def measure(
     paths: _Union[_Path, Iterable[_Path]],
     workers: Optional[int] = None,
     check: bool = True,
-    density: float = 1.0,
+    density: _Density = 1.0,
     units: Optional[str] = None,
     exact: bool = False,
 ) -> "pandas.DataFrame":
@@ -564,7 +590,11 @@ def measure(
     flattened as pandas.json_normalize(sep='.'); failed files have 'error'."""
 
 def union(
-    meshes: _Union[Any, Iterable[Any]], tolerance: float = 1e-6, check: bool = True
+    meshes: _Union[Any, Iterable[Any]],
+    tolerance: float = 1e-6,
+    check: bool = True,
+    units: Optional[str] = None,
+    density: Optional[_Density] = None,
 ) -> Union:
     """Volume of the union of closed bodies, certified (`meshvol union`)."""
 
@@ -575,6 +605,8 @@ def intersection(
     pose_b: Optional[_ArrayLike] = None,
     tolerance: float = 1e-9,
     check: bool = True,
+    units: Optional[str] = None,
+    density: Optional[_Density] = None,
 ) -> Intersection:
     """Volume of the intersection of two bodies, each placed by an optional 4×4 rigid
     pose, certified, with IoU, Dice and moments (`meshvol intersect`)."""
@@ -582,10 +614,13 @@ def intersection(
 def polygon_area(
     exterior: _Union[_ArrayLike, Mapping[str, Any], Any],
     holes: Optional[Iterable[_ArrayLike]] = None,
+    units: Optional[str] = None,
 ) -> AreaProperties:
     """Area properties of a polygon with holes, or of a GeoJSON (Multi)Polygon."""
 
-def convex_hull(points: _ArrayLike) -> Hull:
+def convex_hull(
+    points: _ArrayLike, units: Optional[str] = None, density: Optional[_Density] = None
+) -> Hull:
     """The convex hull of an (n, 3) point array (`meshvol hull`)."""
 
 def hull_volume(points: _ArrayLike) -> float:
@@ -595,7 +630,8 @@ def cutfill(
     existing: _Union[str, "os.PathLike[str]", Any],
     design: _Union[str, "os.PathLike[str]", Any, None] = None,
     level: Optional[float] = None,
-    cells: Optional[Tuple[int, int]] = None,
+    cells: Optional[_ArrayLike] = None,
     pitch: Optional[float] = None,
+    units: Optional[str] = None,
 ) -> CutFill:
     """Cut and fill between an existing surface and a design or level (`meshvol cutfill`)."""

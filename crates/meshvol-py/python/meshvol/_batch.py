@@ -79,7 +79,7 @@ def measure(
     paths: Union[PathArg, Iterable[PathArg]],
     workers: Optional[int] = None,
     check: bool = True,
-    density: float = 1.0,
+    density: Union[float, str] = 1.0,
     units: Optional[str] = None,
     exact: bool = False,
 ) -> "pandas.DataFrame":
