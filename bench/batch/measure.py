@@ -18,6 +18,7 @@ Needs meshvol with pandas (and dask[dataframe], distributed for the cluster run)
 
 import argparse
 import os
+import resource
 import struct
 import tempfile
 import time
@@ -114,10 +115,14 @@ def main():
         generate(folder, args.files)
         print(f"meshvol {meshvol.__version__}: {args.files} files generated in "
               f"{time.perf_counter() - start:.1f} s, {os.cpu_count()} cores")
+        cpu_before = resource.getrusage(resource.RUSAGE_SELF)
         seconds, local = best(args.runs, lambda: meshvol.measure(folder))
+        cpu_after = resource.getrusage(resource.RUSAGE_SELF)
+        cpu = (cpu_after.ru_utime + cpu_after.ru_stime - cpu_before.ru_utime - cpu_before.ru_stime) / args.runs
         failed = int(local["error"].notna().sum())
         print(f"meshvol.measure          {seconds:7.2f} s  {args.files / seconds:8.0f} files/s"
-              f"  ({failed} error rows)")
+              f"  ({failed} error rows; {cpu:.2f} CPU s a run: {args.files / cpu:.0f} files per CPU second;"
+              f" load average {os.getloadavg()[0]:.1f})")
         if args.no_dask:
             return
         import distributed

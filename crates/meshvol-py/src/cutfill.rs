@@ -71,10 +71,8 @@ crate::dict::report_methods!(PyCutFill, "CutFill");
 /// A surface given as a path (read, as `meshvol.load` does) or as a mesh; whether it was
 /// read here (its reader's warnings not yet given).
 fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)> {
-    if obj.cast::<PyMesh>().is_err() {
-        if obj.extract::<PathBuf>().is_ok() {
-            return Ok((Bound::new(obj.py(), load(obj.py(), obj, None)?)?, true));
-        }
+    if obj.cast::<PyMesh>().is_err() && obj.extract::<PathBuf>().is_ok() {
+        return Ok((Bound::new(obj.py(), load(obj.py(), obj, None)?)?, true));
     }
     Ok((mesh_of(obj)?, false))
 }

@@ -67,6 +67,7 @@ pub fn counts_of(cells: &Bound<'_, PyAny>) -> PyResult<[usize; 3]> {
 
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
 /// arguments describe, or of the block `region` of it, as a `meshvol.Grid`.
+#[allow(clippy::too_many_arguments)]
 pub fn cell_volumes<'py, S: Surface>(
     py: Python<'py>,
     mesh: &S,

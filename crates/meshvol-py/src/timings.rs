@@ -6,9 +6,12 @@ use meshvol_report::timings::StageTiming;
 use std::sync::Mutex;
 use std::time::Instant;
 
+/// The stages done, and the current one: its name, start and CPU seconds then.
+type Stages = (Vec<StageTiming>, Option<(String, Instant, f64)>);
+
 /// The stages of one call as they pass: each stage named ends the one before it.
 pub struct Clock {
-    state: Mutex<(Vec<StageTiming>, Option<(String, Instant, f64)>)>,
+    state: Mutex<Stages>,
 }
 
 impl Clock {
@@ -31,7 +34,7 @@ impl Clock {
     }
 }
 
-fn close(state: &mut (Vec<StageTiming>, Option<(String, Instant, f64)>)) {
+fn close(state: &mut Stages) {
     if let Some((stage, start, cpu)) = state.1.take() {
         let wall_s = start.elapsed().as_secs_f64();
         state.0.push(StageTiming { stage, wall_s, cpu_s: (cpu_seconds() - cpu).max(0.0) });
