@@ -45,7 +45,8 @@ fn measure_one(path: &Path, check: bool, options: &VolumeOptions) -> String {
 }
 
 /// Each file's JSON line, in order: files measured `workers` at a time (None: one per
-/// core), every one in its own thread of a rayon pool, the GIL released throughout.
+/// core; at most one a file and 8 a core), on the threads of a rayon pool, the GIL
+/// released throughout.
 #[pyfunction]
 #[pyo3(signature = (paths, workers = None, check = true, density = None, units = None, exact = false), text_signature = "(paths, workers=None, check=True, density=1.0, units=None, exact=False)")]
 pub fn _measure_files(
@@ -65,6 +66,10 @@ pub fn _measure_files(
     }
     let run =
         || -> Vec<String> { paths.par_iter().map(|p| measure_one(p, check, &options)).collect() };
+    // Threads are OS threads: at most one a file and 8 a core (workers=10**6 must not
+    // start a million).
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let workers = workers.map(|n| n.min(paths.len().max(1)).min(8 * cores));
     py.detach(|| match workers {
         None => Ok(run()),
         Some(n) => rayon::ThreadPoolBuilder::new()

@@ -94,6 +94,8 @@ def test_any_worker_count_gives_the_same_frame(folder, tmp_path):
     pandas.testing.assert_frame_equal(one, default)
     with pytest.raises(ValueError, match="workers"):
         meshvol.measure(folder, workers=0)
+    # Threads are capped (one a file, 8 a core): a huge count starts no million threads.
+    assert len(meshvol.measure([folder / "a_box.obj"], workers=10**6)) == 1
 
 
 def test_unchecked(folder):

@@ -94,7 +94,7 @@ def measure(
     ('parts/**/*.stl'), or a list of any of these. No files: an empty DataFrame and a
     MeshWarning.
     workers: files measured at once (threads of a rayon pool, the GIL released); None,
-    one per core. Each file is read once.
+    one per core; at most one a file and 8 a core. Each file is read once.
     check, density, units, exact: as Mesh.mass_properties (check=False is `--no-check`).
     The rows' warnings are in the 'warnings' column; none is issued.
     """
