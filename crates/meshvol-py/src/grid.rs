@@ -245,9 +245,10 @@ impl PyUnion {
 /// Refinement stops once upper - lower <= tolerance * lower. check=True (the default)
 /// measures each mesh's checked solid, with holes capped and the caps' uncertainty
 /// widening the interval; check=False the surfaces as wound. units and density as the
-/// command's --units and --density.
+/// command's --units and --density. timings=True adds `timings`: each mesh's check
+/// (run again), then measuring, as the command's --timings.
 #[pyfunction]
-#[pyo3(signature = (meshes, tolerance = 1e-6, check = true, units = None, density = None))]
+#[pyo3(signature = (meshes, tolerance = 1e-6, check = true, units = None, density = None, timings = false))]
 pub fn union(
     py: Python<'_>,
     meshes: &Bound<'_, PyAny>,
@@ -255,6 +256,7 @@ pub fn union(
     check: bool,
     units: Option<&str>,
     density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<PyUnion> {
     let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
@@ -269,15 +271,27 @@ pub fn union(
     if meshes.is_empty() {
         return Err(mesh_error("no bodies: give at least one mesh"));
     }
-    let subjects =
+    let clock = timings.then(crate::timings::Clock::new);
+    let timed: Vec<meshvol::topology::Check> = match (&clock, check) {
+        (Some(c), true) => {
+            meshes.iter().map(|m| m.get().timed_check(py, c)).collect::<PyResult<_>>()?
+        }
+        _ => Vec::new(),
+    };
+    let mut subjects =
         meshes.iter().map(|m| m.get().subject(py, check)).collect::<PyResult<Vec<_>>>()?;
+    for (s, c) in subjects.iter_mut().zip(&timed) {
+        s.check = Some(c);
+    }
+    crate::timings::stage(clock.as_ref(), "measuring");
     let report =
         py.detach(|| meshvol_report::union::union(&subjects, tolerance)).map_err(mesh_error)?;
     let files: Vec<(&str, Option<meshvol_io::LengthUnit>)> =
         subjects.iter().map(|s| (s.source.name(), s.source.unit)).collect();
     let report = report.in_units(&options, &files).map_err(mesh_error)?;
     meshes[0].get().warn(py, &report.warnings)?;
-    Ok(PyUnion { fields: Fields::new(&report)?, report })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyUnion { fields, report })
 }
 
 crate::dict::report_methods!(PyProfile, "Profile");

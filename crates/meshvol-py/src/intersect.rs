@@ -79,11 +79,12 @@ fn pose_of(pose: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Affin
 /// body: its checked solid, checked once and kept by the Mesh, is moved, so a loop over
 /// poses checks nothing again. A pose that is not rigid (a scale, a shear, a mirror, a
 /// non-finite entry, another shape) raises ValueError naming it. Refinement stops once
-/// upper - lower <= tolerance * lower. check=True (the default) measures each mesh's
+/// upper - lower <= tolerance * lower. timings=True adds `timings` (each check, run
+/// again, then measuring). check=True (the default) measures each mesh's
 /// checked solid; check=False the surfaces as wound. units and density as the command's
 /// --units and --density.
 #[pyfunction]
-#[pyo3(signature = (a, b, pose_a = None, pose_b = None, tolerance = 1e-9, check = true, units = None, density = None))]
+#[pyo3(signature = (a, b, pose_a = None, pose_b = None, tolerance = 1e-9, check = true, units = None, density = None, timings = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn intersection(
     py: Python<'_>,
@@ -95,6 +96,7 @@ pub fn intersection(
     check: bool,
     units: Option<&str>,
     density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<PyIntersection> {
     let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
@@ -102,13 +104,23 @@ pub fn intersection(
     }
     let poses = [pose_of(pose_a, "pose_a")?, pose_of(pose_b, "pose_b")?];
     let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
-    let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let clock = timings.then(crate::timings::Clock::new);
+    let timed = match (&clock, check) {
+        (Some(c), true) => Some((a.get().timed_check(py, c)?, b.get().timed_check(py, c)?)),
+        _ => None,
+    };
+    if let Some((ca, cb)) = &timed {
+        (sa.check, sb.check) = (Some(ca), Some(cb));
+    }
+    crate::timings::stage(clock.as_ref(), "measuring");
     let report =
         py.detach(|| intersect_posed(&sa, &sb, poses, tolerance, &())).map_err(mesh_error)?;
     let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
     let report = report.in_units(&options, &files).map_err(mesh_error)?;
     a.get().warn(py, &report.warnings)?;
-    Ok(PyIntersection { fields: Fields::new(&report)?, report })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyIntersection { fields, report })
 }
 
 crate::dict::report_methods!(PyIntersection, "Intersection");

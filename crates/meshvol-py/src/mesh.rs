@@ -72,6 +72,26 @@ impl PyMesh {
         Ok(Subject { source: &self.source, surface: &self.mesh, check })
     }
 
+    /// The check with default options run again, its stages timed on `clock` (and kept
+    /// when none was).
+    pub(crate) fn timed_check(
+        &self,
+        py: Python<'_>,
+        clock: &crate::timings::Clock,
+    ) -> PyResult<Check> {
+        clock.start("checking");
+        let options = CheckOptions::default();
+        let owned = py
+            .detach(|| {
+                topology::check_assembled(&self.mesh, self.assembly.as_deref(), &options, clock)
+            })
+            .map_err(crate::errors::mesh_error)?;
+        if self.checked.get().is_none() {
+            let _ = self.checked.set(owned.clone());
+        }
+        Ok(owned)
+    }
+
     /// `f` of the subject, as [`PyMesh::subject`] gives it; with a clock (`timings=True`)
     /// the check runs again, its stages timed (and is kept when none was), then
     /// `measuring` starts.
@@ -87,16 +107,7 @@ impl PyMesh {
             crate::timings::stage(clock, "measuring");
             return f(subject);
         };
-        clock.start("checking");
-        let options = CheckOptions::default();
-        let owned = py
-            .detach(|| {
-                topology::check_assembled(&self.mesh, self.assembly.as_deref(), &options, clock)
-            })
-            .map_err(crate::errors::mesh_error)?;
-        if self.checked.get().is_none() {
-            let _ = self.checked.set(owned.clone());
-        }
+        let owned = self.timed_check(py, clock)?;
         clock.start("measuring");
         f(Subject { source: &self.source, surface: &self.mesh, check: Some(&owned) })
     }

@@ -26,6 +26,8 @@ def sphere():
         lambda m, t: m.profile(levels=4, timings=t),
         lambda m, t: m.below(volume=1.0, timings=t),
         lambda m, t: m.section("z=0.1", timings=t),
+        lambda m, t: meshvol.union([m], timings=t),
+        lambda m, t: meshvol.intersection(m, m, timings=t),
     ],
 )
 def test_stages_add_up_to_the_call(call):

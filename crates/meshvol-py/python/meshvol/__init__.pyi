@@ -344,6 +344,7 @@ class Union:
     body_names: list[str]
     grid: list[int]
     seconds: float
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol union --json`."""
 
@@ -381,6 +382,7 @@ class Intersection:
     files: list[str]
     grid: list[int]
     seconds: float
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol intersect --json`."""
     @property
@@ -595,6 +597,7 @@ def union(
     check: bool = True,
     units: Optional[str] = None,
     density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> Union:
     """Volume of the union of closed bodies, certified (`meshvol union`)."""
 
@@ -607,6 +610,7 @@ def intersection(
     check: bool = True,
     units: Optional[str] = None,
     density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> Intersection:
     """Volume of the intersection of two bodies, each placed by an optional 4×4 rigid
     pose, certified, with IoU, Dice and moments (`meshvol intersect`)."""
