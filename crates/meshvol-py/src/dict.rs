@@ -18,7 +18,9 @@ impl Fields {
     /// Serializes `report` (a struct: a JSON object).
     pub fn new(report: &impl Serialize) -> PyResult<Fields> {
         let json = serde_json::to_string(report).map_err(crate::errors::mesh_error)?;
-        match serde_json::from_str(&json) {
+        // The values straight from the report, not parsed back from the text: serde_json's
+        // parser may round a float's last bit, and attributes must be to_dict()'s bits.
+        match serde_json::to_value(report) {
             Ok(Value::Object(values)) => Ok(Fields { json, values }),
             Ok(_) => Err(crate::errors::mesh_error("a report is not a JSON object")),
             Err(e) => Err(crate::errors::mesh_error(e)),
@@ -34,11 +36,10 @@ impl Fields {
         let Some(t) = timings else { return Ok(self) };
         let line = meshvol_report::timings::with_timings(&self.json, &t)
             .map_err(crate::errors::mesh_error)?;
-        let json = line.trim_end().to_string();
-        match serde_json::from_str(&json) {
-            Ok(Value::Object(values)) => Ok(Fields { json, values }),
-            _ => Err(crate::errors::mesh_error("a report with timings is not a JSON object")),
-        }
+        let mut values = self.values;
+        values
+            .insert("timings".into(), serde_json::to_value(&t).map_err(crate::errors::mesh_error)?);
+        Ok(Fields { json: line.trim_end().to_string(), values })
     }
 
     /// The value of key `name`, as a new Python object; AttributeError without it.

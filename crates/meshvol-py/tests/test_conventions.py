@@ -328,3 +328,18 @@ def test_grid_to_xarray():
     assert array.dims == ("x", "y", "z") and array.name == "fraction"
     assert array.x.values.tolist() == [0.5, 1.5]
     assert float(array.sel(x=1.5, y=2.5, z=3.5)) == 1.0
+
+
+def test_attributes_are_to_dicts_bits():
+    from solids import uv_sphere
+
+    mp = meshvol.Mesh(*uv_sphere(rings=9, segments=13, centre=(1000.1, 2.3, -3.7))).mass_properties(
+        density=7.3, timings=True
+    )
+    d = mp.to_dict()
+    floats = {k: v for k, v in d.items() if isinstance(v, float)}
+    assert len(floats) >= 5
+    for key, value in floats.items():
+        assert np.float64(getattr(mp, key)).view(np.uint64) == np.float64(value).view(np.uint64), key
+    assert np.array_equal(mp.principal_moments, d["principal_moments"])
+    assert np.array_equal(mp.centroid, d["centroid"]) and mp.timings == d["timings"]
