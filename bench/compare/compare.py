@@ -54,14 +54,16 @@ FORMAT_EXT = {"stl": ".stl", "stl-ascii": "_ascii.stl", "obj": ".obj", "ply": ".
 PEERS = {
     "trimesh": ("trimesh", "trimesh", "volume (end-to-end, in-process), check, grid"),
     "numpy-stl": ("stl", "numpy-stl", "volume (end-to-end on STL, in-process)"),
-    "manifold3d": ("manifold3d", "manifold3d", "volume (in-process), grid, union"),
+    "manifold3d": ("manifold3d", "manifold3d", "volume (in-process), grid, union, intersection"),
     "open3d": ("open3d", "open3d", "volume (end-to-end, in-process), check"),
     "pymeshlab": ("pymeshlab", "pymeshlab", "volume (end-to-end, in-process), check"),
     "vtk": ("vtkmodules.vtkFiltersCore", "vtk", "volume (end-to-end, in-process)"),
     "scipy": ("scipy.spatial", "scipy", "convex hull (qhull)"),
     "shapely": ("shapely", "shapely", "2D area"),
-    "trueform": ("trueform", "trueform", "volume (end-to-end, in-process), check, union"),
+    "trueform": ("trueform", "trueform", "volume (end-to-end, in-process), check, union, "
+                 "intersection"),
     "meshlib": ("meshlib.mrmeshpy", "meshlib", "volume (end-to-end, in-process), check, union, "
+                "intersection, "
                 "profile"),
     # not a peer: meshvol's own Python binding, for a measured meshvol row in-process
     "meshvol-py": ("meshvol", "meshvol", "meshvol's in-process row (optional: "
@@ -84,14 +86,15 @@ IMPORT_ONLY = {"trimesh": "trimesh", "numpy-stl": "stl.mesh", "open3d": "open3d"
 INPROCESS_TOOLS = ("meshvol-py", "trueform", "meshlib", "vtk", "trimesh", "manifold3d", "numpy-stl",
                    "pymeshlab", "open3d")
 NO_VERDICT = "(no verdict)"
-SECTIONS = ["volume", "inprocess", "check", "grid", "union", "profile", "hull", "area", "scaling"]
+SECTIONS = ["volume", "inprocess", "check", "grid", "union", "intersect", "profile", "hull", "area",
+            "scaling"]
 # run only when named in --only: the scaling section is meshvol alone on spheres up to 20M
 # triangles (about 1 GB of STL to write), not a comparison
 DEFAULT_OFF = {"scaling"}
-WEIGHTS = {"volume": 0.38, "inprocess": 0.09, "check": 0.17, "grid": 0.11, "union": 0.04,
+WEIGHTS = {"volume": 0.38, "inprocess": 0.09, "check": 0.17, "grid": 0.11, "union": 0.04, "intersect": 0.04,
            "profile": 0.03, "hull": 0.11, "area": 0.10, "scaling": 0.5}
 SECTION_TITLE = {"volume": "mesh volume, end-to-end", "inprocess": "mesh volume, in-process",
-                 "check": "topology check", "grid": "grid", "union": "union",
+                 "check": "topology check", "grid": "grid", "union": "union", "intersect": "intersection",
                  "profile": "profile (volume below levels)", "hull": "convex hull",
                  "area": "2D area", "scaling": "scaling (meshvol alone)"}
 
@@ -682,6 +685,8 @@ def write_report(path: Path, res: dict, files, info, vers, peers, args, started,
     if res.get("grid_file"):
         reports["grid"] = sections.report_grid(res.get("grid", []), res["grid_file"], res["params"])
     reports["union"] = sections.report_union(res.get("union", []))
+    reports["intersect"] = sections.report_intersect(res.get("intersect", []),
+                                                     res.get("intersect_voxels", []))
     if res.get("profile_file"):
         reports["profile"] = sections.report_profile(res.get("profile", []), res["profile_file"])
     reports["scaling"] = sections.report_scaling(res.get("scaling", []), res.get("scaling_files", []))
@@ -815,7 +820,7 @@ def write_chart(path: Path, res: dict, main_name) -> bool:
                             s[0], r["tool"].startswith("meshvol") or r["tool"] == "cat"))
     if pts:
         panels.append((f"volume, end-to-end: {main_name}", pts))
-    for s in ("check", "grid", "union", "profile", "hull", "area"):
+    for s in ("check", "grid", "union", "intersect", "profile", "hull", "area"):
         c = sections.chart_items(s, res.get(s, []))
         if c:
             panels.append(c)
@@ -1012,6 +1017,8 @@ def main(argv=None):
             res["grid"] = sections.run_grid(ctx, res["grid_file"], p)
         elif s == "union":
             res["union"] = sections.run_union(ctx, p)
+        elif s == "intersect":
+            res["intersect"], res["intersect_voxels"] = sections.run_intersect(ctx, p)
         elif s == "profile":
             res["profile_file"] = byname[f"sphere_{size_label(p['check_size'])}.stl"]
             res["profile"] = sections.run_profile(ctx, res["profile_file"], p)

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import subprocess
+import time
 from fractions import Fraction
 from pathlib import Path
 
@@ -39,6 +41,7 @@ def params(args) -> dict:
         "grid_cells": [64, 128] if q else [256, 512],
         "grid_sample": 10 if q else 30,
         "union": (6, 5_000) if q else (20, 20_000),
+        "intersect": 100_000 if q else 1_000_000,
         "hull_points": 10_000 if q else 1_000_000,
         "area_vertices": 100_000 if q else 1_000_000,
         "area_polygons": 10_000 if q else 100_000,
@@ -475,6 +478,124 @@ def report_union(rows) -> tuple[list[str], list[str]]:
     return L, verdicts.not_ahead()
 
 
+# --------------------------------------------------------------------------- intersect
+
+# Two spheres of radius 100, centres INTERSECT_OFFSET apart.
+INTERSECT_OFFSET = (50.0, 30.0, 40.0)
+INTERSECT_PEERS = ("manifold3d", "trueform", "meshlib")
+
+
+def prepare_intersect(p) -> list[Path]:
+    tris = p["intersect"]
+    cache = Cache("intersect")
+    paths = []
+    for name, centre in (("a", (0.0, 0.0, 0.0)), ("b", INTERSECT_OFFSET)):
+        file = f"intersect_{name}_{size_label(tris)}.stl"
+        if not cache.fresh(file):
+            v, f, _ = meshgen.uv_sphere(tris, radius=100.0, center=centre)
+            meshgen.write_stl_binary(cache.dir / file, v, f)
+            cache.done(file, triangles=int(len(f)))
+        paths.append(cache.dir / file)
+    return paths
+
+
+def smooth_lens(d: float, r: float = 100.0) -> tuple[float, float]:
+    """The volume of two balls of radius r, centres d apart, in common, and their IoU."""
+    lens = math.pi * (4 * r + d) * (2 * r - d) ** 2 / 12
+    ball = 4 / 3 * math.pi * r ** 3
+    return lens, lens / (2 * ball - lens)
+
+
+def voxel_iou(res: int, r: float = 100.0) -> tuple[float, float]:
+    """IoU of the balls as a voxel count at `res`³ over the box holding both: a voxel is
+    in a ball when its centre is (what voxelising a mesh at that pitch gives, less the
+    mesh's own discretization). Returns (IoU, seconds)."""
+    t0 = time.perf_counter()
+    c = np.array(INTERSECT_OFFSET)
+    lo, hi = np.minimum(0.0, c) - r, np.maximum(0.0, c) + r
+    axes = [lo[k] + (np.arange(res) + 0.5) * (hi[k] - lo[k]) / res for k in range(3)]
+    x, y, z = np.meshgrid(*axes, indexing="ij", sparse=True)
+    in_a = x * x + y * y + z * z <= r * r
+    in_b = (x - c[0]) ** 2 + (y - c[1]) ** 2 + (z - c[2]) ** 2 <= r * r
+    both, either = np.count_nonzero(in_a & in_b), np.count_nonzero(in_a | in_b)
+    return both / either, time.perf_counter() - t0
+
+
+def run_intersect(ctx, p) -> tuple[list[dict], list[dict]]:
+    a, b = prepare_intersect(p)
+    item = f"2 spheres × {size_label(p['intersect'])} triangles"
+    rows = []
+    r = base_row("intersect", item, "meshvol")
+    rows.append(ctx.run(r, ctx.meshvol + ["intersect", str(a), str(b), "--json"], meshvol=True,
+                        parse_keys=("lower",)))
+    for tool in INTERSECT_PEERS:
+        if ctx.wants(tool):
+            r = base_row("intersect", item, tool)
+            rows.append(ctx.run(r, [PY, str(TOOLS_DIR / "intersect_peer.py"), tool, str(a), str(b)],
+                                key=("intersect", tool), size=1))
+    voxels = []
+    for res in (32, 64, 128, 256):
+        iou, seconds = voxel_iou(res)
+        voxels.append({"res": res, "iou": iou, "seconds": seconds})
+    return rows, voxels
+
+
+def report_intersect(rows, voxels) -> tuple[list[str], list[str]]:
+    L = ["## Intersection of two bodies\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    d = math.dist((0.0, 0.0, 0.0), INTERSECT_OFFSET)
+    L.append(f"Two UV spheres of radius 100, centres {d:.4g} apart, one binary STL each; fresh "
+             "process per run, reading included. `meshvol intersect A B --json` gives a certified "
+             "interval for |A∩B| without a boolean mesh, with IoU, Dice, the moments and the "
+             "contact interface; **manifold3d** builds each `Manifold`, `A ^ B`, `volume()`; "
+             "**trueform** `boolean_intersection`, `signed_volume`; **MeshLib** `boolean(A, B, "
+             "BooleanOperation.Intersection)`, `Mesh.volume()` (kernel s: those calls after "
+             "reading). The check is whether each peer's volume lies inside meshvol's interval.\n")
+    L.append("| bodies | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume | check | meshvol ahead? |")
+    L.append("|---|---|--:|--:|--:|--:|--:|--:|---|---|")
+    verdicts = Verdicts("intersect")
+    mv = next((r for r in rows if r["tool"] == "meshvol" and "median_s" in r), None)
+    mvo = (mv or {}).get("output") or {}
+    for r in rows:
+        out = r.get("output") or {}
+        vol, check = "", ""
+        if r["tool"] == "meshvol" and out:
+            vol = f"[{out['lower']:.12g}, {out['upper']:.12g}]"
+            check = f"width {(out['upper'] - out['lower']) / out['lower']:.1e} relative"
+        elif "volume" in out:
+            vol = f"{out['volume']:.12g}"
+            if mvo:
+                if mvo["lower"] <= out["volume"] <= mvo["upper"]:
+                    check = "inside meshvol's interval"
+                else:
+                    gap = min(abs(out["volume"] - mvo["lower"]), abs(out["volume"] - mvo["upper"]))
+                    check = f"**outside** meshvol's interval (by {gap / mvo['lower']:.1e} relative)"
+        check = failure_note(r) or check
+        is_mv = r["tool"] == "meshvol"
+        mv_s = mv["median_s"] if mv else None
+        ahead = "" if is_mv else verdicts.cell(r, mv, r["tool"])
+        L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | "
+                 f"{fmt_s(kernel_of(r)) if not is_mv else ''} | {'' if is_mv else ratio_cell(r, mv_s)} | "
+                 f"{fmt_mb(r.get('peak_mb'))} | {vol} | {md_cell(check)} | {ahead} |")
+    L.extend(verdicts.sentences())
+    lens, smooth_iou = smooth_lens(d)
+    if mvo and voxels:
+        L.append("\n**IoU by voxels.** The same two balls voxelised at n³ over the box holding both "
+                 "(a voxel counts when its centre is inside: what voxelising the meshes gives, without "
+                 "the meshes' own discretization), against meshvol's IoU of the polyhedra and the "
+                 f"smooth balls' IoU {smooth_iou:.6f}:\n")
+        L.append("| voxels | IoU | error vs meshvol's IoU | seconds |")
+        L.append("|---|--:|--:|--:|")
+        for v in voxels:
+            err = (v["iou"] - mvo["iou"]) / mvo["iou"]
+            L.append(f"| {v['res']}³ | {v['iou']:.6f} | {err:+.1e} | {v['seconds']:.3f} |")
+        L.append(f"| meshvol (polyhedra) | {mvo['iou']:.6f} | interval [{mvo['iou_lower']:.9f}, "
+                 f"{mvo['iou_upper']:.9f}] | |")
+        L.append("")
+    return L, verdicts.not_ahead()
+
+
 # --------------------------------------------------------------------------- hull
 
 
@@ -701,7 +822,8 @@ def chart_items(section, rows) -> tuple[str, list[tuple[str, float, bool]]] | No
             continue
         label = r["tool"] + (" (>)" if s[1] else "")
         pts.append((label, s[0], r["tool"].startswith("meshvol")))
-    titles = {"check": "topology check", "grid": "grid", "union": "union", "profile": "profile", "hull": "convex hull",
+    titles = {"check": "topology check", "grid": "grid", "union": "union", "intersect": "intersection",
+              "profile": "profile", "hull": "convex hull",
               "area": "2D area"}
     if section == "grid":  # kernel times: manifold3d's is extrapolated to all partial cells
         pts = [(r["tool"] + (" (extrapolated)" if r["tool"] == "manifold3d" else ""), kernel_of(r),

@@ -52,33 +52,53 @@ impl PyMesh {
     /// that holds V below it (a draft). heel and trim turn the normal by that many
     /// degrees about x, then about y. check=True (the default) measures the checked
     /// solid, as every command does.
-    #[pyo3(signature = (plane = None, volume = None, direction = (0.0, 0.0, 1.0), heel = 0.0, trim = 0.0, check = true))]
+    ///
+    /// plane and direction take any sequence or NumPy array of 4 and 3 numbers. units
+    /// and density as the command's --units and --density ('mm:m', '1025kg/m3': the
+    /// displaced mass). timings=True adds `timings`, as in mass_properties.
+    #[pyo3(
+        signature = (plane = None, volume = None, direction = None, heel = 0.0, trim = 0.0, check = true, units = None, density = None, timings = false),
+        text_signature = "(self, plane=None, volume=None, direction=(0.0, 0.0, 1.0), heel=0.0, trim=0.0, check=True, units=None, density=None, timings=False)"
+    )]
     #[allow(clippy::too_many_arguments)]
     fn below(
         &self,
         py: Python<'_>,
-        plane: Option<[f64; 4]>,
+        plane: Option<&Bound<'_, PyAny>>,
         volume: Option<f64>,
-        direction: (f64, f64, f64),
+        direction: Option<&Bound<'_, PyAny>>,
         heel: f64,
         trim: f64,
         check: bool,
+        units: Option<&str>,
+        density: Option<&Bound<'_, PyAny>>,
+        timings: bool,
     ) -> PyResult<PyBelow> {
+        let unit_options = crate::units::options(units, density)?;
         require_faces(&self.mesh)?;
+        let plane = plane
+            .map(|p| crate::convert::float_argument(p, "plane", &[4], "(nx, ny, nz, d)"))
+            .transpose()?;
+        let direction = match direction {
+            Some(d) => crate::convert::vector3(d, "direction")?,
+            None => [0.0, 0.0, 1.0],
+        };
         let waterline = match (plane, volume) {
-            (Some([nx, ny, nz, d]), None) => Waterline::Plane { normal: [nx, ny, nz], d },
-            (None, Some(volume)) => {
-                Waterline::Volume { direction: [direction.0, direction.1, direction.2], volume }
-            }
+            (Some(p), None) => Waterline::Plane { normal: [p[0], p[1], p[2]], d: p[3] },
+            (None, Some(volume)) => Waterline::Volume { direction, volume },
             _ => return Err(bad_argument("give plane=(nx, ny, nz, d) or volume=V, not both")),
         };
         if ![heel, trim].iter().all(|x| x.is_finite()) {
             return Err(bad_argument("heel and trim must be finite numbers of degrees"));
         }
         let options = BelowOptions { waterline, heel, trim };
-        let subject = self.subject(py, check)?;
-        let report = py.detach(|| below(&subject, &options)).map_err(mesh_error)?;
+        let clock = timings.then(crate::timings::Clock::new);
+        let report = self.with_subject(py, check, clock.as_ref(), |subject| {
+            py.detach(|| below(&subject, &options)).map_err(mesh_error)
+        })?;
+        let report = report.in_units(&unit_options, self.source.unit).map_err(mesh_error)?;
         self.warn(py, &report.warnings)?;
-        Ok(PyBelow { fields: Fields::new(&report)?, report })
+        let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+        Ok(PyBelow { fields, report })
     }
 }

@@ -18,8 +18,23 @@ pub struct PyShell {
     fields: Fields,
 }
 
+impl PyShell {
+    /// A Shell object of a report's shell.
+    pub fn new(s: &ShellReport) -> PyResult<PyShell> {
+        Ok(PyShell { fields: Fields::new(s)?, report: s.clone() })
+    }
+}
+
 #[pymethods]
 impl PyShell {
+    /// shell["volume"]: a key of the report, as a dict entry (shell_details were dicts
+    /// once; code that indexes them keeps working).
+    fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.fields
+            .get(py, "Shell", key)
+            .map_err(|_| pyo3::exceptions::PyKeyError::new_err(key.to_string()))
+    }
+
     fn __repr__(&self) -> String {
         let r = &self.report;
         let py_bool = |b: bool| if b { "True" } else { "False" };
@@ -57,6 +72,8 @@ pub fn check(
     mesh: &Bound<'_, PyMesh>,
     weld_tolerance: Option<f64>,
     intersections: bool,
+    units: &meshvol_report::units::UnitOptions,
+    timings: bool,
 ) -> PyResult<PyCheck> {
     let weld = match weld_tolerance {
         None => Weld::Auto,
@@ -70,9 +87,23 @@ pub fn check(
     };
     let options = CheckOptions { weld, intersections, ..CheckOptions::default() };
     let m = mesh.get();
-    let c = mesh.py().detach(|| m.check_with(&options)).map_err(mesh_error)?;
-    let report = meshvol_report::check::check(&m.source, &c);
-    Ok(PyCheck { fields: Fields::new(&report)?, report, check: c, mesh: mesh.clone().unbind() })
+    let clock = timings.then(crate::timings::Clock::new);
+    crate::timings::stage(clock.as_ref(), "checking");
+    let c = mesh
+        .py()
+        .detach(|| match &clock {
+            Some(clock) => {
+                meshvol::topology::check_assembled(&m.mesh, m.assembly.as_deref(), &options, clock)
+            }
+            None => m.check_with(&options),
+        })
+        .map_err(mesh_error)?;
+    crate::timings::stage(clock.as_ref(), "reporting");
+    let report = meshvol_report::check::check(&m.source, &c)
+        .in_units(units, m.source.unit)
+        .map_err(mesh_error)?;
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyCheck { fields, report, check: c, mesh: mesh.clone().unbind() })
 }
 
 #[pymethods]
@@ -80,12 +111,7 @@ impl PyCheck {
     /// Each shell's facts, as Shell objects.
     #[getter]
     fn shell_details(&self) -> PyResult<Vec<PyShell>> {
-        self.report
-            .facts
-            .shell_details
-            .iter()
-            .map(|s| Ok(PyShell { fields: Fields::new(s)?, report: s.clone() }))
-            .collect()
+        self.report.facts.shell_details.iter().map(PyShell::new).collect()
     }
 
     /// Pairs of shells whose surfaces cross, as (i, j) tuples with i < j.
@@ -105,11 +131,11 @@ impl PyCheck {
     /// outward, cavities subtracted, degenerate and duplicate faces dropped, holes capped;
     /// signed_volume, faces and triangles are the surface's as wound, and warnings say
     /// why the solid may not be the one meant.
-    #[pyo3(signature = (density = 1.0, exact = false, units = None))]
+    #[pyo3(signature = (density = None, exact = false, units = None), text_signature = "(self, density=1.0, exact=False, units=None)")]
     fn mass_properties(
         &self,
         py: Python<'_>,
-        density: f64,
+        density: Option<&Bound<'_, PyAny>>,
         exact: bool,
         units: Option<&str>,
     ) -> PyResult<PyMassProperties> {

@@ -248,3 +248,109 @@ pub fn mesh_like<'py>(
         Ok(None)
     }
 }
+
+/// A numeric argument (`what`) of exactly `shape`, from any array-like (a NumPy array,
+/// a list, a tuple), as f64 values in row-major order. `form` says what it is, as the
+/// error names it: "bounds must be ((x0, y0, z0), (x1, y1, z1)), an array-like of shape
+/// (2, 3); got shape (3,)". Integers are widened; booleans, strings and complex numbers
+/// are a TypeError naming the dtype.
+pub fn float_argument(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    shape: &[usize],
+    form: &str,
+) -> PyResult<Vec<f64>> {
+    let array = argument_array(obj, what, shape, form)?;
+    let kind = array.dtype().kind();
+    if !matches!(kind, b'f' | b'i' | b'u') || array.dtype().itemsize() > 8 {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what} must be numbers, {form}: an array-like of shape {}; got dtype {}",
+            shape_text(shape),
+            array.dtype()
+        )));
+    }
+    array
+        .call_method1("astype", ("float64",))?
+        .call_method0("ravel")?
+        .call_method0("tolist")?
+        .extract()
+}
+
+/// A whole-number argument (`what`) of exactly `shape`, as `float_argument` but of an
+/// integer dtype (floats that are whole numbers are accepted too: `(2.0, 3, 4)`).
+pub fn int_argument(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    shape: &[usize],
+    form: &str,
+) -> PyResult<Vec<i64>> {
+    let array = argument_array(obj, what, shape, form)?;
+    let kind = array.dtype().kind();
+    let type_error = || {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what} must be whole numbers, {form}: an array-like of shape {}; got dtype {}",
+            shape_text(shape),
+            array.dtype()
+        ))
+    };
+    match kind {
+        b'i' | b'u' => {}
+        b'f' => {
+            let values: Vec<f64> =
+                array.call_method0("ravel")?.call_method0("tolist")?.extract()?;
+            if values.iter().all(|v| v.fract() == 0.0 && v.abs() < 9.0e15) {
+                return Ok(values.iter().map(|&v| v as i64).collect());
+            }
+            return Err(type_error());
+        }
+        _ => return Err(type_error()),
+    }
+    let values: Vec<i128> = array.call_method0("ravel")?.call_method0("tolist")?.extract()?;
+    Ok(values
+        .iter()
+        .map(|&v| i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX }))
+        .collect())
+}
+
+/// `obj` as a NumPy array of `shape`; a ValueError naming `what` and the shape expected
+/// otherwise.
+fn argument_array<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+    shape: &[usize],
+    form: &str,
+) -> PyResult<Bound<'py, PyUntypedArray>> {
+    let expected = shape_text(shape);
+    let array = obj.py().import("numpy")?.call_method1("asarray", (obj,)).map_err(|e| {
+        crate::errors::bad_argument(format!(
+            "{what} must be {form}, an array-like of shape {expected}; it cannot be read as an \
+             array: {e}"
+        ))
+    })?;
+    let array = array
+        .cast_into::<PyUntypedArray>()
+        .map_err(|e| crate::errors::bad_argument(e.to_string()))?;
+    if array.shape() != shape || array.dtype().kind() == b'O' {
+        let got = if array.dtype().kind() == b'O' {
+            "a ragged or non-numeric sequence".to_string()
+        } else {
+            format!("shape {}", shape_text(array.shape()))
+        };
+        return Err(crate::errors::bad_argument(format!(
+            "{what} must be {form}, an array-like of shape {expected}; got {got}"
+        )));
+    }
+    Ok(array)
+}
+
+/// Three numbers (a vector argument).
+pub fn vector3(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<[f64; 3]> {
+    let v = float_argument(obj, what, &[3], "(x, y, z)")?;
+    Ok([v[0], v[1], v[2]])
+}
+
+/// A box argument: (min corner, max corner), as a (2, 3) array-like.
+pub fn bounds(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<([f64; 3], [f64; 3])> {
+    let v = float_argument(obj, what, &[2, 3], "((x0, y0, z0), (x1, y1, z1))")?;
+    Ok(([v[0], v[1], v[2]], [v[3], v[4], v[5]]))
+}

@@ -54,6 +54,12 @@ impl PyCutFill {
         self.cells(py, |c| &c.fill)
     }
 
+    /// The footprint's plan box as a (2, 2) float64 array [[x0, y0], [x1, y1]], or None.
+    #[getter]
+    fn footprint_bounds<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.report.footprint_bounds.map(|b| numpy::ndarray::arr2(&b).into_pyarray(py))
+    }
+
     fn __repr__(&self) -> String {
         let r = &self.report;
         format!("CutFill(cut={:?}, fill={:?}, net={:?})", r.cut, r.fill, r.net)
@@ -65,10 +71,8 @@ crate::dict::report_methods!(PyCutFill, "CutFill");
 /// A surface given as a path (read, as `meshvol.load` does) or as a mesh; whether it was
 /// read here (its reader's warnings not yet given).
 fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)> {
-    if obj.cast::<PyMesh>().is_err() {
-        if let Ok(path) = obj.extract::<PathBuf>() {
-            return Ok((Bound::new(obj.py(), load(obj.py(), path)?)?, true));
-        }
+    if obj.cast::<PyMesh>().is_err() && obj.extract::<PathBuf>().is_ok() {
+        return Ok((Bound::new(obj.py(), load(obj.py(), obj, None)?)?, true));
     }
     Ok((mesh_of(obj)?, false))
 }
@@ -79,17 +83,24 @@ fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)>
 /// (meshvol.Mesh, or an object with .vertices and .faces); give design, or level=Z for
 /// the plane z = Z. cells=(nx, ny) or pitch=p adds per-cell volumes over the common
 /// footprint's box (cut_cells, fill_cells). A surface that folds over itself in plan
-/// raises MeshError naming its faces.
+/// raises MeshError naming its faces. units as the command's --units ('m:yd': cubic
+/// yards, also for cut_cells and fill_cells; level and pitch in the files' units).
 #[pyfunction]
-#[pyo3(signature = (existing, design = None, level = None, cells = None, pitch = None))]
+#[pyo3(signature = (existing, design = None, level = None, cells = None, pitch = None, units = None))]
 pub fn cutfill(
     py: Python<'_>,
     existing: &Bound<'_, PyAny>,
     design: Option<&Bound<'_, PyAny>>,
     level: Option<f64>,
-    cells: Option<[i64; 2]>,
+    cells: Option<&Bound<'_, PyAny>>,
     pitch: Option<f64>,
+    units: Option<&str>,
 ) -> PyResult<PyCutFill> {
+    let options = crate::units::options(units, None)?;
+    let cells = cells
+        .map(|c| crate::convert::int_argument(c, "cells", &[2], "(nx, ny)"))
+        .transpose()?
+        .map(|c| [c[0], c[1]]);
     let spacing = match (cells, pitch) {
         (Some(_), Some(_)) => return Err(bad_argument("give cells=(nx, ny) or pitch=p, not both")),
         (Some(counts), None) => {
@@ -116,9 +127,17 @@ pub fn cutfill(
         (None, Some(z)) => Against::Level(z),
         _ => return Err(bad_argument("give design=SURFACE or level=Z, not both")),
     };
-    let (report, cells) = py
+    let (report, mut cells) = py
         .detach(|| report(&existing.source, &existing.mesh, against, spacing))
         .map_err(mesh_error)?;
+    let mut files = vec![(existing.source.name(), existing.source.unit)];
+    files.extend(design_mesh.map(|d| (d.source.name(), d.source.unit)));
+    let report = report.in_units(&options, &files).map_err(mesh_error)?;
+    let (scale, _) =
+        meshvol_report::units::Scale::resolve_all(&options, &files).map_err(mesh_error)?;
+    if let Some(c) = cells.as_mut() {
+        c.cut.iter_mut().chain(c.fill.iter_mut()).for_each(|v| *v = scale.volume(*v));
+    }
     // The reader's warnings of a mesh loaded before were given then.
     let new: Vec<String> = if read_here {
         report.warnings.clone()

@@ -55,14 +55,88 @@ create_exception!(
      left out or turned. The message names the reason, as the meshvol command's warnings do."
 );
 
-/// Issues each of `messages` as a [`MeshWarning`].
+/// The `stacklevel` that points a warning at the user's line: the first Python frame
+/// (from the innermost) that is not in the meshvol package itself (meshvol.dask,
+/// meshvol.measure call the native code from Python). A native function has no frame of
+/// its own, so level 1 is the frame that called it.
+fn user_stacklevel(py: Python<'_>) -> i32 {
+    let walk = || -> PyResult<i32> {
+        let package = py.import("meshvol")?.getattr("__file__")?;
+        let package: String =
+            py.import("os.path")?.call_method1("dirname", (package,))?.extract()?;
+        let mut frame = py.import("sys")?.call_method1("_getframe", (0,))?;
+        let mut level = 1;
+        while !frame.is_none() {
+            let file: String = frame.getattr("f_code")?.getattr("co_filename")?.extract()?;
+            if !file.starts_with(&package) {
+                break;
+            }
+            level += 1;
+            frame = frame.getattr("f_back")?;
+        }
+        Ok(level)
+    };
+    walk().unwrap_or(1)
+}
+
+/// Issues `message` as a warning of `category`, at the user's line.
+fn warn_at_user(py: Python<'_>, category: &Bound<'_, PyAny>, message: &str) -> PyResult<()> {
+    let text = std::ffi::CString::new(message.replace('\0', " ")).unwrap_or_default();
+    PyErr::warn(py, category, &text, user_stacklevel(py))
+}
+
+/// Issues each of `messages` as a [`MeshWarning`], pointing at the line that called
+/// meshvol.
 pub fn warn_all(py: Python<'_>, messages: &[String]) -> PyResult<()> {
     let category = py.get_type::<MeshWarning>();
     for m in messages {
-        let text = std::ffi::CString::new(m.replace('\0', " ")).unwrap_or_default();
-        PyErr::warn(py, &category, &text, 2)?;
+        warn_at_user(py, &category, m)?;
     }
     Ok(())
+}
+
+/// Issues a DeprecationWarning at the user's line.
+pub fn deprecated(py: Python<'_>, message: &str) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyDeprecationWarning>();
+    warn_at_user(py, &category, message)
+}
+
+/// The exception for a file that cannot be opened: `meshvol.MeshFileNotFoundError`
+/// (a FileNotFoundError), `MeshPermissionError` (a PermissionError),
+/// `MeshIsADirectoryError` (an IsADirectoryError), or `MeshOSError` (an OSError); each is
+/// also a ReadError (so a MeshError), with OSError's errno, strerror and filename, and
+/// ReadError's path and reason.
+pub fn open_error(py: Python<'_>, path: &std::path::Path, e: &std::io::Error) -> PyErr {
+    let make = || -> PyResult<PyErr> {
+        use std::io::ErrorKind;
+        let class = match e.kind() {
+            ErrorKind::NotFound => "MeshFileNotFoundError",
+            ErrorKind::PermissionDenied => "MeshPermissionError",
+            ErrorKind::IsADirectory => "MeshIsADirectoryError",
+            _ => "MeshOSError",
+        };
+        let class = py.import("meshvol._errors")?.getattr(class)?;
+        let errno = e.raw_os_error().unwrap_or(match e.kind() {
+            ErrorKind::NotFound => 2,
+            ErrorKind::PermissionDenied => 13,
+            ErrorKind::IsADirectory => 21,
+            _ => 5,
+        });
+        // The OS's words without Rust's " (os error 2)".
+        let text = e.to_string();
+        let reason = match text.rfind(" (os error ") {
+            Some(i) => text[..i].to_string(),
+            None => text,
+        };
+        let value = class.call1((errno, &reason, path.as_os_str()))?;
+        value.setattr("path", path.as_os_str())?;
+        for key in ["location", "line", "byte", "face"] {
+            value.setattr(key, py.None())?;
+        }
+        value.setattr("reason", &reason)?;
+        Ok(PyErr::from_value(value))
+    };
+    make().unwrap_or_else(|err| err)
 }
 
 /// A [`MeshError`] with `message`.

@@ -11,16 +11,18 @@ use meshvol_report::profile::ProfileReport;
 use meshvol_report::subject::Subject;
 use meshvol_report::union::UnionReport;
 use numpy::ndarray::Array3;
-use numpy::{IntoPyArray, PyArray1, PyArray3};
+use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 
 /// `pitch` as three cell sizes: one number for cubic cells, or three.
 fn pitch_of(pitch: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
     let sizes = match pitch.extract::<f64>() {
         Ok(h) => [h; 3],
-        Err(_) => pitch
-            .extract::<[f64; 3]>()
-            .map_err(|_| bad_argument("pitch must be a number or three numbers (hx, hy, hz)"))?,
+        Err(_) => {
+            let v =
+                crate::convert::float_argument(pitch, "pitch", &[3], "a number or (hx, hy, hz)")?;
+            [v[0], v[1], v[2]]
+        }
     };
     if sizes.iter().any(|h| !(h.is_finite() && *h > 0.0)) {
         return Err(bad_argument(format!(
@@ -33,9 +35,12 @@ fn pitch_of(pitch: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
 
 /// `region` as cell ranges: three (start, end) pairs of whole numbers ≥ 0 (the core
 /// checks them against the grid).
-fn region_of(region: [(i64, i64); 3]) -> PyResult<Region> {
+fn region_of(region: &Bound<'_, PyAny>) -> PyResult<Region> {
+    let v =
+        crate::convert::int_argument(region, "region", &[3, 2], "((i0, i1), (j0, j1), (k0, k1))")?;
     let mut ranges = [0..0, 0..0, 0..0];
-    for (a, &(start, end)) in region.iter().enumerate() {
+    for (a, pair) in v.chunks_exact(2).enumerate() {
+        let (start, end) = (pair[0], pair[1]);
         let (Ok(s), Ok(e)) = (usize::try_from(start), usize::try_from(end)) else {
             return Err(bad_argument(format!(
                 "region must be ((i0, i1), (j0, j1), (k0, k1)) of cell indices ≥ 0; got \
@@ -48,37 +53,45 @@ fn region_of(region: [(i64, i64); 3]) -> PyResult<Region> {
     Ok(ranges)
 }
 
+/// `cells` as three positive counts.
+pub fn counts_of(cells: &Bound<'_, PyAny>) -> PyResult<[usize; 3]> {
+    let counts = crate::convert::int_argument(cells, "cells", &[3], "(nx, ny, nz)")?;
+    if counts.iter().any(|&n| n < 1) {
+        return Err(bad_argument(format!(
+            "cells must be three positive whole numbers; got ({}, {}, {})",
+            counts[0], counts[1], counts[2]
+        )));
+    }
+    Ok([0, 1, 2].map(|a| usize::try_from(counts[a]).unwrap_or(usize::MAX)))
+}
+
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
-/// arguments describe, or of the block `region` of it.
+/// arguments describe, or of the block `region` of it, as a `meshvol.Grid`.
+#[allow(clippy::too_many_arguments)]
 pub fn cell_volumes<'py, S: Surface>(
     py: Python<'py>,
     mesh: &S,
-    cells: Option<[i64; 3]>,
-    bounds: Option<([f64; 3], [f64; 3])>,
+    cells: Option<&Bound<'py, PyAny>>,
+    bounds: Option<&Bound<'py, PyAny>>,
     fraction: bool,
     pitch: Option<&Bound<'py, PyAny>>,
-    region: Option<[(i64, i64); 3]>,
-) -> PyResult<Bound<'py, PyArray3<f64>>> {
+    region: Option<&Bound<'py, PyAny>>,
+    scale: &meshvol_report::units::Scale,
+) -> PyResult<Bound<'py, PyAny>> {
     let spacing = match (cells, pitch) {
         (Some(_), Some(_)) => return Err(bad_argument("give cells or pitch, not both")),
-        (Some(counts), None) => {
-            if counts.iter().any(|&n| n < 1) {
-                return Err(bad_argument(format!(
-                    "cells must be three positive whole numbers; got ({}, {}, {})",
-                    counts[0], counts[1], counts[2]
-                )));
-            }
-            Spacing::Cells(counts.map(|n| usize::try_from(n).unwrap_or(usize::MAX)))
-        }
+        (Some(counts), None) => Spacing::Cells(counts_of(counts)?),
         (None, Some(pitch)) => Spacing::Pitch(pitch_of(pitch)?),
         (None, None) => return Err(bad_argument("give cells=(nx, ny, nz) or pitch=h")),
     };
+    let bounds = bounds.map(|b| crate::convert::bounds(b, "bounds")).transpose()?;
     let mesh_bounds = match bounds {
         Some(_) => None,
         None => py.detach(|| mass_properties(mesh)).bounds,
     };
     let (grid, _) = choose(bounds, mesh_bounds, spacing, "bounds").map_err(mesh_error)?;
     let region = region.map(region_of).transpose()?;
+    let start = region.as_ref().map_or([0; 3], |r| [r[0].start, r[1].start, r[2].start]);
     let (mut volumes, shape) = match region {
         None => {
             check_memory(grid.counts, 1, "grid").map_err(mesh_error)?;
@@ -94,9 +107,20 @@ pub fn cell_volumes<'py, S: Surface>(
     if fraction {
         let cell = grid.cell_volume();
         volumes.iter_mut().for_each(|v| *v /= cell);
+    } else {
+        // Volumes in the report's unit, and with a density, masses.
+        let rho = scale.mass(1.0).map_or(1.0, |m| m.mass);
+        volumes.iter_mut().for_each(|v| *v = scale.volume(*v) * rho);
     }
     let array = Array3::from_shape_vec(shape, volumes).map_err(mesh_error)?;
-    Ok(array.into_pyarray(py))
+    let origin: [f64; 3] = [0, 1, 2].map(|a| grid.origin[a] + start[a] as f64 * grid.cell[a]);
+    let class = py.import("meshvol._grid")?.getattr("Grid")?;
+    class.call1((
+        array.into_pyarray(py),
+        scale.point(origin),
+        grid.cell.map(|h| scale.length(h)),
+        fraction,
+    ))
 }
 
 /// A profile along an axis, with the names of the keys of `meshvol profile --json`:
@@ -110,6 +134,14 @@ pub struct PyProfile {
 }
 
 impl PyProfile {
+    /// With `timings`, the same with the stages' timings as its last key.
+    pub fn timed(
+        self,
+        timings: Option<Vec<meshvol_report::timings::StageTiming>>,
+    ) -> PyResult<Self> {
+        Ok(PyProfile { fields: self.fields.with_timings(timings)?, report: self.report })
+    }
+
     /// The report's warnings.
     pub fn warnings(&self) -> &[String] {
         &self.report.warnings
@@ -155,6 +187,7 @@ pub fn profile(
     axis: &str,
     levels: Option<i64>,
     step: Option<f64>,
+    units: &meshvol_report::units::UnitOptions,
 ) -> PyResult<PyProfile> {
     let axis = match axis {
         "x" | "X" => Axis::X,
@@ -176,6 +209,8 @@ pub fn profile(
     };
     let report = py
         .detach(|| meshvol_report::profile::profile(subject, axis, levels))
+        .map_err(mesh_error)?
+        .in_units(units, subject.source.unit)
         .map_err(mesh_error)?;
     Ok(PyProfile { fields: Fields::new(&report)?, report })
 }
@@ -209,15 +244,21 @@ impl PyUnion {
 /// outermost shell with its cavities), as a single file does for the command.
 /// Refinement stops once upper - lower <= tolerance * lower. check=True (the default)
 /// measures each mesh's checked solid, with holes capped and the caps' uncertainty
-/// widening the interval; check=False the surfaces as wound.
+/// widening the interval; check=False the surfaces as wound. units and density as the
+/// command's --units and --density. timings=True adds `timings`: each mesh's check
+/// (run again), then measuring, as the command's --timings.
 #[pyfunction]
-#[pyo3(signature = (meshes, tolerance = 1e-6, check = true))]
+#[pyo3(signature = (meshes, tolerance = 1e-6, check = true, units = None, density = None, timings = false))]
 pub fn union(
     py: Python<'_>,
     meshes: &Bound<'_, PyAny>,
     tolerance: f64,
     check: bool,
+    units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<PyUnion> {
+    let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
@@ -230,12 +271,27 @@ pub fn union(
     if meshes.is_empty() {
         return Err(mesh_error("no bodies: give at least one mesh"));
     }
-    let subjects =
+    let clock = timings.then(crate::timings::Clock::new);
+    let timed: Vec<meshvol::topology::Check> = match (&clock, check) {
+        (Some(c), true) => {
+            meshes.iter().map(|m| m.get().timed_check(py, c)).collect::<PyResult<_>>()?
+        }
+        _ => Vec::new(),
+    };
+    let mut subjects =
         meshes.iter().map(|m| m.get().subject(py, check)).collect::<PyResult<Vec<_>>>()?;
+    for (s, c) in subjects.iter_mut().zip(&timed) {
+        s.check = Some(c);
+    }
+    crate::timings::stage(clock.as_ref(), "measuring");
     let report =
         py.detach(|| meshvol_report::union::union(&subjects, tolerance)).map_err(mesh_error)?;
+    let files: Vec<(&str, Option<meshvol_io::LengthUnit>)> =
+        subjects.iter().map(|s| (s.source.name(), s.source.unit)).collect();
+    let report = report.in_units(&options, &files).map_err(mesh_error)?;
     meshes[0].get().warn(py, &report.warnings)?;
-    Ok(PyUnion { fields: Fields::new(&report)?, report })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyUnion { fields, report })
 }
 
 crate::dict::report_methods!(PyProfile, "Profile");

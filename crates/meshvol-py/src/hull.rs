@@ -58,10 +58,21 @@ fn hull_of(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<(usize, Hull)>
 
 /// The convex hull of points, an (n, 3) array: its mesh, volume, area and centroid.
 /// Degenerate sets (no points, all equal, collinear, coplanar) have volume 0 and say why.
+/// units and density as the command's --units and --density (the mesh stays in the
+/// points' coordinates).
 #[pyfunction]
-pub fn convex_hull(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<PyHull> {
+#[pyo3(signature = (points, units = None, density = None))]
+pub fn convex_hull(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
+) -> PyResult<PyHull> {
+    let options = crate::units::options(units, density)?;
     let (count, hull) = hull_of(py, points)?;
-    let report = meshvol_report::hull::hull(None, None, count, &hull, Vec::new());
+    let report = meshvol_report::hull::hull(None, None, count, &hull, Vec::new())
+        .in_units(&options, None)
+        .map_err(mesh_error)?;
     let mesh = match hull.mesh {
         Some(m) => Some(Py::new(py, PyMesh::from(m))?),
         None => None,

@@ -131,10 +131,13 @@ fn rigid(m: &[[f64; 4]; 4], what: &str) -> PyResult<Affine> {
 /// body: its checked solid, checked once and kept by the Mesh, is moved, so a loop over
 /// poses checks nothing again. A pose that is not rigid (a scale, a shear, a mirror, a
 /// non-finite entry, another shape) raises ValueError naming it. Refinement stops once
-/// upper - lower <= tolerance * lower. check=True (the default) measures each mesh's
-/// checked solid; check=False the surfaces as wound.
+/// upper - lower <= tolerance * lower. timings=True adds `timings` (each check, run
+/// again, then measuring). check=True (the default) measures each mesh's
+/// checked solid; check=False the surfaces as wound. units and density as the command's
+/// --units and --density.
 #[pyfunction]
-#[pyo3(signature = (a, b, pose_a = None, pose_b = None, tolerance = 1e-9, check = true))]
+#[pyo3(signature = (a, b, pose_a = None, pose_b = None, tolerance = 1e-9, check = true, units = None, density = None, timings = false))]
+#[allow(clippy::too_many_arguments)]
 pub fn intersection(
     py: Python<'_>,
     a: &Bound<'_, PyAny>,
@@ -143,17 +146,33 @@ pub fn intersection(
     pose_b: Option<&Bound<'_, PyAny>>,
     tolerance: f64,
     check: bool,
+    units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<PyIntersection> {
+    let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
     let poses = [pose_of(pose_a, "pose_a")?, pose_of(pose_b, "pose_b")?];
     let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
-    let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let clock = timings.then(crate::timings::Clock::new);
+    let timed = match (&clock, check) {
+        (Some(c), true) => Some((a.get().timed_check(py, c)?, b.get().timed_check(py, c)?)),
+        _ => None,
+    };
+    if let Some((ca, cb)) = &timed {
+        (sa.check, sb.check) = (Some(ca), Some(cb));
+    }
+    crate::timings::stage(clock.as_ref(), "measuring");
     let report =
         py.detach(|| intersect_posed(&sa, &sb, poses, tolerance, &())).map_err(mesh_error)?;
+    let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
+    let report = report.in_units(&options, &files).map_err(mesh_error)?;
     a.get().warn(py, &report.warnings)?;
-    Ok(PyIntersection { fields: Fields::new(&report)?, report })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyIntersection { fields, report })
 }
 
 /// The intersection of a and b for many poses at once, in parallel: a list of
@@ -163,10 +182,12 @@ pub fn intersection(
 /// poses_a and poses_b are each None (the body where it is), one 4×4 rigid transform
 /// (used for every pose), or an (N, 4, 4) array of them; two arrays must have the same
 /// N. Each mesh is checked once (the check the Mesh keeps) and its checked solid moved
-/// by each pose. A pose that is not rigid raises ValueError naming it (poses_b[3]). The
+/// by each pose; units and density as for intersection. A pose that is not rigid raises
+/// ValueError naming it (poses_b[3]). The
 /// check's warnings, and the intervals' (each once), are issued as MeshWarning.
 #[pyfunction]
-#[pyo3(signature = (a, b, poses_a = None, poses_b = None, tolerance = 1e-9, check = true))]
+#[pyo3(signature = (a, b, poses_a = None, poses_b = None, tolerance = 1e-9, check = true, units = None, density = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn intersections(
     py: Python<'_>,
     a: &Bound<'_, PyAny>,
@@ -175,7 +196,10 @@ pub fn intersections(
     poses_b: Option<&Bound<'_, PyAny>>,
     tolerance: f64,
     check: bool,
+    units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Vec<PyIntersection>> {
+    let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
@@ -195,6 +219,12 @@ pub fn intersections(
     let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
     let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
     let reports = py.detach(|| intersect_poses(&sa, &sb, &pairs, tolerance)).map_err(mesh_error)?;
+    let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
+    let reports = reports
+        .into_iter()
+        .map(|r| r.in_units(&options, &files))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(mesh_error)?;
     let mut warnings: Vec<String> = Vec::new();
     for w in reports.iter().flat_map(|r| &r.warnings) {
         if !warnings.contains(w) {

@@ -13,6 +13,7 @@
 //! - Every computation runs with the GIL released (`Python::detach`).
 //! - Every error is a Python exception with the command's message: [`errors`].
 
+mod batch;
 mod below;
 mod check;
 mod convert;
@@ -25,6 +26,9 @@ mod intersect;
 mod mesh;
 mod polygon;
 mod properties;
+mod section;
+mod timings;
+mod units;
 
 use pyo3::prelude::*;
 
@@ -48,6 +52,7 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<below::PyBelow>()?;
     m.add_class::<cutfill::PyCutFill>()?;
     m.add_class::<intersect::PyIntersection>()?;
+    m.add_class::<section::PySection>()?;
     m.add_function(wrap_pyfunction!(mesh::load, m)?)?;
     m.add_function(wrap_pyfunction!(grid::union, m)?)?;
     m.add_function(wrap_pyfunction!(intersect::intersection, m)?)?;
@@ -56,5 +61,6 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hull::convex_hull, m)?)?;
     m.add_function(wrap_pyfunction!(hull::hull_volume, m)?)?;
     m.add_function(wrap_pyfunction!(cutfill::cutfill, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::_measure_files, m)?)?;
     Ok(())
 }

@@ -10,7 +10,7 @@ use meshvol::topology::{self, Check, CheckError, CheckOptions};
 use meshvol::{Faces, Mesh, MeshError};
 use meshvol_report::subject::{Source, Subject};
 use numpy::ndarray::ArrayView2;
-use numpy::{Element, PyArray2, PyArray3};
+use numpy::{Element, PyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -70,6 +70,46 @@ impl PyMesh {
     pub(crate) fn subject(&self, py: Python<'_>, check: bool) -> PyResult<Subject<'_, Mesh>> {
         let check = if check { Some(self.checked(py)?) } else { None };
         Ok(Subject { source: &self.source, surface: &self.mesh, check })
+    }
+
+    /// The check with default options run again, its stages timed on `clock` (and kept
+    /// when none was).
+    pub(crate) fn timed_check(
+        &self,
+        py: Python<'_>,
+        clock: &crate::timings::Clock,
+    ) -> PyResult<Check> {
+        clock.start("checking");
+        let options = CheckOptions::default();
+        let owned = py
+            .detach(|| {
+                topology::check_assembled(&self.mesh, self.assembly.as_deref(), &options, clock)
+            })
+            .map_err(crate::errors::mesh_error)?;
+        if self.checked.get().is_none() {
+            let _ = self.checked.set(owned.clone());
+        }
+        Ok(owned)
+    }
+
+    /// `f` of the subject, as [`PyMesh::subject`] gives it; with a clock (`timings=True`)
+    /// the check runs again, its stages timed (and is kept when none was), then
+    /// `measuring` starts.
+    pub(crate) fn with_subject<R>(
+        &self,
+        py: Python<'_>,
+        check: bool,
+        clock: Option<&crate::timings::Clock>,
+        f: impl FnOnce(Subject<'_, Mesh>) -> PyResult<R>,
+    ) -> PyResult<R> {
+        let Some(clock) = clock.filter(|_| check) else {
+            let subject = self.subject(py, check)?;
+            crate::timings::stage(clock, "measuring");
+            return f(subject);
+        };
+        let owned = self.timed_check(py, clock)?;
+        clock.start("measuring");
+        f(Subject { source: &self.source, surface: &self.mesh, check: Some(&owned) })
     }
 
     /// Issues a report's warnings as MeshWarnings, less the reader's (given once, in
@@ -247,22 +287,31 @@ impl PyMesh {
     /// --no-check`). signed_volume is always the surface's as wound (negative for
     /// inward winding), as in the command's JSON.
     ///
-    /// density scales mass, inertia and principal moments. exact=True replaces the
+    /// density scales mass, inertia and principal moments: a number, or text with a unit
+    /// as the command's --density takes it ('7.85g/cm3', with units naming the file's
+    /// length unit). exact=True replaces the
     /// volume by the correctly rounded exact one (a few times slower). units converts
     /// as the command's --units does: 'FILE[:REPORT]' ('mm:cm', 'in:mL') or ':REPORT'
     /// from the unit the file declares (3MF, glTF); files that declare one are reported
     /// in it by default.
-    #[pyo3(signature = (density = 1.0, exact = false, check = true, units = None))]
+    ///
+    /// timings=True adds `timings`, the stages (the check's, then measuring) with their
+    /// wall and CPU seconds, as the command's --timings: the check then runs again.
+    #[pyo3(signature = (density = None, exact = false, check = true, units = None, timings = false), text_signature = "(self, density=1.0, exact=False, check=True, units=None, timings=False)")]
     fn mass_properties(
         &self,
         py: Python<'_>,
-        density: f64,
+        density: Option<&Bound<'_, PyAny>>,
         exact: bool,
         check: bool,
         units: Option<&str>,
+        timings: bool,
     ) -> PyResult<PyMassProperties> {
-        let check = if check { Some(self.checked(py)?) } else { None };
-        properties::measure(py, self, check, density, exact, units)
+        let clock = timings.then(crate::timings::Clock::new);
+        let measured = self.with_subject(py, check, clock.as_ref(), |subject| {
+            properties::measure(py, self, subject.check, density, exact, units)
+        })?;
+        measured.timed(clock.map(|c| c.finish()))
     }
 
     /// The topology facts of `meshvol check`: closed? manifold? winding? shells,
@@ -272,46 +321,74 @@ impl PyMesh {
     /// again within 1e-9 of the bounding box diagonal; 0 welds exact positions only; a
     /// positive number welds positions that close. intersections=False skips the search
     /// for crossing triangles.
-    #[pyo3(signature = (weld_tolerance = None, intersections = true))]
+    ///
+    /// units and density as the command's --units and --density (the solid's volume in
+    /// those units, and its mass).
+    /// timings=True adds `timings`: the check's stages, as the command's --timings.
+    #[pyo3(signature = (weld_tolerance = None, intersections = true, units = None, density = None, timings = false))]
     fn check(
         slf: &Bound<'_, Self>,
         weld_tolerance: Option<f64>,
         intersections: bool,
+        units: Option<&str>,
+        density: Option<&Bound<'_, PyAny>>,
+        timings: bool,
     ) -> PyResult<PyCheck> {
-        check::check(slf, weld_tolerance, intersections)
+        let options = crate::units::options(units, density)?;
+        check::check(slf, weld_tolerance, intersections, &options, timings)
     }
 
-    /// The volume of the solid in each cell of a regular grid: an (nx, ny, nz) float64
-    /// array, exact up to rounding (negative where the surface is wound inward).
+    /// The volume of the solid in each cell of a regular grid, as a meshvol.Grid: its
+    /// values are an (nx, ny, nz) float64 array, exact up to rounding (negative where the
+    /// surface is wound inward), and it says where the cells are (origin, spacing,
+    /// bounds). np.asarray(grid) is the array; NumPy functions and operators take the
+    /// Grid as it.
     ///
-    /// cells=(nx, ny, nz) cells between bounds=((x0, y0, z0), (x1, y1, z1)) (default: the
-    /// mesh's bounding box); or pitch=h (or (hx, hy, hz)): cells of that size from the
-    /// lower bound, enough of them to cover the upper one. fraction=True divides each
-    /// cell's volume by the cell's.
+    /// cells=(nx, ny, nz) cells between bounds=[[x0, y0, z0], [x1, y1, z1]] (any (2, 3)
+    /// array-like, such as trimesh's mesh.bounds; default: the mesh's bounding box); or
+    /// pitch=h (or (hx, hy, hz)): cells of that size from the lower bound, enough of
+    /// them to cover the upper one (the grid's bounds then reach past it). fraction=True
+    /// divides each cell's volume by the cell's.
     ///
     /// region=((i0, i1), (j0, j1), (k0, k1)) returns only the block of cells i0 <= i <
     /// i1, j0 <= j < j1, k0 <= k < k1 of that grid: the same bits as the whole grid's
     /// [i0:i1, j0:j1, k0:k1], computed from the faces over the block's columns alone
-    /// (meshvol.dask spreads a grid's blocks over workers this way).
+    /// (meshvol.dask spreads a grid's blocks over workers this way); its origin is the
+    /// block's first corner.
     ///
     /// check=True (the default) measures the checked solid, as `meshvol grid` does;
     /// check=False the surface as wound.
-    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None))]
+    ///
+    /// units as the command's --units ('mm:mL': values in mL, origin and spacing in the
+    /// report's length unit; bounds and pitch are given in the file's units); density
+    /// makes the values masses (a mass per cell; not with fraction=True).
+    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None, units = None, density = None))]
     #[allow(clippy::too_many_arguments)]
     fn grid<'py>(
         &self,
         py: Python<'py>,
-        cells: Option<[i64; 3]>,
-        bounds: Option<([f64; 3], [f64; 3])>,
+        cells: Option<&Bound<'py, PyAny>>,
+        bounds: Option<&Bound<'py, PyAny>>,
         fraction: bool,
         pitch: Option<&Bound<'py, PyAny>>,
         check: bool,
-        region: Option<[(i64, i64); 3]>,
-    ) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        region: Option<&Bound<'py, PyAny>>,
+        units: Option<&str>,
+        density: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         properties::require_faces(&self.mesh)?;
+        let options = crate::units::options(units, density)?;
+        if fraction && options.density.is_some() {
+            return Err(crate::errors::bad_argument("give density or fraction=True, not both"));
+        }
+        let (scale, warning) = meshvol_report::units::Scale::resolve(&options, self.source.unit)
+            .map_err(crate::errors::bad_argument)?;
         let subject = self.subject(py, check)?;
-        self.warn(py, &subject.warnings())?;
-        grid::cell_volumes(py, &subject.measured(), cells, bounds, fraction, pitch, region)
+        let mut warnings = subject.warnings();
+        warnings.extend(warning);
+        self.warn(py, &warnings)?;
+        let measured = subject.measured();
+        grid::cell_volumes(py, &measured, cells, bounds, fraction, pitch, region, &scale)
     }
 
     /// Pickling (multiprocessing, Dask): a Mesh travels as its vertex and face arrays and
@@ -328,7 +405,12 @@ impl PyMesh {
     /// slabs between the mesh's extremes, step=h a level every h. check=True (the
     /// default) measures the checked solid, as `meshvol profile` does; check=False the
     /// surface as wound.
-    #[pyo3(signature = (axis = "z", levels = None, step = None, check = true))]
+    ///
+    /// units and density as the command's --units and --density ('mm:L' for a strapping
+    /// table in litres; step is in the file's units). timings=True adds `timings`, as in
+    /// mass_properties.
+    #[pyo3(signature = (axis = "z", levels = None, step = None, check = true, units = None, density = None, timings = false))]
+    #[allow(clippy::too_many_arguments)]
     fn profile(
         &self,
         py: Python<'_>,
@@ -336,10 +418,17 @@ impl PyMesh {
         levels: Option<i64>,
         step: Option<f64>,
         check: bool,
+        units: Option<&str>,
+        density: Option<&Bound<'_, PyAny>>,
+        timings: bool,
     ) -> PyResult<PyProfile> {
         properties::require_faces(&self.mesh)?;
-        let subject = self.subject(py, check)?;
-        let profile = grid::profile(py, &subject, axis, levels, step)?;
+        let options = crate::units::options(units, density)?;
+        let clock = timings.then(crate::timings::Clock::new);
+        let profile = self.with_subject(py, check, clock.as_ref(), |subject| {
+            grid::profile(py, &subject, axis, levels, step, &options)
+        })?;
+        let profile = profile.timed(clock.map(|c| c.finish()))?;
         self.warn(py, profile.warnings())?;
         Ok(profile)
     }
@@ -398,17 +487,128 @@ impl PyMesh {
     }
 }
 
+/// The extensions `file_type` may name.
+const FILE_TYPES: [&str; 7] = ["stl", "obj", "off", "ply", "3mf", "gltf", "glb"];
+
+/// `file_type` checked: an extension, without its dot, lower case.
+fn file_type_of(file_type: Option<&str>) -> PyResult<Option<String>> {
+    let Some(t) = file_type else { return Ok(None) };
+    let t = t.trim().trim_start_matches('.').to_ascii_lowercase();
+    if FILE_TYPES.contains(&t.as_str()) {
+        Ok(Some(t))
+    } else {
+        Err(crate::errors::bad_argument(format!(
+            "file_type must be one of {}; got '{t}'",
+            FILE_TYPES.join(", ")
+        )))
+    }
+}
+
+/// A path given as str, bytes or os.PathLike.
+fn path_of(file: &Bound<'_, PyAny>) -> PyResult<Option<PathBuf>> {
+    let os = file.py().import("os")?;
+    let Ok(path) = os.call_method1("fspath", (file,)) else { return Ok(None) };
+    let path = os.call_method1("fsdecode", (path,))?;
+    Ok(Some(path.extract()?))
+}
+
+/// What `load` reads: the bytes of a file object (with the name it goes by), or a path.
+enum LoadSource {
+    Path(PathBuf),
+    Stream { name: String, bytes: Vec<u8> },
+}
+
+fn load_source(file: &Bound<'_, PyAny>) -> PyResult<LoadSource> {
+    if let Some(path) = path_of(file)? {
+        return Ok(LoadSource::Path(path));
+    }
+    if !file.hasattr("read")? {
+        return Err(PyTypeError::new_err(format!(
+            "load() takes a path (str, bytes or os.PathLike) or a binary file object; got {}",
+            file.get_type().name()?
+        )));
+    }
+    let data = file.call_method0("read")?;
+    let bytes: Vec<u8> = if let Ok(b) = data.cast::<pyo3::types::PyBytes>() {
+        b.as_bytes().to_vec()
+    } else if data.is_instance_of::<pyo3::types::PyString>() {
+        return Err(PyTypeError::new_err(
+            "load() read text from the file object: open it in binary mode ('rb'), or pass io.BytesIO",
+        ));
+    } else {
+        file.py().import("builtins")?.getattr("bytes")?.call1((data,))?.extract()?
+    };
+    let name = match file.getattr("name").ok().and_then(|n| path_of(&n).ok().flatten()) {
+        Some(p) => p.display().to_string(),
+        None => "<file object>".to_string(),
+    };
+    Ok(LoadSource::Stream { name, bytes })
+}
+
 /// Reads a mesh file: STL (binary or ASCII), OBJ, OFF, PLY, 3MF, glTF/GLB, the format
-/// chosen by extension and content as the command does. Raises ReadError naming the
-/// file and the place of the problem.
+/// chosen by extension and content as the command does.
+///
+/// file is a path (str, bytes or os.PathLike) or a binary file object (anything with
+/// read() returning bytes: open(path, "rb"), io.BytesIO, a zip member). file_type
+/// ('stl', 'obj', 'off', 'ply', '3mf', 'gltf', 'glb') names the format when the name
+/// does not (a file object without a name is otherwise recognised by its content).
+///
+/// A file that cannot be opened raises the OSError Python raises for it
+/// (FileNotFoundError, PermissionError, IsADirectoryError: meshvol.MeshFileNotFoundError
+/// and its siblings), which is also a meshvol.ReadError; a file that cannot be read as a
+/// mesh raises ReadError naming the file and the place of the problem.
 #[pyfunction]
-pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<PyMesh> {
-    let loaded = py.detach(|| meshvol_io::read(&path)).map_err(|e| read_error(py, &e))?;
-    let source = Source::of(&path.display().to_string(), &loaded);
+#[pyo3(signature = (file, file_type = None))]
+pub fn load(py: Python<'_>, file: &Bound<'_, PyAny>, file_type: Option<&str>) -> PyResult<PyMesh> {
+    let file_type = file_type_of(file_type)?;
+    let (name, loaded) = match load_source(file)? {
+        LoadSource::Path(path) => {
+            let opened = std::fs::metadata(&path).and_then(|m| {
+                if m.is_dir() {
+                    Err(std::io::Error::from(std::io::ErrorKind::IsADirectory))
+                } else {
+                    std::fs::File::open(&path).map(drop)
+                }
+            });
+            if let Err(e) = opened {
+                return Err(crate::errors::open_error(py, &path, &e));
+            }
+            let loaded = match &file_type {
+                None => py.detach(|| meshvol_io::read(&path)),
+                Some(t) => {
+                    let bytes = std::fs::read(&path)
+                        .map_err(|e| crate::errors::open_error(py, &path, &e))?;
+                    let typed = path.with_extension(t);
+                    py.detach(|| meshvol_io::read_bytes(&typed, bytes)).map_err(|mut e| {
+                        e.path.clone_from(&path);
+                        e
+                    })
+                }
+            };
+            (path.display().to_string(), loaded)
+        }
+        LoadSource::Stream { name, bytes } => {
+            let typed = match &file_type {
+                Some(t) => PathBuf::from(format!("stream.{t}")),
+                None => PathBuf::from(&name),
+            };
+            let loaded = py.detach(|| meshvol_io::read_bytes(&typed, bytes)).map_err(|mut e| {
+                e.path = PathBuf::from(&name);
+                e
+            });
+            (name, loaded)
+        }
+    };
+    let loaded = loaded.map_err(|e| read_error(py, &e))?;
+    let source = Source::of(&name, &loaded);
     let assembly = loaded.assembly.map(Arc::new);
     let surface = loaded.surface;
     let mesh = py.detach(|| surface.into_mesh()).map_err(|e| {
-        let error = meshvol_io::ReadError { path, location: None, message: e.to_string() };
+        let error = meshvol_io::ReadError {
+            path: PathBuf::from(&name),
+            location: None,
+            message: e.to_string(),
+        };
         read_error(py, &error)
     })?;
     Ok(PyMesh { mesh, source, assembly, checked: OnceLock::new() })

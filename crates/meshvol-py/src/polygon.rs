@@ -7,7 +7,7 @@ use crate::errors::{invalid, mesh_error};
 use meshvol::polygon::{polygon_issues, Point2, Polygon};
 use meshvol_io::PolygonFeature;
 use meshvol_report::area::{area, AreaReport, InertiaReport};
-use numpy::PyArray1;
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -71,13 +71,23 @@ impl PyAreaProperties {
         self.inertia().polar
     }
 
-    /// The principal second moments, larger first.
+    /// The principal second moments, ascending (as MassProperties.principal_moments);
+    /// principal_axes[k] is the axis of principal_moments[k]. (The command's JSON lists
+    /// them larger first, in inertia.principal.)
     #[getter]
     fn principal_moments<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.inertia().principal)
+        PyArray1::from_slice(py, &ascending(&self.inertia()).0)
     }
 
-    /// The angle of the first principal axis, counter-clockwise from x, in degrees.
+    /// The principal axes as a (2, 2) float64 array: row k is the unit axis (through the
+    /// centroid) of principal_moments[k], a right-handed pair.
+    #[getter]
+    fn principal_axes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        numpy::ndarray::arr2(&ascending(&self.inertia()).1).into_pyarray(py)
+    }
+
+    /// The angle of the axis of the larger principal moment (principal_axes[1]),
+    /// counter-clockwise from x, in degrees.
     #[getter]
     fn principal_angle_degrees(&self) -> f64 {
         self.inertia().principal_angle_degrees
@@ -94,6 +104,14 @@ impl PyAreaProperties {
             r.area, r.perimeter
         )
     }
+}
+
+/// The principal moments ascending and their axes (rows), from the report's (larger
+/// first, about the axis at principal_angle_degrees).
+pub fn ascending(i: &InertiaReport) -> ([f64; 2], [[f64; 2]; 2]) {
+    let (sin, cos) = i.principal_angle_degrees.to_radians().sin_cos();
+    let [larger, smaller] = i.principal;
+    ([smaller, larger], [[sin, -cos], [cos, sin]])
 }
 
 /// A ring's points, checked finite, without a closing copy of the first point.
@@ -166,13 +184,17 @@ fn polygons_of_geojson(geometry: &Bound<'_, PyAny>) -> PyResult<Vec<Polygon>> {
 /// point is dropped), holes a list of such arrays. Instead of arrays, a GeoJSON
 /// Polygon or MultiPolygon geometry can be given: a dict, or any object with
 /// `__geo_interface__` (shapely and geopandas geometries).
+///
+/// units as the command's --units ('m:ft': areas in ft²).
 #[pyfunction]
-#[pyo3(signature = (exterior, holes = None))]
+#[pyo3(signature = (exterior, holes = None, units = None))]
 pub fn polygon_area(
     py: Python<'_>,
     exterior: &Bound<'_, PyAny>,
     holes: Option<&Bound<'_, PyAny>>,
+    units: Option<&str>,
 ) -> PyResult<PyAreaProperties> {
+    let options = crate::units::options(units, None)?;
     let geometry = if exterior.hasattr("__geo_interface__")? {
         Some(exterior.getattr("__geo_interface__")?)
     } else if exterior.cast::<PyDict>().is_ok() {
@@ -208,7 +230,7 @@ pub fn polygon_area(
             polygon_issues(&features[0].polygons).iter().map(ToString::to_string).collect();
         (area(None, None, &features, Vec::new()), issues)
     });
-    let report = report.map_err(mesh_error)?;
+    let report = report.map_err(mesh_error)?.in_units(&options, None).map_err(mesh_error)?;
     Ok(PyAreaProperties { fields: Fields::new(&report)?, report, issues })
 }
 

@@ -6,14 +6,11 @@ use crate::mesh::PyMesh;
 use meshvol::topology::Check;
 use meshvol_report::inertial::{inertial, RobotFormat};
 use meshvol_report::subject::Subject;
-use meshvol_report::units::{Density, UnitsArg};
+use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions, VolumeReport, NO_FACES};
 use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
-
-/// A box's (min, max) corners as NumPy arrays.
-type Corners<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// Volume, area, centroid and inertia of a solid: the report of `meshvol volume --json`,
 /// whose keys are its attributes and the keys of to_dict().
@@ -39,6 +36,14 @@ impl PyMassProperties {
 
     pub fn new(report: VolumeReport) -> PyResult<Self> {
         Ok(PyMassProperties { fields: Fields::new(&report)?, report })
+    }
+
+    /// With `timings`, the same with the stages' timings as its last key.
+    pub fn timed(
+        self,
+        timings: Option<Vec<meshvol_report::timings::StageTiming>>,
+    ) -> PyResult<Self> {
+        Ok(PyMassProperties { fields: self.fields.with_timings(timings)?, report: self.report })
     }
 }
 
@@ -66,14 +71,14 @@ pub fn measure(
     py: Python<'_>,
     mesh: &PyMesh,
     check: Option<&Check>,
-    density: f64,
+    density: Option<&Bound<'_, PyAny>>,
     exact: bool,
     units: Option<&str>,
 ) -> PyResult<PyMassProperties> {
     require_faces(&mesh.mesh)?;
-    check_density(density)?;
+    let density = crate::units::density_or_one(density)?;
     let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
-    let options = VolumeOptions { density: Density::plain(density), units, exact };
+    let options = VolumeOptions { density, units, exact };
     let subject = Subject { source: &mesh.source, surface: &mesh.mesh, check };
     let report = py.detach(|| volume(&subject, &options)).map_err(mesh_error)?;
     mesh.warn(py, &report.warnings)?;
@@ -106,11 +111,21 @@ impl PyMassProperties {
         arr2(&self.report.principal_axes).into_pyarray(py)
     }
 
-    /// The vertices' bounding box as (min, max) float64 arrays of 3.
+    /// The vertices' bounding box as a (2, 3) float64 array, [min, max] (as trimesh's
+    /// mesh.bounds; `lo, hi = mp.bounds` unpacks it); None without vertices. In
+    /// to_dict() (the command's JSON) it is {"min": [...], "max": [...]}.
     #[getter]
-    fn bounds<'py>(&self, py: Python<'py>) -> Option<Corners<'py>> {
+    fn bounds<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
         let b = self.report.bounds.as_ref()?;
-        Some((PyArray1::from_slice(py, &b.min), PyArray1::from_slice(py, &b.max)))
+        Some(arr2(&[b.min, b.max]).into_pyarray(py))
+    }
+
+    /// Each shell's facts as Shell objects (as Check.shell_details), checked; [] with
+    /// check=False.
+    #[getter]
+    fn shell_details(&self) -> PyResult<Vec<crate::check::PyShell>> {
+        let Some(facts) = &self.report.check else { return Ok(Vec::new()) };
+        facts.shell_details.iter().map(crate::check::PyShell::new).collect()
     }
 
     /// The `<inertial>` element of a URDF link: mass, centre of mass and inertia tensor.

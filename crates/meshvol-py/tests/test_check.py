@@ -56,7 +56,7 @@ def test_closed_box():
     assert (c.self_intersections, c.overlapping_shells, c.weld_tolerance) == (0, [], None)
     assert c.solid_volume == 24.0 and c.volume_uncertainty == 0.0
     (shell,) = c.shell_details
-    assert (shell.faces, shell.closed, shell.genus, shell.cavity, shell.parent) == (12, True, 0, False, None)
+    assert (shell.face_count, shell.closed, shell.genus, shell.cavity, shell.parent) == (12, True, 0, False, None)
     assert c.repairs == (0, 0, 0)
 
 

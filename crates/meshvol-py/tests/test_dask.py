@@ -121,3 +121,44 @@ def test_the_commands_zarr_is_its_npy(sphere_file, tmp_path):
     stored = zarr.open_array(str(store), mode="r")
     assert stored.shape == (9, 10, 11) and stored.chunks == (4, 5, 6)
     assert same_bits(stored[...], np.load(npy))
+
+
+def test_measure_many_files_on_the_cluster(client, tmp_path):
+    pandas = pytest.importorskip("pandas")
+    pytest.importorskip("dask.dataframe")
+    volumes = {}
+    for k in range(7):
+        size = (1 + k, 2, 0.5 * (k + 1))
+        write_obj(tmp_path / f"box{k}.obj", *box((k, 0, 0), np.add((k, 0, 0), size)))
+        volumes[f"box{k}.obj"] = float(np.prod(size))
+    (tmp_path / "broken.obj").write_text("v 0 0 0\nf 1 2 3\n")
+    frame = meshvol.dask.measure(str(tmp_path / "*.obj"), files_per_partition=3)
+    assert frame.npartitions == 3
+    # Lazy and filterable before computing.
+    big = frame[frame["volume"] > 5.0].compute()
+    assert sorted(os.path.basename(f) for f in big["file"]) == sorted(n for n, v in volumes.items() if v > 5)
+    result = frame.compute()
+    names = [os.path.basename(f) for f in result["file"]]
+    assert names == sorted(list(volumes) + ["broken.obj"])
+    for name, volume, error in zip(names, result["volume"], result["error"]):
+        if name == "broken.obj":
+            assert np.isnan(volume) and "line 2" in error
+        else:
+            assert volume == pytest.approx(volumes[name], rel=1e-15) and pandas.isna(error)
+    # The same rows as meshvol.measure on one machine, in the fixed columns.
+    local = meshvol.measure(str(tmp_path / "*.obj"))
+    assert set(local.columns) - {"units"} <= set(result.columns)
+    for column in ["file", "volume", "area", "verdict", "error"]:
+        assert local[column].astype(object).where(local[column].notna(), None).tolist() == \
+            result[column].astype(object).where(result[column].notna(), None).tolist()
+    assert str(result["vertices"].dtype) == "Int64" and str(result["closed"].dtype) == "boolean"
+    frame.to_parquet(tmp_path / "table.parquet")
+    back = pandas.read_parquet(tmp_path / "table.parquet")
+    assert back["volume"].tolist()[:3] == result["volume"].tolist()[:3] and len(back) == 8
+
+
+def test_measure_with_no_files_is_an_empty_frame(tmp_path):
+    pytest.importorskip("dask.dataframe")
+    with pytest.warns(meshvol.MeshWarning, match="no mesh files"):
+        frame = meshvol.dask.measure(str(tmp_path / "*.stl"))
+    assert len(frame.compute()) == 0 and "volume" in frame.columns

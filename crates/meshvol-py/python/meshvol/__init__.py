@@ -46,6 +46,7 @@ from ._meshvol import (
     MeshWarning,
     Profile,
     ReadError,
+    Section,
     Shell,
     Union,
     __version__,
@@ -58,12 +59,16 @@ from ._meshvol import (
     polygon_area,
     union,
 )
+from ._batch import measure
+from ._errors import MeshFileNotFoundError, MeshIsADirectoryError, MeshOSError, MeshPermissionError
+from ._grid import Grid
 
 __all__ = [
     "AreaProperties",
     "Below",
     "Check",
     "CutFill",
+    "Grid",
     "Hull",
     "Intersection",
     "InvalidMeshError",
@@ -71,9 +76,14 @@ __all__ = [
     "MassProperties",
     "Mesh",
     "MeshError",
+    "MeshFileNotFoundError",
+    "MeshIsADirectoryError",
+    "MeshOSError",
+    "MeshPermissionError",
     "MeshWarning",
     "Profile",
     "ReadError",
+    "Section",
     "Shell",
     "Union",
     "__version__",
@@ -83,6 +93,7 @@ __all__ = [
     "intersection",
     "intersections",
     "load",
+    "measure",
     "polygon_area",
     "union",
 ]

@@ -1,10 +1,13 @@
 """Type stubs for meshvol (the runtime objects carry the full docstrings)."""
 
 import os
-from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union as _Union
+from typing import TYPE_CHECKING, Any, BinaryIO, Iterable, Mapping, Optional, Sequence, Tuple, Union as _Union
 
 import numpy as np
 import numpy.typing as npt
+
+if TYPE_CHECKING:
+    import pandas
 
 __version__: str
 __all__: list[str]
@@ -12,6 +15,9 @@ __all__: list[str]
 _ArrayLike = npt.ArrayLike
 _F64 = npt.NDArray[np.float64]
 _Faces = _Union[npt.ArrayLike, Sequence[Sequence[int]]]
+_Density = _Union[float, str]
+_Timings = list[dict[str, Any]]
+_Path = _Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
 class MeshError(ValueError):
     """Base class of meshvol's errors, with the meshvol command's messages."""
@@ -31,6 +37,18 @@ class ReadError(MeshError):
     """The face (from 0), when the location is one."""
     reason: str
     """The message without path and location."""
+
+class MeshOSError(OSError, ReadError):
+    """A mesh file could not be opened: an OSError and a ReadError ('PATH: REASON')."""
+
+class MeshFileNotFoundError(FileNotFoundError, MeshOSError):
+    """The file does not exist."""
+
+class MeshPermissionError(PermissionError, MeshOSError):
+    """The file cannot be read with the permissions given."""
+
+class MeshIsADirectoryError(IsADirectoryError, MeshOSError):
+    """The path is a directory."""
 
 class InvalidMeshError(MeshError):
     """Arrays that cannot be used as given: shape, dtype, non-finite value, index range."""
@@ -81,46 +99,72 @@ class Mesh:
         """(name, first face, end face) of each named part, when there are two or more."""
     def mass_properties(
         self,
-        density: float = 1.0,
+        density: _Density = 1.0,
         exact: bool = False,
         check: bool = True,
         units: Optional[str] = None,
+        timings: bool = False,
     ) -> MassProperties:
         """Mass properties of the checked solid (`meshvol volume`); check=False: as wound;
-        units: as --units ('mm:cm', ':in', ...)."""
+        units: as --units ('mm:cm', ':in', ...); density: 2.5 or '7.85g/cm3'."""
     def check(
-        self, weld_tolerance: Optional[float] = None, intersections: bool = True
+        self,
+        weld_tolerance: Optional[float] = None,
+        intersections: bool = True,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Check:
         """Topology facts (`meshvol check`)."""
     def grid(
         self,
-        cells: Optional[Tuple[int, int, int]] = None,
-        bounds: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
+        cells: Optional[_ArrayLike] = None,
+        bounds: Optional[_ArrayLike] = None,
         fraction: bool = False,
-        pitch: _Union[float, Tuple[float, float, float], None] = None,
+        pitch: _Union[float, _ArrayLike, None] = None,
         check: bool = True,
-        region: Optional[Tuple[Tuple[int, int], Tuple[int, int], Tuple[int, int]]] = None,
-    ) -> npt.NDArray[np.float64]:
-        """The solid's volume in each cell: an (nx, ny, nz) array (`meshvol grid`), or
-        the block `region` of it."""
+        region: Optional[_ArrayLike] = None,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
+    ) -> Grid:
+        """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
+        grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
+        number or 3; region: (3, 2) cell ranges; any array-like."""
     def profile(
         self,
         axis: str = "z",
         levels: Optional[int] = None,
         step: Optional[float] = None,
         check: bool = True,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Profile:
         """Volume below each level along an axis (`meshvol profile`)."""
     def below(
         self,
-        plane: Optional[Tuple[float, float, float, float]] = None,
+        plane: Optional[_ArrayLike] = None,
         volume: Optional[float] = None,
-        direction: Tuple[float, float, float] = (0.0, 0.0, 1.0),
+        direction: _ArrayLike = (0.0, 0.0, 1.0),
         heel: float = 0.0,
         trim: float = 0.0,
         check: bool = True,
+        units: Optional[str] = None,
+        density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Below:
         """The solid below a plane, or below the level holding `volume` (`meshvol below`)."""
+    def section(
+        self,
+        plane: _Union[str, _ArrayLike],
+        check: bool = True,
+        units: Optional[str] = None,
+        timings: bool = False,
+    ) -> Section:
+        """The cross-section by a plane: 'z=H', [point, normal] or (nx, ny, nz, d)
+        (`meshvol section`)."""
+    def bodies(self, check: bool = True) -> list[Mesh]:
+        """The solid's bodies as meshes (each outermost shell with its cavities)."""
     def triangulated(self) -> Mesh:
         """Every face replaced by its fan of triangles."""
     def flipped(self) -> Mesh:
@@ -167,14 +211,16 @@ class MassProperties(_CheckFacts):
     file: Optional[str]
     format: Optional[str]
     format_source: Optional[str]
-    vertices: int
+    vertex_count: int
+    """The key `vertices` of the JSON (mp.vertices: deprecated, warns)."""
     units: Optional[dict[str, Any]]
     """Names of the reported units (length, area, volume, file, file_declared)."""
-    shell_details: list[dict[str, Any]]
     overlapping_shells: list[list[int]]
     intersection_examples: list[list[int]]
-    faces: int
+    face_count: int
+    """The key `faces` of the JSON (mp.faces: deprecated, warns)."""
     triangles: int
+    triangle_count: int
     volume: float
     signed_volume: float
     volume_error_bound: float
@@ -200,21 +246,27 @@ class MassProperties(_CheckFacts):
     def principal_axes(self) -> _F64:
         """Shape (3, 3): row k is the axis of principal_moments[k]."""
     @property
-    def bounds(self) -> Optional[Tuple[_F64, _F64]]:
-        """(min, max) corners of the vertices' bounding box."""
+    def bounds(self) -> Optional[_F64]:
+        """Shape (2, 3): [min, max] corners of the vertices' bounding box."""
+    @property
+    def shell_details(self) -> list[Shell]:
+        """Each shell's facts (checked; [] with check=False)."""
     def to_urdf(self) -> str:
         """URDF's <inertial> element (report in metres: units="mm:m"; density in kg/m³)."""
     def to_sdf(self) -> str:
         """SDF's <inertial> element."""
     def to_mjcf(self) -> str:
         """MuJoCo's <inertial pos mass fullinertia> element."""
+    timings: _Timings
+    """With timings=True: the stages' {stage, wall_s, cpu_s} (else absent)."""
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol volume --json`."""
 
 class Shell:
     """One connected component of a checked mesh."""
 
-    faces: int
+    face_count: int
+    """The key `faces` of the JSON (shell.faces: deprecated, warns)."""
     closed: bool
     orientable: bool
     volume: float
@@ -224,6 +276,7 @@ class Shell:
     boundary_loops: int
     euler_characteristic: int
     genus: Optional[int]
+    def __getitem__(self, key: str) -> Any: ...
     def to_dict(self) -> dict[str, Any]: ...
 
 class Check(_CheckFacts):
@@ -239,11 +292,12 @@ class Check(_CheckFacts):
     intersection_examples: list[Tuple[int, int]]
     repairs: Tuple[int, int, int]
     def mass_properties(
-        self, density: float = 1.0, exact: bool = False, units: Optional[str] = None
+        self, density: _Density = 1.0, exact: bool = False, units: Optional[str] = None
     ) -> MassProperties:
         """Mass properties of the repaired solid (`meshvol volume`)."""
     def solid_mesh(self, caps: bool = False) -> Mesh:
         """The repaired solid as a welded mesh (`meshvol repair`)."""
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol check --json`."""
 
@@ -255,6 +309,7 @@ class Profile:
     axis: str
     file: Optional[str]
     warnings: list[str]
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol profile --json`."""
     @property
@@ -289,6 +344,7 @@ class Union:
     body_names: list[str]
     grid: list[int]
     seconds: float
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol union --json`."""
 
@@ -328,6 +384,7 @@ class Intersection:
     files: list[str]
     grid: list[int]
     seconds: float
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol intersect --json`."""
     @property
@@ -368,7 +425,10 @@ class AreaProperties:
         """Shape (2,); None when the area is zero."""
     @property
     def principal_moments(self) -> _F64:
-        """Shape (2,), larger first."""
+        """Shape (2,), ascending (as MassProperties')."""
+    @property
+    def principal_axes(self) -> _F64:
+        """Shape (2, 2): row k is the axis of principal_moments[k]."""
 
 class Below:
     """The part of a solid below a plane (`meshvol below --json`'s keys)."""
@@ -390,6 +450,7 @@ class Below:
     @property
     def section_centroid(self) -> Optional[_F64]:
         """Shape (3,): the waterplane's centroid; None without a section."""
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol below --json`."""
 
@@ -407,11 +468,13 @@ class CutFill:
     area_cut: float
     area_fill: float
     footprint_area: float
-    footprint_bounds: Optional[list[list[float]]]
     existing_area: float
     design_area: Optional[float]
     grid: Optional[dict[str, list[Any]]]
     warnings: list[str]
+    @property
+    def footprint_bounds(self) -> Optional[_F64]:
+        """Shape (2, 2): [[x0, y0], [x1, y1]]; None without a footprint."""
     @property
     def cut_cells(self) -> Optional[_F64]:
         """Shape (nx, ny): cut volume per plan cell; None without cells or pitch."""
@@ -427,8 +490,11 @@ class Hull:
     """Names of the reported units; None: the file's own units."""
 
     points: int
+    point_count: int
     hull_vertices: int
+    hull_vertex_count: int
     hull_faces: int
+    hull_face_count: int
     volume: float
     volume_error_bound: float
     area: float
@@ -442,11 +508,104 @@ class Hull:
     @property
     def centroid(self) -> Optional[_F64]: ...
 
-def load(path: _Union[str, "os.PathLike[str]"]) -> Mesh:
-    """Read a mesh file (STL, OBJ, OFF, PLY, 3MF, glTF/GLB)."""
+class Section:
+    """The cross-section of a solid by a plane (`meshvol section --json`'s keys)."""
+
+    file: Optional[str]
+    format: Optional[str]
+    plane: dict[str, list[float]]
+    """origin, normal and the 2D axes u, v: a point (s, t) is origin + s·u + t·v."""
+    area: float
+    signed_area: float
+    perimeter: float
+    inertia: Optional[dict[str, Any]]
+    polygons: int
+    holes: int
+    loops: int
+    segments: int
+    open_chains: int
+    units: Optional[dict[str, Any]]
+    warnings: list[str]
+    @property
+    def centroid(self) -> Optional[_F64]:
+        """Shape (2,), in the plane's coordinates; None without area."""
+    @property
+    def centroid_3d(self) -> Optional[_F64]:
+        """Shape (3,); None without area."""
+    @property
+    def principal_moments(self) -> _F64:
+        """Shape (2,), ascending."""
+    @property
+    def principal_axes(self) -> _F64:
+        """Shape (2, 2): row k is the axis of principal_moments[k], in 2D."""
+    @property
+    def outlines(self) -> list[Tuple[_F64, list[_F64]]]:
+        """(exterior, holes) of each polygon, (n, 2) arrays in the plane's coordinates."""
+    def to_wkt(self) -> str:
+        """A WKT MULTIPOLYGON (`meshvol section --wkt`)."""
+    def to_geojson(self) -> dict[str, Any]:
+        """A GeoJSON Feature (`meshvol section --geojson`)."""
+    timings: _Timings
+    def to_dict(self) -> dict[str, Any]:
+        """Plain values with the keys of `meshvol section --json`."""
+
+class Grid:
+    """Cell volumes (Mesh.grid) and where the cells are; np.asarray(grid) is values."""
+
+    def __init__(
+        self, values: _ArrayLike, origin: _ArrayLike, spacing: _ArrayLike, fraction: bool = False
+    ) -> None: ...
+    @property
+    def values(self) -> _F64:
+        """Shape (nx, ny, nz)."""
+    @property
+    def origin(self) -> _F64:
+        """Shape (3,): the lower corner of cell (0, 0, 0)."""
+    @property
+    def spacing(self) -> _F64:
+        """Shape (3,): the cells' size."""
+    @property
+    def bounds(self) -> _F64:
+        """Shape (2, 3): the box the cells cover."""
+    @property
+    def fraction(self) -> bool: ...
+    @property
+    def cell_volume(self) -> float: ...
+    @property
+    def shape(self) -> Tuple[int, ...]: ...
+    @property
+    def dtype(self) -> np.dtype[Any]: ...
+    def centers(self) -> Tuple[_F64, _F64, _F64]:
+        """The cells' centres along x, y and z."""
+    def to_xarray(self, name: Optional[str] = None) -> Any:
+        """An xarray.DataArray with dims ('x', 'y', 'z') (needs xarray)."""
+    def __array__(self, dtype: Any = None, copy: Optional[bool] = None) -> _F64: ...
+    def __getitem__(self, key: Any) -> Any: ...
+    def __len__(self) -> int: ...
+    def __getattr__(self, name: str) -> Any: ...
+
+def load(file: _Union[_Path, BinaryIO], file_type: Optional[str] = None) -> Mesh:
+    """Read a mesh file (STL, OBJ, OFF, PLY, 3MF, glTF/GLB) from a path or a binary
+    file object; file_type names the format ('stl', 'obj', ...) when the name does not."""
+
+def measure(
+    paths: _Union[_Path, Iterable[_Path]],
+    workers: Optional[int] = None,
+    check: bool = True,
+    density: _Density = 1.0,
+    units: Optional[str] = None,
+    exact: bool = False,
+) -> "pandas.DataFrame":
+    """`meshvol volume --json` of many files as a DataFrame, one row a file, columns
+    flattened as pandas.json_normalize(sep='.'); failed files have 'error'."""
 
 def union(
-    meshes: _Union[Any, Iterable[Any]], tolerance: float = 1e-6, check: bool = True
+    meshes: _Union[Any, Iterable[Any]],
+    tolerance: float = 1e-6,
+    check: bool = True,
+    units: Optional[str] = None,
+    density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> Union:
     """Volume of the union of closed bodies, certified (`meshvol union`)."""
 
@@ -457,6 +616,9 @@ def intersection(
     pose_b: Optional[_ArrayLike] = None,
     tolerance: float = 1e-9,
     check: bool = True,
+    units: Optional[str] = None,
+    density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> Intersection:
     """Volume of the intersection of two bodies, each placed by an optional 4×4 rigid
     pose, certified, with IoU, Dice and moments (`meshvol intersect`)."""
@@ -468,6 +630,8 @@ def intersections(
     poses_b: Optional[_ArrayLike] = None,
     tolerance: float = 1e-9,
     check: bool = True,
+    units: Optional[str] = None,
+    density: Optional[_Density] = None,
 ) -> list[Intersection]:
     """`intersection` for many poses in parallel: poses_a/poses_b each None, one 4×4
     rigid transform, or an (N, 4, 4) array; one Intersection per pose."""
@@ -475,10 +639,13 @@ def intersections(
 def polygon_area(
     exterior: _Union[_ArrayLike, Mapping[str, Any], Any],
     holes: Optional[Iterable[_ArrayLike]] = None,
+    units: Optional[str] = None,
 ) -> AreaProperties:
     """Area properties of a polygon with holes, or of a GeoJSON (Multi)Polygon."""
 
-def convex_hull(points: _ArrayLike) -> Hull:
+def convex_hull(
+    points: _ArrayLike, units: Optional[str] = None, density: Optional[_Density] = None
+) -> Hull:
     """The convex hull of an (n, 3) point array (`meshvol hull`)."""
 
 def hull_volume(points: _ArrayLike) -> float:
@@ -488,7 +655,8 @@ def cutfill(
     existing: _Union[str, "os.PathLike[str]", Any],
     design: _Union[str, "os.PathLike[str]", Any, None] = None,
     level: Optional[float] = None,
-    cells: Optional[Tuple[int, int]] = None,
+    cells: Optional[_ArrayLike] = None,
     pitch: Optional[float] = None,
+    units: Optional[str] = None,
 ) -> CutFill:
     """Cut and fill between an existing surface and a design or level (`meshvol cutfill`)."""

@@ -15,6 +15,10 @@ fixed once, on the client, so every chunk belongs to the same grid.
 
 Needs the `dask` extra: pip install "meshvol[dask]" (dask[array], distributed, zarr).
 
+Many files, one table: meshvol.dask.measure("parts/**/*.stl") is meshvol.measure over a
+cluster, a dask DataFrame with one row a file (each file read once, by one worker),
+ready for .to_parquet().
+
 There is no meshvol.dask.union: the union's cells are refined until the gap summed over
 the whole grid is below a tolerance, a budget shared by every cell, so its blocks are
 not independent (see docs/distributed.md).
@@ -25,15 +29,20 @@ from __future__ import annotations
 import functools
 import os
 import warnings
-from typing import Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import dask
 import dask.array as da
 import numpy as np
 
 from . import Mesh, MeshError, MeshWarning, load
+from ._batch import PathArg, _reports, mesh_files
 
-__all__ = ["grid"]
+if TYPE_CHECKING:
+    import dask.dataframe as dd
+    import pandas
+
+__all__ = ["grid", "measure"]
 
 Bounds = Tuple[Sequence[float], Sequence[float]]
 
@@ -66,7 +75,8 @@ def _block(
     with warnings.catch_warnings():
         # The client issued the mesh's warnings once, when it fixed the bounds.
         warnings.simplefilter("ignore", MeshWarning)
-        return mesh.grid(cells=cells, bounds=bounds, fraction=fraction, check=check, region=region)
+        block = mesh.grid(cells=cells, bounds=bounds, fraction=fraction, check=check, region=region)
+        return block.values
 
 
 def grid(
@@ -129,3 +139,100 @@ def grid(
             plane.append(line)
         rows.append(plane)
     return da.block(rows)
+
+
+# The optional keys (None in the sample report) whose values are text.
+_TEXT = {"file", "format", "format_source", "density_unit", "mass_unit", "units.file_declared",
+         "orientation", "winding", "error"}
+
+
+def _schema(check: bool, density: float, units: Optional[str], exact: bool) -> "pandas.DataFrame":
+    """The columns of meshvol.measure's frame for these options, as an empty frame with
+    one dtype per column: a report of a tetrahedron (with units, so that the units'
+    columns exist), flattened, plus 'objects' (files with named parts) and 'error'.
+    Integers are Int64 and booleans boolean (nullable: a failed file has neither)."""
+    import pandas
+
+    tetra = Mesh([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sample = tetra.mass_properties(density=density, check=check, units=units or "m", exact=exact).to_dict()
+    flat = pandas.json_normalize([sample], sep=".").iloc[0].to_dict()
+    columns: Dict[str, Any] = {}
+    for key, value in flat.items():
+        if key == "units":
+            continue
+        columns[key] = value
+        if key == "warnings" and "objects" not in flat:
+            columns["objects"] = None
+    columns["error"] = None
+    dtypes: Dict[str, Any] = {}
+    for key, value in columns.items():
+        if isinstance(value, (bool, np.bool_)):
+            dtypes[key] = "boolean"
+        elif isinstance(value, (int, np.integer)):
+            dtypes[key] = "Int64"
+        elif isinstance(value, (float, np.floating)) or (value is None and key not in _TEXT and key != "objects"):
+            dtypes[key] = "float64"
+        else:
+            dtypes[key] = "object"
+    return pandas.DataFrame({k: pandas.Series([], dtype=t) for k, t in dtypes.items()})
+
+
+def _measure_partition(
+    files: List[str],
+    meta: "pandas.DataFrame",
+    threads: Optional[int],
+    check: bool,
+    density: float,
+    units: Optional[str],
+    exact: bool,
+) -> "pandas.DataFrame":
+    """One partition, on a worker: meshvol.measure's rows, in meta's columns and dtypes."""
+    import pandas
+
+    if not files:
+        return meta
+    frame = pandas.json_normalize(_reports(files, threads, check, density, units, exact), sep=".")
+    frame = frame.reindex(columns=meta.columns)
+    return frame.astype(meta.dtypes.to_dict())
+
+
+def measure(
+    paths_or_glob: Union[PathArg, Iterable[PathArg]],
+    files_per_partition: int = 1000,
+    threads: Optional[int] = None,
+    check: bool = True,
+    density: float = 1.0,
+    units: Optional[str] = None,
+    exact: bool = False,
+) -> "dd.DataFrame":
+    """meshvol.measure as a lazy dask DataFrame: one row a file, in the order of the
+    files found, each partition `files_per_partition` files measured by one task (one
+    worker reads each file once, its files in parallel on `threads` threads; None, one
+    per core of the worker). Write it with .to_parquet(path), or filter it
+    (df[df.closed & (df.volume > 1)]) before .compute().
+
+    paths_or_glob: as meshvol.measure (files, directories, glob patterns), expanded here
+    on the client: the files must be at the same paths on every worker (shared storage).
+    The columns are meshvol.measure's for these options, fixed whatever the files hold:
+    the volume report's keys flattened ('bounds.min', 'units.volume', ...), 'objects'
+    and 'error'; counts are Int64 and facts boolean (nullable, for failed files). No
+    files: an empty frame and a MeshWarning.
+    """
+    import dask.dataframe as ddf
+    import pandas
+
+    if files_per_partition < 1:
+        raise ValueError(f"files_per_partition must be at least 1; got {files_per_partition}")
+    files = mesh_files(paths_or_glob)
+    meta = _schema(check, density, units, exact)
+    if not files:
+        warnings.warn(f"no mesh files in {paths_or_glob!r}: the DataFrame is empty", MeshWarning, stacklevel=2)
+        return ddf.from_pandas(meta, npartitions=1)
+    chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)]
+    frames = [
+        dask.delayed(_measure_partition, pure=True)(chunk, meta, threads, check, density, units, exact)
+        for chunk in chunks
+    ]
+    return ddf.from_delayed(frames, meta=meta, verify_meta=False)

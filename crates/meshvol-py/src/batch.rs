@@ -1,0 +1,82 @@
+//! `meshvol.measure`'s native part: many files measured at once, the files spread over
+//! a rayon pool with the GIL released, each file's `meshvol volume --json` line (or
+//! `{"file", "error"}`) returned in the input's order.
+
+use crate::errors::bad_argument;
+use meshvol::topology::{self, CheckOptions};
+use meshvol_report::subject::{Source, Subject};
+use meshvol_report::units::UnitsArg;
+use meshvol_report::volume::{volume, VolumeOptions, NO_FACES};
+use meshvol_report::{error_line, json_line};
+use pyo3::prelude::*;
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// One file's line, as `meshvol volume --json FILE` prints it (the same reading, check
+/// and report: the CLI's `solid::read` then `volume`).
+fn measure_one(path: &Path, check: bool, options: &VolumeOptions) -> String {
+    let name = path.display().to_string();
+    let report = (|| -> Result<String, String> {
+        let loaded = meshvol_io::read(path).map_err(|e| e.to_string())?;
+        if loaded.face_count() == 0 {
+            return Err(format!("{name}: {NO_FACES}"));
+        }
+        let source = Source::of(&name, &loaded);
+        let checked = if check {
+            let c = topology::check_assembled(
+                &loaded.surface,
+                loaded.assembly.as_ref(),
+                &CheckOptions::default(),
+                &(),
+            )
+            .map_err(|e| format!("{name}: {e}"))?;
+            Some(c)
+        } else {
+            None
+        };
+        let subject =
+            Subject { source: &source, surface: &loaded.surface, check: checked.as_ref() };
+        json_line(&volume(&subject, options)?)
+    })();
+    match report {
+        Ok(line) => line,
+        Err(e) => error_line(&name, &e),
+    }
+}
+
+/// Each file's JSON line, in order: files measured `workers` at a time (None: one per
+/// core; at most one a file and 8 a core), on the threads of a rayon pool, the GIL
+/// released throughout.
+#[pyfunction]
+#[pyo3(signature = (paths, workers = None, check = true, density = None, units = None, exact = false), text_signature = "(paths, workers=None, check=True, density=1.0, units=None, exact=False)")]
+pub fn _measure_files(
+    py: Python<'_>,
+    paths: Vec<PathBuf>,
+    workers: Option<usize>,
+    check: bool,
+    density: Option<&Bound<'_, PyAny>>,
+    units: Option<&str>,
+    exact: bool,
+) -> PyResult<Vec<String>> {
+    let density = crate::units::density_or_one(density)?;
+    let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
+    let options = VolumeOptions { density, units, exact };
+    if workers == Some(0) {
+        return Err(bad_argument("workers must be at least 1 (or None: one per core)"));
+    }
+    let run =
+        || -> Vec<String> { paths.par_iter().map(|p| measure_one(p, check, &options)).collect() };
+    // Threads are OS threads: at most one a file and 8 a core (workers=10**6 must not
+    // start a million).
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let workers = workers.map(|n| n.min(paths.len().max(1)).min(8 * cores));
+    py.detach(|| match workers {
+        None => Ok(run()),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map(|pool| pool.install(run))
+            .map_err(|e| e.to_string()),
+    })
+    .map_err(crate::errors::mesh_error)
+}

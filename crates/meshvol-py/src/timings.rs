@@ -1,0 +1,75 @@
+//! `timings=True`: the stages of one call with their wall and CPU seconds, as the
+//! command's `--timings` lists them (`meshvol_report::timings`): the check's stages
+//! (the core's progress hook names them), then the measuring.
+
+use meshvol_report::timings::StageTiming;
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// The stages done, and the current one: its name, start and CPU seconds then.
+type Stages = (Vec<StageTiming>, Option<(String, Instant, f64)>);
+
+/// The stages of one call as they pass: each stage named ends the one before it.
+pub struct Clock {
+    state: Mutex<Stages>,
+}
+
+impl Clock {
+    pub fn new() -> Clock {
+        Clock { state: Mutex::new((Vec::new(), None)) }
+    }
+
+    /// Ends the current stage and starts `stage`.
+    pub fn start(&self, stage: &str) {
+        let mut state = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        close(&mut state);
+        state.1 = Some((stage.to_string(), Instant::now(), cpu_seconds()));
+    }
+
+    /// The stages, the last ending now.
+    pub fn finish(&self) -> Vec<StageTiming> {
+        let mut state = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        close(&mut state);
+        std::mem::take(&mut state.0)
+    }
+}
+
+fn close(state: &mut Stages) {
+    if let Some((stage, start, cpu)) = state.1.take() {
+        let wall_s = start.elapsed().as_secs_f64();
+        state.0.push(StageTiming { stage, wall_s, cpu_s: (cpu_seconds() - cpu).max(0.0) });
+    }
+}
+
+impl meshvol::progress::Progress for Clock {
+    fn stage(&self, name: &'static str) {
+        self.start(name);
+    }
+}
+
+/// Starts `stage` on `clock` when timing.
+pub fn stage(clock: Option<&Clock>, stage: &str) {
+    if let Some(c) = clock {
+        c.start(stage);
+    }
+}
+
+/// User and system CPU seconds of this process so far (as the command reads them).
+#[cfg(unix)]
+fn cpu_seconds() -> f64 {
+    let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
+    // SAFETY: getrusage writes the struct it is given; RUSAGE_SELF is always valid.
+    if unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } != 0 {
+        return 0.0;
+    }
+    // SAFETY: initialised above (zeroed, then written by a successful call).
+    let usage = unsafe { usage.assume_init() };
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    seconds(usage.ru_utime) + seconds(usage.ru_stime)
+}
+
+/// CPU time is not read on this system: timings give wall seconds only.
+#[cfg(not(unix))]
+fn cpu_seconds() -> f64 {
+    0.0
+}

@@ -1,0 +1,62 @@
+"""timings=True (issue 28, item 1): the stages of a call, with wall and CPU seconds, as
+the command's --timings lists them; they add up to (at most) the call's own time."""
+
+import json
+import os
+import subprocess
+import time
+
+import pytest
+
+import meshvol
+from solids import uv_sphere
+
+COMMAND = os.environ.get("MESHVOL_BIN")
+
+
+def sphere():
+    return meshvol.Mesh(*uv_sphere(rings=24, segments=48))
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda m, t: m.mass_properties(timings=t),
+        lambda m, t: m.check(timings=t),
+        lambda m, t: m.profile(levels=4, timings=t),
+        lambda m, t: m.below(volume=1.0, timings=t),
+        lambda m, t: m.section("z=0.1", timings=t),
+        lambda m, t: meshvol.union([m], timings=t),
+        lambda m, t: meshvol.intersection(m, m, timings=t),
+    ],
+)
+def test_stages_add_up_to_the_call(call):
+    mesh = sphere()
+    assert "timings" not in call(mesh, False).to_dict()
+    start = time.perf_counter()
+    report = call(mesh, True)
+    elapsed = time.perf_counter() - start
+    stages = report.timings
+    assert stages == report.to_dict()["timings"] and list(report.to_dict())[-1] == "timings"
+    assert [set(s) for s in stages] == [{"stage", "wall_s", "cpu_s"}] * len(stages)
+    names = [s["stage"] for s in stages]
+    assert names[0] == "checking" and "welding" in names and "finding edges" in names
+    assert all(s["wall_s"] >= 0 and s["cpu_s"] >= 0 for s in stages)
+    assert sum(s["wall_s"] for s in stages) <= elapsed
+
+
+def test_unchecked_is_one_stage():
+    (stage,) = sphere().mass_properties(check=False, timings=True).timings
+    assert stage["stage"] == "measuring"
+
+
+@pytest.mark.skipif(not COMMAND, reason="MESHVOL_BIN names no meshvol command to compare with")
+def test_the_stages_are_the_commands(tmp_path):
+    vertices, faces = uv_sphere(rings=8, segments=16)
+    path = tmp_path / "s.obj"
+    path.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist())
+                    + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces.tolist()))
+    run = subprocess.run([COMMAND, "volume", str(path), "--json", "--timings"], capture_output=True, text=True)
+    theirs = [s["stage"] for s in json.loads(run.stdout)["timings"]]
+    ours = [s["stage"] for s in meshvol.load(path).mass_properties(timings=True).timings]
+    assert theirs[0] == "reading" and ours == theirs[1:]
