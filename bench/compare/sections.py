@@ -433,24 +433,12 @@ def run_union(ctx, p) -> list[dict]:
 UNION_PEERS = ("manifold3d", "trueform", "meshlib")
 
 
-def report_union(rows) -> tuple[list[str], list[str]]:
-    L = ["## Union of overlapping bodies\n"]
-    if not rows:
-        return L + ["Not run.\n"], []
-    L.append("Overlapping UV spheres (radius 100, centres 120 apart on a 5-wide grid, alternately "
-             "lifted by 30), one binary STL each; fresh process per run, reading included. "
-             "`meshvol union FILES --tolerance 1e-6 --json` gives a certified interval [lower, "
-             "upper] for the volume of the union without building a boolean mesh; **manifold3d** "
-             "builds each `Manifold`, `batch_boolean(..., OpType.Add)` and `volume()`; **trueform** "
-             "`boolean_union` folded over the bodies two at a time, then `signed_volume`; "
-             "**MeshLib** `boolean(A, B, BooleanOperation.Union)` folded the same way, then "
-             "`Mesh.volume()` (kernel s: those calls after reading). No exact reference exists; the check is whether "
-             "each peer's volume lies inside meshvol's certified interval (trueform's "
-             "signed_volume sums in float32, about 1e-6 relative, so its result can fall "
-             "outside an interval of width ~1e-10 without its boolean being wrong).\n")
+def interval_table(L: list[str], rows, section: str) -> "Verdicts":
+    """Appends the table of a section whose meshvol row is a certified interval (union,
+    intersect): each peer's volume is checked against it. Returns the verdicts."""
     L.append("| bodies | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume | check | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|--:|---|---|")
-    verdicts = Verdicts("union")
+    verdicts = Verdicts(section)
     mv = next((r for r in rows if r["tool"] == "meshvol" and "median_s" in r), None)
     mvo = (mv or {}).get("output") or {}
     for r in rows:
@@ -475,6 +463,25 @@ def report_union(rows) -> tuple[list[str], list[str]]:
                  f"{fmt_s(kernel_of(r)) if not is_mv else ''} | {'' if is_mv else ratio_cell(r, mv_s)} | "
                  f"{fmt_mb(r.get('peak_mb'))} | {vol} | {md_cell(check)} | {ahead} |")
     L.extend(verdicts.sentences())
+    return verdicts
+
+
+def report_union(rows) -> tuple[list[str], list[str]]:
+    L = ["## Union of overlapping bodies\n"]
+    if not rows:
+        return L + ["Not run.\n"], []
+    L.append("Overlapping UV spheres (radius 100, centres 120 apart on a 5-wide grid, alternately "
+             "lifted by 30), one binary STL each; fresh process per run, reading included. "
+             "`meshvol union FILES --tolerance 1e-6 --json` gives a certified interval [lower, "
+             "upper] for the volume of the union without building a boolean mesh; **manifold3d** "
+             "builds each `Manifold`, `batch_boolean(..., OpType.Add)` and `volume()`; **trueform** "
+             "`boolean_union` folded over the bodies two at a time, then `signed_volume`; "
+             "**MeshLib** `boolean(A, B, BooleanOperation.Union)` folded the same way, then "
+             "`Mesh.volume()` (kernel s: those calls after reading). No exact reference exists; the check is whether "
+             "each peer's volume lies inside meshvol's certified interval (trueform's "
+             "signed_volume sums in float32, about 1e-6 relative, so its result can fall "
+             "outside an interval of width ~1e-10 without its boolean being wrong).\n")
+    verdicts = interval_table(L, rows, "union")
     return L, verdicts.not_ahead()
 
 
@@ -552,33 +559,9 @@ def report_intersect(rows, voxels) -> tuple[list[str], list[str]]:
              "**trueform** `boolean_intersection`, `signed_volume`; **MeshLib** `boolean(A, B, "
              "BooleanOperation.Intersection)`, `Mesh.volume()` (kernel s: those calls after "
              "reading). The check is whether each peer's volume lies inside meshvol's interval.\n")
-    L.append("| bodies | tool | median s | runs | kernel s | ratio to meshvol | peak MB | volume | check | meshvol ahead? |")
-    L.append("|---|---|--:|--:|--:|--:|--:|--:|---|---|")
-    verdicts = Verdicts("intersect")
+    verdicts = interval_table(L, rows, "intersect")
     mv = next((r for r in rows if r["tool"] == "meshvol" and "median_s" in r), None)
     mvo = (mv or {}).get("output") or {}
-    for r in rows:
-        out = r.get("output") or {}
-        vol, check = "", ""
-        if r["tool"] == "meshvol" and out:
-            vol = f"[{out['lower']:.12g}, {out['upper']:.12g}]"
-            check = f"width {(out['upper'] - out['lower']) / out['lower']:.1e} relative"
-        elif "volume" in out:
-            vol = f"{out['volume']:.12g}"
-            if mvo:
-                if mvo["lower"] <= out["volume"] <= mvo["upper"]:
-                    check = "inside meshvol's interval"
-                else:
-                    gap = min(abs(out["volume"] - mvo["lower"]), abs(out["volume"] - mvo["upper"]))
-                    check = f"**outside** meshvol's interval (by {gap / mvo['lower']:.1e} relative)"
-        check = failure_note(r) or check
-        is_mv = r["tool"] == "meshvol"
-        mv_s = mv["median_s"] if mv else None
-        ahead = "" if is_mv else verdicts.cell(r, mv, r["tool"])
-        L.append(f"| {r['item']} | {r['tool']} | {time_cell(r)} | {runs_cell(r)} | "
-                 f"{fmt_s(kernel_of(r)) if not is_mv else ''} | {'' if is_mv else ratio_cell(r, mv_s)} | "
-                 f"{fmt_mb(r.get('peak_mb'))} | {vol} | {md_cell(check)} | {ahead} |")
-    L.extend(verdicts.sentences())
     lens, smooth_iou = smooth_lens(d)
     if mvo and voxels:
         L.append("\n**IoU by voxels.** The same two balls voxelised at n³ over the box holding both "
