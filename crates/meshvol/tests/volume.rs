@@ -57,7 +57,8 @@ fn exact_six_volume_scaled(positions: &[Point], triangles: &[[u32; 3]]) -> BigIn
     let mut part: i128 = 0;
     for (n, t) in triangles.iter().enumerate() {
         let [a, b, c] = t.map(|i| positions[i as usize].map(int));
-        part += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2])
+        part += a[0] * (b[1] * c[2] - b[2] * c[1])
+            + a[1] * (b[2] * c[0] - b[0] * c[2])
             + a[2] * (b[0] * c[1] - b[1] * c[0]);
         if n % 1024 == 1023 {
             total += part;
@@ -215,7 +216,10 @@ fn bad_indices_and_coordinates_are_errors() {
         Err(MeshError::IndexOutOfRange { face: 6, index: 7, vertices: 4 })
     );
     t[6] = [0, -1, 2];
-    assert_eq!(triangles_signed_volume(&p, &t), Err(MeshError::NegativeIndex { face: 6, index: -1 }));
+    assert_eq!(
+        triangles_signed_volume(&p, &t),
+        Err(MeshError::NegativeIndex { face: 6, index: -1 })
+    );
     t[6] = [0, 1, 2];
     t[8] = [0, 1, 4];
     assert_eq!(

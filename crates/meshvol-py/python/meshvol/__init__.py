@@ -56,6 +56,7 @@ from ._meshvol import (
     load,
     polygon_area,
     union,
+    volume,
 )
 
 __all__ = [
@@ -83,4 +84,5 @@ __all__ = [
     "load",
     "polygon_area",
     "union",
+    "volume",
 ]
