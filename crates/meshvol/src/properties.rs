@@ -320,6 +320,9 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
         faces,
         CHUNK_FACES,
         |range| {
+            if let Some((positions, triangles)) = surface.indexed_triangles() {
+                return triangles_partial(positions, triangles, range, r);
+            }
             let mut part = Partial::default();
             let mut bounds = Bounds::of(r);
             for face in range {
@@ -365,6 +368,137 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
         }
     }
     properties
+}
+
+/// One chunk of [`mass_properties`] over an indexed triangle mesh (a validated
+/// [`crate::Mesh`]), four triangles a SIMD step: every per-triangle quantity of the
+/// scalar loop (the same IEEE operations, lane by lane), then the sums folded in face
+/// order, the compensated and block sums as lanes of a few vectors. The same bits as
+/// the scalar loop, which the tests compare (`tests/volume.rs`); the bounds stay
+/// scalar, in order (their signed zeros depend on it).
+fn triangles_partial(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    range: std::ops::Range<usize>,
+    r: Point,
+) -> Partial {
+    use wide::f64x4;
+    let zero = f64x4::ZERO;
+    let first = range.start;
+    let tris = &triangles[range];
+    let mut part = Partial::default();
+    let mut bounds = Bounds::of(r);
+    // Lanes as in `volume::chunk_sums`: D, S_x, S_y, S_z compensated; Σ|D|, ΣP, ΣM_x,
+    // ΣM_y; ΣM_z, Σ5M_x, Σ5M_y, Σ5M_z plain. The block's ten plain sums in three more.
+    let (mut sum, mut compensation) = (zero, zero);
+    let (mut plain_a, mut plain_b) = (zero, zero);
+    let mut block = [zero; 3];
+    let five = f64x4::splat(5.0);
+    let [rx, ry, rz] = r.map(f64x4::splat);
+    let mut groups = tris.chunks_exact(4);
+    let mut face = first;
+    for group in &mut groups {
+        let mut p = [[[0.0; 4]; 3]; 3];
+        let mut corners = [[[0.0; 3]; 3]; 4];
+        for (lane, t) in group.iter().enumerate() {
+            for (corner, &i) in t.iter().enumerate() {
+                let q = positions[i as usize];
+                corners[lane][corner] = q;
+                for k in 0..3 {
+                    p[corner][k][lane] = q[k];
+                }
+            }
+        }
+        let v = |corner: usize| p[corner].map(f64x4::new);
+        let ([ax, ay, az], [bx, by, bz], [cx, cy, cz]) = (v(0), v(1), v(2));
+        let (ux, uy, uz) = (bx - ax, by - ay, bz - az);
+        let (vx, vy, vz) = (cx - ax, cy - ay, cz - az);
+        let plus = [uy * vz, uz * vx, ux * vy];
+        let minus = [uz * vy, ux * vz, uy * vx];
+        let area = [0, 1, 2].map(|k| zero + (plus[k] - minus[k]));
+        let magnitude = [0, 1, 2].map(|k| plus[k].abs() + minus[k].abs());
+        let norm = (area[0] * area[0] + area[1] * area[1] + area[2] * area[2]).sqrt();
+        let a = [ax - rx, ay - ry, az - rz];
+        let b = [bx - rx, by - ry, bz - rz];
+        let c = [cx - rx, cy - ry, cz - rz];
+        let bc = [b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]];
+        let d = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
+        let (aa, ba, ca) = (a.map(|x| x.abs()), b.map(|x| x.abs()), c.map(|x| x.abs()));
+        let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
+            + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
+            + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
+        // The moments' terms, as `Partial::add_triangle`.
+        let s = [0, 1, 2].map(|k| a[k] + (b[k] + c[k]));
+        let pair = |i: usize, j: usize| a[i] * a[j] + (b[i] * b[j] + c[i] * c[j]) + s[i] * s[j];
+        let terms = [s[0], s[1], s[2], pair(0, 0), pair(1, 1), pair(2, 2), pair(0, 1), pair(1, 2), pair(2, 0)];
+        let moment = terms.map(|t| (d * t).to_array());
+        let norm = norm.to_array();
+        let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
+        let area = area.map(|x| x.to_array());
+        let weighted = magnitude.map(|m| (five * m).to_array());
+        let magnitude = magnitude.map(|m| m.to_array());
+        for t in 0..4 {
+            for q in corners[t] {
+                bounds.include(q);
+            }
+            let x = f64x4::new([d[t], area[0][t], area[1][t], area[2][t]]);
+            let s = sum + x;
+            let z = s - sum;
+            compensation += (sum - (s - z)) + (x - z);
+            sum = s;
+            plain_a += f64x4::new([abs_d[t], permanent[t], magnitude[0][t], magnitude[1][t]]);
+            plain_b += f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
+            block[0] += f64x4::new([moment[0][t], moment[1][t], moment[2][t], moment[3][t]]);
+            block[1] += f64x4::new([moment[4][t], moment[5][t], moment[6][t], moment[7][t]]);
+            block[2] += f64x4::new([moment[8][t], norm[t], 0.0, 0.0]);
+            if (face + t) % BLOCK_FACES == BLOCK_FACES - 1 {
+                let [b0, b1, b2] = block.map(|x| x.to_array());
+                part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
+                part.flush_block();
+                block = [zero; 3];
+            }
+        }
+        face += 4;
+    }
+    let (sv, cv) = (sum.to_array(), compensation.to_array());
+    let (pa, pb) = (plain_a.to_array(), plain_b.to_array());
+    part.volume = VolumeSums {
+        six_volume: CompensatedSum::from_parts(sv[0], cv[0]),
+        vector_area: [1, 2, 3].map(|k| CompensatedSum::from_parts(sv[k], cv[k])),
+        vector_area_magnitude: [pa[2], pa[3], pb[0]],
+        vector_area_weighted: [pb[1], pb[2], pb[3]],
+        determinant_magnitude: pa[1],
+        abs_six_volume: pa[0],
+        triangles: face - first,
+    };
+    let [b0, b1, b2] = block.map(|x| x.to_array());
+    part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
+    // The last few triangles as the scalar loop reads them.
+    for t in groups.remainder() {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        let (u, v) = (sub(b, a), sub(c, a));
+        let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
+        let minus = [u[2] * v[1], u[0] * v[2], u[1] * v[0]];
+        let mut vector_area = [0.0; 3];
+        let mut magnitude = [0.0; 3];
+        for k in 0..3 {
+            vector_area[k] += plus[k] - minus[k];
+            magnitude[k] += plus[k].abs() + minus[k].abs();
+        }
+        bounds.include(a);
+        bounds.include(b);
+        bounds.include(c);
+        part.add_triangle(sub(a, r), sub(b, r), sub(c, r));
+        part.block[9] += norm(vector_area);
+        part.volume.add_vector_area(vector_area, magnitude, 1);
+        if face % BLOCK_FACES == BLOCK_FACES - 1 {
+            part.flush_block();
+        }
+        face += 1;
+    }
+    part.flush_block();
+    part.bounds = Some(bounds);
+    part
 }
 
 /// How much wider than the bound of the sum about r the correction to the origin may
