@@ -430,7 +430,17 @@ fn triangles_partial(
         // The moments' terms, as `Partial::add_triangle`.
         let s = [0, 1, 2].map(|k| a[k] + (b[k] + c[k]));
         let pair = |i: usize, j: usize| a[i] * a[j] + (b[i] * b[j] + c[i] * c[j]) + s[i] * s[j];
-        let terms = [s[0], s[1], s[2], pair(0, 0), pair(1, 1), pair(2, 2), pair(0, 1), pair(1, 2), pair(2, 0)];
+        let terms = [
+            s[0],
+            s[1],
+            s[2],
+            pair(0, 0),
+            pair(1, 1),
+            pair(2, 2),
+            pair(0, 1),
+            pair(1, 2),
+            pair(2, 0),
+        ];
         let moment = terms.map(|t| (d * t).to_array());
         let norm = norm.to_array();
         let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
@@ -447,7 +457,8 @@ fn triangles_partial(
             compensation += (sum - (s - z)) + (x - z);
             sum = s;
             plain_a += f64x4::new([abs_d[t], permanent[t], magnitude[0][t], magnitude[1][t]]);
-            plain_b += f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
+            plain_b +=
+                f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
             block[0] += f64x4::new([moment[0][t], moment[1][t], moment[2][t], moment[3][t]]);
             block[1] += f64x4::new([moment[4][t], moment[5][t], moment[6][t], moment[7][t]]);
             block[2] += f64x4::new([moment[8][t], norm[t], 0.0, 0.0]);

@@ -23,9 +23,9 @@
 //! - the compensated sum of n terms adds u·|ΣD̂| + γ(n)²·Σ|D̂| (Ogita, Rump, Oishi
 //!   2005); the division by 6 adds u·|V|; the bound's own sums are evaluated with a
 //!   factor (1 + γ(n + 8)) of headroom;
-//! - the move to the origin, V_O = V_r + r·S/6, adds per component |r_k|·(2u·Σ(m + 4)·M
-//!   + u·|S_k| + 2γ(F)²·ΣM + γ(4)·|S_k|), M the magnitudes of a face's cross products'
-//!   products and m its fan's length; when r·S/6 is within that bound of 0 (a closed
+//! - the move to the origin, V_O = V_r + r·S/6, adds per component
+//!   |r_k|·(2u·Σ(m + 4)·M + u·|S_k| + 2γ(F)²·ΣM + γ(4)·|S_k|), M the magnitudes of a
+//!   face's cross products' products and m its fan's length; when r·S/6 is within that bound of 0 (a closed
 //!   surface, where S = 0), it is not added and the bound covers it;
 //! - when that move would make the bound looser than both the bound about r and 2⁻⁴²
 //!   of the volume (a surface far from the origin compared with its size), the exact
@@ -309,11 +309,11 @@ fn chunk_sums<I: VertexIndex>(
         let bc = [bry * crz - brz * cry, brz * crx - brx * crz, brx * cry - bry * crx];
         let d = arx * bc[0] + ary * bc[1] + arz * bc[2];
         let (aax, aay, aaz) = (arx.abs(), ary.abs(), arz.abs());
-        let (bax, bay, baz) = (brx.abs(), bry.abs(), brz.abs());
+        let (b_ax, b_ay, b_az) = (brx.abs(), bry.abs(), brz.abs());
         let (cax, cay, caz) = (crx.abs(), cry.abs(), crz.abs());
-        let permanent = aax * (bay * caz + baz * cay)
-            + aay * (baz * cax + bax * caz)
-            + aaz * (bax * cay + bay * cax);
+        let permanent = aax * (b_ay * caz + b_az * cay)
+            + aay * (b_az * cax + b_ax * caz)
+            + aaz * (b_ax * cay + b_ay * cax);
         let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
         let area = area.map(|x| x.to_array());
         let weighted = magnitude.map(|m| (five * m).to_array());
