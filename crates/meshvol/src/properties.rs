@@ -374,8 +374,9 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
 /// [`crate::Mesh`]), four triangles a SIMD step: every per-triangle quantity of the
 /// scalar loop (the same IEEE operations, lane by lane), then the sums folded in face
 /// order, the compensated and block sums as lanes of a few vectors. The same bits as
-/// the scalar loop, which the tests compare (`tests/volume.rs`); the bounds stay
-/// scalar, in order (their signed zeros depend on it).
+/// the scalar loop, which the tests compare (`tests/volume.rs`). The bounds are
+/// lane-wise minima and maxima, their zeros (whose sign depends on the order) redone
+/// in order.
 fn triangles_partial(
     positions: &[Point],
     triangles: &[[u32; 3]],
@@ -395,15 +396,15 @@ fn triangles_partial(
     let mut block = [zero; 3];
     let five = f64x4::splat(5.0);
     let [rx, ry, rz] = r.map(f64x4::splat);
+    // The bounds lane by lane; see below for their signed zeros.
+    let (mut low, mut high) = ([rx, ry, rz], [rx, ry, rz]);
     let mut groups = tris.chunks_exact(4);
     let mut face = first;
     for group in &mut groups {
         let mut p = [[[0.0; 4]; 3]; 3];
-        let mut corners = [[[0.0; 3]; 3]; 4];
         for (lane, t) in group.iter().enumerate() {
             for (corner, &i) in t.iter().enumerate() {
                 let q = positions[i as usize];
-                corners[lane][corner] = q;
                 for k in 0..3 {
                     p[corner][k][lane] = q[k];
                 }
@@ -411,6 +412,10 @@ fn triangles_partial(
         }
         let v = |corner: usize| p[corner].map(f64x4::new);
         let ([ax, ay, az], [bx, by, bz], [cx, cy, cz]) = (v(0), v(1), v(2));
+        for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate() {
+            low[k] = low[k].min(x).min(y).min(z);
+            high[k] = high[k].max(x).max(y).max(z);
+        }
         let (ux, uy, uz) = (bx - ax, by - ay, bz - az);
         let (vx, vy, vz) = (cx - ax, cy - ay, cz - az);
         let plus = [uy * vz, uz * vx, ux * vy];
@@ -448,9 +453,6 @@ fn triangles_partial(
         let weighted = magnitude.map(|m| (five * m).to_array());
         let magnitude = magnitude.map(|m| m.to_array());
         for t in 0..4 {
-            for q in corners[t] {
-                bounds.include(q);
-            }
             let x = f64x4::new([d[t], area[0][t], area[1][t], area[2][t]]);
             let s = sum + x;
             let z = s - sum;
@@ -484,6 +486,13 @@ fn triangles_partial(
     };
     let [b0, b1, b2] = block.map(|x| x.to_array());
     part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
+    for k in 0..3 {
+        let pick = |lanes: f64x4, better: fn(f64, f64) -> bool| {
+            lanes.to_array().into_iter().fold(r[k], |m, x| if better(x, m) { x } else { m })
+        };
+        bounds.min[k] = pick(low[k], |x, m| x < m);
+        bounds.max[k] = pick(high[k], |x, m| x > m);
+    }
     // The last few triangles as the scalar loop reads them.
     for t in groups.remainder() {
         let [a, b, c] = t.map(|i| positions[i as usize]);
@@ -508,6 +517,26 @@ fn triangles_partial(
         face += 1;
     }
     part.flush_block();
+    // `Bounds::include` keeps the first of equal extremes, so its result has the same
+    // bits in any order except for a zero extreme (−0.0 or +0.0, whichever came
+    // first): recompute those in the scalar loop's order (r, then each triangle's
+    // corners).
+    for k in 0..3 {
+        if bounds.min[k] == 0.0 || bounds.max[k] == 0.0 {
+            let (mut low, mut high) = (r[k], r[k]);
+            for &i in tris.iter().flatten() {
+                let x = positions[i as usize][k];
+                low = if x < low { x } else { low };
+                high = if x > high { x } else { high };
+            }
+            if bounds.min[k] == 0.0 {
+                bounds.min[k] = low;
+            }
+            if bounds.max[k] == 0.0 {
+                bounds.max[k] = high;
+            }
+        }
+    }
     part.bounds = Some(bounds);
     part
 }

@@ -238,3 +238,29 @@ fn bad_indices_and_coordinates_are_errors() {
     let empty: [[u32; 3]; 0] = [];
     assert_eq!(triangles_signed_volume(&p, &empty).unwrap().signed_volume, 0.0);
 }
+
+#[test]
+fn signed_zero_bounds_keep_the_scalar_order() {
+    // Extremes at zero, reached as −0.0 and +0.0 in different orders: the bounds keep
+    // whichever came first, as the scalar loop does.
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    for n in [5, 8, 13, 1000, 1003] {
+        let positions: Vec<Point> = (0..64)
+            .map(|_| {
+                [0; 3].map(|_| match rng.below(4) {
+                    0 => 0.0,
+                    1 => -0.0,
+                    2 => rng.below(100) as f64 / 8.0,
+                    _ => -(rng.below(100) as f64) / 8.0 * 0.0,
+                })
+            })
+            .collect();
+        let triangles: Vec<[u32; 3]> =
+            (0..n).map(|_| [0; 3].map(|_| rng.below(64) as u32)).collect();
+        let mesh = Mesh::from_triangles(positions, triangles).unwrap();
+        assert_eq!(
+            format!("{:?}", mass_properties(&mesh)),
+            format!("{:?}", mass_properties(&Fans(&mesh)))
+        );
+    }
+}
