@@ -83,7 +83,7 @@ E2E_TOOLS = {
 IMPORT_ONLY = {"trimesh": "trimesh", "numpy-stl": "stl.mesh", "open3d": "open3d",
                "pymeshlab": "pymeshlab", "vtk": "vtkmodules.vtkFiltersCore",
                "trueform": "trueform", "meshlib": "meshlib.mrmeshpy"}
-INPROCESS_TOOLS = ("meshvol-py", "trueform", "meshlib", "vtk", "trimesh", "manifold3d", "numpy-stl",
+INPROCESS_TOOLS = ("meshvol-py", "meshvol-py-mp", "trueform", "meshlib", "vtk", "trimesh", "manifold3d", "numpy-stl",
                    "pymeshlab", "open3d")
 NO_VERDICT = "(no verdict)"
 SECTIONS = ["volume", "inprocess", "check", "grid", "union", "intersect", "profile", "hull", "area",
@@ -388,7 +388,8 @@ def run_in_process(ctx: Ctx, sizes, refs):
             continue
         for n in sizes:
             row = {"category": "in-process", "section": "inprocess",
-                   "tool": "meshvol (Python)" if tool == "meshvol-py" else tool,
+                   "tool": {"meshvol-py": "meshvol (Python)",
+                            "meshvol-py-mp": "meshvol mass_properties (Python)"}.get(tool, tool),
                    "item": f"sphere {size_label(n)} (arrays)", "file": f"sphere {size_label(n)} (arrays)",
                    "kind": "sphere", "target": n}
             key = ("inprocess", tool)
@@ -591,8 +592,10 @@ def report_inprocess(inp) -> tuple[list[str], list[str]]:
              "manifold3d, which has no other way in, the `Manifold` build plus `volume()` and "
              "`surface_area()`; for Open3D, `get_volume()`, which first runs `is_watertight()` "
              "with its all-pairs self-intersection test). Peak MB is the whole Python process. "
-             "meshvol's row is its Python binding (`meshvol.Mesh(v, f).mass_properties(check=False)`, as wound like the peers, "
-             "crates/meshvol-py) when that is installed in the venv; the ratio and **meshvol "
+             "meshvol's row is its Python binding (`meshvol.volume(v, f, check=False)`: the signed volume and "
+             "its rounding bound of the surface as wound, like the peers, the arrays read in place; "
+             "crates/meshvol-py) when that is installed in the venv, and the next row its full "
+             "`meshvol.Mesh(v, f).mass_properties(check=False)` (mesh built outside the timer); the ratio and **meshvol "
              "ahead?** then compare with it. Otherwise they compare with meshvol's criterion "
              "estimate (†) of a mesh within 10% of the row's size, where there is one: "
              + CRITERION_NOTE + " A † verdict is indicative only (a different mesh, measured "
@@ -613,7 +616,9 @@ def report_inprocess(inp) -> tuple[list[str], list[str]]:
     behind, compared = [], 0
     for r in inp:
         tri = f"{r['triangles']:,}" if "triangles" in r else f"~{size_label(r['target'])}"
-        is_mv = r["tool"] == "meshvol (Python)"
+        # meshvol's own rows (the reference, and its mass_properties row): no verdict
+        is_mv = r["tool"].startswith("meshvol")
+        is_ref = r["tool"] == "meshvol (Python)"
         mv_s, dagger = None, ""
         if r["target"] in mv_rows:
             mv_s = mv_rows[r["target"]]["median_s"]
@@ -639,7 +644,7 @@ def report_inprocess(inp) -> tuple[list[str], list[str]]:
                      f"{'' if is_mv else ratio_cell(r, mv_s) + (dagger if mv_s else '')} | | "
                      f"{md_cell(note)} | {ahead} |")
             continue
-        ratio = "1.00" if is_mv else (ratio_cell(r, mv_s) + dagger if mv_s else "")
+        ratio = "1.00" if is_ref else (ratio_cell(r, mv_s) + dagger if mv_s else "")
         cr = " ✓" if r.get("correctly_rounded") else ""
         L.append(f"| {r['tool']} | {r['file']} | {tri} | {fmt_s(r['median_s'])} | {runs_cell(r)} | "
                  f"{ratio} | {fmt_mb(r['peak_mb'])} | {fmt_err(r['rel_err'])}{cr} | {ahead} |")

@@ -376,8 +376,8 @@ class Ctx:
         base = tool.split()[0].split("-valid")[0].split("-watertight")[0]
         if base == "meshvol" or base == "cat":
             return True
-        if base == "meshvol-py":  # meshvol's own Python binding, when installed
-            return base in self.available
+        if base in ("meshvol-py", "meshvol-py-mp"):  # meshvol's own Python binding, when installed
+            return "meshvol-py" in self.available
         if base not in self.available:
             return False
         return not self.args.tools or base in self.args.tools

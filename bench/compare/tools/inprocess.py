@@ -1,7 +1,7 @@
 """In-process timing of one peer tool's mass properties on arrays already in memory.
 
 Usage: inprocess.py TOOL KIND TRIANGLES RUNS BUDGET_S
-  TOOL: meshvol-py | trimesh | numpy-stl | manifold3d | open3d | pymeshlab | vtk | trueform | meshlib
+  TOOL: meshvol-py | meshvol-py-mp | trimesh | numpy-stl | manifold3d | open3d | pymeshlab | vtk | trueform | meshlib
   KIND: sphere | torus | ...  (see meshgen.make)
 
 Builds the mesh with meshgen (the same arrays as the files), then times one warm-up and
@@ -167,17 +167,39 @@ def meshvol_case(v, f):
     ff = np.ascontiguousarray(f, dtype=np.int64)
 
     def setup():
+        return vf, ff
+
+    def measure(arrays):
+        # As wound, like every peer here (none checks the surface first); the default,
+        # check=True, would also weld, orient and search for crossings. The arrays are
+        # read in place (float64 and int64, C-contiguous): nothing to build first.
+        volume, _bound = meshvol.volume(*arrays, check=False)
+        return float(volume), None, None
+
+    return setup, measure, (
+        "nothing built outside the timer; timed: meshvol.volume(float64 v, int64 f, check=False) "
+        "(signed volume and its rounding bound, the arrays read in place)"
+    )
+
+
+def meshvol_mp_case(v, f):
+    import meshvol
+
+    vf = np.ascontiguousarray(v, dtype=np.float64)
+    ff = np.ascontiguousarray(f, dtype=np.int64)
+
+    def setup():
         return meshvol.Mesh(vf, ff)
 
     def measure(mesh):
-        # As wound, like every peer here (none checks the surface first); the default,
-        # check=True, would also weld, orient and search for crossings.
+        # As wound, like every peer here (none checks the surface first).
         mp = mesh.mass_properties(check=False)
         return float(mp.signed_volume), mp.centroid, mp.inertia
 
     return setup, measure, (
         "meshvol.Mesh(v, f) (the Python binding, crates/meshvol-py) outside the timer; timed: "
-        "mass_properties(check=False) (as `meshvol volume --no-check`)"
+        "mass_properties(check=False) (as `meshvol volume --no-check`: volume, bound, area, "
+        "centroid, inertia)"
     )
 
 
@@ -217,7 +239,7 @@ def meshlib_case(v, f):
     )
 
 
-CASES = {"meshvol-py": meshvol_case, "trimesh": trimesh_case, "numpy-stl": numpystl_case, "manifold3d": manifold_case,
+CASES = {"meshvol-py": meshvol_case, "meshvol-py-mp": meshvol_mp_case, "trimesh": trimesh_case, "numpy-stl": numpystl_case, "manifold3d": manifold_case,
          "open3d": open3d_case, "pymeshlab": pymeshlab_case, "vtk": vtk_case,
          "trueform": trueform_case, "meshlib": meshlib_case}
 

@@ -7,7 +7,9 @@
 //!   coordinates widened) and u32 indices, checked on the way (shapes, dtypes, index
 //!   ranges, finite coordinates). A NumPy array handed in can be changed or freed by
 //!   Python code at any time, including from another thread while the GIL is released,
-//!   so the core never reads it in place.
+//!   so the core never reads it in place. The one exception is `volume(check=False)`
+//!   (`volume.rs`), which reads C-contiguous float64 and integer arrays in place, with the
+//!   GIL held throughout.
 //! - Outputs are NumPy arrays that own Rust's buffers (`into_pyarray`: no copy), or
 //!   read-only views of a mesh's own storage (`Mesh.vertices`, `Mesh.faces`).
 //! - Every computation runs with the GIL released (`Python::detach`).
@@ -29,6 +31,7 @@ mod properties;
 mod section;
 mod timings;
 mod units;
+mod volume;
 
 use pyo3::prelude::*;
 
@@ -62,5 +65,6 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hull::hull_volume, m)?)?;
     m.add_function(wrap_pyfunction!(cutfill::cutfill, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_measure_files, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume, m)?)?;
     Ok(())
 }

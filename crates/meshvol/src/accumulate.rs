@@ -74,6 +74,12 @@ impl CompensatedSum {
     pub fn value(&self) -> f64 {
         self.sum + self.compensation
     }
+
+    /// The sum with running sum `sum` and accumulated errors `compensation` (as a SIMD
+    /// lane that ran the same additions left them).
+    pub(crate) fn from_parts(sum: f64, compensation: f64) -> CompensatedSum {
+        CompensatedSum { sum, compensation }
+    }
 }
 
 /// Maps fixed chunks of `0..len` in parallel and combines the results in index order.
@@ -84,11 +90,32 @@ pub fn ordered_reduce<T: Send>(
     len: usize,
     chunk: usize,
     map: impl Fn(Range<usize>) -> T + Sync,
+    combine: impl FnMut(&mut T, T),
+) -> Option<T> {
+    ordered_reduce_on(true, len, chunk, map, combine)
+}
+
+/// [`ordered_reduce`] on the caller's thread alone when `parallel` is false: the same
+/// chunks combined in the same order, so the same bits, without the pool's hand-offs
+/// (which cost more than a small input's whole sum).
+pub fn ordered_reduce_on<T: Send>(
+    parallel: bool,
+    len: usize,
+    chunk: usize,
+    map: impl Fn(Range<usize>) -> T + Sync,
     mut combine: impl FnMut(&mut T, T),
 ) -> Option<T> {
     let chunks = len.div_ceil(chunk);
-    let parts: Vec<T> =
-        (0..chunks).into_par_iter().map(|i| map(i * chunk..((i + 1) * chunk).min(len))).collect();
+    let range = |i: usize| i * chunk..((i + 1) * chunk).min(len);
+    if !parallel {
+        let mut parts = (0..chunks).map(|i| map(range(i)));
+        let mut total = parts.next()?;
+        for part in parts {
+            combine(&mut total, part);
+        }
+        return Some(total);
+    }
+    let parts: Vec<T> = (0..chunks).into_par_iter().map(|i| map(range(i))).collect();
     let mut parts = parts.into_iter();
     let mut total = parts.next()?;
     for part in parts {

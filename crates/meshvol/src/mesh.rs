@@ -26,6 +26,8 @@ pub enum MeshError {
     NonFiniteVertex { vertex: usize, value: f64 },
     #[error("face {face} uses vertex index {index}, but there are only {vertices} vertices")]
     IndexOutOfRange { face: usize, index: u64, vertices: usize },
+    #[error("face {face} uses vertex index {index}, which is negative (indices count from 0)")]
+    NegativeIndex { face: usize, index: i64 },
     #[error("face {face} has {count} vertices; a face needs at least 3")]
     TooFewVertices { face: usize, count: usize },
     #[error("polygon offsets must start at 0, never decrease and end at the index count ({indices}); offset {position} is {offset}")]
@@ -258,6 +260,13 @@ pub trait Surface: Sync {
     ///
     /// Implementations must yield finite coordinates (validate when building).
     fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point));
+
+    /// The positions and triangles behind the faces, when the surface is exactly an
+    /// indexed triangle mesh (face `f` is triangle `f`): kernels with a faster path for
+    /// arrays take it. `None` (the default) for anything else.
+    fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
+        None
+    }
 }
 
 /// The first corner of the first face that has a triangle: the point a kernel takes its
@@ -285,6 +294,10 @@ impl<S: Surface + ?Sized> Surface for &S {
     fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
         (**self).fan(face, triangle)
     }
+
+    fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
+        (**self).indexed_triangles()
+    }
 }
 
 impl Surface for Mesh {
@@ -307,6 +320,13 @@ impl Surface for Mesh {
                     triangle(apex, p[w[0] as usize], p[w[1] as usize]);
                 }
             }
+        }
+    }
+
+    fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
+        match &self.faces {
+            Faces::Triangles(t) => Some((&self.positions, t)),
+            Faces::Polygons { .. } => None,
         }
     }
 }

@@ -52,7 +52,7 @@
 //!   [`crate::exact_signed_volume`] is taken instead (3–5× the time) and the bound is
 //!   its rounding, u·|V|. Only if that sum is out of range does the wide bound stay.
 
-use crate::accumulate::{gamma, ordered_reduce, CompensatedSum, UNIT_ROUNDOFF};
+use crate::accumulate::{gamma, ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
 use crate::vector::{add, cross, dot, norm, scale, sub};
 use crate::{Point, Surface};
 
@@ -162,44 +162,29 @@ impl MassProperties {
 /// Faces summed in plain f64 before their moment sums join the compensated ones.
 const BLOCK_FACES: usize = 64;
 
-/// Per-chunk running sums. The volume, whose error bound is reported, is compensated
-/// term by term; the moments and area (no published bound) are summed plainly within
-/// blocks of [`BLOCK_FACES`] faces and compensated across blocks, which keeps them
-/// accurate to about γ(64) of their terms at a fraction of the cost.
+/// The sums the signed volume and its bound are made of: what [`mass_properties`] and
+/// [`crate::volume`] share, summed in the same order by both, so that both give the same
+/// bits.
 #[derive(Clone, Copy, Default)]
-struct Partial {
-    six_volume: CompensatedSum,
-    first: [CompensatedSum; 3],
-    /// xx, yy, zz, xy, yz, zx.
-    second: [CompensatedSum; 6],
-    double_area: CompensatedSum,
+pub(crate) struct VolumeSums {
+    pub(crate) six_volume: CompensatedSum,
     /// Σ over faces of twice the vector area (each face's fan summed plainly), for the
     /// move from the reference point to the origin.
-    vector_area: [CompensatedSum; 3],
+    pub(crate) vector_area: [CompensatedSum; 3],
     /// Per component, Σ of the magnitudes of the two products in each fan triangle's
     /// cross product, and the same weighted by the face's triangles + 4: for the bound.
-    vector_area_magnitude: [f64; 3],
-    vector_area_weighted: [f64; 3],
-    /// The current block's plain sums: first moments, second moments, double area.
-    block: [f64; 10],
+    pub(crate) vector_area_magnitude: [f64; 3],
+    pub(crate) vector_area_weighted: [f64; 3],
     /// Σ P, for the error bound.
-    determinant_magnitude: f64,
+    pub(crate) determinant_magnitude: f64,
     /// Σ |D|, for the error bound.
-    abs_six_volume: f64,
-    triangles: usize,
-    bounds: Option<Bounds>,
+    pub(crate) abs_six_volume: f64,
+    pub(crate) triangles: usize,
 }
 
-impl Partial {
-    pub(crate) fn merge(&mut self, o: Partial) {
+impl VolumeSums {
+    pub(crate) fn merge(&mut self, o: &VolumeSums) {
         self.six_volume.merge(&o.six_volume);
-        for (a, b) in self.first.iter_mut().zip(&o.first) {
-            a.merge(b);
-        }
-        for (a, b) in self.second.iter_mut().zip(&o.second) {
-            a.merge(b);
-        }
-        self.double_area.merge(&o.double_area);
         for k in 0..3 {
             self.vector_area[k].merge(&o.vector_area[k]);
             self.vector_area_magnitude[k] += o.vector_area_magnitude[k];
@@ -208,6 +193,64 @@ impl Partial {
         self.determinant_magnitude += o.determinant_magnitude;
         self.abs_six_volume += o.abs_six_volume;
         self.triangles += o.triangles;
+    }
+
+    /// Adds triangle (a, b, c), given relative to the reference point r: D and its
+    /// magnitude P.
+    #[inline(always)]
+    pub(crate) fn add_determinant(&mut self, a: Point, b: Point, c: Point) -> f64 {
+        let bc = cross(b, c);
+        let d = dot(a, bc);
+        let abs = |p: Point| [p[0].abs(), p[1].abs(), p[2].abs()];
+        let (aa, ba, ca) = (abs(a), abs(b), abs(c));
+        let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
+            + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
+            + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
+        self.six_volume.add(d);
+        self.abs_six_volume += d.abs();
+        self.determinant_magnitude += permanent;
+        self.triangles += 1;
+        d
+    }
+
+    /// Adds a face's vector area (its fan's cross products summed plainly), their
+    /// products' magnitudes, and its fan's length.
+    #[inline(always)]
+    pub(crate) fn add_vector_area(&mut self, vector_area: Point, magnitude: Point, fan: usize) {
+        for k in 0..3 {
+            self.vector_area[k].add(vector_area[k]);
+            self.vector_area_magnitude[k] += magnitude[k];
+            self.vector_area_weighted[k] += (fan + 4) as f64 * magnitude[k];
+        }
+    }
+}
+
+/// Per-chunk running sums. The volume, whose error bound is reported, is compensated
+/// term by term; the moments and area (no published bound) are summed plainly within
+/// blocks of [`BLOCK_FACES`] faces and compensated across blocks, which keeps them
+/// accurate to about γ(64) of their terms at a fraction of the cost.
+#[derive(Clone, Copy, Default)]
+struct Partial {
+    volume: VolumeSums,
+    first: [CompensatedSum; 3],
+    /// xx, yy, zz, xy, yz, zx.
+    second: [CompensatedSum; 6],
+    double_area: CompensatedSum,
+    /// The current block's plain sums: first moments, second moments, double area.
+    block: [f64; 10],
+    bounds: Option<Bounds>,
+}
+
+impl Partial {
+    pub(crate) fn merge(&mut self, o: Partial) {
+        self.volume.merge(&o.volume);
+        for (a, b) in self.first.iter_mut().zip(&o.first) {
+            a.merge(b);
+        }
+        for (a, b) in self.second.iter_mut().zip(&o.second) {
+            a.merge(b);
+        }
+        self.double_area.merge(&o.double_area);
         match (&mut self.bounds, o.bounds) {
             (Some(a), Some(b)) => a.merge(&b),
             (a @ None, b) => *a = b,
@@ -226,16 +269,7 @@ impl Partial {
 
     #[inline(always)]
     fn add_triangle(&mut self, a: Point, b: Point, c: Point) {
-        let bc = cross(b, c);
-        let d = dot(a, bc);
-        let abs = |p: Point| [p[0].abs(), p[1].abs(), p[2].abs()];
-        let (aa, ba, ca) = (abs(a), abs(b), abs(c));
-        let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
-            + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
-            + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
-        self.six_volume.add(d);
-        self.abs_six_volume += d.abs();
-        self.determinant_magnitude += permanent;
+        let d = self.volume.add_determinant(a, b, c);
         // Grouped as a + (b + c) so that reversing the winding (swapping b and c)
         // negates every term exactly.
         let s = add(a, add(b, c));
@@ -254,7 +288,6 @@ impl Partial {
         for (sum, t) in self.block.iter_mut().zip(terms) {
             *sum += d * t;
         }
-        self.triangles += 1;
     }
 }
 
@@ -282,10 +315,14 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
     let Some(r) = crate::mesh::first_corner(surface) else {
         return MassProperties::empty(faces);
     };
-    let sums = ordered_reduce(
+    let sums = ordered_reduce_on(
+        faces >= crate::volume::PARALLEL_TRIANGLES,
         faces,
         CHUNK_FACES,
         |range| {
+            if let Some((positions, triangles)) = surface.indexed_triangles() {
+                return triangles_partial(positions, triangles, range, r);
+            }
             let mut part = Partial::default();
             let mut bounds = Bounds::of(r);
             for face in range {
@@ -308,11 +345,7 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
                     part.add_triangle(sub(a, r), sub(b, r), sub(c, r));
                 });
                 part.block[9] += norm(vector_area);
-                for k in 0..3 {
-                    part.vector_area[k].add(vector_area[k]);
-                    part.vector_area_magnitude[k] += magnitude[k];
-                    part.vector_area_weighted[k] += (fan + 4) as f64 * magnitude[k];
-                }
+                part.volume.add_vector_area(vector_area, magnitude, fan);
                 if face % BLOCK_FACES == BLOCK_FACES - 1 {
                     part.flush_block();
                 }
@@ -337,51 +370,243 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
     properties
 }
 
+/// One chunk of [`mass_properties`] over an indexed triangle mesh (a validated
+/// [`crate::Mesh`]), four triangles a SIMD step: every per-triangle quantity of the
+/// scalar loop (the same IEEE operations, lane by lane), then the sums folded in face
+/// order, the compensated and block sums as lanes of a few vectors. The same bits as
+/// the scalar loop, which the tests compare (`tests/volume.rs`). The bounds are
+/// lane-wise minima and maxima, their zeros (whose sign depends on the order) redone
+/// in order.
+fn triangles_partial(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    range: std::ops::Range<usize>,
+    r: Point,
+) -> Partial {
+    use wide::f64x4;
+    let zero = f64x4::ZERO;
+    let first = range.start;
+    let tris = &triangles[range];
+    let mut part = Partial::default();
+    let mut bounds = Bounds::of(r);
+    // Lanes as in `volume::chunk_sums`: D, S_x, S_y, S_z compensated; Σ|D|, ΣP, ΣM_x,
+    // ΣM_y; ΣM_z, Σ5M_x, Σ5M_y, Σ5M_z plain. The block's ten plain sums in three more.
+    let (mut sum, mut compensation) = (zero, zero);
+    let (mut plain_a, mut plain_b) = (zero, zero);
+    let mut block = [zero; 3];
+    let five = f64x4::splat(5.0);
+    let [rx, ry, rz] = r.map(f64x4::splat);
+    // The bounds lane by lane; see below for their signed zeros.
+    let (mut low, mut high) = ([rx, ry, rz], [rx, ry, rz]);
+    let mut groups = tris.chunks_exact(4);
+    let mut face = first;
+    for group in &mut groups {
+        let mut p = [[[0.0; 4]; 3]; 3];
+        for (lane, t) in group.iter().enumerate() {
+            for (corner, &i) in t.iter().enumerate() {
+                let q = positions[i as usize];
+                for k in 0..3 {
+                    p[corner][k][lane] = q[k];
+                }
+            }
+        }
+        let v = |corner: usize| p[corner].map(f64x4::new);
+        let ([ax, ay, az], [bx, by, bz], [cx, cy, cz]) = (v(0), v(1), v(2));
+        for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate() {
+            low[k] = low[k].min(x).min(y).min(z);
+            high[k] = high[k].max(x).max(y).max(z);
+        }
+        let (ux, uy, uz) = (bx - ax, by - ay, bz - az);
+        let (vx, vy, vz) = (cx - ax, cy - ay, cz - az);
+        let plus = [uy * vz, uz * vx, ux * vy];
+        let minus = [uz * vy, ux * vz, uy * vx];
+        let area = [0, 1, 2].map(|k| zero + (plus[k] - minus[k]));
+        let magnitude = [0, 1, 2].map(|k| plus[k].abs() + minus[k].abs());
+        let norm = (area[0] * area[0] + area[1] * area[1] + area[2] * area[2]).sqrt();
+        let a = [ax - rx, ay - ry, az - rz];
+        let b = [bx - rx, by - ry, bz - rz];
+        let c = [cx - rx, cy - ry, cz - rz];
+        let bc = [b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]];
+        let d = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
+        let (aa, ba, ca) = (a.map(|x| x.abs()), b.map(|x| x.abs()), c.map(|x| x.abs()));
+        let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
+            + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
+            + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
+        // The moments' terms, as `Partial::add_triangle`.
+        let s = [0, 1, 2].map(|k| a[k] + (b[k] + c[k]));
+        let pair = |i: usize, j: usize| a[i] * a[j] + (b[i] * b[j] + c[i] * c[j]) + s[i] * s[j];
+        let terms = [
+            s[0],
+            s[1],
+            s[2],
+            pair(0, 0),
+            pair(1, 1),
+            pair(2, 2),
+            pair(0, 1),
+            pair(1, 2),
+            pair(2, 0),
+        ];
+        let moment = terms.map(|t| (d * t).to_array());
+        let norm = norm.to_array();
+        let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
+        let area = area.map(|x| x.to_array());
+        let weighted = magnitude.map(|m| (five * m).to_array());
+        let magnitude = magnitude.map(|m| m.to_array());
+        for t in 0..4 {
+            let x = f64x4::new([d[t], area[0][t], area[1][t], area[2][t]]);
+            let s = sum + x;
+            let z = s - sum;
+            compensation += (sum - (s - z)) + (x - z);
+            sum = s;
+            plain_a += f64x4::new([abs_d[t], permanent[t], magnitude[0][t], magnitude[1][t]]);
+            plain_b +=
+                f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
+            block[0] += f64x4::new([moment[0][t], moment[1][t], moment[2][t], moment[3][t]]);
+            block[1] += f64x4::new([moment[4][t], moment[5][t], moment[6][t], moment[7][t]]);
+            block[2] += f64x4::new([moment[8][t], norm[t], 0.0, 0.0]);
+            if (face + t) % BLOCK_FACES == BLOCK_FACES - 1 {
+                let [b0, b1, b2] = block.map(|x| x.to_array());
+                part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
+                part.flush_block();
+                block = [zero; 3];
+            }
+        }
+        face += 4;
+    }
+    let (sv, cv) = (sum.to_array(), compensation.to_array());
+    let (pa, pb) = (plain_a.to_array(), plain_b.to_array());
+    part.volume = VolumeSums {
+        six_volume: CompensatedSum::from_parts(sv[0], cv[0]),
+        vector_area: [1, 2, 3].map(|k| CompensatedSum::from_parts(sv[k], cv[k])),
+        vector_area_magnitude: [pa[2], pa[3], pb[0]],
+        vector_area_weighted: [pb[1], pb[2], pb[3]],
+        determinant_magnitude: pa[1],
+        abs_six_volume: pa[0],
+        triangles: face - first,
+    };
+    let [b0, b1, b2] = block.map(|x| x.to_array());
+    part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
+    for k in 0..3 {
+        let pick = |lanes: f64x4, better: fn(f64, f64) -> bool| {
+            lanes.to_array().into_iter().fold(r[k], |m, x| if better(x, m) { x } else { m })
+        };
+        bounds.min[k] = pick(low[k], |x, m| x < m);
+        bounds.max[k] = pick(high[k], |x, m| x > m);
+    }
+    // The last few triangles as the scalar loop reads them.
+    for t in groups.remainder() {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        let (u, v) = (sub(b, a), sub(c, a));
+        let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
+        let minus = [u[2] * v[1], u[0] * v[2], u[1] * v[0]];
+        let mut vector_area = [0.0; 3];
+        let mut magnitude = [0.0; 3];
+        for k in 0..3 {
+            vector_area[k] += plus[k] - minus[k];
+            magnitude[k] += plus[k].abs() + minus[k].abs();
+        }
+        bounds.include(a);
+        bounds.include(b);
+        bounds.include(c);
+        part.add_triangle(sub(a, r), sub(b, r), sub(c, r));
+        part.block[9] += norm(vector_area);
+        part.volume.add_vector_area(vector_area, magnitude, 1);
+        if face % BLOCK_FACES == BLOCK_FACES - 1 {
+            part.flush_block();
+        }
+        face += 1;
+    }
+    part.flush_block();
+    // `Bounds::include` keeps the first of equal extremes, so its result has the same
+    // bits in any order except for a zero extreme (−0.0 or +0.0, whichever came
+    // first): recompute those in the scalar loop's order (r, then each triangle's
+    // corners).
+    for k in 0..3 {
+        if bounds.min[k] == 0.0 || bounds.max[k] == 0.0 {
+            let (mut low, mut high) = (r[k], r[k]);
+            for &i in tris.iter().flatten() {
+                let x = positions[i as usize][k];
+                low = if x < low { x } else { low };
+                high = if x > high { x } else { high };
+            }
+            if bounds.min[k] == 0.0 {
+                bounds.min[k] = low;
+            }
+            if bounds.max[k] == 0.0 {
+                bounds.max[k] = high;
+            }
+        }
+    }
+    part.bounds = Some(bounds);
+    part
+}
+
 /// How much wider than the bound of the sum about r the correction to the origin may
 /// make the volume's bound, relative to the volume, before the exact sum is taken.
 const LOOSE_BOUND: f64 = 1.0 / (1u64 << 42) as f64;
 
+/// The signed volume and its bound from [`VolumeSums`] (see the module docs).
+pub(crate) struct VolumeFinish {
+    pub(crate) signed_volume: f64,
+    pub(crate) volume_error_bound: f64,
+    /// The signed volume about r, and its bound.
+    pub(crate) about_r: f64,
+    pub(crate) bound_about_r: f64,
+    /// The bound is loose (see [`LOOSE_BOUND`]): the exact sum should replace it.
+    pub(crate) loose: bool,
+}
+
+impl VolumeSums {
+    pub(crate) fn finish(&self, faces: usize, r: Point) -> VolumeFinish {
+        let sums = self;
+        let n = sums.triangles as f64;
+        let six_volume = sums.six_volume.value();
+        // About r: what the centroid and inertia are taken about.
+        let about_r = six_volume / 6.0;
+        let six_bound = gamma(8.0) * sums.determinant_magnitude
+            + UNIT_ROUNDOFF * six_volume.abs()
+            + gamma(n).powi(2) * sums.abs_six_volume;
+        // (1 + γ(n + 8)) covers the rounding of the bound's own sums.
+        let headroom = 1.0 + gamma(n + 8.0);
+        let bound_about_r = six_bound * headroom / 6.0 + UNIT_ROUNDOFF * about_r.abs();
+
+        // To the origin: V_O = V_r + r·S/6, S = Σ (b − a) × (c − a) over the fan triangles.
+        // Each cross product component is off by at most γ(4) of its two products'
+        // magnitudes (two subtractions, a product, a difference); a face's fan of m
+        // triangles, summed plainly, by γ(m − 1) more; the compensated sum over faces adds
+        // u·|S| + γ(F)²·Σ|terms|. 2u·(m + 4) covers γ(m + 4) with room.
+        let s = sums.vector_area.map(|x| x.value());
+        let faces_f = faces as f64;
+        let mut correction_bound = 0.0;
+        for k in 0..3 {
+            let s_bound = 2.0 * UNIT_ROUNDOFF * sums.vector_area_weighted[k]
+                + UNIT_ROUNDOFF * s[k].abs()
+                + 2.0 * gamma(faces_f).powi(2) * sums.vector_area_magnitude[k];
+            // The dot product and division by 6 round by γ(4) of Σ|r_k S_k|.
+            correction_bound += r[k].abs() * (s_bound + gamma(4.0) * s[k].abs());
+        }
+        let correction_bound = correction_bound * headroom / 6.0;
+        let correction = dot(r, s) / 6.0;
+        let (signed_volume, volume_error_bound) = if correction.abs() <= correction_bound {
+            // Not distinguishable from 0 (a closed surface's S is 0): adding it would only
+            // add its rounding. The value stays V_r; the bound covers the true correction.
+            (about_r, bound_about_r + correction.abs() + correction_bound)
+        } else {
+            let v = about_r + correction;
+            (v, bound_about_r + correction_bound + UNIT_ROUNDOFF * v.abs())
+        };
+        let loose = volume_error_bound - bound_about_r
+            > bound_about_r.max(LOOSE_BOUND * signed_volume.abs());
+        VolumeFinish { signed_volume, volume_error_bound, about_r, bound_about_r, loose }
+    }
+}
+
 /// The properties from the sums, and whether the volume's bound is loose (see
 /// [`LOOSE_BOUND`]).
 fn finish(faces: usize, r: Point, sums: &Partial) -> (MassProperties, bool) {
-    let n = sums.triangles as f64;
-    let six_volume = sums.six_volume.value();
-    // About r: what the centroid and inertia are taken about.
-    let about_r = six_volume / 6.0;
-    let six_bound = gamma(8.0) * sums.determinant_magnitude
-        + UNIT_ROUNDOFF * six_volume.abs()
-        + gamma(n).powi(2) * sums.abs_six_volume;
-    // (1 + γ(n + 8)) covers the rounding of the bound's own sums.
-    let headroom = 1.0 + gamma(n + 8.0);
-    let bound_about_r = six_bound * headroom / 6.0 + UNIT_ROUNDOFF * about_r.abs();
-
-    // To the origin: V_O = V_r + r·S/6, S = Σ (b − a) × (c − a) over the fan triangles.
-    // Each cross product component is off by at most γ(4) of its two products'
-    // magnitudes (two subtractions, a product, a difference); a face's fan of m
-    // triangles, summed plainly, by γ(m − 1) more; the compensated sum over faces adds
-    // u·|S| + γ(F)²·Σ|terms|. 2u·(m + 4) covers γ(m + 4) with room.
-    let s = sums.vector_area.map(|x| x.value());
-    let faces_f = faces as f64;
-    let mut correction_bound = 0.0;
-    for k in 0..3 {
-        let s_bound = 2.0 * UNIT_ROUNDOFF * sums.vector_area_weighted[k]
-            + UNIT_ROUNDOFF * s[k].abs()
-            + 2.0 * gamma(faces_f).powi(2) * sums.vector_area_magnitude[k];
-        // The dot product and division by 6 round by γ(4) of Σ|r_k S_k|.
-        correction_bound += r[k].abs() * (s_bound + gamma(4.0) * s[k].abs());
-    }
-    let correction_bound = correction_bound * headroom / 6.0;
-    let correction = dot(r, s) / 6.0;
-    let (signed_volume, volume_error_bound) = if correction.abs() <= correction_bound {
-        // Not distinguishable from 0 (a closed surface's S is 0): adding it would only
-        // add its rounding. The value stays V_r; the bound covers the true correction.
-        (about_r, bound_about_r + correction.abs() + correction_bound)
-    } else {
-        let v = about_r + correction;
-        (v, bound_about_r + correction_bound + UNIT_ROUNDOFF * v.abs())
-    };
-    let loose =
-        volume_error_bound - bound_about_r > bound_about_r.max(LOOSE_BOUND * signed_volume.abs());
+    let VolumeFinish { signed_volume, volume_error_bound, about_r, bound_about_r, loose } =
+        sums.volume.finish(faces, r);
+    let six_volume = sums.volume.six_volume.value();
 
     let mut centroid = None;
     let mut inertia = [[0.0; 3]; 3];
@@ -401,7 +626,7 @@ fn finish(faces: usize, r: Point, sums: &Partial) -> (MassProperties, bool) {
     }
     let properties = MassProperties {
         faces,
-        triangles: sums.triangles,
+        triangles: sums.volume.triangles,
         signed_volume,
         volume_error_bound,
         area: sums.double_area.value() / 2.0,

@@ -58,6 +58,7 @@ from ._meshvol import (
     load,
     polygon_area,
     union,
+    volume,
 )
 from ._batch import measure
 from ._errors import MeshFileNotFoundError, MeshIsADirectoryError, MeshOSError, MeshPermissionError
@@ -96,4 +97,5 @@ __all__ = [
     "measure",
     "polygon_area",
     "union",
+    "volume",
 ]
