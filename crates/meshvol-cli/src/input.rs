@@ -89,34 +89,22 @@ impl Clock {
     fn close(&mut self) {
         if let Some((stage, start, cpu)) = self.current.take() {
             let wall_s = start.elapsed().as_secs_f64();
-            self.done.push(StageTiming { stage, wall_s, cpu_s: (cpu_seconds() - cpu).max(0.0) });
+            self.done.push(StageTiming {
+                stage,
+                wall_s,
+                cpu_s: (meshvol_report::timings::process_cpu_seconds() - cpu).max(0.0),
+            });
         }
     }
 
     fn start(&mut self, stage: &str) {
         self.close();
-        self.current = Some((stage.to_string(), Instant::now(), cpu_seconds()));
+        self.current = Some((
+            stage.to_string(),
+            Instant::now(),
+            meshvol_report::timings::process_cpu_seconds(),
+        ));
     }
-}
-
-/// User and system CPU seconds of this process so far.
-#[cfg(unix)]
-fn cpu_seconds() -> f64 {
-    let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
-    // SAFETY: getrusage writes the struct it is given; RUSAGE_SELF is always valid.
-    if unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } != 0 {
-        return 0.0;
-    }
-    // SAFETY: initialised above (zeroed, then written by a successful call).
-    let usage = unsafe { usage.assume_init() };
-    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
-    seconds(usage.ru_utime) + seconds(usage.ru_stime)
-}
-
-/// CPU time is not read on this system: timings give wall seconds only.
-#[cfg(not(unix))]
-fn cpu_seconds() -> f64 {
-    0.0
 }
 
 impl Progress {

@@ -23,7 +23,11 @@ impl Clock {
     pub fn start(&self, stage: &str) {
         let mut state = self.state.lock().unwrap_or_else(|e| e.into_inner());
         close(&mut state);
-        state.1 = Some((stage.to_string(), Instant::now(), cpu_seconds()));
+        state.1 = Some((
+            stage.to_string(),
+            Instant::now(),
+            meshvol_report::timings::process_cpu_seconds(),
+        ));
     }
 
     /// The stages, the last ending now.
@@ -37,7 +41,11 @@ impl Clock {
 fn close(state: &mut Stages) {
     if let Some((stage, start, cpu)) = state.1.take() {
         let wall_s = start.elapsed().as_secs_f64();
-        state.0.push(StageTiming { stage, wall_s, cpu_s: (cpu_seconds() - cpu).max(0.0) });
+        state.0.push(StageTiming {
+            stage,
+            wall_s,
+            cpu_s: (meshvol_report::timings::process_cpu_seconds() - cpu).max(0.0),
+        });
     }
 }
 
@@ -52,24 +60,4 @@ pub fn stage(clock: Option<&Clock>, stage: &str) {
     if let Some(c) = clock {
         c.start(stage);
     }
-}
-
-/// User and system CPU seconds of this process so far (as the command reads them).
-#[cfg(unix)]
-fn cpu_seconds() -> f64 {
-    let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
-    // SAFETY: getrusage writes the struct it is given; RUSAGE_SELF is always valid.
-    if unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } != 0 {
-        return 0.0;
-    }
-    // SAFETY: initialised above (zeroed, then written by a successful call).
-    let usage = unsafe { usage.assume_init() };
-    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
-    seconds(usage.ru_utime) + seconds(usage.ru_stime)
-}
-
-/// CPU time is not read on this system: timings give wall seconds only.
-#[cfg(not(unix))]
-fn cpu_seconds() -> f64 {
-    0.0
 }

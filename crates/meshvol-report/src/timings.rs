@@ -21,6 +21,27 @@ pub struct StageTiming {
     pub cpu_s: f64,
 }
 
+/// User and system CPU seconds of this process so far (the `cpu_s` of a stage is the
+/// difference across it).
+#[cfg(unix)]
+pub fn process_cpu_seconds() -> f64 {
+    let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
+    // SAFETY: getrusage writes the struct it is given; RUSAGE_SELF is always valid.
+    if unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } != 0 {
+        return 0.0;
+    }
+    // SAFETY: initialised above (zeroed, then written by a successful call).
+    let usage = unsafe { usage.assume_init() };
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    seconds(usage.ru_utime) + seconds(usage.ru_stime)
+}
+
+/// CPU time is not read on this system: timings give wall seconds only.
+#[cfg(not(unix))]
+pub fn process_cpu_seconds() -> f64 {
+    0.0
+}
+
 /// `line` (one JSON object and its newline, as [`crate::json_line`] writes it) with a
 /// `timings` list added as its last key.
 pub fn with_timings(line: &str, timings: &[StageTiming]) -> Result<String, String> {
