@@ -10,7 +10,7 @@ use meshvol::topology::{self, Check, CheckError, CheckOptions};
 use meshvol::{Faces, Mesh, MeshError};
 use meshvol_report::subject::{Source, Subject};
 use numpy::ndarray::ArrayView2;
-use numpy::{Element, PyArray2};
+use numpy::{Element, PyArray1, PyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -207,7 +207,8 @@ impl PyMesh {
     }
 
     /// The faces: for a triangle mesh a read-only (m, 3) uint32 view of the mesh's own
-    /// memory (no copy); for a mesh with larger faces, a list of lists of vertex indices.
+    /// memory (no copy); for a mesh with larger faces, a list of lists of vertex indices
+    /// (`face_indices` and `face_offsets` are arrays for every mesh).
     #[getter]
     fn faces<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
         match slf.get().mesh.faces() {
@@ -218,6 +219,34 @@ impl PyMesh {
                     list.append(PyList::new(slf.py(), &indices[w[0]..w[1]])?)?;
                 }
                 Ok(list.into_any())
+            }
+        }
+    }
+
+    /// Every mesh's faces as two arrays, whatever their sizes (the compressed-row form of
+    /// VTK and PyVista): face f's vertex indices are
+    /// `face_indices[face_offsets[f]:face_offsets[f + 1]]`. `face_indices` is uint32 (a
+    /// new array; for a triangle mesh, `faces.ravel()`), `face_offsets` uint64 with
+    /// `face_count + 1` entries starting at 0.
+    #[getter]
+    fn face_indices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u32>> {
+        match self.mesh.faces() {
+            Faces::Triangles(triangles) => {
+                PyArray1::from_iter(py, triangles.iter().flatten().copied())
+            }
+            Faces::Polygons { indices, .. } => PyArray1::from_slice(py, indices),
+        }
+    }
+
+    /// See `face_indices`.
+    #[getter]
+    fn face_offsets<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u64>> {
+        match self.mesh.faces() {
+            Faces::Triangles(triangles) => {
+                PyArray1::from_iter(py, (0..=triangles.len() as u64).map(|f| 3 * f))
+            }
+            Faces::Polygons { offsets, .. } => {
+                PyArray1::from_iter(py, offsets.iter().map(|&o| o as u64))
             }
         }
     }

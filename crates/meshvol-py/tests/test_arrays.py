@@ -131,3 +131,18 @@ def test_unaligned_arrays_are_copied_not_refused():
     odd_faces = np.frombuffer(raw, dtype="<u4", offset=1).reshape(-1, 3)
     assert not odd_vertices.flags.aligned and not odd_faces.flags.aligned
     assert meshvol.Mesh(odd_vertices, odd_faces).mass_properties().volume == 2.0
+
+
+def test_faces_as_two_arrays_for_any_mesh():
+    # A square pyramid: a quad base and four triangles (a mesh of polygons), and the
+    # same pyramid fanned into triangles: both give the faces as index and offset arrays.
+    v = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 1]], float)
+    faces = [[3, 2, 1, 0], [0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]
+    polygons = meshvol.Mesh(v, faces)
+    assert polygons.face_indices.dtype == np.uint32 and polygons.face_offsets.dtype == np.uint64
+    np.testing.assert_array_equal(polygons.face_offsets, [0, 4, 7, 10, 13, 16])
+    o, i = polygons.face_offsets, polygons.face_indices
+    assert [i[o[f]:o[f + 1]].tolist() for f in range(polygons.face_count)] == faces
+    triangles = polygons.triangulated()
+    np.testing.assert_array_equal(triangles.face_indices, np.asarray(triangles.faces).ravel())
+    np.testing.assert_array_equal(triangles.face_offsets, 3 * np.arange(triangles.face_count + 1))

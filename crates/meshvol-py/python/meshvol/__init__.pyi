@@ -74,6 +74,12 @@ class Mesh:
     def faces(self) -> _Union[npt.NDArray[np.uint32], list[list[int]]]:
         """(m, 3) uint32 read-only view for triangles; else a list of index lists."""
     @property
+    def face_indices(self) -> npt.NDArray[np.uint32]:
+        """Every face's vertex indices, one after another (uint32), for any mesh."""
+    @property
+    def face_offsets(self) -> npt.NDArray[np.uint64]:
+        """Where each face starts in face_indices (face_count + 1 entries, from 0)."""
+    @property
     def vertex_count(self) -> int: ...
     @property
     def face_count(self) -> int: ...
