@@ -383,21 +383,19 @@ fn triangles_partial(
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
+    use crate::volume::VolumeLanes;
     use wide::f64x4;
     let zero = f64x4::ZERO;
     let first = range.start;
     let tris = &triangles[range];
     let mut part = Partial::default();
     let mut bounds = Bounds::of(r);
-    // Lanes as in `volume::chunk_sums`: D, S_x, S_y, S_z compensated; Σ|D|, ΣP, ΣM_x,
-    // ΣM_y; ΣM_z, Σ5M_x, Σ5M_y, Σ5M_z plain. The block's ten plain sums in three more.
-    let (mut sum, mut compensation) = (zero, zero);
-    let (mut plain_a, mut plain_b) = (zero, zero);
+    // The volume's sums in `VolumeLanes`; the block's ten plain sums in three more lanes.
+    let mut lanes = VolumeLanes::new(r);
     let mut block = [zero; 3];
-    let five = f64x4::splat(5.0);
-    let [rx, ry, rz] = r.map(f64x4::splat);
     // The bounds lane by lane; see below for their signed zeros.
-    let (mut low, mut high) = ([rx, ry, rz], [rx, ry, rz]);
+    let rl = r.map(f64x4::splat);
+    let (mut low, mut high) = (rl, rl);
     let mut groups = tris.chunks_exact(4);
     let mut face = first;
     for group in &mut groups {
@@ -410,28 +408,14 @@ fn triangles_partial(
                 }
             }
         }
-        let v = |corner: usize| p[corner].map(f64x4::new);
-        let ([ax, ay, az], [bx, by, bz], [cx, cy, cz]) = (v(0), v(1), v(2));
+        let corners = p.map(|corner| corner.map(f64x4::new));
+        let [[ax, ay, az], [bx, by, bz], [cx, cy, cz]] = corners;
         for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate() {
             low[k] = low[k].min(x).min(y).min(z);
             high[k] = high[k].max(x).max(y).max(z);
         }
-        let (ux, uy, uz) = (bx - ax, by - ay, bz - az);
-        let (vx, vy, vz) = (cx - ax, cy - ay, cz - az);
-        let plus = [uy * vz, uz * vx, ux * vy];
-        let minus = [uz * vy, ux * vz, uy * vx];
-        let area = [0, 1, 2].map(|k| zero + (plus[k] - minus[k]));
-        let magnitude = [0, 1, 2].map(|k| plus[k].abs() + minus[k].abs());
+        let (area, d, [a, b, c]) = lanes.add(corners);
         let norm = (area[0] * area[0] + area[1] * area[1] + area[2] * area[2]).sqrt();
-        let a = [ax - rx, ay - ry, az - rz];
-        let b = [bx - rx, by - ry, bz - rz];
-        let c = [cx - rx, cy - ry, cz - rz];
-        let bc = [b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]];
-        let d = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
-        let (aa, ba, ca) = (a.map(|x| x.abs()), b.map(|x| x.abs()), c.map(|x| x.abs()));
-        let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
-            + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
-            + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
         // The moments' terms, as `Partial::add_triangle`.
         let s = [0, 1, 2].map(|k| a[k] + (b[k] + c[k]));
         let pair = |i: usize, j: usize| a[i] * a[j] + (b[i] * b[j] + c[i] * c[j]) + s[i] * s[j];
@@ -448,19 +432,7 @@ fn triangles_partial(
         ];
         let moment = terms.map(|t| (d * t).to_array());
         let norm = norm.to_array();
-        let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
-        let area = area.map(|x| x.to_array());
-        let weighted = magnitude.map(|m| (five * m).to_array());
-        let magnitude = magnitude.map(|m| m.to_array());
         for t in 0..4 {
-            let x = f64x4::new([d[t], area[0][t], area[1][t], area[2][t]]);
-            let s = sum + x;
-            let z = s - sum;
-            compensation += (sum - (s - z)) + (x - z);
-            sum = s;
-            plain_a += f64x4::new([abs_d[t], permanent[t], magnitude[0][t], magnitude[1][t]]);
-            plain_b +=
-                f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
             block[0] += f64x4::new([moment[0][t], moment[1][t], moment[2][t], moment[3][t]]);
             block[1] += f64x4::new([moment[4][t], moment[5][t], moment[6][t], moment[7][t]]);
             block[2] += f64x4::new([moment[8][t], norm[t], 0.0, 0.0]);
@@ -473,17 +445,7 @@ fn triangles_partial(
         }
         face += 4;
     }
-    let (sv, cv) = (sum.to_array(), compensation.to_array());
-    let (pa, pb) = (plain_a.to_array(), plain_b.to_array());
-    part.volume = VolumeSums {
-        six_volume: CompensatedSum::from_parts(sv[0], cv[0]),
-        vector_area: [1, 2, 3].map(|k| CompensatedSum::from_parts(sv[k], cv[k])),
-        vector_area_magnitude: [pa[2], pa[3], pb[0]],
-        vector_area_weighted: [pb[1], pb[2], pb[3]],
-        determinant_magnitude: pa[1],
-        abs_six_volume: pa[0],
-        triangles: face - first,
-    };
+    part.volume = lanes.sums();
     let [b0, b1, b2] = block.map(|x| x.to_array());
     part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
     for k in 0..3 {

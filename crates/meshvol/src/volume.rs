@@ -264,19 +264,105 @@ impl<I: VertexIndex> Surface for Borrowed<'_, I> {
 }
 
 /// One chunk's sums, four triangles at a time; `first` is the chunk's first face.
+/// The volume's sums of triangles taken four at a time in SIMD lanes: lane by lane in
+/// the scalar loop's order, so their bits are those of [`VolumeSums::add_determinant`]
+/// and [`VolumeSums::add_vector_area`] over the same triangles, one after another.
+pub(crate) struct VolumeLanes {
+    r: [f64x4; 3],
+    // Lanes: D, S_x, S_y, S_z (compensated); Σ|D|, ΣP, ΣM_x, ΣM_y; ΣM_z, Σ5M_x, Σ5M_y,
+    // Σ5M_z (plain). A triangle is a face of one triangle: its weight is 1 + 4.
+    sum: f64x4,
+    compensation: f64x4,
+    plain_a: f64x4,
+    plain_b: f64x4,
+    triangles: usize,
+}
+
+/// Four triangles' corners: `[corner][axis]`, one triangle a lane.
+pub(crate) type Corners = [[f64x4; 3]; 3];
+
+impl VolumeLanes {
+    pub(crate) fn new(r: Point) -> Self {
+        let zero = f64x4::ZERO;
+        VolumeLanes {
+            r: r.map(f64x4::splat),
+            sum: zero,
+            compensation: zero,
+            plain_a: zero,
+            plain_b: zero,
+            triangles: 0,
+        }
+    }
+
+    /// Adds four triangles; returns, for callers that sum more of them, their vector
+    /// areas (b − a)×(c − a), their determinants D and their corners about r.
+    pub(crate) fn add(
+        &mut self,
+        [[ax, ay, az], [bx, by, bz], [cx, cy, cz]]: Corners,
+    ) -> ([f64x4; 3], f64x4, Corners) {
+        let zero = f64x4::ZERO;
+        let [rx, ry, rz] = self.r;
+        // (b − a)×(c − a) as plus − minus, as `cross_products`.
+        let (ux, uy, uz) = (bx - ax, by - ay, bz - az);
+        let (vx, vy, vz) = (cx - ax, cy - ay, cz - az);
+        let plus = [uy * vz, uz * vx, ux * vy];
+        let minus = [uz * vy, ux * vz, uy * vx];
+        // A face's fan sum starts at 0.0 (`0.0 + x` turns −0 into +0, as the scalar sum).
+        let area = [0, 1, 2].map(|k| zero + (plus[k] - minus[k]));
+        let magnitude = [0, 1, 2].map(|k| plus[k].abs() + minus[k].abs());
+        // D about r, as `VolumeSums::add_determinant`.
+        let a = [ax - rx, ay - ry, az - rz];
+        let b = [bx - rx, by - ry, bz - rz];
+        let c = [cx - rx, cy - ry, cz - rz];
+        let bc = [b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]];
+        let d = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
+        let (aa, ba, ca) = (a.map(|x| x.abs()), b.map(|x| x.abs()), c.map(|x| x.abs()));
+        let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
+            + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
+            + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
+        let determinant = d;
+        let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
+        let lanes = area.map(|x| x.to_array());
+        let weighted = magnitude.map(|m| (f64x4::splat(5.0) * m).to_array());
+        let magnitude = magnitude.map(|m| m.to_array());
+        for t in 0..4 {
+            let x = f64x4::new([d[t], lanes[0][t], lanes[1][t], lanes[2][t]]);
+            // TwoSum, lane by lane (`accumulate::two_sum`).
+            let s = self.sum + x;
+            let z = s - self.sum;
+            self.compensation += (self.sum - (s - z)) + (x - z);
+            self.sum = s;
+            self.plain_a += f64x4::new([abs_d[t], permanent[t], magnitude[0][t], magnitude[1][t]]);
+            self.plain_b +=
+                f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
+        }
+        self.triangles += 4;
+        (area, determinant, [a, b, c])
+    }
+
+    /// The sums so far.
+    pub(crate) fn sums(&self) -> VolumeSums {
+        let (s, c) = (self.sum.to_array(), self.compensation.to_array());
+        let (pa, pb) = (self.plain_a.to_array(), self.plain_b.to_array());
+        VolumeSums {
+            six_volume: CompensatedSum::from_parts(s[0], c[0]),
+            vector_area: [1, 2, 3].map(|k| CompensatedSum::from_parts(s[k], c[k])),
+            vector_area_magnitude: [pa[2], pa[3], pb[0]],
+            vector_area_weighted: [pb[1], pb[2], pb[3]],
+            determinant_magnitude: pa[1],
+            abs_six_volume: pa[0],
+            triangles: self.triangles,
+        }
+    }
+}
+
 fn chunk_sums<I: VertexIndex>(
     positions: &[Point],
     triangles: &[[I; 3]],
     first: usize,
     r: Point,
 ) -> Result<VolumeSums, MeshError> {
-    let zero = f64x4::ZERO;
-    // Lanes: D, S_x, S_y, S_z (compensated); Σ|D|, ΣP, ΣM_x, ΣM_y; ΣM_z, Σ5M_x, Σ5M_y,
-    // Σ5M_z (plain). A triangle is a face of one triangle: its weight is 1 + 4.
-    let (mut sum, mut compensation) = (zero, zero);
-    let (mut plain_a, mut plain_b) = (zero, zero);
-    let five = f64x4::splat(5.0);
-    let [rx, ry, rz] = r.map(f64x4::splat);
+    let mut lanes = VolumeLanes::new(r);
     let mut groups = triangles.chunks_exact(4);
     let mut face = first;
     for group in &mut groups {
@@ -292,56 +378,10 @@ fn chunk_sums<I: VertexIndex>(
                 }
             }
         }
-        let v = |corner: usize| p[corner].map(f64x4::new);
-        let ([ax, ay, az], [bx, by, bz], [cx, cy, cz]) = (v(0), v(1), v(2));
-        // (b − a)×(c − a) as plus − minus, as `cross_products`.
-        let (ux, uy, uz) = (bx - ax, by - ay, bz - az);
-        let (vx, vy, vz) = (cx - ax, cy - ay, cz - az);
-        let plus = [uy * vz, uz * vx, ux * vy];
-        let minus = [uz * vy, ux * vz, uy * vx];
-        // A face's fan sum starts at 0.0 (`0.0 + x` turns −0 into +0, as the scalar sum).
-        let area = [0, 1, 2].map(|k| zero + (plus[k] - minus[k]));
-        let magnitude = [0, 1, 2].map(|k| plus[k].abs() + minus[k].abs());
-        // D about r, as `VolumeSums::add_determinant`.
-        let (arx, ary, arz) = (ax - rx, ay - ry, az - rz);
-        let (brx, bry, brz) = (bx - rx, by - ry, bz - rz);
-        let (crx, cry, crz) = (cx - rx, cy - ry, cz - rz);
-        let bc = [bry * crz - brz * cry, brz * crx - brx * crz, brx * cry - bry * crx];
-        let d = arx * bc[0] + ary * bc[1] + arz * bc[2];
-        let (aax, aay, aaz) = (arx.abs(), ary.abs(), arz.abs());
-        let (b_ax, b_ay, b_az) = (brx.abs(), bry.abs(), brz.abs());
-        let (cax, cay, caz) = (crx.abs(), cry.abs(), crz.abs());
-        let permanent = aax * (b_ay * caz + b_az * cay)
-            + aay * (b_az * cax + b_ax * caz)
-            + aaz * (b_ax * cay + b_ay * cax);
-        let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
-        let area = area.map(|x| x.to_array());
-        let weighted = magnitude.map(|m| (five * m).to_array());
-        let magnitude = magnitude.map(|m| m.to_array());
-        for t in 0..4 {
-            let x = f64x4::new([d[t], area[0][t], area[1][t], area[2][t]]);
-            // TwoSum, lane by lane (`accumulate::two_sum`).
-            let s = sum + x;
-            let z = s - sum;
-            compensation += (sum - (s - z)) + (x - z);
-            sum = s;
-            plain_a += f64x4::new([abs_d[t], permanent[t], magnitude[0][t], magnitude[1][t]]);
-            plain_b +=
-                f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
-        }
+        lanes.add(p.map(|corner| corner.map(f64x4::new)));
         face += 4;
     }
-    let (s, c) = (sum.to_array(), compensation.to_array());
-    let (pa, pb) = (plain_a.to_array(), plain_b.to_array());
-    let mut sums = VolumeSums {
-        six_volume: CompensatedSum::from_parts(s[0], c[0]),
-        vector_area: [1, 2, 3].map(|k| CompensatedSum::from_parts(s[k], c[k])),
-        vector_area_magnitude: [pa[2], pa[3], pb[0]],
-        vector_area_weighted: [pb[1], pb[2], pb[3]],
-        determinant_magnitude: pa[1],
-        abs_six_volume: pa[0],
-        triangles: face - first,
-    };
+    let mut sums = lanes.sums();
     for t in groups.remainder() {
         let mut corner = [r; 3];
         for (k, &i) in t.iter().enumerate() {
