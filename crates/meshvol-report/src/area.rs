@@ -329,9 +329,8 @@ impl AreaReport {
         options: &UnitOptions,
         declared: Option<meshvol_io::LengthUnit>,
     ) -> Result<Self, String> {
-        let (scale, warning) = Scale::resolve(options, declared)
-            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
-        self.warnings.extend(warning);
+        let file = crate::Report::file(&self).to_string();
+        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
         self.area = scale.area(self.area);
         self.perimeter = scale.length(self.perimeter);
         self.centroid = self.centroid.map(|c| scale.point(c));

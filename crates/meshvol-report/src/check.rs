@@ -260,9 +260,8 @@ impl CheckReport {
         options: &UnitOptions,
         declared: Option<meshvol_io::LengthUnit>,
     ) -> Result<Self, String> {
-        let (scale, warning) = Scale::resolve(options, declared)
-            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
-        self.warnings.extend(warning);
+        let file = crate::Report::file(&self).to_string();
+        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
         self.facts.scale_volumes(scale.volume(1.0));
         self.facts.weld_tolerance = self.facts.weld_tolerance.map(|t| scale.length(t));
         self.mass = scale.mass(self.facts.solid_volume);

@@ -140,9 +140,8 @@ impl HullReport {
         options: &UnitOptions,
         declared: Option<meshvol_io::LengthUnit>,
     ) -> Result<Self, String> {
-        let (scale, warning) = Scale::resolve(options, declared)
-            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
-        self.warnings.extend(warning);
+        let file = crate::Report::file(&self).to_string();
+        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
         self.volume = scale.volume(self.volume);
         self.volume_error_bound = scale.volume(self.volume_error_bound);
         self.area = scale.area(self.area);

@@ -120,9 +120,8 @@ impl ProfileReport {
         options: &UnitOptions,
         declared: Option<meshvol_io::LengthUnit>,
     ) -> Result<Self, String> {
-        let (scale, warning) = Scale::resolve(options, declared)
-            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
-        self.warnings.extend(warning);
+        let file = crate::Report::file(&self).to_string();
+        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
         self.levels.iter_mut().for_each(|x| *x = scale.length(*x));
         self.volume_below.iter_mut().for_each(|x| *x = scale.volume(*x));
         self.slab_volume.iter_mut().for_each(|x| *x = scale.volume(*x));

@@ -184,9 +184,8 @@ impl SectionReport {
         options: &UnitOptions,
         declared: Option<meshvol_io::LengthUnit>,
     ) -> Result<Self, String> {
-        let (scale, warning) = Scale::resolve(options, declared)
-            .map_err(|e| format!("{}: {e}", crate::Report::file(&self)))?;
-        self.warnings.extend(warning);
+        let file = crate::Report::file(&self).to_string();
+        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
         self.plane.origin = scale.point(self.plane.origin);
         self.area = scale.area(self.area);
         self.signed_area = scale.area(self.signed_area);

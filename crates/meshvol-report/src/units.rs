@@ -372,6 +372,20 @@ impl Default for Scale {
 }
 
 impl Scale {
+    /// [`Scale::resolve`] for the report of one file: its warning added to `warnings`,
+    /// an error prefixed by the file's name.
+    pub fn for_report(
+        options: &UnitOptions,
+        declared: Option<LengthUnit>,
+        file: &str,
+        warnings: &mut Vec<String>,
+    ) -> Result<Scale, String> {
+        let (scale, warning) =
+            Scale::resolve(options, declared).map_err(|e| format!("{file}: {e}"))?;
+        warnings.extend(warning);
+        Ok(scale)
+    }
+
     /// The scale for a file declaring `declared`, and a warning when `--units` overrides
     /// the declaration. Errors: `:REPORT` with nothing declared, a density with a unit
     /// and no length unit to convert from, a density that is not positive.
