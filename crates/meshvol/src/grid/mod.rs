@@ -33,10 +33,12 @@
 
 mod cells;
 mod clip;
+mod cut_cells;
 mod intersect;
 mod profile;
 mod union;
 
+pub use cut_cells::{cut_cells, cut_cells_with, CutCells};
 pub use intersect::{
     intersection, intersection_with, overlapping_boxes, Bounded, Contact, Intersection, Moments,
 };

@@ -1,0 +1,125 @@
+//! The x and y apertures, from the cells' boundary vectors.
+//!
+//! The divergence theorem with the constant field `e_x` on the part of the solid in the
+//! tube of cells `(·, j, k)` beyond the plane `x = x_i` gives
+//!
+//! ```text
+//! A_x(i, j, k) = Σ_{m ≥ i} ∫ n_x dA over the surface in cell (m, j, k)
+//!              + ∫ n_x dA over the surface in the tube beyond the grid (x ≥ x_nx)
+//! ```
+//!
+//! the solid's cross-section in that cell face: the z apertures' suffix sum of
+//! projected areas, turned to x (and to y). The sums run from the grid's far face down,
+//! compensated (TwoSum), in the same order for every cell. The surface beyond the far
+//! face is cut from the few faces that reach it.
+
+use super::CutCells;
+use crate::accumulate::two_sum;
+use crate::grid::cells::{cover, sweep_axis, Piece, Units};
+use crate::grid::clip::Polygon;
+use crate::Surface;
+use rayon::prelude::*;
+
+/// `∫ n_x dA`, `∫ n_y dA` over the surface beyond the grid's far x face, per tube `(j, k)`,
+/// and beyond its far y face, per tube `(i, k)`; in grid units (faces of area 1).
+fn beyond<S: Surface + ?Sized>(surface: &S, cells: &CutCells) -> [Vec<f64>; 2] {
+    let grid = &cells.grid;
+    let [nx, ny, nz] = grid.counts;
+    let units = Units::new(grid);
+    let far = [nx as f64, ny as f64];
+    let reaches = |face: usize| {
+        let mut hit = false;
+        surface.fan(face, |a, b, c| {
+            let t = [units.map(a), units.map(b), units.map(c)];
+            hit |= (0..2).any(|d| t.iter().any(|p| p[d] >= far[d]));
+        });
+        hit
+    };
+    let faces: Vec<usize> =
+        (0..surface.face_count()).into_par_iter().filter(|&f| reaches(f)).collect();
+    let mut sums = [vec![0.0; ny * nz], vec![0.0; nx * nz]];
+    for face in faces {
+        surface.fan(face, |a, b, c| {
+            let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
+            for axis in 0..2 {
+                let (mut inside, mut past) = (Piece::EMPTY, Piece::EMPTY);
+                t.split_axis_into(axis, far[axis], &mut inside, &mut past);
+                // Across the tube: y for the x face, x for the y face; then z.
+                let (across, n_across) = if axis == 0 { (1, ny) } else { (0, nx) };
+                let r = past.range(across);
+                let cells_across = cover(r.0, r.1, n_across, false);
+                let sums = &mut sums[axis];
+                sweep_axis(&past, across, r, cells_across, false, |m, strip| {
+                    let z = strip.range(2);
+                    sweep_axis(strip, 2, z, cover(z.0, z.1, nz, false), false, |k, part| {
+                        sums[m * nz + k] += normal_component(part, axis);
+                        true
+                    });
+                    true
+                });
+            }
+        });
+    }
+    sums
+}
+
+/// `∫ n_axis dA` of a planar polygon: half its fan's summed cross products on `axis`.
+fn normal_component<const N: usize>(part: &Polygon<N>, axis: usize) -> f64 {
+    let v = part.vertices();
+    if v.len() < 3 {
+        return 0.0;
+    }
+    let (p, q) = ((axis + 1) % 3, (axis + 2) % 3);
+    let o = v[0];
+    let mut twice = 0.0;
+    for w in v[1..].windows(2) {
+        let (a, b) = (w[0], w[1]);
+        twice += (a[p] - o[p]) * (b[q] - o[q]) - (a[q] - o[q]) * (b[p] - o[p]);
+    }
+    0.5 * twice
+}
+
+/// Fills `cells.aperture[0]` and `[1]` from the boundary vectors.
+pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
+    let [beyond_x, beyond_y] = beyond(surface, cells);
+    let grid = cells.grid;
+    let [nx, ny, nz] = grid.counts;
+    let face = [grid.cell[1] * grid.cell[2], grid.cell[0] * grid.cell[2]];
+    let vectors = &cells.boundary_vector;
+    let [aperture_x, aperture_y, _] = &mut cells.aperture;
+
+    // x: plane by plane from the far face down, every tube (j, k) in parallel.
+    let plane = ny * nz;
+    let mut state: Vec<(f64, f64)> = beyond_x.iter().map(|&b| (b, 0.0)).collect();
+    aperture_x[nx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.0 + s.1);
+    for i in (0..nx).rev() {
+        let cells_i = &vectors[i * plane..(i + 1) * plane];
+        aperture_x[i * plane..(i + 1) * plane]
+            .par_iter_mut()
+            .zip(state.par_iter_mut())
+            .zip(cells_i.par_iter())
+            .for_each(|((a, s), v)| {
+                let (sum, e) = two_sum(s.0, v[0] / face[0]);
+                *s = (sum, s.1 + e);
+                *a = s.0 + s.1;
+            });
+    }
+
+    // y: within each slab x = i, from the far face down.
+    aperture_y.par_chunks_mut((ny + 1) * nz).enumerate().for_each(|(i, out)| {
+        let cells_i = &vectors[i * plane..(i + 1) * plane];
+        let mut state: Vec<(f64, f64)> =
+            beyond_y[i * nz..(i + 1) * nz].iter().map(|&b| (b, 0.0)).collect();
+        for (a, s) in out[ny * nz..].iter_mut().zip(&state) {
+            *a = s.0 + s.1;
+        }
+        for j in (0..ny).rev() {
+            let row = &cells_i[j * nz..(j + 1) * nz];
+            for ((a, s), v) in out[j * nz..(j + 1) * nz].iter_mut().zip(&mut state).zip(row) {
+                let (sum, e) = two_sum(s.0, v[1] / face[1]);
+                *s = (sum, s.1 + e);
+                *a = s.0 + s.1;
+            }
+        }
+    });
+}

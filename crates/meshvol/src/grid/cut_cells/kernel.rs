@@ -1,0 +1,271 @@
+//! The cut-cell kernel: the volume kernel's sweeps with a sink that keeps, per cell, the
+//! moments of the solid and the surface's own integrals, and per column the areas and
+//! area moments handed down to the layers below.
+//!
+//! The cells' arrays are filled in place, tile by tile as `grid` fills its volumes: the
+//! terms in face order during the sweep, then one pass per column from the top down
+//! turning them into world values. Only the columns' handed-down sums are scratch.
+
+use super::integrals::{handed_down, projected, surface_part};
+use super::CutCells;
+use crate::accumulate::two_sum;
+use crate::grid::cells::{
+    for_each_piece, sweep_layers, zeroed, Bins, Block, LayerSink, Piece, Tiling, Units,
+};
+use crate::grid::clip::Polygon;
+use crate::grid::{Grid, GridError, OCCUPANCY_TOLERANCE};
+use crate::progress::{Counter, Progress};
+use crate::{Point, Surface};
+use rayon::prelude::*;
+use std::ops::Range;
+
+/// One tile's slices of the cell arrays, and of the z apertures (`depth + 1` per column).
+struct TileCells<'a> {
+    volume: &'a mut [f64],
+    centroid: &'a mut [Point],
+    boundary_area: &'a mut [f64],
+    boundary_vector: &'a mut [Point],
+    boundary_centroid: &'a mut [Point],
+    aperture_z: &'a mut [f64],
+}
+
+/// World scale of a grid-unit area vector's components: `(dy·dz, dx·dz, dx·dy)`.
+fn face_areas(cell: [f64; 3]) -> [f64; 3] {
+    [cell[1] * cell[2], cell[0] * cell[2], cell[0] * cell[1]]
+}
+
+/// Receives one column's parts. During the sweep `volume` holds `∫ z' n_z dA` and
+/// `centroid` holds `(∫ x'z', ∫ y'z', ½∫ z'²) n_z dA` of the parts in each cell, and
+/// `boundary_centroid` the area-weighted local centroids; `handed[m]` the area and its x
+/// and y moments of the parts in layer `first + m` (the last entry: above the grid).
+struct MomentSink<'a> {
+    volume: &'a mut [f64],
+    centroid: &'a mut [Point],
+    boundary_area: &'a mut [f64],
+    boundary_vector: &'a mut [Point],
+    boundary_centroid: &'a mut [Point],
+    handed: &'a mut [[f64; 3]],
+    first: usize,
+    column: [f64; 2],
+    scale: [f64; 3],
+}
+
+impl LayerSink for MomentSink<'_> {
+    #[inline(always)]
+    fn slab<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) {
+        let Some(local) = layer.checked_sub(self.first) else {
+            return;
+        };
+        let [i, j] = self.column;
+        if local >= self.volume.len() {
+            let h = handed_down(part, [i, j]);
+            for d in 0..3 {
+                self.handed[local][d] += h[d];
+            }
+            return;
+        }
+        let corner = [i, j, layer as f64];
+        let p = projected(part, corner);
+        let h = &mut self.handed[local];
+        h[0] += p.area;
+        h[1] += p.area_x;
+        h[2] += p.area_y;
+        self.volume[local] += p.z;
+        let m = &mut self.centroid[local];
+        m[0] += p.xz;
+        m[1] += p.yz;
+        m[2] += p.zz_half;
+        if let Some((vector, centre)) = surface_part(part, corner) {
+            let world = [0, 1, 2].map(|d| vector[d] * self.scale[d]);
+            let area = (world[0] * world[0] + world[1] * world[1] + world[2] * world[2]).sqrt();
+            self.boundary_area[local] += area;
+            let (v, c) = (&mut self.boundary_vector[local], &mut self.boundary_centroid[local]);
+            for d in 0..3 {
+                v[d] += world[d];
+                c[d] += area * centre[d];
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn above<const N: usize>(&mut self, part: &Polygon<N>) {
+        let top = self.handed.len() - 1;
+        let h = handed_down(part, self.column);
+        for d in 0..3 {
+            self.handed[top][d] += h[d];
+        }
+    }
+}
+
+/// A compensated running sum (TwoSum), taken from the top of a column down.
+#[derive(Clone, Copy, Default)]
+struct Running {
+    sum: f64,
+    compensation: f64,
+}
+
+impl Running {
+    #[inline(always)]
+    fn add(&mut self, x: f64) {
+        let (s, e) = two_sum(self.sum, x);
+        self.sum = s;
+        self.compensation += e;
+    }
+
+    #[inline(always)]
+    fn value(&self) -> f64 {
+        self.sum + self.compensation
+    }
+}
+
+/// `m / v` as a position within a cell, clamped to [0, 1] (rounding can push the ratio
+/// of two small sums past the cell), or the middle for an empty or full cell.
+#[inline(always)]
+fn within(m: f64, v: f64, empty: bool) -> f64 {
+    if empty {
+        0.5
+    } else {
+        (m / v).clamp(0.0, 1.0)
+    }
+}
+
+/// Turns a column's sums into world values: the suffix sums of the handed-down terms,
+/// taken from the grid's top down exactly as [`crate::grid::cells::finish_column`] does
+/// for the volumes (so the volumes are the same bits), the centroids, and the z
+/// apertures at the planes `first..=first + depth`.
+#[allow(clippy::too_many_arguments)]
+fn finish_column(
+    cells: &mut TileCells,
+    range: Range<usize>,
+    apertures: Range<usize>,
+    handed: &[[f64; 3]],
+    [i, j, first]: [usize; 3],
+    grid: &Grid,
+) {
+    let scale = grid.cell_volume();
+    let [mut area, mut area_x, mut area_y] = [Running::default(); 3];
+    let depth = range.len();
+    let cell_at = |d: usize, local: f64, k: usize| {
+        grid.origin[d] + ([i, j, k][d] as f64 + local) * grid.cell[d]
+    };
+    for k in (0..handed.len() - 1).rev() {
+        let above = handed[k + 1];
+        area.add(above[0]);
+        area_x.add(above[1]);
+        area_y.add(above[2]);
+        if k < depth {
+            let n = range.start + k;
+            let layer = first + k;
+            let v = cells.volume[n] + area.value();
+            cells.volume[n] = v * scale;
+            let m = cells.centroid[n];
+            let moment = [m[0] + area_x.value(), m[1] + area_y.value(), m[2] + 0.5 * area.value()];
+            let magnitude = v.abs();
+            let trivial =
+                magnitude <= OCCUPANCY_TOLERANCE || (magnitude - 1.0).abs() <= OCCUPANCY_TOLERANCE;
+            cells.centroid[n] = [0, 1, 2].map(|d| cell_at(d, within(moment[d], v, trivial), layer));
+            let w = cells.boundary_area[n];
+            let c = cells.boundary_centroid[n];
+            cells.boundary_centroid[n] =
+                [0, 1, 2].map(|d| cell_at(d, within(c[d], w, w == 0.0), layer));
+            // The plane at the bottom of layer `first + k + 1`: everything above it.
+            cells.aperture_z[apertures.start + k + 1] = area.value();
+        }
+    }
+    let mut bottom = area;
+    bottom.add(handed[0][0]);
+    cells.aperture_z[apertures.start] = bottom.value();
+}
+
+/// The cut-cell values of every cell of `grid` (validated), from `surface`'s faces, and
+/// the z apertures; the x and y apertures are left to [`super::apertures`].
+pub(super) fn cut_cells<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    progress: &dyn Progress,
+) -> Result<CutCells, GridError> {
+    let block = Block::whole(grid.counts);
+    let [nx, ny, nz] = grid.counts;
+    let len = grid.cell_count();
+    let mut out = CutCells {
+        grid: *grid,
+        volume: zeroed(len)?,
+        centroid: zeroed(len)?,
+        boundary_area: zeroed(len)?,
+        boundary_vector: zeroed(len)?,
+        boundary_centroid: zeroed(len)?,
+        aperture: [
+            zeroed((nx + 1) * ny * nz)?,
+            zeroed(nx * (ny + 1) * nz)?,
+            zeroed(len + nx * ny)?,
+        ],
+    };
+    let areas = block.areas();
+    let columns = block.columns();
+    let threads = rayon::current_num_threads().max(1);
+    // Three handed-down sums a layer: at most 2²⁰ of them (24 MiB) a tile.
+    let per_tile = columns.div_ceil(8 * threads).min(((1 << 20) / (3 * areas)).max(1)).max(1);
+    let tiling = Tiling { columns, per_tile };
+    progress.stage("sorting faces into tiles of columns");
+    let bins = Bins::new(surface, grid, &block, &tiling, false);
+    progress.stage("cutting faces into cells");
+    let done = Counter::new(progress, tiling.tiles());
+    let units = Units::new(grid);
+    let scale = face_areas(grid.cell);
+    let (tile_cells, tile_planes) = (per_tile * nz, per_tile * (nz + 1));
+    let [_, _, aperture_z] = &mut out.aperture;
+    out.volume
+        .par_chunks_mut(tile_cells)
+        .zip(out.centroid.par_chunks_mut(tile_cells))
+        .zip(out.boundary_area.par_chunks_mut(tile_cells))
+        .zip(out.boundary_vector.par_chunks_mut(tile_cells))
+        .zip(out.boundary_centroid.par_chunks_mut(tile_cells))
+        .zip(aperture_z.par_chunks_mut(tile_planes))
+        .enumerate()
+        .for_each(|(tile, (((((volume, centroid), area), vector), centre), aperture_z))| {
+            let mut cells = TileCells {
+                volume,
+                centroid,
+                boundary_area: area,
+                boundary_vector: vector,
+                boundary_centroid: centre,
+                aperture_z,
+            };
+            let run = tiling.range(tile);
+            let mut handed = vec![[0.0; 3]; run.len() * areas];
+            for face in bins.faces(tile) {
+                surface.fan(face, |a, b, c| {
+                    let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
+                    for_each_piece(&t, &block, &run, false, |column, piece| {
+                        let (i, j) = ((run.start + column) / ny, (run.start + column) % ny);
+                        let cells_of = column * nz..(column + 1) * nz;
+                        let mut sink = MomentSink {
+                            volume: &mut cells.volume[cells_of.clone()],
+                            centroid: &mut cells.centroid[cells_of.clone()],
+                            boundary_area: &mut cells.boundary_area[cells_of.clone()],
+                            boundary_vector: &mut cells.boundary_vector[cells_of.clone()],
+                            boundary_centroid: &mut cells.boundary_centroid[cells_of],
+                            handed: &mut handed[column * areas..(column + 1) * areas],
+                            first: 0,
+                            column: [i as f64, j as f64],
+                            scale,
+                        };
+                        sweep_layers(piece, piece.range(2), nz, &mut sink);
+                    });
+                });
+            }
+            for column in 0..run.len() {
+                let (i, j) = ((run.start + column) / ny, (run.start + column) % ny);
+                finish_column(
+                    &mut cells,
+                    column * nz..(column + 1) * nz,
+                    column * (nz + 1)..(column + 1) * (nz + 1),
+                    &handed[column * areas..(column + 1) * areas],
+                    [i, j, 0],
+                    grid,
+                );
+            }
+            done.add(1);
+        });
+    Ok(out)
+}
