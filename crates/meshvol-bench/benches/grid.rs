@@ -1,11 +1,12 @@
-//! Grid kernels: per-cell volumes of a 1M-triangle sphere on 256³ and 512³ grids, a
+//! Grid kernels: per-cell volumes of a 1M-triangle sphere on 256³ and 512³ grids, its
+//! cut-cell geometry (moments, surface and apertures) on 256³ beside the volumes alone, a
 //! profile, and the union of 20 overlapping spheres of 20k triangles at tolerance 1e-6.
 //! Peers (trimesh voxelize, manifold3d booleans) are timed in `bench/compare/run`.
 //!
 //! Run: `cargo bench -p meshvol-bench --bench grid`
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use meshvol::grid::{cell_volumes, profile, union, Axis, Grid, Levels};
+use meshvol::grid::{cell_volumes, cut_cells, profile, union, Axis, Grid, Levels};
 use meshvol::Mesh;
 use meshvol_bench::sphere_with_triangles;
 use std::hint::black_box;
@@ -38,6 +39,10 @@ fn grids(c: &mut Criterion) {
             b.iter(|| black_box(cell_volumes(&mesh, g).unwrap()))
         });
     }
+    let grid = Grid::from_bounds([-1.0; 3], [1.0; 3], [256; 3]).unwrap();
+    group.bench_function("sphere-1M-cut-cells/256^3", |b| {
+        b.iter(|| black_box(cut_cells(&mesh, &grid).unwrap()))
+    });
     group.bench_function("profile-1M-1000-levels", |b| {
         b.iter(|| black_box(profile(&mesh, Axis::Z, Levels::Count(1000)).unwrap()))
     });

@@ -5,7 +5,7 @@ use crate::driver::{self, Output};
 use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{cell_volumes_with, union_cell_volumes_with};
+use meshvol::grid::{cell_volumes_with, cut_cells_with, union_cell_volumes_with, CutCells};
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};
@@ -36,15 +36,23 @@ pub struct GridArgs {
     /// The grid's box (default: the meshes' bounding box).
     #[arg(long, value_name = "X0,Y0,Z0,X1,Y1,Z1", value_parser = parse_bounds, allow_hyphen_values = true)]
     bounds: Option<(Point, Point)>,
-    /// Where to write the cell values: .npy (float64, shape (NX, NY, NZ), C order), .vti
-    /// (VTK image data, cell arrays `volume` and `fraction`), .csv (non-empty cells), or
-    /// .zarr (a Zarr v3 array, written chunk by chunk: for grids larger than memory).
+    /// Where to write the cell values: .npy (float64, shape (NX, NY, NZ), C order), .npz
+    /// (NumPy arrays `volume`, `fraction`, `origin`, `cell_size`; with --moments the
+    /// cut-cell arrays too), .vti (VTK image data, cell arrays `volume` and `fraction`, and
+    /// with --moments the rest), .csv (non-empty cells), or .zarr (a Zarr v3 array, written
+    /// chunk by chunk: for grids larger than memory).
     #[arg(long, short, value_name = "OUT", value_parser = parse_out)]
     out: Option<PathBuf>,
     /// The chunk shape of a .zarr output (default 64 cells along each axis, at most the
     /// grid's): memory holds one slab of CX × NY × NZ cells at a time.
     #[arg(long, value_name = "CX,CY,CZ", value_parser = parse_cells)]
     chunks: Option<[usize; 3]>,
+    /// Write the cut-cell geometry of every cell to --out (.npz or .vti): the solid's
+    /// `centroid` in the cell, the surface's `boundary_area`, `boundary_vector` (∫ n dA)
+    /// and `boundary_centroid`, and the fraction of each cell face inside the solid,
+    /// `aperture_x`, `aperture_y`, `aperture_z` (docs/cells.md).
+    #[arg(long, requires = "out")]
+    moments: bool,
     /// Store volume / cell volume in .npy or .zarr instead of volumes.
     #[arg(long)]
     fraction: bool,
@@ -110,8 +118,8 @@ fn parse_bounds(s: &str) -> Result<(Point, Point), String> {
 fn parse_out(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
     match extension(&path).as_deref() {
-        Some("npy" | "vti" | "csv" | "zarr") => Ok(path),
-        _ => Err(format!("'{s}': the output must end in .npy, .vti, .csv or .zarr")),
+        Some("npy" | "npz" | "vti" | "csv" | "zarr") => Ok(path),
+        _ => Err(format!("'{s}': the output must end in .npy, .npz, .vti, .csv or .zarr")),
     }
 }
 
@@ -240,8 +248,20 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         units: None,
         mass: None,
         png: args.png.as_ref().map(|p| p.display().to_string()),
+        moments: args.moments,
         warnings,
     };
+    let out_kind = args.out.as_deref().and_then(extension);
+    if args.moments {
+        if args.union {
+            return Err("--moments with --union is not available yet: the cut-cell geometry \
+                        is of one surface (the files' solids together)"
+                .into());
+        }
+        if !matches!(out_kind.as_deref(), Some("npz" | "vti")) {
+            return Err("--moments writes several arrays: give --out cells.npz or cells.vti".into());
+        }
+    }
     let zarr = args.out.as_deref().filter(|out| extension(out).as_deref() == Some("zarr"));
     if let Some(out) = zarr {
         if args.union || args.png.is_some() {
@@ -256,13 +276,27 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     if args.chunks.is_some() {
         return Err("--chunks is for a .zarr output (--out cells.zarr)".into());
     }
-    // The cell array, and with --union four more per-cell arrays.
-    check_memory(grid.counts, if args.union { 5 } else { 1 }, "grid")?;
+    // The cell array, with --union four more per-cell arrays, with --moments the cut cells.
+    let arrays = if args.moments {
+        CutCells::bytes(&grid) / grid.array_bytes().max(1) + 1
+    } else if args.union {
+        5
+    } else {
+        1
+    };
+    check_memory(grid.counts, arrays, "grid")?;
     progress.stage_all("computing cell volumes");
     let start = Instant::now();
+    let mut cut = None;
     let (volumes, columns_unresolved) = if args.union {
         let hook = progress.kernel("computing the union's cell volumes".to_string());
         union_cell_volumes_with(&bodies, &grid, &hook).map_err(|e| e.to_string())?
+    } else if args.moments {
+        let hook = progress.kernel("computing the cut cells".to_string());
+        let cells = cut_cells_with(&together, &grid, &hook).map_err(|e| e.to_string())?;
+        let volumes = cells.volume.clone();
+        cut = Some(cells);
+        (volumes, 0)
     } else {
         let hook = progress.kernel("computing cell volumes".to_string());
         (cell_volumes_with(&together, &grid, &hook).map_err(|e| e.to_string())?, 0)
@@ -274,9 +308,12 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         let file = std::fs::File::create(out)
             .map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
         let mut w = BufWriter::new(file);
-        let written = match extension(out).as_deref() {
-            Some("npy") => grid_out::npy(&mut w, &grid, &volumes, args.fraction),
-            Some("vti") => grid_out::vti(&mut w, &grid, &volumes),
+        let written = match (out_kind.as_deref(), &cut) {
+            (Some("npz"), Some(cells)) => grid_out::npz_cut_cells(&mut w, cells),
+            (Some("npz"), None) => grid_out::npz(&mut w, &grid, &volumes),
+            (Some("vti"), Some(cells)) => grid_out::vti_cut_cells(&mut w, cells),
+            (Some("npy"), _) => grid_out::npy(&mut w, &grid, &volumes, args.fraction),
+            (Some("vti"), None) => grid_out::vti(&mut w, &grid, &volumes),
             _ => grid_out::csv(&mut w, &grid, &volumes).map(|_| ()),
         };
         written.and_then(|()| w.flush()).map_err(|e| format!("{}: {e}", out.display()))?;

@@ -122,13 +122,15 @@ pub struct GridRun {
     /// Whether `out` holds fractions (volume / cell volume) instead of volumes.
     pub fraction: bool,
     pub png: Option<String>,
-    /// The readers' warnings and the reasons to doubt each file's solid, as
+    /// Whether `out` holds the cut-cell geometry (`--moments`) beside the volumes.
+    pub moments: bool,
     /// The units the numbers are in (`--units`, or the unit the file declares); null:
     /// the file's own numbers, unit unknown.
     pub units: Option<UnitNames>,
     /// With `--density`: `density`, `density_unit`, `mass`, `mass_unit`.
     #[serde(flatten)]
     pub mass: Option<Mass>,
+    /// The readers' warnings and the reasons to doubt each file's solid, as
     /// `FILE: warning`.
     pub warnings: Vec<String>,
 }
@@ -245,8 +247,21 @@ impl Report for GridReport {
                     "float64 {}, shape ({nx}, {ny}, {nz}), C order",
                     if r.fraction { "fractions" } else { "volumes" }
                 ),
+                Some(e) if e.eq_ignore_ascii_case("vti") && r.moments => {
+                    "VTK image data: cell arrays volume, fraction, centroid, boundary_area, \
+                     boundary_vector, boundary_centroid; field arrays aperture_x, _y, _z"
+                        .to_string()
+                }
                 Some(e) if e.eq_ignore_ascii_case("vti") => {
                     "VTK image data, cell arrays volume and fraction".to_string()
+                }
+                Some(e) if e.eq_ignore_ascii_case("npz") && r.moments => {
+                    "NumPy arrays volume, fraction, centroid, boundary_area, boundary_vector, \
+                     boundary_centroid, aperture_x, _y, _z, origin, cell_size"
+                        .to_string()
+                }
+                Some(e) if e.eq_ignore_ascii_case("npz") => {
+                    "NumPy arrays volume, fraction, origin, cell_size".to_string()
                 }
                 Some(e) if e.eq_ignore_ascii_case("zarr") => {
                     let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);

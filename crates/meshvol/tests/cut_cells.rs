@@ -447,3 +447,40 @@ fn a_grid_that_cuts_the_solid_keeps_the_solid_inside_it() {
     let v: f64 = small.volume.iter().sum();
     assert_eq!(v, cell_volumes(&mesh, &small.grid).unwrap().iter().sum::<f64>());
 }
+
+#[test]
+fn a_grid_on_the_solids_bounding_box_holds_all_its_surface() {
+    // The grid's far faces are closed: a solid's top, back and right faces lying on them
+    // are in the grid, as the bottom, front and left ones are.
+    let (lo, hi) = ([0.13, -0.27, 0.31], [1.71, 0.94, 1.05]);
+    let mesh = cuboid(lo, hi);
+    let grid = Grid::from_bounds(lo, hi, [5, 4, 3]).unwrap();
+    let c = cut_cells(&mesh, &grid).unwrap();
+    let area: f64 = c.boundary_area.iter().sum();
+    let mp = mass_properties(&mesh);
+    assert!((area - mp.area).abs() < 1e-12, "{area} vs {}", mp.area);
+    for cell in cells(&grid) {
+        let d = divergence(&c, cell);
+        assert!(d.iter().all(|x| x.abs() < 1e-12), "{cell:?}: {d:?}");
+        // Every cell is full; the faces of the box lie on the outer cells' faces.
+        let n = grid.index(cell);
+        assert!((c.volume[n] - grid.cell_volume()).abs() < 1e-15);
+        for a in 0..3 {
+            let outer = usize::from(cell[a] == 0) + usize::from(cell[a] + 1 == grid.counts[a]);
+            let face = grid.cell[(a + 1) % 3] * grid.cell[(a + 2) % 3];
+            let expected = if cell[a] == 0 { -face } else { 0.0 }
+                + if cell[a] + 1 == grid.counts[a] { face } else { 0.0 };
+            assert!((c.boundary_vector[n][a] - expected).abs() < 1e-14, "{cell:?} {a}: {outer}");
+        }
+    }
+    // The apertures: 1 inside, 0 on the box's own faces (the surface covers them).
+    for a in 0..3 {
+        let mut shape = grid.counts;
+        shape[a] += 1;
+        for (f, &x) in c.aperture[a].iter().enumerate() {
+            let at = [f / (shape[1] * shape[2]), f / shape[2] % shape[1], f % shape[2]][a];
+            let expected = if at == 0 || at == grid.counts[a] { 0.0 } else { 1.0 };
+            assert!((x - expected).abs() < 1e-14, "axis {a} face {f}: {x}");
+        }
+    }
+}

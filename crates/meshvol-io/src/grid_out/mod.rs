@@ -12,6 +12,7 @@
 //!   text that reads back to the same bits, and two `Float64` cell arrays, `volume`
 //!   and `fraction`, in VTK's order (x fastest), as raw little-endian appended data with
 //!   `UInt64` byte counts: ParaView, VisIt and `vtk` read it.
+//! - **`.npz`**, and the cut-cell geometry as `.npz` or `.vti`: the `cut_cells` module.
 //! - **`.csv`**: `i,j,k,volume,fraction`, one row per non-empty cell (|volume| above
 //!   [`OCCUPANCY_TOLERANCE`] of a cell), numbers in shortest round-trip form.
 //! - **`.zarr`** (feature `zarr`): a Zarr v3 array written chunk by chunk, for grids
@@ -24,6 +25,7 @@
 //!   and up the second. [`png_map`] draws any values the same way, with a title and
 //!   legend of the caller's (a map of cut and fill).
 
+mod cut_cells;
 mod font;
 mod picture;
 #[cfg(feature = "zarr")]
@@ -32,6 +34,7 @@ pub mod zarr;
 use meshvol::grid::{Grid, OCCUPANCY_TOLERANCE};
 use std::io::{self, Write};
 
+pub use cut_cells::{npz, npz_cut_cells, vti_cut_cells};
 pub use picture::{png, png_map, Legend};
 
 fn check_len(grid: &Grid, volumes: &[f64]) -> io::Result<()> {
@@ -97,24 +100,81 @@ pub fn npy_array(
 /// A `.vti` file with cell arrays `volume` and `fraction`.
 pub fn vti(out: &mut impl Write, grid: &Grid, volumes: &[f64]) -> io::Result<()> {
     check_len(grid, volumes)?;
+    let scale = 1.0 / grid.cell_volume();
+    let arrays = [
+        VtiArray { name: "volume", components: 1, values: &|c, _| volumes[c] },
+        VtiArray { name: "fraction", components: 1, values: &|c, _| volumes[c] * scale },
+    ];
+    vti_arrays(out, grid, &arrays, &[])
+}
+
+/// A named array of a `.vti` file: `values(c, m)` is component `m` of entry `c` (a cell
+/// in C order for cell arrays; an index into the field array's own order otherwise).
+pub struct VtiArray<'a> {
+    pub name: &'a str,
+    pub components: usize,
+    pub values: &'a dyn Fn(usize, usize) -> f64,
+}
+
+/// A side array of a `.vti` file (VTK `FieldData`): `tuples` entries in the order given.
+pub struct VtiField<'a> {
+    pub array: VtiArray<'a>,
+    pub tuples: usize,
+}
+
+/// A `.vti` file with the given cell arrays (the first is the active scalars) and
+/// field arrays, as raw appended data.
+pub fn vti_arrays(
+    out: &mut impl Write,
+    grid: &Grid,
+    cells: &[VtiArray],
+    fields: &[VtiField],
+) -> io::Result<()> {
     let [nx, ny, nz] = grid.counts;
     let [ox, oy, oz] = grid.origin;
     let [dx, dy, dz] = grid.cell;
-    let bytes = volumes.len() as u64 * 8;
+    let declare = |a: &VtiArray, tuples: usize, offset: &mut u64| {
+        let extra =
+            if tuples == 0 { String::new() } else { format!(" NumberOfTuples=\"{tuples}\"") };
+        let line = format!(
+            "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\"{extra} format=\"appended\" offset=\"{offset}\"/>",
+            a.name, a.components
+        );
+        let tuples = if tuples == 0 { grid.cell_count() } else { tuples };
+        *offset += 8 + (tuples * a.components) as u64 * 8;
+        line
+    };
+    let mut offset = 0;
     write!(
         out,
         "<?xml version=\"1.0\"?>\n\
 <VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
-  <ImageData WholeExtent=\"0 {nx} 0 {ny} 0 {nz}\" Origin=\"{ox:?} {oy:?} {oz:?}\" Spacing=\"{dx:?} {dy:?} {dz:?}\">\n\
-    <Piece Extent=\"0 {nx} 0 {ny} 0 {nz}\">\n\
-      <CellData Scalars=\"fraction\">\n\
-        <DataArray type=\"Float64\" Name=\"volume\" NumberOfComponents=\"1\" format=\"appended\" offset=\"0\"/>\n\
-        <DataArray type=\"Float64\" Name=\"fraction\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>\n\
-      </CellData>\n\
-    </Piece>\n\
-  </ImageData>\n\
-  <AppendedData encoding=\"raw\">\n_",
-        8 + bytes
+  <ImageData WholeExtent=\"0 {nx} 0 {ny} 0 {nz}\" Origin=\"{ox:?} {oy:?} {oz:?}\" Spacing=\"{dx:?} {dy:?} {dz:?}\">\n"
+    )?;
+    let mut field_lines = Vec::new();
+    let mut cell_lines = Vec::new();
+    for a in cells {
+        cell_lines.push(declare(a, 0, &mut offset));
+    }
+    for f in fields {
+        field_lines.push(declare(&f.array, f.tuples, &mut offset));
+    }
+    if !fields.is_empty() {
+        writeln!(out, "    <FieldData>")?;
+        for line in &field_lines {
+            writeln!(out, "      {line}")?;
+        }
+        writeln!(out, "    </FieldData>")?;
+    }
+    writeln!(out, "    <Piece Extent=\"0 {nx} 0 {ny} 0 {nz}\">")?;
+    let scalars = cells.iter().find(|a| a.name == "fraction").or(cells.first());
+    writeln!(out, "      <CellData Scalars=\"{}\">", scalars.map_or("", |a| a.name))?;
+    for line in &cell_lines {
+        writeln!(out, "        {line}")?;
+    }
+    write!(
+        out,
+        "      </CellData>\n    </Piece>\n  </ImageData>\n  <AppendedData encoding=\"raw\">\n_"
     )?;
     // VTK orders cells with x fastest: (k·ny + j)·nx + i.
     let vtk_order = || {
@@ -122,11 +182,17 @@ pub fn vti(out: &mut impl Write, grid: &Grid, volumes: &[f64]) -> io::Result<()>
             (0..ny).flat_map(move |j| (0..nx).map(move |i| (i * ny + j) * nz + k))
         })
     };
-    let scale = 1.0 / grid.cell_volume();
-    out.write_all(&bytes.to_le_bytes())?;
-    write_f64s(out, vtk_order().map(|c| volumes[c]))?;
-    out.write_all(&bytes.to_le_bytes())?;
-    write_f64s(out, vtk_order().map(|c| volumes[c] * scale))?;
+    for a in cells {
+        out.write_all(&((grid.cell_count() * a.components) as u64 * 8).to_le_bytes())?;
+        let values = vtk_order().flat_map(|c| (0..a.components).map(move |m| (c, m)));
+        write_f64s(out, values.map(|(c, m)| (a.values)(c, m)))?;
+    }
+    for f in fields {
+        let a = &f.array;
+        out.write_all(&((f.tuples * a.components) as u64 * 8).to_le_bytes())?;
+        let values = (0..f.tuples).flat_map(|c| (0..a.components).map(move |m| (c, m)));
+        write_f64s(out, values.map(|(c, m)| (a.values)(c, m)))?;
+    }
     out.write_all(b"\n  </AppendedData>\n</VTKFile>\n")
 }
 

@@ -13,6 +13,8 @@
 //! compensated (TwoSum), in the same order for every cell. The surface beyond the far
 //! face is cut from the few faces that reach it.
 
+use super::integrals::surface_part;
+use super::kernel::{add_surface, face_areas};
 use super::CutCells;
 use crate::accumulate::two_sum;
 use crate::grid::cells::{cover, sweep_axis, Piece, Units};
@@ -21,11 +23,14 @@ use crate::Surface;
 use rayon::prelude::*;
 
 /// `∫ n_x dA`, `∫ n_y dA` over the surface beyond the grid's far x face, per tube `(j, k)`,
-/// and beyond its far y face, per tube `(i, k)`; in grid units (faces of area 1).
-fn beyond<S: Surface + ?Sized>(surface: &S, cells: &CutCells) -> [Vec<f64>; 2] {
-    let grid = &cells.grid;
+/// and beyond its far y face, per tube `(i, k)`; in grid units (faces of area 1). Parts
+/// lying on a far face are the surface of the cells beside it (the far faces are closed):
+/// they are added to those cells' surface sums instead.
+fn beyond<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) -> [Vec<f64>; 2] {
+    let grid = cells.grid;
     let [nx, ny, nz] = grid.counts;
-    let units = Units::new(grid);
+    let units = Units::new(&grid);
+    let scale = face_areas(grid.cell);
     let far = [nx as f64, ny as f64];
     let reaches = |face: usize| {
         let mut hit = false;
@@ -44,6 +49,7 @@ fn beyond<S: Surface + ?Sized>(surface: &S, cells: &CutCells) -> [Vec<f64>; 2] {
             for axis in 0..2 {
                 let (mut inside, mut past) = (Piece::EMPTY, Piece::EMPTY);
                 t.split_axis_into(axis, far[axis], &mut inside, &mut past);
+                let on_face = past.range(axis) == (far[axis], far[axis]);
                 // Across the tube: y for the x face, x for the y face; then z.
                 let (across, n_across) = if axis == 0 { (1, ny) } else { (0, nx) };
                 let r = past.range(across);
@@ -52,7 +58,22 @@ fn beyond<S: Surface + ?Sized>(surface: &S, cells: &CutCells) -> [Vec<f64>; 2] {
                 sweep_axis(&past, across, r, cells_across, false, |m, strip| {
                     let z = strip.range(2);
                     sweep_axis(strip, 2, z, cover(z.0, z.1, nz, false), false, |k, part| {
-                        sums[m * nz + k] += normal_component(part, axis);
+                        if !on_face {
+                            sums[m * nz + k] += normal_component(part, axis);
+                            return true;
+                        }
+                        let mut at = [m, m, k];
+                        at[axis] = far[axis] as usize - 1;
+                        if let Some((vector, centre)) = surface_part(part, at.map(|x| x as f64)) {
+                            let n = grid.index(at);
+                            add_surface(
+                                (&mut cells.boundary_area[n], &mut cells.boundary_vector[n]),
+                                &mut cells.boundary_centroid[n],
+                                vector,
+                                centre,
+                                scale,
+                            );
+                        }
                         true
                     });
                     true

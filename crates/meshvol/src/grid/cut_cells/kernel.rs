@@ -30,7 +30,7 @@ struct TileCells<'a> {
 }
 
 /// World scale of a grid-unit area vector's components: `(dy·dz, dx·dz, dx·dy)`.
-fn face_areas(cell: [f64; 3]) -> [f64; 3] {
+pub(super) fn face_areas(cell: [f64; 3]) -> [f64; 3] {
     [cell[1] * cell[2], cell[0] * cell[2], cell[0] * cell[1]]
 }
 
@@ -45,6 +45,8 @@ struct MomentSink<'a> {
     boundary_vector: &'a mut [Point],
     boundary_centroid: &'a mut [Point],
     handed: &'a mut [[f64; 3]],
+    /// The projected area of the parts lying on the grid's top face.
+    on_top: &'a mut f64,
     first: usize,
     column: [f64; 2],
     scale: [f64; 3],
@@ -75,16 +77,7 @@ impl LayerSink for MomentSink<'_> {
         m[0] += p.xz;
         m[1] += p.yz;
         m[2] += p.zz_half;
-        if let Some((vector, centre)) = surface_part(part, corner) {
-            let world = [0, 1, 2].map(|d| vector[d] * self.scale[d]);
-            let area = (world[0] * world[0] + world[1] * world[1] + world[2] * world[2]).sqrt();
-            self.boundary_area[local] += area;
-            let (v, c) = (&mut self.boundary_vector[local], &mut self.boundary_centroid[local]);
-            for d in 0..3 {
-                v[d] += world[d];
-                c[d] += area * centre[d];
-            }
-        }
+        self.surface(local, part, corner);
     }
 
     #[inline(always)]
@@ -94,7 +87,66 @@ impl LayerSink for MomentSink<'_> {
         for d in 0..3 {
             self.handed[top][d] += h[d];
         }
+        // A part lying on the grid's top face is the top layer's surface (the grid's far
+        // faces are closed), and not beyond it for the aperture there.
+        let (z0, z1) = part.range(2);
+        let layer = self.first + top - 1;
+        if z0 == z1 && z0 == (layer + 1) as f64 && top - 1 < self.volume.len() {
+            *self.on_top += h[0];
+            let [i, j] = self.column;
+            self.surface(top - 1, part, [i, j, layer as f64]);
+        }
     }
+}
+
+impl MomentSink<'_> {
+    /// Adds a part to the surface sums of cell `local` (`corner`: its first corner).
+    #[inline(always)]
+    fn surface<const N: usize>(&mut self, local: usize, part: &Polygon<N>, corner: [f64; 3]) {
+        if let Some((vector, centre)) = surface_part(part, corner) {
+            add_surface(
+                (&mut self.boundary_area[local], &mut self.boundary_vector[local]),
+                &mut self.boundary_centroid[local],
+                vector,
+                centre,
+                self.scale,
+            );
+        }
+    }
+}
+
+/// Adds a part's area vector (grid units) and local centroid to a cell's surface sums:
+/// its world area, world area vector, and world area × local centroid.
+#[inline(always)]
+pub(super) fn add_surface(
+    (area, vector): (&mut f64, &mut Point),
+    weighted: &mut Point,
+    part_vector: Point,
+    centre: Point,
+    scale: Point,
+) {
+    let world = [0, 1, 2].map(|d| part_vector[d] * scale[d]);
+    let size = (world[0] * world[0] + world[1] * world[1] + world[2] * world[2]).sqrt();
+    *area += size;
+    for d in 0..3 {
+        vector[d] += world[d];
+        weighted[d] += size * centre[d];
+    }
+}
+
+/// Turns the cells' area-weighted local surface centroids into world centroids (the
+/// middle of a cell without surface), once every part has been added.
+pub(super) fn finish_boundary_centroids(cells: &mut CutCells) {
+    let grid = cells.grid;
+    let [_, ny, nz] = grid.counts;
+    cells.boundary_centroid.par_iter_mut().zip(&cells.boundary_area).enumerate().for_each(
+        |(n, (c, &w))| {
+            let at = [n / (ny * nz), n / nz % ny, n % nz];
+            *c = [0, 1, 2].map(|d| {
+                grid.origin[d] + (at[d] as f64 + within(c[d], w, w == 0.0)) * grid.cell[d]
+            });
+        },
+    );
 }
 
 /// A compensated running sum (TwoSum), taken from the top of a column down.
@@ -138,7 +190,7 @@ fn finish_column(
     cells: &mut TileCells,
     range: Range<usize>,
     apertures: Range<usize>,
-    handed: &[[f64; 3]],
+    (handed, on_top): (&[[f64; 3]], f64),
     [i, j, first]: [usize; 3],
     grid: &Grid,
 ) {
@@ -164,12 +216,10 @@ fn finish_column(
             let trivial =
                 magnitude <= OCCUPANCY_TOLERANCE || (magnitude - 1.0).abs() <= OCCUPANCY_TOLERANCE;
             cells.centroid[n] = [0, 1, 2].map(|d| cell_at(d, within(moment[d], v, trivial), layer));
-            let w = cells.boundary_area[n];
-            let c = cells.boundary_centroid[n];
-            cells.boundary_centroid[n] =
-                [0, 1, 2].map(|d| cell_at(d, within(c[d], w, w == 0.0), layer));
-            // The plane at the bottom of layer `first + k + 1`: everything above it.
-            cells.aperture_z[apertures.start + k + 1] = area.value();
+            // The plane at the bottom of layer `first + k + 1`: everything above it (on
+            // the grid's top face, but the parts lying on it).
+            let beyond = if k + 2 == handed.len() { on_top } else { 0.0 };
+            cells.aperture_z[apertures.start + k + 1] = area.value() - beyond;
         }
     }
     let mut bottom = area;
@@ -233,6 +283,7 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
             };
             let run = tiling.range(tile);
             let mut handed = vec![[0.0; 3]; run.len() * areas];
+            let mut on_top = vec![0.0; run.len()];
             for face in bins.faces(tile) {
                 surface.fan(face, |a, b, c| {
                     let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
@@ -246,6 +297,7 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                             boundary_vector: &mut cells.boundary_vector[cells_of.clone()],
                             boundary_centroid: &mut cells.boundary_centroid[cells_of],
                             handed: &mut handed[column * areas..(column + 1) * areas],
+                            on_top: &mut on_top[column],
                             first: 0,
                             column: [i as f64, j as f64],
                             scale,
@@ -260,7 +312,7 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                     &mut cells,
                     column * nz..(column + 1) * nz,
                     column * (nz + 1)..(column + 1) * (nz + 1),
-                    &handed[column * areas..(column + 1) * areas],
+                    (&handed[column * areas..(column + 1) * areas], on_top[column]),
                     [i, j, 0],
                     grid,
                 );

@@ -38,8 +38,11 @@
 //!
 //! # Conventions
 //! A surface lying exactly on a cell face belongs to the cell on its high side (as the
-//! volumes' layers do). The apertures count the solid on the high side of a face lying
-//! on the plane. Empty and full cells (volume within [`OCCUPANCY_TOLERANCE`](super::OCCUPANCY_TOLERANCE) of 0 or of
+//! volumes' layers do), except on the grid's far faces (`x = x_nx`, `y = y_ny`,
+//! `z = z_nz`), where it belongs to the cell inside: the grid is closed, so a solid's
+//! surface on its bounding box is all in the grid whose bounds are that box. The
+//! apertures count the solid on the high side of a surface lying on a face's plane
+//! (inside the grid on its far faces). Empty and full cells (volume within [`OCCUPANCY_TOLERANCE`](super::OCCUPANCY_TOLERANCE) of 0 or of
 //! the cell) have their centroid at the cell's middle, as does the boundary centroid
 //! of a cell without surface; other centroids are clamped to their cell (the ratio of
 //! two sums each rounded). Everything is in world units except the apertures, which are
@@ -127,5 +130,6 @@ pub fn cut_cells_with<S: Surface + ?Sized>(
     let mut cells = kernel::cut_cells(surface, &grid, progress)?;
     progress.stage("summing apertures");
     apertures::fill(surface, &mut cells);
+    kernel::finish_boundary_centroids(&mut cells);
     Ok(cells)
 }

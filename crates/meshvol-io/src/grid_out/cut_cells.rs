@@ -1,0 +1,132 @@
+//! The cut-cell geometry of a grid ([`CutCells`]) as NumPy `.npz` and VTK `.vti`.
+//!
+//! - **`.npz`**: a zip of `.npy` arrays (stored, not compressed, so `numpy.load(…,
+//!   mmap_mode=…)` readers and any zip tool read them): `origin` and `cell_size` (3,),
+//!   `volume` and `fraction` (NX, NY, NZ), `centroid`, `boundary_vector` and
+//!   `boundary_centroid` (NX, NY, NZ, 3), `boundary_area` (NX, NY, NZ), and the
+//!   apertures `aperture_x` (NX+1, NY, NZ), `aperture_y` (NX, NY+1, NZ) and `aperture_z`
+//!   (NX, NY, NZ+1), all float64 in C order. A grid of volumes alone (no `--moments`)
+//!   has `origin`, `cell_size`, `volume` and `fraction`.
+//! - **`.vti`**: the cell arrays `volume`, `fraction`, `centroid`, `boundary_area`,
+//!   `boundary_vector`, `boundary_centroid` (3 components for the vectors), and the
+//!   apertures as field arrays (VTK `FieldData`, which has no shape): `aperture_x` with
+//!   `(NX+1)·NY·NZ` tuples in VTK's order, x fastest (`(k·NY + j)·(NX+1) + i`), and
+//!   likewise `aperture_y` and `aperture_z`.
+
+use super::{check_len, npy_array, vti_arrays, VtiArray, VtiField};
+use meshvol::grid::{CutCells, Grid};
+use std::io::{self, Seek, Write};
+use zip::write::SimpleFileOptions;
+use zip::{CompressionMethod, ZipWriter};
+
+/// Adds `name.npy` (float64 `values` of `shape`) to a zip.
+fn entry<W: Write + Seek>(
+    zip: &mut ZipWriter<W>,
+    name: &str,
+    shape: &[usize],
+    values: impl ExactSizeIterator<Item = f64>,
+) -> io::Result<()> {
+    let large = values.len() as u64 * 8 >= u32::MAX as u64;
+    let options = SimpleFileOptions::default()
+        .compression_method(CompressionMethod::Stored)
+        .large_file(large);
+    zip.start_file(format!("{name}.npy"), options).map_err(io::Error::other)?;
+    npy_array(zip, shape, values)
+}
+
+/// The grid's `origin` and `cell_size`, `volume` and `fraction`.
+fn grid_entries<W: Write + Seek>(
+    zip: &mut ZipWriter<W>,
+    grid: &Grid,
+    volumes: &[f64],
+) -> io::Result<()> {
+    check_len(grid, volumes)?;
+    let scale = 1.0 / grid.cell_volume();
+    entry(zip, "origin", &[3], grid.origin.into_iter())?;
+    entry(zip, "cell_size", &[3], grid.cell.into_iter())?;
+    entry(zip, "volume", &grid.counts, volumes.iter().copied())?;
+    entry(zip, "fraction", &grid.counts, volumes.iter().map(|v| v * scale))
+}
+
+/// A `.npz` of a grid's cell volumes.
+pub fn npz<W: Write + Seek>(out: W, grid: &Grid, volumes: &[f64]) -> io::Result<()> {
+    let mut zip = ZipWriter::new(out);
+    grid_entries(&mut zip, grid, volumes)?;
+    zip.finish().map_err(io::Error::other)?;
+    Ok(())
+}
+
+/// A `.npz` of the cut-cell geometry (module docs).
+pub fn npz_cut_cells<W: Write + Seek>(out: W, cells: &CutCells) -> io::Result<()> {
+    let grid = &cells.grid;
+    let mut zip = ZipWriter::new(out);
+    grid_entries(&mut zip, grid, &cells.volume)?;
+    let [nx, ny, nz] = grid.counts;
+    let vectors = [nx, ny, nz, 3];
+    entry(&mut zip, "centroid", &vectors, cells.centroid.as_flattened().iter().copied())?;
+    entry(&mut zip, "boundary_area", &grid.counts, cells.boundary_area.iter().copied())?;
+    entry(
+        &mut zip,
+        "boundary_vector",
+        &vectors,
+        cells.boundary_vector.as_flattened().iter().copied(),
+    )?;
+    let centres = cells.boundary_centroid.as_flattened().iter().copied();
+    entry(&mut zip, "boundary_centroid", &vectors, centres)?;
+    for (axis, name) in ["aperture_x", "aperture_y", "aperture_z"].into_iter().enumerate() {
+        let mut shape = grid.counts;
+        shape[axis] += 1;
+        entry(&mut zip, name, &shape, cells.aperture[axis].iter().copied())?;
+    }
+    zip.finish().map_err(io::Error::other)?;
+    Ok(())
+}
+
+/// A `.vti` of the cut-cell geometry (module docs).
+pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
+    let grid = &cells.grid;
+    let scale = 1.0 / grid.cell_volume();
+    let [nx, ny, nz] = grid.counts;
+    let arrays = [
+        VtiArray { name: "volume", components: 1, values: &|c, _| cells.volume[c] },
+        VtiArray { name: "fraction", components: 1, values: &|c, _| cells.volume[c] * scale },
+        VtiArray { name: "centroid", components: 3, values: &|c, m| cells.centroid[c][m] },
+        VtiArray { name: "boundary_area", components: 1, values: &|c, _| cells.boundary_area[c] },
+        VtiArray {
+            name: "boundary_vector",
+            components: 3,
+            values: &|c, m| cells.boundary_vector[c][m],
+        },
+        VtiArray {
+            name: "boundary_centroid",
+            components: 3,
+            values: &|c, m| cells.boundary_centroid[c][m],
+        },
+    ];
+    // Each aperture array in VTK's order (x fastest) over its own shape.
+    let shapes = [[nx + 1, ny, nz], [nx, ny + 1, nz], [nx, ny, nz + 1]];
+    let vtk = |axis: usize| {
+        let [sx, sy, sz] = shapes[axis];
+        move |t: usize, _| {
+            let (i, j, k) = (t % sx, t / sx % sy, t / (sx * sy));
+            cells.aperture[axis][(i * sy + j) * sz + k]
+        }
+    };
+    let (ax, ay, az) = (vtk(0), vtk(1), vtk(2));
+    let tuples = |axis: usize| shapes[axis].iter().product();
+    let fields = [
+        VtiField {
+            array: VtiArray { name: "aperture_x", components: 1, values: &ax },
+            tuples: tuples(0),
+        },
+        VtiField {
+            array: VtiArray { name: "aperture_y", components: 1, values: &ay },
+            tuples: tuples(1),
+        },
+        VtiField {
+            array: VtiArray { name: "aperture_z", components: 1, values: &az },
+            tuples: tuples(2),
+        },
+    ];
+    vti_arrays(out, grid, &arrays, &fields)
+}
