@@ -346,3 +346,132 @@ fn union_of_files_and_of_shells() {
     let v = json(&meshvol(&["grid", p(&both), "--cells", "7,5,6", "--json"]));
     assert!((f(&v["total"]) - 10.5).abs() < 1e-13, "{v}");
 }
+
+/// The arrays of a `.npz`, each read back as a `.npy`.
+fn read_npz(path: &Path) -> std::collections::BTreeMap<String, (Vec<usize>, Vec<f64>)> {
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(path).unwrap()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let mut arrays = std::collections::BTreeMap::new();
+    for n in 0..archive.len() {
+        let mut entry = archive.by_index(n).unwrap();
+        let name = entry.name().trim_end_matches(".npy").to_string();
+        let file = dir.path().join(&name);
+        std::io::copy(&mut entry, &mut std::fs::File::create(&file).unwrap()).unwrap();
+        arrays.insert(name, read_npy(&file));
+    }
+    arrays
+}
+
+#[test]
+fn grid_moments_write_the_cut_cells_of_a_box() {
+    let dir = tempfile::tempdir().unwrap();
+    let (lo, hi) = ([0.25, 0.5, -0.3], [1.5, 1.25, 0.9]);
+    let mesh = write(dir.path(), "box.obj", box_obj(lo, hi, 1));
+    let (origin, cell) = ([0.0, 0.0, -0.5], [0.5, 0.5, 0.3]);
+    let npz = dir.path().join("c.npz");
+    let summary = json(&meshvol(&[
+        "grid",
+        p(&mesh),
+        "--cells",
+        "4,3,5",
+        "--bounds",
+        "0,0,-0.5,2,1.5,1",
+        "--moments",
+        "--out",
+        p(&npz),
+        "--json",
+    ]));
+    assert_eq!(summary["moments"], true);
+    let arrays = read_npz(&npz);
+    let names: Vec<&str> = arrays.keys().map(String::as_str).collect();
+    assert_eq!(
+        names,
+        [
+            "aperture_x",
+            "aperture_y",
+            "aperture_z",
+            "boundary_area",
+            "boundary_centroid",
+            "boundary_vector",
+            "cell_size",
+            "centroid",
+            "fraction",
+            "origin",
+            "volume"
+        ]
+    );
+    assert_eq!(arrays["centroid"].0, [4, 3, 5, 3]);
+    assert_eq!(arrays["aperture_x"].0, [5, 3, 5]);
+    assert_eq!(arrays["aperture_z"].0, [4, 3, 6]);
+    assert_eq!(arrays["origin"].1, origin);
+    // Every cell against the box: the overlap's volume and middle, the box's faces in it.
+    let range = |a: usize, n: usize| {
+        let c0 = origin[a] + n as f64 * cell[a];
+        (c0.max(lo[a]), (c0 + cell[a]).min(hi[a]), c0)
+    };
+    for n in 0..60 {
+        let at = [n / 15, n / 5 % 3, n % 5];
+        let o = [0, 1, 2].map(|a| range(a, at[a]));
+        let len = o.map(|(a, b, _)| (b - a).max(0.0));
+        let volume: f64 = len.iter().product();
+        assert!((arrays["volume"].1[n] - volume).abs() < 1e-14, "{at:?}");
+        if volume > 1e-9 {
+            for a in 0..3 {
+                let mid = 0.5 * (o[a].0 + o[a].1);
+                assert!((arrays["centroid"].1[3 * n + a] - mid).abs() < 1e-12, "{at:?}");
+            }
+        }
+        let mut area = 0.0;
+        for a in 0..3 {
+            let across = len[(a + 1) % 3] * len[(a + 2) % 3];
+            for plane in [lo[a], hi[a]] {
+                if plane >= o[a].2 && plane < o[a].2 + cell[a] {
+                    area += across;
+                }
+            }
+        }
+        assert!((arrays["boundary_area"].1[n] - area).abs() < 1e-14, "{at:?}");
+    }
+    // Σ boundary_area is the box's area; the z apertures inside the box are its
+    // cross-section in each cell face.
+    let total: f64 = arrays["boundary_area"].1.iter().sum();
+    let box_area = 2.0 * (1.25 * 0.75 + 1.25 * 1.2 + 0.75 * 1.2);
+    assert!((total - box_area).abs() < 1e-13);
+    let z_face = |i: usize, j: usize, k: usize| arrays["aperture_z"].1[(i * 3 + j) * 6 + k];
+    assert!((z_face(1, 1, 3) - 1.0).abs() < 1e-14 && z_face(1, 1, 5) == 0.0);
+    assert!((z_face(0, 1, 2) - 0.5).abs() < 1e-14, "x from 0.25 to 0.5: half the face");
+
+    // .vti: the same arrays by name; the apertures as field arrays.
+    let vti = dir.path().join("c.vti");
+    json(&meshvol(&[
+        "grid",
+        p(&mesh),
+        "--cells",
+        "4,3,5",
+        "--bounds",
+        "0,0,-0.5,2,1.5,1",
+        "--moments",
+        "--out",
+        p(&vti),
+        "--json",
+    ]));
+    let xml = String::from_utf8_lossy(&std::fs::read(&vti).unwrap()).to_string();
+    for name in [
+        "centroid\" NumberOfComponents=\"3\"",
+        "aperture_x\" NumberOfComponents=\"1\" NumberOfTuples=\"75\"",
+    ] {
+        assert!(xml.contains(name), "{name}");
+    }
+    // Bad combinations are refused by name.
+    let out = meshvol(&[
+        "grid",
+        p(&mesh),
+        "--cells",
+        "4,3,5",
+        "--moments",
+        "--out",
+        p(&dir.path().join("c.npy")),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("give --out cells.npz or cells.vti"));
+}

@@ -65,6 +65,72 @@ pub fn counts_of(cells: &Bound<'_, PyAny>) -> PyResult<[usize; 3]> {
     Ok([0, 1, 2].map(|a| usize::try_from(counts[a]).unwrap_or(usize::MAX)))
 }
 
+/// The grid `cells` or `pitch` and `bounds` describe (the mesh's bounding box without
+/// bounds), as `meshvol grid` chooses it.
+fn grid_of<'py, S: Surface>(
+    py: Python<'py>,
+    mesh: &S,
+    cells: Option<&Bound<'py, PyAny>>,
+    bounds: Option<&Bound<'py, PyAny>>,
+    pitch: Option<&Bound<'py, PyAny>>,
+) -> PyResult<grid::Grid> {
+    let spacing = match (cells, pitch) {
+        (Some(_), Some(_)) => return Err(bad_argument("give cells or pitch, not both")),
+        (Some(counts), None) => Spacing::Cells(counts_of(counts)?),
+        (None, Some(pitch)) => Spacing::Pitch(pitch_of(pitch)?),
+        (None, None) => return Err(bad_argument("give cells=(nx, ny, nz) or pitch=h")),
+    };
+    let bounds = bounds.map(|b| crate::convert::bounds(b, "bounds")).transpose()?;
+    let mesh_bounds = match bounds {
+        Some(_) => None,
+        None => py.detach(|| mass_properties(mesh)).bounds,
+    };
+    Ok(choose(bounds, mesh_bounds, spacing, "bounds").map_err(mesh_error)?.0)
+}
+
+/// The cut-cell geometry of `mesh` on the grid the arguments describe, as a
+/// `meshvol.CutCells` (a dict of arrays named as `meshvol grid --moments` writes them),
+/// lengths, areas and volumes in the report's units (apertures and fractions are ratios).
+pub fn cut_cells<'py, S: Surface>(
+    py: Python<'py>,
+    mesh: &S,
+    cells: Option<&Bound<'py, PyAny>>,
+    bounds: Option<&Bound<'py, PyAny>>,
+    pitch: Option<&Bound<'py, PyAny>>,
+    scale: &meshvol_report::units::Scale,
+) -> PyResult<Bound<'py, PyAny>> {
+    use numpy::ndarray::{Array, IxDyn};
+    let grid = grid_of(py, mesh, cells, bounds, pitch)?;
+    let arrays = meshvol::grid::CutCells::bytes(&grid) / grid.array_bytes().max(1);
+    check_memory(grid.counts, arrays, "grid").map_err(mesh_error)?;
+    let c = py.detach(|| grid::cut_cells(mesh, &grid)).map_err(mesh_error)?;
+    let [nx, ny, nz] = grid.counts;
+    let dict = pyo3::types::PyDict::new(py);
+    let put = |name: &str, shape: Vec<usize>, values: Vec<f64>| -> PyResult<()> {
+        let array = Array::from_shape_vec(IxDyn(&shape), values).map_err(mesh_error)?;
+        dict.set_item(name, array.into_pyarray(py))
+    };
+    let fraction = c.fraction();
+    let points = |v: &[[f64; 3]]| v.iter().flat_map(|p| scale.point(*p)).collect::<Vec<f64>>();
+    let vectors = |v: &[[f64; 3]]| v.iter().flatten().map(|x| scale.area(*x)).collect::<Vec<f64>>();
+    put("volume", vec![nx, ny, nz], c.volume.iter().map(|v| scale.volume(*v)).collect())?;
+    put("fraction", vec![nx, ny, nz], fraction)?;
+    put("centroid", vec![nx, ny, nz, 3], points(&c.centroid))?;
+    put(
+        "boundary_area",
+        vec![nx, ny, nz],
+        c.boundary_area.iter().map(|a| scale.area(*a)).collect(),
+    )?;
+    put("boundary_vector", vec![nx, ny, nz, 3], vectors(&c.boundary_vector))?;
+    put("boundary_centroid", vec![nx, ny, nz, 3], points(&c.boundary_centroid))?;
+    let [ax, ay, az] = c.aperture;
+    put("aperture_x", vec![nx + 1, ny, nz], ax)?;
+    put("aperture_y", vec![nx, ny + 1, nz], ay)?;
+    put("aperture_z", vec![nx, ny, nz + 1], az)?;
+    let class = py.import("meshvol._grid")?.getattr("CutCells")?;
+    class.call1((dict, scale.point(grid.origin), grid.cell.map(|h| scale.length(h))))
+}
+
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
 /// arguments describe, or of the block `region` of it, as a `meshvol.Grid`.
 #[allow(clippy::too_many_arguments)]
@@ -78,18 +144,7 @@ pub fn cell_volumes<'py, S: Surface>(
     region: Option<&Bound<'py, PyAny>>,
     scale: &meshvol_report::units::Scale,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let spacing = match (cells, pitch) {
-        (Some(_), Some(_)) => return Err(bad_argument("give cells or pitch, not both")),
-        (Some(counts), None) => Spacing::Cells(counts_of(counts)?),
-        (None, Some(pitch)) => Spacing::Pitch(pitch_of(pitch)?),
-        (None, None) => return Err(bad_argument("give cells=(nx, ny, nz) or pitch=h")),
-    };
-    let bounds = bounds.map(|b| crate::convert::bounds(b, "bounds")).transpose()?;
-    let mesh_bounds = match bounds {
-        Some(_) => None,
-        None => py.detach(|| mass_properties(mesh)).bounds,
-    };
-    let (grid, _) = choose(bounds, mesh_bounds, spacing, "bounds").map_err(mesh_error)?;
+    let grid = grid_of(py, mesh, cells, bounds, pitch)?;
     let region = region.map(region_of).transpose()?;
     let start = region.as_ref().map_or([0; 3], |r| [r[0].start, r[1].start, r[2].start]);
     let (mut volumes, shape) = match region {

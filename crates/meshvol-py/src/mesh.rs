@@ -420,6 +420,35 @@ impl PyMesh {
         grid::cell_volumes(py, &measured, cells, bounds, fraction, pitch, region, &scale)
     }
 
+    /// The cut-cell geometry of the solid on a grid (`meshvol grid --moments`): a
+    /// meshvol.CutCells, a dict of float64 arrays: volume, fraction, centroid,
+    /// boundary_area, boundary_vector, boundary_centroid (cells, vectors with a last axis
+    /// of 3) and aperture_x, aperture_y, aperture_z (the cell faces along each axis);
+    /// with origin, spacing and to_xarray(). cells, bounds and pitch as Mesh.grid takes
+    /// them; check and units as every method (lengths, areas and volumes in the report's
+    /// units; fractions and apertures are ratios). docs/cells.md has the definitions.
+    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, units = None))]
+    fn cells<'py>(
+        &self,
+        py: Python<'py>,
+        cells: Option<&Bound<'py, PyAny>>,
+        bounds: Option<&Bound<'py, PyAny>>,
+        pitch: Option<&Bound<'py, PyAny>>,
+        check: bool,
+        units: Option<&str>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        properties::require_faces(&self.mesh)?;
+        let options = crate::units::options(units, None)?;
+        let (scale, warning) = meshvol_report::units::Scale::resolve(&options, self.source.unit)
+            .map_err(crate::errors::bad_argument)?;
+        let subject = self.subject(py, check)?;
+        let mut warnings = subject.warnings();
+        warnings.extend(warning);
+        self.warn(py, &warnings)?;
+        let measured = subject.measured();
+        grid::cut_cells(py, &measured, cells, bounds, pitch, &scale)
+    }
+
     /// Pickling (multiprocessing, Dask): a Mesh travels as its vertex and face arrays and
     /// is rebuilt as Mesh(vertices, faces), so where it was read from (file, format,
     /// warnings, objects) stays behind; every measurement is the same.

@@ -41,11 +41,11 @@ fn grid_entries<W: Write + Seek>(
     volumes: &[f64],
 ) -> io::Result<()> {
     check_len(grid, volumes)?;
-    let scale = 1.0 / grid.cell_volume();
+    let cell = grid.cell_volume();
     entry(zip, "origin", &[3], grid.origin.into_iter())?;
     entry(zip, "cell_size", &[3], grid.cell.into_iter())?;
     entry(zip, "volume", &grid.counts, volumes.iter().copied())?;
-    entry(zip, "fraction", &grid.counts, volumes.iter().map(|v| v * scale))
+    entry(zip, "fraction", &grid.counts, volumes.iter().map(|v| v / cell))
 }
 
 /// A `.npz` of a grid's cell volumes.
@@ -85,11 +85,11 @@ pub fn npz_cut_cells<W: Write + Seek>(out: W, cells: &CutCells) -> io::Result<()
 /// A `.vti` of the cut-cell geometry (module docs).
 pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
     let grid = &cells.grid;
-    let scale = 1.0 / grid.cell_volume();
+    let cell = grid.cell_volume();
     let [nx, ny, nz] = grid.counts;
     let arrays = [
         VtiArray { name: "volume", components: 1, values: &|c, _| cells.volume[c] },
-        VtiArray { name: "fraction", components: 1, values: &|c, _| cells.volume[c] * scale },
+        VtiArray { name: "fraction", components: 1, values: &|c, _| cells.volume[c] / cell },
         VtiArray { name: "centroid", components: 3, values: &|c, m| cells.centroid[c][m] },
         VtiArray { name: "boundary_area", components: 1, values: &|c, _| cells.boundary_area[c] },
         VtiArray {

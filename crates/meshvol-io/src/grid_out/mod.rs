@@ -63,8 +63,8 @@ fn write_f64s(out: &mut impl Write, values: impl Iterator<Item = f64>) -> io::Re
 /// A `.npy` file of the cell volumes, or of the fractions with `fraction`.
 pub fn npy(out: &mut impl Write, grid: &Grid, volumes: &[f64], fraction: bool) -> io::Result<()> {
     check_len(grid, volumes)?;
-    let scale = if fraction { 1.0 / grid.cell_volume() } else { 1.0 };
-    let values = volumes.iter().map(|v| if fraction { v * scale } else { *v });
+    let cell = grid.cell_volume();
+    let values = volumes.iter().map(|v| if fraction { v / cell } else { *v });
     npy_array(out, &grid.counts, values)
 }
 
@@ -100,10 +100,10 @@ pub fn npy_array(
 /// A `.vti` file with cell arrays `volume` and `fraction`.
 pub fn vti(out: &mut impl Write, grid: &Grid, volumes: &[f64]) -> io::Result<()> {
     check_len(grid, volumes)?;
-    let scale = 1.0 / grid.cell_volume();
+    let cell = grid.cell_volume();
     let arrays = [
         VtiArray { name: "volume", components: 1, values: &|c, _| volumes[c] },
-        VtiArray { name: "fraction", components: 1, values: &|c, _| volumes[c] * scale },
+        VtiArray { name: "fraction", components: 1, values: &|c, _| volumes[c] / cell },
     ];
     vti_arrays(out, grid, &arrays, &[])
 }

@@ -26,9 +26,9 @@ pub struct ZarrCells {
     array: Array<FilesystemStore>,
     counts: [usize; 3],
     chunks: [usize; 3],
-    /// What each volume is multiplied by before it is stored (1 / cell volume for
+    /// What each volume is divided by before it is stored (the cell volume for
     /// fractions).
-    scale: f64,
+    divisor: f64,
 }
 
 fn failed(e: impl std::fmt::Display) -> io::Error {
@@ -75,8 +75,8 @@ impl ZarrCells {
         .build(store, "/")
         .map_err(failed)?;
         array.store_metadata().map_err(failed)?;
-        let scale = if fraction { 1.0 / grid.cell_volume() } else { 1.0 };
-        Ok(ZarrCells { array, counts: grid.counts, chunks, scale })
+        let divisor = if fraction { grid.cell_volume() } else { 1.0 };
+        Ok(ZarrCells { array, counts: grid.counts, chunks, divisor })
     }
 
     /// Cells along x of chunk row `row`: the rows of cells [`ZarrCells::write_row`] takes.
@@ -119,7 +119,7 @@ impl ZarrCells {
                     for (out, v) in
                         chunk[to..to + k1 - k0].iter_mut().zip(&volumes[from + k0..from + k1])
                     {
-                        *out = v * self.scale;
+                        *out = v / self.divisor;
                     }
                 }
             }

@@ -62,12 +62,13 @@ from ._meshvol import (
 )
 from ._batch import measure
 from ._errors import MeshFileNotFoundError, MeshIsADirectoryError, MeshOSError, MeshPermissionError
-from ._grid import Grid
+from ._grid import CutCells, Grid
 
 __all__ = [
     "AreaProperties",
     "Below",
     "Check",
+    "CutCells",
     "CutFill",
     "Grid",
     "Hull",

@@ -136,6 +136,16 @@ class Mesh:
         """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
         grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
         number or 3; region: (3, 2) cell ranges; any array-like."""
+    def cells(
+        self,
+        cells: Optional[_ArrayLike] = None,
+        bounds: Optional[_ArrayLike] = None,
+        pitch: _Union[float, _ArrayLike, None] = None,
+        check: bool = True,
+        units: Optional[str] = None,
+    ) -> CutCells:
+        """The cut-cell geometry on a grid (`meshvol grid --moments`): volume, fraction,
+        centroid, boundary_area, boundary_vector, boundary_centroid, aperture_x/_y/_z."""
     def profile(
         self,
         axis: str = "z",
@@ -554,6 +564,19 @@ class Section:
     timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol section --json`."""
+
+class CutCells(dict[str, _F64]):
+    """The cut-cell geometry of Mesh.cells: a dict of float64 arrays (docs/cells.md)."""
+
+    origin: _F64
+    """Shape (3,): the lower corner of cell (0, 0, 0)."""
+    spacing: _F64
+    """Shape (3,): the cells' size."""
+    def __init__(self, arrays: Mapping[str, _F64], origin: _ArrayLike, spacing: _ArrayLike) -> None: ...
+    @property
+    def shape(self) -> Tuple[int, ...]: ...
+    def to_xarray(self) -> Any:
+        """An xarray.Dataset: dims x, y, z (cells), x_face, y_face, z_face, component."""
 
 class Grid:
     """Cell volumes (Mesh.grid) and where the cells are; np.asarray(grid) is values."""

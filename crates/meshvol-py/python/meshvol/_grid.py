@@ -1,4 +1,5 @@
-"""meshvol.Grid: the cell volumes of Mesh.grid() with where the cells are."""
+"""meshvol.Grid: the cell volumes of Mesh.grid() with where the cells are; meshvol.CutCells:
+the cut-cell geometry of Mesh.cells()."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 from numpy.lib.mixins import NDArrayOperatorsMixin
 
-__all__ = ["Grid"]
+__all__ = ["CutCells", "Grid"]
 
 
 class Grid(NDArrayOperatorsMixin):
@@ -164,4 +165,66 @@ class Grid(NDArrayOperatorsMixin):
         return (
             f"Grid(shape=({nx}, {ny}, {nz}), origin={self._origin.tolist()}, "
             f"spacing={self._spacing.tolist()}, values='{what}')"
+        )
+
+
+class CutCells(dict):  # type: ignore[type-arg]
+    """The cut-cell geometry of a solid on a grid (what Mesh.cells returns): a dict of
+    float64 arrays, named as `meshvol grid --moments` writes them (docs/cells.md).
+
+    Cell arrays, shape (nx, ny, nz) or (nx, ny, nz, 3): volume, fraction, centroid,
+    boundary_area, boundary_vector, boundary_centroid. Face arrays: aperture_x
+    (nx + 1, ny, nz), aperture_y (nx, ny + 1, nz), aperture_z (nx, ny, nz + 1), the
+    fraction of each cell face inside the solid. origin and spacing place the cells as
+    Grid's do.
+    """
+
+    def __init__(self, arrays: Any, origin: Any, spacing: Any) -> None:
+        super().__init__(arrays)
+        self.origin = np.array(origin, dtype=np.float64).reshape(3)
+        self.spacing = np.array(spacing, dtype=np.float64).reshape(3)
+
+    @property
+    def shape(self) -> Tuple[int, ...]:
+        """The cell counts (nx, ny, nz)."""
+        return tuple(self["volume"].shape)
+
+    def to_xarray(self) -> Any:
+        """The arrays as an xarray.Dataset: cell arrays on dims ('x', 'y', 'z') (the
+        cells' centres) and 'component' for vectors; each aperture on its faces' dims
+        ('x_face', 'y', 'z'), ... (the planes' coordinates). Needs xarray."""
+        try:
+            import xarray
+        except ImportError as e:
+            raise ImportError(
+                "CutCells.to_xarray() needs xarray, which is not installed: pip install xarray"
+            ) from e
+        n = self.shape
+        centres = [self.origin[a] + (np.arange(n[a]) + 0.5) * self.spacing[a] for a in range(3)]
+        planes = [self.origin[a] + np.arange(n[a] + 1) * self.spacing[a] for a in range(3)]
+        cell_dims = ("x", "y", "z")
+        variables = {}
+        for name, values in self.items():
+            if name.startswith("aperture_"):
+                a = "xyz".index(name[-1])
+                dims = tuple(f"{d}_face" if i == a else d for i, d in enumerate(cell_dims))
+            elif values.ndim == 4:
+                dims = cell_dims + ("component",)
+            else:
+                dims = cell_dims
+            variables[name] = (dims, values)
+        coords = {d: centres[a] for a, d in enumerate(cell_dims)}
+        coords.update({f"{d}_face": planes[a] for a, d in enumerate(cell_dims)})
+        coords["component"] = ["x", "y", "z"]
+        attrs = {"origin": self.origin.tolist(), "spacing": self.spacing.tolist()}
+        return xarray.Dataset(variables, coords=coords, attrs=attrs)
+
+    def __reduce__(self) -> Any:
+        return (CutCells, (dict(self), self.origin, self.spacing))
+
+    def __repr__(self) -> str:
+        nx, ny, nz = self.shape
+        return (
+            f"CutCells(shape=({nx}, {ny}, {nz}), origin={self.origin.tolist()}, "
+            f"spacing={self.spacing.tolist()}, arrays={sorted(self)})"
         )

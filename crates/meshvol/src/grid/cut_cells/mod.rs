@@ -40,9 +40,10 @@
 //! A surface lying exactly on a cell face belongs to the cell on its high side (as the
 //! volumes' layers do), except on the grid's far faces (`x = x_nx`, `y = y_ny`,
 //! `z = z_nz`), where it belongs to the cell inside: the grid is closed, so a solid's
-//! surface on its bounding box is all in the grid whose bounds are that box. The
-//! apertures count the solid on the high side of a surface lying on a face's plane
-//! (inside the grid on its far faces). Empty and full cells (volume within [`OCCUPANCY_TOLERANCE`](super::OCCUPANCY_TOLERANCE) of 0 or of
+//! surface on its bounding box is all in the grid whose bounds are that box. Where the
+//! surface lies on a face's plane, the aperture is the solid's section just below the
+//! plane (as [`section`](crate::section::section) takes it: full on a box's top face,
+//! empty on its bottom face), and on the grid's far faces the section just beyond them. Empty and full cells (volume within [`OCCUPANCY_TOLERANCE`](super::OCCUPANCY_TOLERANCE) of 0 or of
 //! the cell) have their centroid at the cell's middle, as does the boundary centroid
 //! of a cell without surface; other centroids are clamped to their cell (the ratio of
 //! two sums each rounded). Everything is in world units except the apertures, which are

@@ -1,0 +1,108 @@
+"""Mesh.cells: the cut-cell geometry, against a box's closed forms, trimesh's whole-mesh
+properties, the command's .npz, and unit conversions."""
+
+import os
+import pickle
+import subprocess
+
+import meshvol
+import numpy as np
+import pytest
+import trimesh
+from solids import BOX_QUADS, box_vertices
+
+COMMAND = os.environ.get("MESHVOL_BIN")
+LO, HI = np.array([0.25, 0.5, -0.3]), np.array([1.5, 1.25, 0.9])
+BOUNDS = [[0.0, 0.0, -0.5], [2.0, 1.5, 1.0]]
+
+
+def box_mesh():
+    return meshvol.Mesh(box_vertices(LO, HI), BOX_QUADS)
+
+
+def test_a_box_by_closed_forms():
+    c = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS)
+    assert isinstance(c, dict) and c.shape == (4, 3, 5)
+    assert sorted(c) == sorted(
+        ["volume", "fraction", "centroid", "boundary_area", "boundary_vector",
+         "boundary_centroid", "aperture_x", "aperture_y", "aperture_z"]
+    )
+    lower = c.origin + np.indices((4, 3, 5)).transpose(1, 2, 3, 0) * c.spacing
+    lo, hi = np.maximum(lower, LO), np.minimum(lower + c.spacing, HI)
+    lengths = np.clip(hi - lo, 0, None)
+    volume = lengths.prod(axis=-1)
+    np.testing.assert_allclose(c["volume"], volume, atol=1e-14)
+    np.testing.assert_allclose(c["fraction"], volume / c.spacing.prod(), atol=1e-13)
+    partial = volume > 1e-9
+    np.testing.assert_allclose(c["centroid"][partial], ((lo + hi) / 2)[partial], atol=1e-12)
+    # Σ over the box's surface; the x apertures: the box's section on each x plane.
+    area = 2 * (1.25 * 0.75 + 1.25 * 1.2 + 0.75 * 1.2)
+    assert c["boundary_area"].sum() == pytest.approx(area, rel=1e-14)
+    np.testing.assert_allclose(c["boundary_vector"].sum(axis=(0, 1, 2)), 0, atol=1e-14)
+    x_planes = c.origin[0] + np.arange(5) * c.spacing[0]
+    # A face of the box on a plane: the section just below it, as `section` takes it.
+    inside = (x_planes > LO[0]) & (x_planes <= HI[0])
+    section = c["aperture_x"].sum(axis=(1, 2)) * c.spacing[1] * c.spacing[2]
+    np.testing.assert_allclose(section, np.where(inside, 0.75 * 1.2, 0.0), atol=1e-13)
+
+
+def test_sums_match_trimesh_on_a_sphere():
+    sphere = trimesh.creation.icosphere(subdivisions=4, radius=1.0)
+    mesh = meshvol.Mesh(sphere.vertices, sphere.faces)
+    c = mesh.cells(cells=(9, 8, 7), bounds=[[-1.1] * 3, [1.1] * 3])
+    assert c["boundary_area"].sum() == pytest.approx(sphere.area, rel=1e-12)
+    moment = (c["volume"][..., None] * c["centroid"]).sum(axis=(0, 1, 2))
+    np.testing.assert_allclose(moment, sphere.center_mass * sphere.volume, atol=1e-12)
+    assert c["volume"].sum() == pytest.approx(sphere.volume, rel=1e-12)
+    # The divergence theorem on every cut cell.
+    h = c.spacing
+    div = np.stack(
+        [
+            np.diff(c["aperture_x"], axis=0) * h[1] * h[2],
+            np.diff(c["aperture_y"], axis=1) * h[0] * h[2],
+            np.diff(c["aperture_z"], axis=2) * h[0] * h[1],
+        ],
+        axis=-1,
+    ) + c["boundary_vector"]
+    assert np.abs(div).max() < 1e-12
+
+
+def test_units_scale_each_quantity_by_its_dimension():
+    mm = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS)
+    cm = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS, units="mm:cm")
+    np.testing.assert_allclose(cm["volume"], mm["volume"] * 1e-3, rtol=1e-15)
+    np.testing.assert_allclose(cm["centroid"], mm["centroid"] * 0.1, rtol=1e-15)
+    np.testing.assert_allclose(cm["boundary_area"], mm["boundary_area"] * 1e-2, rtol=1e-15)
+    np.testing.assert_allclose(cm["boundary_vector"], mm["boundary_vector"] * 1e-2, rtol=1e-15)
+    np.testing.assert_array_equal(cm["aperture_z"], mm["aperture_z"])
+    np.testing.assert_allclose(cm.spacing, mm.spacing * 0.1, rtol=1e-15)
+
+
+def test_to_xarray_pickle_and_bad_arguments():
+    c = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS)
+    ds = c.to_xarray()
+    assert ds["aperture_x"].dims == ("x_face", "y", "z")
+    assert ds["centroid"].dims == ("x", "y", "z", "component")
+    np.testing.assert_array_equal(ds["volume"].values, c["volume"])
+    back = pickle.loads(pickle.dumps(c))
+    assert isinstance(back, meshvol.CutCells) and back.shape == c.shape
+    with pytest.raises(ValueError, match="give cells"):
+        box_mesh().cells()
+    with pytest.raises(ValueError, match="positive"):
+        box_mesh().cells(cells=(0, 1, 1))
+
+
+@pytest.mark.skipif(not COMMAND, reason="MESHVOL_BIN names no meshvol command to compare with")
+def test_the_same_arrays_as_the_command(tmp_path):
+    sample = os.path.join(os.path.dirname(__file__), "../../../samples/flanged-bushing.stl")
+    out = tmp_path / "c.npz"
+    subprocess.run(
+        [COMMAND, "grid", sample, "--cells", "12,11,10", "--moments", "--out", str(out)],
+        check=True,
+        capture_output=True,
+    )
+    written = np.load(out)
+    c = meshvol.load(sample).cells(cells=(12, 11, 10))
+    for name, values in c.items():
+        np.testing.assert_array_equal(written[name], values, err_msg=name)
+    np.testing.assert_array_equal(written["origin"], c.origin)
