@@ -97,14 +97,27 @@ pub fn cut_cells<'py, S: Surface>(
     cells: Option<&Bound<'py, PyAny>>,
     bounds: Option<&Bound<'py, PyAny>>,
     pitch: Option<&Bound<'py, PyAny>>,
+    region: Option<&Bound<'py, PyAny>>,
     scale: &meshvol_report::units::Scale,
 ) -> PyResult<Bound<'py, PyAny>> {
     use numpy::ndarray::{Array, IxDyn};
     let grid = grid_of(py, mesh, cells, bounds, pitch)?;
     let arrays = meshvol::grid::CutCells::bytes(&grid) / grid.array_bytes().max(1);
-    check_memory(grid.counts, arrays, "grid").map_err(mesh_error)?;
-    let c = py.detach(|| grid::cut_cells(mesh, &grid)).map_err(mesh_error)?;
-    let [nx, ny, nz] = grid.counts;
+    let c = match region.map(region_of).transpose()? {
+        None => {
+            check_memory(grid.counts, arrays, "grid").map_err(mesh_error)?;
+            py.detach(|| grid::cut_cells(mesh, &grid)).map_err(mesh_error)?
+        }
+        Some(region) => {
+            // Computed up to the grid's far x and y faces, then cut back.
+            let [nx, ny, _] = grid.counts;
+            let (i0, j0) = (region[0].start.min(nx), region[1].start.min(ny));
+            let reach = [nx - i0, ny - j0, region[2].len()];
+            check_memory(reach, arrays, "block").map_err(mesh_error)?;
+            py.detach(|| grid::cut_cells_region(mesh, &grid, &region)).map_err(mesh_error)?
+        }
+    };
+    let [nx, ny, nz] = c.shape();
     let dict = pyo3::types::PyDict::new(py);
     let put = |name: &str, shape: Vec<usize>, values: Vec<f64>| -> PyResult<()> {
         let array = Array::from_shape_vec(IxDyn(&shape), values).map_err(mesh_error)?;
@@ -128,7 +141,9 @@ pub fn cut_cells<'py, S: Surface>(
     put("aperture_y", vec![nx, ny + 1, nz], ay)?;
     put("aperture_z", vec![nx, ny, nz + 1], az)?;
     let class = py.import("meshvol._grid")?.getattr("CutCells")?;
-    class.call1((dict, scale.point(grid.origin), grid.cell.map(|h| scale.length(h))))
+    let origin: [f64; 3] =
+        [0, 1, 2].map(|a| grid.origin[a] + c.region[a].start as f64 * grid.cell[a]);
+    class.call1((dict, scale.point(origin), grid.cell.map(|h| scale.length(h))))
 }
 
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the

@@ -426,8 +426,12 @@ impl PyMesh {
     /// of 3) and aperture_x, aperture_y, aperture_z (the cell faces along each axis);
     /// with origin, spacing and to_xarray(). cells, bounds and pitch as Mesh.grid takes
     /// them; check and units as every method (lengths, areas and volumes in the report's
-    /// units; fractions and apertures are ratios). docs/cells.md has the definitions.
-    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, units = None))]
+    /// units; fractions and apertures are ratios). region=((i0, i1), (j0, j1), (k0, k1))
+    /// gives the block of those cells (and the apertures of their faces), the same bits as
+    /// the whole grid's (meshvol.dask.grid(moments=True) computes blocks this way).
+    /// docs/cells.md has the definitions.
+    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None))]
+    #[allow(clippy::too_many_arguments)]
     fn cells<'py>(
         &self,
         py: Python<'py>,
@@ -435,6 +439,7 @@ impl PyMesh {
         bounds: Option<&Bound<'py, PyAny>>,
         pitch: Option<&Bound<'py, PyAny>>,
         check: bool,
+        region: Option<&Bound<'py, PyAny>>,
         units: Option<&str>,
     ) -> PyResult<Bound<'py, PyAny>> {
         properties::require_faces(&self.mesh)?;
@@ -446,7 +451,7 @@ impl PyMesh {
         warnings.extend(warning);
         self.warn(py, &warnings)?;
         let measured = subject.measured();
-        grid::cut_cells(py, &measured, cells, bounds, pitch, &scale)
+        grid::cut_cells(py, &measured, cells, bounds, pitch, region, &scale)
     }
 
     /// Pickling (multiprocessing, Dask): a Mesh travels as its vertex and face arrays and

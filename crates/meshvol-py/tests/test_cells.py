@@ -6,6 +6,7 @@ import pickle
 import subprocess
 
 import meshvol
+import meshvol.dask
 import numpy as np
 import pytest
 import trimesh
@@ -106,3 +107,19 @@ def test_the_same_arrays_as_the_command(tmp_path):
     for name, values in c.items():
         np.testing.assert_array_equal(written[name], values, err_msg=name)
     np.testing.assert_array_equal(written["origin"], c.origin)
+
+
+def test_blocks_and_dask_chunks_are_the_whole_grid_bit_for_bit():
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    mesh = meshvol.Mesh(sphere.vertices, sphere.faces)
+    bounds = [[-1.1, -1.1, -1.1], [0.6, 0.7, 0.5]]  # the grid cuts the sphere
+    whole = mesh.cells(cells=(7, 6, 5), bounds=bounds)
+    block = mesh.cells(cells=(7, 6, 5), bounds=bounds, region=((2, 5), (1, 6), (0, 3)))
+    np.testing.assert_array_equal(block["centroid"], whole["centroid"][2:5, 1:6, 0:3])
+    np.testing.assert_array_equal(block["aperture_x"], whole["aperture_x"][2:6, 1:6, 0:3])
+    np.testing.assert_array_equal(block["aperture_z"], whole["aperture_z"][2:5, 1:6, 0:4])
+    np.testing.assert_allclose(block.origin, whole.origin + np.array([2, 1, 0]) * whole.spacing)
+    lazy = meshvol.dask.grid(mesh, cells=(7, 6, 5), bounds=bounds, chunks=(3, 4, 2), moments=True)
+    assert sorted(lazy) == sorted(whole)
+    for name, values in lazy.items():
+        np.testing.assert_array_equal(values.compute(scheduler="threads"), whole[name], err_msg=name)

@@ -484,3 +484,55 @@ fn a_grid_on_the_solids_bounding_box_holds_all_its_surface() {
         }
     }
 }
+
+#[test]
+fn any_block_is_the_same_bits_as_the_whole_grid() {
+    use meshvol::grid::cut_cells_region;
+    let (lo, hi) = ([0.13, -0.27, 0.31], [1.71, 0.94, 1.05]);
+    let cases = [
+        (uv_sphere(1.0, 40, 20), Grid::new([-1.1; 3], [0.2, 0.26, 0.24], [7, 5, 5]).unwrap()),
+        (cuboid(lo, hi), Grid::from_bounds(lo, hi, [5, 4, 3]).unwrap()),
+        (solids().remove(4).1, Grid::from_bounds([-0.1; 3], [1.4, 1.2, 1.3], [6, 7, 5]).unwrap()),
+    ];
+    let mut rng = XorShift::new(11);
+    for (mesh, grid) in cases {
+        let whole = cut_cells(&mesh, &grid).unwrap();
+        for _ in 0..12 {
+            let region = grid.counts.map(|n| {
+                let a = rng.below(n as u64) as usize;
+                let b = rng.below(n as u64) as usize;
+                a.min(b)..a.max(b) + 1
+            });
+            let block = cut_cells_region(&mesh, &grid, &region).unwrap();
+            assert_eq!(block.region, region);
+            let [bx, by, bz] = block.shape();
+            for (n, at) in (0..bx)
+                .flat_map(|i| (0..by).flat_map(move |j| (0..bz).map(move |k| [i, j, k])))
+                .enumerate()
+            {
+                let g = whole.local([0, 1, 2].map(|a| at[a] + region[a].start)).unwrap();
+                assert_eq!(block.volume[n].to_bits(), whole.volume[g].to_bits());
+                assert_eq!(block.centroid[n], whole.centroid[g]);
+                assert_eq!(block.boundary_area[n].to_bits(), whole.boundary_area[g].to_bits());
+                assert_eq!(block.boundary_vector[n], whole.boundary_vector[g]);
+                assert_eq!(block.boundary_centroid[n], whole.boundary_centroid[g]);
+            }
+            for a in 0..3 {
+                let mut shape = block.shape();
+                shape[a] += 1;
+                let mut full = grid.counts;
+                full[a] += 1;
+                for (n, at) in (0..shape[0])
+                    .flat_map(|i| {
+                        (0..shape[1]).flat_map(move |j| (0..shape[2]).map(move |k| [i, j, k]))
+                    })
+                    .enumerate()
+                {
+                    let g = [0, 1, 2].map(|d| at[d] + region[d].start);
+                    let w = whole.aperture[a][(g[0] * full[1] + g[1]) * full[2] + g[2]];
+                    assert_eq!(block.aperture[a][n].to_bits(), w.to_bits(), "axis {a} {g:?}");
+                }
+            }
+        }
+    }
+}

@@ -142,6 +142,7 @@ class Mesh:
         bounds: Optional[_ArrayLike] = None,
         pitch: _Union[float, _ArrayLike, None] = None,
         check: bool = True,
+        region: Optional[_ArrayLike] = None,
         units: Optional[str] = None,
     ) -> CutCells:
         """The cut-cell geometry on a grid (`meshvol grid --moments`): volume, fraction,

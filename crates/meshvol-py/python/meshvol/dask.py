@@ -29,7 +29,19 @@ from __future__ import annotations
 import functools
 import os
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import (
+    TYPE_CHECKING,
+    Any,
+    Dict,
+    Iterable,
+    List,
+    Literal,
+    Optional,
+    Sequence,
+    Tuple,
+    Union,
+    overload,
+)
 
 import dask
 import dask.array as da
@@ -79,6 +91,92 @@ def _block(
         return block.values
 
 
+def _cut_block(
+    source: Union[Mesh, Tuple[str, Tuple[int, int]]],
+    cells: Tuple[int, int, int],
+    bounds: Tuple[Tuple[float, ...], Tuple[float, ...]],
+    check: bool,
+    region: Tuple[Tuple[int, int], ...],
+) -> Dict[str, np.ndarray]:
+    """One chunk of the cut cells, on a worker; each aperture array cut to the faces the
+    chunk owns (its low faces, and its high faces where it ends the grid)."""
+    mesh = source if isinstance(source, Mesh) else _mesh_at(*source)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", MeshWarning)
+        block = mesh.cells(cells=cells, bounds=bounds, check=check, region=region)
+    arrays = dict(block)
+    for a, name in enumerate(("aperture_x", "aperture_y", "aperture_z")):
+        if region[a][1] < cells[a]:
+            keep = [slice(None)] * 3
+            keep[a] = slice(0, -1)
+            arrays[name] = arrays[name][tuple(keep)]
+    return arrays
+
+
+def _moments(
+    where: Any,
+    counts: Tuple[int, int, int],
+    fixed: Tuple[Tuple[float, ...], Tuple[float, ...]],
+    check: bool,
+    chunks: Tuple[Tuple[int, ...], ...],
+) -> Dict[str, da.Array]:
+    """The cut cells as a dict of lazy arrays, each chunk computed once by _cut_block."""
+    source_key = dask.delayed(where, pure=True, traverse=False)
+    block = dask.delayed(_cut_block, pure=True)
+    starts = [np.cumsum((0,) + c)[:-1].tolist() for c in chunks]
+    names = ["volume", "fraction", "centroid", "boundary_area", "boundary_vector",
+             "boundary_centroid", "aperture_x", "aperture_y", "aperture_z"]
+    nested: Dict[str, List[Any]] = {name: [] for name in names}
+    for i0, bx in zip(starts[0], chunks[0]):
+        planes: Dict[str, List[Any]] = {name: [] for name in names}
+        for j0, by in zip(starts[1], chunks[1]):
+            lines: Dict[str, List[Any]] = {name: [] for name in names}
+            for k0, bz in zip(starts[2], chunks[2]):
+                region = ((i0, i0 + bx), (j0, j0 + by), (k0, k0 + bz))
+                arrays = block(source_key, counts, fixed, check, region)
+                for name in names:
+                    shape: Tuple[int, ...] = (bx, by, bz)
+                    if name.startswith("aperture_"):
+                        a = "xyz".index(name[-1])
+                        end = region[a][1] == counts[a]
+                        shape = tuple(n + (1 if d == a and end else 0) for d, n in enumerate(shape))
+                    elif name in ("centroid", "boundary_vector", "boundary_centroid"):
+                        shape = shape + (3,)
+                    part = da.from_delayed(arrays[name], shape, dtype=np.float64)
+                    # da.block nests as deep as the arrays: vectors have one more axis.
+                    lines[name].append([part] if len(shape) == 4 else part)
+            for name in names:
+                planes[name].append(lines[name])
+        for name in names:
+            nested[name].append(planes[name])
+    return {name: da.block(nested[name]) for name in names}
+
+
+@overload
+def grid(
+    source: Union[str, "os.PathLike[str]", Mesh],
+    cells: Tuple[int, int, int],
+    bounds: Optional[Bounds] = ...,
+    chunks: Union[str, int, Sequence] = ...,
+    check: bool = ...,
+    fraction: bool = ...,
+    moments: Literal[False] = ...,
+) -> da.Array: ...
+
+
+@overload
+def grid(
+    source: Union[str, "os.PathLike[str]", Mesh],
+    cells: Tuple[int, int, int],
+    bounds: Optional[Bounds] = ...,
+    chunks: Union[str, int, Sequence] = ...,
+    check: bool = ...,
+    fraction: bool = ...,
+    *,
+    moments: Literal[True],
+) -> Dict[str, da.Array]: ...
+
+
 def grid(
     source: Union[str, "os.PathLike[str]", Mesh],
     cells: Tuple[int, int, int],
@@ -86,10 +184,18 @@ def grid(
     chunks: Union[str, int, Sequence] = ("auto", "auto", -1),
     check: bool = True,
     fraction: bool = False,
-) -> da.Array:
+    moments: bool = False,
+) -> Union[da.Array, Dict[str, da.Array]]:
     """The volume of the solid in each cell of a grid as a lazy (nx, ny, nz) float64
     dask.array: Mesh.grid(cells, bounds, fraction=fraction, check=check), bit for bit,
     computed chunk by chunk with Mesh.grid(region=...).
+
+    moments=True: the cut-cell geometry instead, Mesh.cells(cells, bounds, check=check)
+    bit for bit, as a dict of lazy arrays with Mesh.cells's names and shapes (the
+    apertures have one more face along their axis), each chunk computed once by
+    Mesh.cells(region=...). A chunk's x and y apertures sum the surface from the grid's
+    far faces, so a chunk costs the cells from it to those faces: split x and y in few
+    chunks.
 
     source: a mesh file's path (each worker reads it once and keeps it; the file must be
     at that path on every worker, as on shared storage) or a Mesh (sent to each worker
@@ -122,6 +228,10 @@ def grid(
         bounds = found
     fixed = (tuple(map(float, bounds[0])), tuple(map(float, bounds[1])))
     chunks = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
+    if moments:
+        if fraction:
+            raise ValueError("moments=True gives fraction among its arrays: leave fraction=False")
+        return _moments(where, counts, fixed, check, chunks)
 
     # One graph key holds the mesh (or its path): each worker receives it once.
     source_key = dask.delayed(where, pure=True, traverse=False)

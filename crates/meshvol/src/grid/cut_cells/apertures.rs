@@ -64,8 +64,10 @@ fn beyond<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) -> [Vec<f64>; 
                         }
                         let mut at = [m, m, k];
                         at[axis] = far[axis] as usize - 1;
+                        let Some(n) = cells.local(at) else {
+                            return true;
+                        };
                         if let Some((vector, centre)) = surface_part(part, at.map(|x| x as f64)) {
-                            let n = grid.index(at);
                             add_surface(
                                 (&mut cells.boundary_area[n], &mut cells.boundary_vector[n]),
                                 &mut cells.boundary_centroid[n],
@@ -100,20 +102,25 @@ fn normal_component<const N: usize>(part: &Polygon<N>, axis: usize) -> f64 {
     0.5 * twice
 }
 
-/// Fills `cells.aperture[0]` and `[1]` from the boundary vectors.
+/// Fills `cells.aperture[0]` and `[1]` from the boundary vectors: the cells' region must
+/// reach the grid's far x and y faces (the sums run from there).
 pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
     let [beyond_x, beyond_y] = beyond(surface, cells);
     let grid = cells.grid;
-    let [nx, ny, nz] = grid.counts;
+    let nz = grid.counts[2];
+    let [bx, by, bz] = cells.shape();
+    let [i0, j0, k0] = cells.region.clone().map(|r| r.start);
+    debug_assert!(i0 + bx == grid.counts[0] && j0 + by == grid.counts[1]);
     let face = [grid.cell[1] * grid.cell[2], grid.cell[0] * grid.cell[2]];
     let vectors = &cells.boundary_vector;
     let [aperture_x, aperture_y, _] = &mut cells.aperture;
 
     // x: plane by plane from the far face down, every tube (j, k) in parallel.
-    let plane = ny * nz;
-    let mut state: Vec<(f64, f64)> = beyond_x.iter().map(|&b| (b, 0.0)).collect();
-    aperture_x[nx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.0 + s.1);
-    for i in (0..nx).rev() {
+    let plane = by * bz;
+    let tube = |t: usize| (j0 + t / bz) * nz + k0 + t % bz;
+    let mut state: Vec<(f64, f64)> = (0..plane).map(|t| (beyond_x[tube(t)], 0.0)).collect();
+    aperture_x[bx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.0 + s.1);
+    for i in (0..bx).rev() {
         let cells_i = &vectors[i * plane..(i + 1) * plane];
         aperture_x[i * plane..(i + 1) * plane]
             .par_iter_mut()
@@ -127,16 +134,17 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
     }
 
     // y: within each slab x = i, from the far face down.
-    aperture_y.par_chunks_mut((ny + 1) * nz).enumerate().for_each(|(i, out)| {
+    aperture_y.par_chunks_mut((by + 1) * bz).enumerate().for_each(|(i, out)| {
         let cells_i = &vectors[i * plane..(i + 1) * plane];
+        let first = (i0 + i) * nz + k0;
         let mut state: Vec<(f64, f64)> =
-            beyond_y[i * nz..(i + 1) * nz].iter().map(|&b| (b, 0.0)).collect();
-        for (a, s) in out[ny * nz..].iter_mut().zip(&state) {
+            beyond_y[first..first + bz].iter().map(|&b| (b, 0.0)).collect();
+        for (a, s) in out[by * bz..].iter_mut().zip(&state) {
             *a = s.0 + s.1;
         }
-        for j in (0..ny).rev() {
-            let row = &cells_i[j * nz..(j + 1) * nz];
-            for ((a, s), v) in out[j * nz..(j + 1) * nz].iter_mut().zip(&mut state).zip(row) {
+        for j in (0..by).rev() {
+            let row = &cells_i[j * bz..(j + 1) * bz];
+            for ((a, s), v) in out[j * bz..(j + 1) * bz].iter_mut().zip(&mut state).zip(row) {
                 let (sum, e) = two_sum(s.0, v[1] / face[1]);
                 *s = (sum, s.1 + e);
                 *a = s.0 + s.1;

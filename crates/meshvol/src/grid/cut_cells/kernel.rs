@@ -138,10 +138,11 @@ pub(super) fn add_surface(
 /// middle of a cell without surface), once every part has been added.
 pub(super) fn finish_boundary_centroids(cells: &mut CutCells) {
     let grid = cells.grid;
-    let [_, ny, nz] = grid.counts;
+    let start = cells.region.clone().map(|r| r.start);
+    let [_, ny, nz] = cells.shape();
     cells.boundary_centroid.par_iter_mut().zip(&cells.boundary_area).enumerate().for_each(
         |(n, (c, &w))| {
-            let at = [n / (ny * nz), n / nz % ny, n % nz];
+            let at = [start[0] + n / (ny * nz), start[1] + n / nz % ny, start[2] + n % nz];
             *c = [0, 1, 2].map(|d| {
                 grid.origin[d] + (at[d] as f64 + within(c[d], w, w == 0.0)) * grid.cell[d]
             });
@@ -227,29 +228,33 @@ fn finish_column(
     cells.aperture_z[apertures.start] = bottom.value();
 }
 
-/// The cut-cell values of every cell of `grid` (validated), from `surface`'s faces, and
-/// the z apertures; the x and y apertures are left to [`super::apertures`].
+/// The cut-cell values of the cells of `block` of `grid` (validated), from `surface`'s
+/// faces, and the z apertures of its columns; the x and y apertures are left to
+/// [`super::apertures`] and the surface centroids to [`finish_boundary_centroids`].
 pub(super) fn cut_cells<S: Surface + ?Sized>(
     surface: &S,
     grid: &Grid,
+    block: &Block,
     progress: &dyn Progress,
 ) -> Result<CutCells, GridError> {
-    let block = Block::whole(grid.counts);
-    let [nx, ny, nz] = grid.counts;
-    let len = grid.cell_count();
+    let [bx, by, depth] = block.shape();
+    let len = bx * by * depth;
     let mut out = CutCells {
         grid: *grid,
+        region: block.region.clone(),
         volume: zeroed(len)?,
         centroid: zeroed(len)?,
         boundary_area: zeroed(len)?,
         boundary_vector: zeroed(len)?,
         boundary_centroid: zeroed(len)?,
         aperture: [
-            zeroed((nx + 1) * ny * nz)?,
-            zeroed(nx * (ny + 1) * nz)?,
-            zeroed(len + nx * ny)?,
+            zeroed((bx + 1) * by * depth)?,
+            zeroed(bx * (by + 1) * depth)?,
+            zeroed(len + bx * by)?,
         ],
     };
+    let nz = grid.counts[2];
+    let (x0, y0, first) = (block.region[0].start, block.region[1].start, block.region[2].start);
     let areas = block.areas();
     let columns = block.columns();
     let threads = rayon::current_num_threads().max(1);
@@ -257,12 +262,14 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
     let per_tile = columns.div_ceil(8 * threads).min(((1 << 20) / (3 * areas)).max(1)).max(1);
     let tiling = Tiling { columns, per_tile };
     progress.stage("sorting faces into tiles of columns");
-    let bins = Bins::new(surface, grid, &block, &tiling, false);
+    let bins = Bins::new(surface, grid, block, &tiling, false);
     progress.stage("cutting faces into cells");
     let done = Counter::new(progress, tiling.tiles());
     let units = Units::new(grid);
     let scale = face_areas(grid.cell);
-    let (tile_cells, tile_planes) = (per_tile * nz, per_tile * (nz + 1));
+    let (tile_cells, tile_planes) = (per_tile * depth, per_tile * (depth + 1));
+    // Column `c` of the block is cell column (x0 + c / by, y0 + c % by) of the grid.
+    let column_of = |c: usize| [x0 + c / by, y0 + c % by];
     let [_, _, aperture_z] = &mut out.aperture;
     out.volume
         .par_chunks_mut(tile_cells)
@@ -287,9 +294,9 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
             for face in bins.faces(tile) {
                 surface.fan(face, |a, b, c| {
                     let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
-                    for_each_piece(&t, &block, &run, false, |column, piece| {
-                        let (i, j) = ((run.start + column) / ny, (run.start + column) % ny);
-                        let cells_of = column * nz..(column + 1) * nz;
+                    for_each_piece(&t, block, &run, false, |column, piece| {
+                        let [i, j] = column_of(run.start + column);
+                        let cells_of = column * depth..(column + 1) * depth;
                         let mut sink = MomentSink {
                             volume: &mut cells.volume[cells_of.clone()],
                             centroid: &mut cells.centroid[cells_of.clone()],
@@ -298,7 +305,7 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                             boundary_centroid: &mut cells.boundary_centroid[cells_of],
                             handed: &mut handed[column * areas..(column + 1) * areas],
                             on_top: &mut on_top[column],
-                            first: 0,
+                            first,
                             column: [i as f64, j as f64],
                             scale,
                         };
@@ -307,13 +314,13 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                 });
             }
             for column in 0..run.len() {
-                let (i, j) = ((run.start + column) / ny, (run.start + column) % ny);
+                let [i, j] = column_of(run.start + column);
                 finish_column(
                     &mut cells,
-                    column * nz..(column + 1) * nz,
-                    column * (nz + 1)..(column + 1) * (nz + 1),
+                    column * depth..(column + 1) * depth,
+                    column * (depth + 1)..(column + 1) * (depth + 1),
                     (&handed[column * areas..(column + 1) * areas], on_top[column]),
-                    [i, j, 0],
+                    [i, j, first],
                     grid,
                 );
             }

@@ -76,7 +76,8 @@ mod apertures;
 mod integrals;
 mod kernel;
 
-use super::{Grid, GridError};
+use super::cells::Block;
+use super::{Grid, GridError, Region};
 use crate::progress::Progress;
 use crate::{Point, Surface};
 
@@ -84,6 +85,9 @@ use crate::{Point, Surface};
 #[derive(Clone, Debug, PartialEq)]
 pub struct CutCells {
     pub grid: Grid,
+    /// The cells held: the whole grid, or a block of it ([`cut_cells_region`]); arrays in
+    /// C order over the region's shape.
+    pub region: Region,
     /// The volume of the solid in each cell (the same bits as
     /// [`cell_volumes`](super::cell_volumes)).
     pub volume: Vec<f64>,
@@ -97,11 +101,50 @@ pub struct CutCells {
     pub boundary_centroid: Vec<Point>,
     /// The fraction of each cell face inside the solid: faces `x = x_i` with shape
     /// `(NX + 1, NY, NZ)`, `y = y_j` with `(NX, NY + 1, NZ)`, `z = z_k` with
-    /// `(NX, NY, NZ + 1)`, C order.
+    /// `(NX, NY, NZ + 1)`, C order (a region: its shape, plus one along the axis).
     pub aperture: [Vec<f64>; 3],
 }
 
 impl CutCells {
+    /// The region's cells along each axis.
+    pub fn shape(&self) -> [usize; 3] {
+        self.region.clone().map(|r| r.len())
+    }
+
+    /// The position of grid cell `at` in the arrays, if the region holds it.
+    pub fn local(&self, at: [usize; 3]) -> Option<usize> {
+        let [_, by, bz] = self.shape();
+        let mut l = [0; 3];
+        for a in 0..3 {
+            if !self.region[a].contains(&at[a]) {
+                return None;
+            }
+            l[a] = at[a] - self.region[a].start;
+        }
+        Some((l[0] * by + l[1]) * bz + l[2])
+    }
+
+    /// The cells of `region` (inside this one's), a block of the same arrays.
+    fn cropped(&self, region: &Region) -> CutCells {
+        let offset = [0, 1, 2].map(|a| region[a].start - self.region[a].start);
+        let (cells, shape) = (self.shape(), region.clone().map(|r| r.len()));
+        let faces = |a: usize, mut s: [usize; 3]| {
+            s[a] += 1;
+            s
+        };
+        CutCells {
+            grid: self.grid,
+            region: region.clone(),
+            volume: block_of(&self.volume, cells, shape, offset),
+            centroid: block_of(&self.centroid, cells, shape, offset),
+            boundary_area: block_of(&self.boundary_area, cells, shape, offset),
+            boundary_vector: block_of(&self.boundary_vector, cells, shape, offset),
+            boundary_centroid: block_of(&self.boundary_centroid, cells, shape, offset),
+            aperture: [0, 1, 2]
+                .map(|a| block_of(&self.aperture[a], faces(a, cells), faces(a, shape), offset)),
+        }
+    }
+
     /// Volume / cell volume.
     pub fn fraction(&self) -> Vec<f64> {
         let v = self.grid.cell_volume();
@@ -128,9 +171,52 @@ pub fn cut_cells_with<S: Surface + ?Sized>(
     progress: &dyn Progress,
 ) -> Result<CutCells, GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
-    let mut cells = kernel::cut_cells(surface, &grid, progress)?;
+    computed(surface, &grid, &Block::whole(grid.counts), progress)
+}
+
+/// The cut-cell geometry of the cells of `region` of `grid`: the same bits as those
+/// cells of [`cut_cells`] over the whole grid, so that blocks can be computed apart.
+///
+/// The x and y apertures sum the surface from the grid's far x and y faces down, so a
+/// region is computed over the cells from its start to those faces (and cut back): a
+/// block near the grid's low corner costs about as much as the whole grid.
+pub fn cut_cells_region<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    region: &Region,
+) -> Result<CutCells, GridError> {
+    let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
+    super::check_region(&grid, region)?;
+    let [x, y, z] = region.clone();
+    let [nx, ny, _] = grid.counts;
+    let reach = Block { counts: grid.counts, region: [x.start..nx, y.start..ny, z] };
+    let cells = computed(surface, &grid, &reach, &())?;
+    Ok(if cells.region == *region { cells } else { cells.cropped(region) })
+}
+
+/// The cut cells of `block`, which reaches the grid's far x and y faces.
+fn computed<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    block: &Block,
+    progress: &dyn Progress,
+) -> Result<CutCells, GridError> {
+    let mut cells = kernel::cut_cells(surface, grid, block, progress)?;
     progress.stage("summing apertures");
     apertures::fill(surface, &mut cells);
     kernel::finish_boundary_centroids(&mut cells);
     Ok(cells)
+}
+
+/// The entries `offset + (i, j, k)` for `(i, j, k)` in `to` of a C-order array of shape
+/// `from`.
+fn block_of<T: Copy>(values: &[T], from: [usize; 3], to: [usize; 3], offset: [usize; 3]) -> Vec<T> {
+    let mut out = Vec::with_capacity(to.iter().product());
+    for i in 0..to[0] {
+        for j in 0..to[1] {
+            let row = ((i + offset[0]) * from[1] + j + offset[1]) * from[2] + offset[2];
+            out.extend_from_slice(&values[row..row + to[2]]);
+        }
+    }
+    out
 }
