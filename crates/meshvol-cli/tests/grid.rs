@@ -2,7 +2,7 @@
 //! here, checked against closed forms (boxes) and by reading the outputs back.
 
 mod common;
-use common::{f, meshvol, p, read_npy, write};
+use common::{f, meshvol, p, read_npy, read_npz, write};
 
 use serde_json::Value;
 use std::path::Path;
@@ -345,21 +345,6 @@ fn union_of_files_and_of_shells() {
     assert!((f(&v["total"]) - exact).abs() < 1e-13, "{v}");
     let v = json(&meshvol(&["grid", p(&both), "--cells", "7,5,6", "--json"]));
     assert!((f(&v["total"]) - 10.5).abs() < 1e-13, "{v}");
-}
-
-/// The arrays of a `.npz`, each read back as a `.npy`.
-fn read_npz(path: &Path) -> std::collections::BTreeMap<String, (Vec<usize>, Vec<f64>)> {
-    let mut archive = zip::ZipArchive::new(std::fs::File::open(path).unwrap()).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let mut arrays = std::collections::BTreeMap::new();
-    for n in 0..archive.len() {
-        let mut entry = archive.by_index(n).unwrap();
-        let name = entry.name().trim_end_matches(".npy").to_string();
-        let file = dir.path().join(&name);
-        std::io::copy(&mut entry, &mut std::fs::File::create(&file).unwrap()).unwrap();
-        arrays.insert(name, read_npy(&file));
-    }
-    arrays
 }
 
 #[test]

@@ -8,7 +8,7 @@
 //! crates/meshvol/tests/invariance; docs/invariance.md has the table.
 
 mod common;
-use common::{f, meshvol, read_npy};
+use common::{f, meshvol, read_npy, read_npz};
 
 use meshvol::shapes::{cuboid, torus};
 use meshvol::Mesh;
@@ -465,6 +465,9 @@ fn disagreement(file: &Path) -> Option<Option<String>> {
     let v = f(&volume["volume"]);
     let allowed =
         REL * v.abs() + f(&volume["volume_uncertainty"]) + f(&volume["volume_error_bound"]);
+    if let Some(wrong) = cut_cells_disagree(path, &volume, &grid) {
+        return Some(Some(format!("{}: {wrong}", name())));
+    }
     let (total, top) = (f(&grid["total"]), f(&profile["volume_below"][4]));
     let off = (total - v).abs().max((top - v).abs());
     Some((off > allowed).then(|| {
@@ -474,6 +477,78 @@ fn disagreement(file: &Path) -> Option<Option<String>> {
             volume["volume_uncertainty"]
         )
     }))
+}
+
+/// The cut cells of a real file (`grid --moments` over its box) against `volume` and
+/// `grid`: the same total as `grid`, the divergence theorem on every cell, Σ
+/// `boundary_area` = the solid's area, Σ `volume · centroid` = its first moment, and
+/// Σ `boundary_vector` = 0 (the checked solid is closed).
+fn cut_cells_disagree(path: &str, volume: &Value, grid: &Value) -> Option<String> {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cells.npz");
+    let args =
+        ["grid", path, "--cells", "4,4,4", "--moments", "--out", common::p(&out), "--json", "-q"];
+    let run = meshvol(&args);
+    if !run.status.success() {
+        return Some(format!("grid --moments failed: {}", String::from_utf8_lossy(&run.stderr)));
+    }
+    let summary: Value = serde_json::from_slice(&run.stdout).unwrap();
+    if summary["total"] != grid["total"] {
+        return Some(format!(
+            "grid --moments total {} vs grid {}",
+            summary["total"], grid["total"]
+        ));
+    }
+    let a = read_npz(&out);
+    let h: Vec<f64> = a["cell_size"].1.clone();
+    let (area, v) = (f(&volume["area"]), f(&volume["volume"]));
+    let tolerance = 1e-9 * area.max(f64::MIN_POSITIVE);
+    let at = |name: &str, shape: [usize; 3], [i, j, k]: [usize; 3]| {
+        a[name].1[(i * shape[1] + j) * shape[2] + k]
+    };
+    for n in 0..64 {
+        let c = [n / 16, n / 4 % 4, n % 4];
+        for d in 0..3 {
+            let mut shape = [4; 3];
+            shape[d] = 5;
+            let mut next = c;
+            next[d] += 1;
+            let name = ["aperture_x", "aperture_y", "aperture_z"][d];
+            let face = h[(d + 1) % 3] * h[(d + 2) % 3];
+            let flux = (at(name, shape, next) - at(name, shape, c)) * face;
+            let off = flux + a["boundary_vector"].1[3 * n + d];
+            if !(off.abs() <= tolerance) {
+                return Some(format!("cell {c:?} axis {d}: the divergence is {off:e}"));
+            }
+        }
+    }
+    let total_area: f64 = a["boundary_area"].1.iter().sum();
+    if !((total_area - area).abs() <= tolerance) {
+        return Some(format!("Σ boundary_area {total_area} vs area {area}"));
+    }
+    let net: Vec<f64> =
+        (0..3).map(|d| a["boundary_vector"].1.iter().skip(d).step_by(3).sum()).collect();
+    if net.iter().any(|x| !(x.abs() <= tolerance)) {
+        return Some(format!("Σ boundary_vector {net:?}"));
+    }
+    if let Some(centroid) = volume["centroid"].as_array() {
+        let extent: f64 = (0..3).map(|d| h[d] * 4.0).fold(0.0, f64::max);
+        let origin = &a["origin"].1;
+        for d in 0..3 {
+            // About the grid's corner, to keep the comparison's rounding small.
+            let moment: f64 = a["volume"]
+                .1
+                .iter()
+                .zip(a["centroid"].1.iter().skip(d).step_by(3))
+                .map(|(vol, x)| vol * (x - origin[d]))
+                .sum();
+            let expected = v * (f(&centroid[d]) - origin[d]);
+            if !((moment - expected).abs() <= 1e-9 * v.abs() * extent + tolerance * extent) {
+                return Some(format!("first moment {d}: {moment} vs {expected}"));
+            }
+        }
+    }
+    None
 }
 
 /// On every real file, `volume`, Σ `grid` (over the file's box) and the top of its

@@ -536,3 +536,46 @@ fn any_block_is_the_same_bits_as_the_whole_grid() {
         }
     }
 }
+
+#[test]
+fn non_convex_polygon_faces_count_their_own_area() {
+    // An L-shaped prism whose L faces are single polygons fanned from a vertex beside the
+    // reflex corner (the fan folds over itself), against the same prism in triangles.
+    let l = [[2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0], [0.0, 0.0], [2.0, 0.0]];
+    let mut p: Vec<P> = l.iter().map(|q| [q[0], q[1], 0.0]).collect();
+    p.extend(l.iter().map(|q| [q[0], q[1], 1.0]));
+    let mut faces: Vec<Vec<u32>> = vec![(0..6).rev().collect(), (6..12).collect()];
+    for k in 0..6u32 {
+        let n = (k + 1) % 6;
+        faces.push(vec![k, n, n + 6, k + 6]);
+    }
+    let polygons = common::polygons(&p, &faces);
+    // The same surface in triangles that do not fold: the L as two rectangles.
+    let mut triangles: Vec<Vec<u32>> =
+        faces[2..].iter().flat_map(|q| [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]]).collect();
+    for (base, up) in [(0u32, false), (6, true)] {
+        // Rectangles (4, 5, 0, 1') and (4, 1, 2, 3) of the L's corners, with (2,1)=0,
+        // (1,1)=1, (1,2)=2, (0,2)=3, (0,0)=4, (2,0)=5; as triangles wound like the face.
+        for t in [[4, 5, 0], [4, 0, 1], [4, 1, 2], [4, 2, 3]] {
+            let t: Vec<u32> = t.iter().map(|v| v + base).collect();
+            triangles.push(if up { t } else { vec![t[0], t[2], t[1]] });
+        }
+    }
+    let triangles = common::polygons(&p, &triangles);
+    let mp = mass_properties(&triangles);
+    assert!((mass_properties(&polygons).area - mp.area).abs() < 1e-12);
+    let grid = Grid::from_bounds([-0.1, -0.1, -0.1], [2.1, 2.1, 1.1], [5, 6, 3]).unwrap();
+    let (a, b) = (cut_cells(&polygons, &grid).unwrap(), cut_cells(&triangles, &grid).unwrap());
+    let area: f64 = a.boundary_area.iter().sum();
+    assert!((area - mp.area).abs() < 1e-12, "{area} vs {}", mp.area);
+    for n in 0..grid.cell_count() {
+        assert!((a.volume[n] - b.volume[n]).abs() < 1e-14);
+        assert!((a.boundary_area[n] - b.boundary_area[n]).abs() < 1e-13, "cell {n}");
+        for d in 0..3 {
+            assert!((a.boundary_vector[n][d] - b.boundary_vector[n][d]).abs() < 1e-13);
+            if a.boundary_area[n] > 1e-9 {
+                assert!((a.boundary_centroid[n][d] - b.boundary_centroid[n][d]).abs() < 1e-12);
+            }
+        }
+    }
+}

@@ -51,6 +51,21 @@ pub fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
     (shape.map(|s| s.trim().parse().unwrap()).collect(), values.collect())
 }
 
+/// The arrays of a `.npz`, each read back as a `.npy`.
+pub fn read_npz(path: &Path) -> std::collections::BTreeMap<String, (Vec<usize>, Vec<f64>)> {
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(path).unwrap()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let mut arrays = std::collections::BTreeMap::new();
+    for n in 0..archive.len() {
+        let mut entry = archive.by_index(n).unwrap();
+        let name = entry.name().trim_end_matches(".npy").to_string();
+        let file = dir.path().join(&name);
+        std::io::copy(&mut entry, &mut std::fs::File::create(&file).unwrap()).unwrap();
+        arrays.insert(name, read_npy(&file));
+    }
+    arrays
+}
+
 /// An axis-aligned box as six OBJ quads (1-based from `base`), wound outward or inward;
 /// without its top face when `open`.
 pub fn box_obj(min: [f64; 3], max: [f64; 3], base: usize, outward: bool, open: bool) -> String {

@@ -14,7 +14,7 @@
 //! face is cut from the few faces that reach it.
 
 use super::integrals::surface_part;
-use super::kernel::{add_surface, face_areas};
+use super::kernel::{add_surface, face_areas, polygon_normal};
 use super::CutCells;
 use crate::accumulate::two_sum;
 use crate::grid::cells::{cover, sweep_axis, Piece, Units};
@@ -44,6 +44,7 @@ fn beyond<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) -> [Vec<f64>; 
         (0..surface.face_count()).into_par_iter().filter(|&f| reaches(f)).collect();
     let mut sums = [vec![0.0; ny * nz], vec![0.0; nx * nz]];
     for face in faces {
+        let normal = polygon_normal(surface, face, &units, scale);
         surface.fan(face, |a, b, c| {
             let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
             for axis in 0..2 {
@@ -71,8 +72,7 @@ fn beyond<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) -> [Vec<f64>; 
                             add_surface(
                                 (&mut cells.boundary_area[n], &mut cells.boundary_vector[n]),
                                 &mut cells.boundary_centroid[n],
-                                vector,
-                                centre,
+                                (vector, centre, normal),
                                 scale,
                             );
                         }

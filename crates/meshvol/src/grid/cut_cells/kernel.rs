@@ -50,6 +50,8 @@ struct MomentSink<'a> {
     first: usize,
     column: [f64; 2],
     scale: [f64; 3],
+    /// The face's unit normal when it is a polygon ([`add_surface`]).
+    normal: Option<Point>,
 }
 
 impl LayerSink for MomentSink<'_> {
@@ -107,8 +109,7 @@ impl MomentSink<'_> {
             add_surface(
                 (&mut self.boundary_area[local], &mut self.boundary_vector[local]),
                 &mut self.boundary_centroid[local],
-                vector,
-                centre,
+                (vector, centre, self.normal),
                 self.scale,
             );
         }
@@ -117,21 +118,51 @@ impl MomentSink<'_> {
 
 /// Adds a part's area vector (grid units) and local centroid to a cell's surface sums:
 /// its world area, world area vector, and world area × local centroid.
+///
+/// A polygon face's fan may fold over itself (a non-convex face: its triangles cover
+/// some of it with both windings), so a part's area counts with the sign of its vector
+/// along the face's unit `normal` (world): the parts of one face then add up to the
+/// face's own area. A triangle (no `normal`) counts its vector's length.
 #[inline(always)]
 pub(super) fn add_surface(
     (area, vector): (&mut f64, &mut Point),
     weighted: &mut Point,
-    part_vector: Point,
-    centre: Point,
+    (part_vector, centre, normal): (Point, Point, Option<Point>),
     scale: Point,
 ) {
     let world = [0, 1, 2].map(|d| part_vector[d] * scale[d]);
-    let size = (world[0] * world[0] + world[1] * world[1] + world[2] * world[2]).sqrt();
+    let size = match normal {
+        Some(n) => world[0] * n[0] + world[1] * n[1] + world[2] * n[2],
+        None => (world[0] * world[0] + world[1] * world[1] + world[2] * world[2]).sqrt(),
+    };
     *area += size;
     for d in 0..3 {
         vector[d] += world[d];
         weighted[d] += size * centre[d];
     }
+}
+
+/// The unit normal (world) of face `face` when it is a polygon of more than one triangle
+/// whose area vector is not zero; `None` for a triangle (see [`add_surface`]).
+pub(super) fn polygon_normal<S: Surface + ?Sized>(
+    surface: &S,
+    face: usize,
+    units: &Units,
+    scale: Point,
+) -> Option<Point> {
+    let (mut total, mut triangles) = ([0.0; 3], 0);
+    surface.fan(face, |a, b, c| {
+        let [a, b, c] = [a, b, c].map(|p| units.map(p));
+        let (e, f) = ([0, 1, 2].map(|d| b[d] - a[d]), [0, 1, 2].map(|d| c[d] - a[d]));
+        let cross =
+            [e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]];
+        for d in 0..3 {
+            total[d] += cross[d] * scale[d];
+        }
+        triangles += 1;
+    });
+    let length = (total[0] * total[0] + total[1] * total[1] + total[2] * total[2]).sqrt();
+    (triangles > 1 && length > 0.0).then(|| total.map(|x| x / length))
 }
 
 /// Turns the cells' area-weighted local surface centroids into world centroids (the
@@ -267,6 +298,8 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
     let done = Counter::new(progress, tiling.tiles());
     let units = Units::new(grid);
     let scale = face_areas(grid.cell);
+    // An indexed triangle mesh has no polygon faces to look at.
+    let polygons = surface.indexed_triangles().is_none();
     let (tile_cells, tile_planes) = (per_tile * depth, per_tile * (depth + 1));
     // Column `c` of the block is cell column (x0 + c / by, y0 + c % by) of the grid.
     let column_of = |c: usize| [x0 + c / by, y0 + c % by];
@@ -292,6 +325,8 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
             let mut handed = vec![[0.0; 3]; run.len() * areas];
             let mut on_top = vec![0.0; run.len()];
             for face in bins.faces(tile) {
+                let normal =
+                    if polygons { polygon_normal(surface, face, &units, scale) } else { None };
                 surface.fan(face, |a, b, c| {
                     let t = Piece::triangle(units.map(a), units.map(b), units.map(c));
                     for_each_piece(&t, block, &run, false, |column, piece| {
@@ -308,6 +343,7 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                             first,
                             column: [i as f64, j as f64],
                             scale,
+                            normal,
                         };
                         sweep_layers(piece, piece.range(2), nz, &mut sink);
                     });
