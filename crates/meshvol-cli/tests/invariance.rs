@@ -479,6 +479,11 @@ fn disagreement(file: &Path) -> Option<Option<String>> {
     }))
 }
 
+/// |x| ≤ bound, false for NaN.
+fn small(x: f64, bound: f64) -> bool {
+    x.abs() <= bound
+}
+
 /// The cut cells of a real file (`grid --moments` over its box) against `volume` and
 /// `grid`: the same total as `grid`, the divergence theorem on every cell, Σ
 /// `boundary_area` = the solid's area, Σ `volume · centroid` = its first moment, and
@@ -517,18 +522,18 @@ fn cut_cells_disagree(path: &str, volume: &Value, grid: &Value) -> Option<String
             let face = h[(d + 1) % 3] * h[(d + 2) % 3];
             let flux = (at(name, shape, next) - at(name, shape, c)) * face;
             let off = flux + a["boundary_vector"].1[3 * n + d];
-            if !(off.abs() <= tolerance) {
+            if !small(off, tolerance) {
                 return Some(format!("cell {c:?} axis {d}: the divergence is {off:e}"));
             }
         }
     }
     let total_area: f64 = a["boundary_area"].1.iter().sum();
-    if !((total_area - area).abs() <= tolerance) {
+    if !small(total_area - area, tolerance) {
         return Some(format!("Σ boundary_area {total_area} vs area {area}"));
     }
     let net: Vec<f64> =
         (0..3).map(|d| a["boundary_vector"].1.iter().skip(d).step_by(3).sum()).collect();
-    if net.iter().any(|x| !(x.abs() <= tolerance)) {
+    if net.iter().any(|&x| !small(x, tolerance)) {
         return Some(format!("Σ boundary_vector {net:?}"));
     }
     if let Some(centroid) = volume["centroid"].as_array() {
@@ -543,7 +548,7 @@ fn cut_cells_disagree(path: &str, volume: &Value, grid: &Value) -> Option<String
                 .map(|(vol, x)| vol * (x - origin[d]))
                 .sum();
             let expected = v * (f(&centroid[d]) - origin[d]);
-            if !((moment - expected).abs() <= 1e-9 * v.abs() * extent + tolerance * extent) {
+            if !small(moment - expected, 1e-9 * v.abs() * extent + tolerance * extent) {
                 return Some(format!("first moment {d}: {moment} vs {expected}"));
             }
         }
