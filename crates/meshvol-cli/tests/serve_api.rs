@@ -1,0 +1,331 @@
+//! `meshvol serve`'s HTTP API against the command: `POST /api/check` answers exactly
+//! what `meshvol check --json` prints for the same file (samples/, and every file of the
+//! corpus when ../shared/corpus is there), raw or multipart, with the same options; and
+//! the limits (413, 503, the time limit) answer with a message instead of giving way.
+
+mod common;
+
+use common::server::{agent, peak_memory_kib, Server};
+use common::{box_obj, meshvol, write};
+use serde_json::Value;
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// What `meshvol check --json NAME [args]` prints, run in `dir` (so the file is named
+/// as the upload is), as JSON.
+fn cli_check(dir: &Path, name: &str, args: &[&str]) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+        .current_dir(dir)
+        .args(["check", "--json", name])
+        .args(args)
+        .output()
+        .unwrap();
+    let line = String::from_utf8(out.stdout).unwrap();
+    serde_json::from_str(line.trim()).unwrap_or_else(|e| panic!("{name}: {e}: {line}"))
+}
+
+fn json(body: &str) -> Value {
+    serde_json::from_str(body).unwrap_or_else(|e| panic!("not JSON ({e}): {body}"))
+}
+
+fn samples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples")
+}
+
+/// The mesh files under `dir`, by the readers' extensions.
+fn meshes(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = walk(dir)
+        .into_iter()
+        .filter(|p| meshvol_io::InputKind::Mesh.accepts(p))
+        .collect();
+    files.sort();
+    files
+}
+
+fn walk(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap().flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            out.extend(walk(&path));
+        } else {
+            out.push(path);
+        }
+    }
+    out
+}
+
+/// A glTF whose buffers are files beside it: an upload has no such neighbours (it is
+/// read in an empty folder of the server's), so it is refused where the command reads it.
+fn external_buffers(path: &Path) -> bool {
+    let gltf = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
+    gltf && std::fs::read_to_string(path)
+        .is_ok_and(|t| t.contains("\"uri\"") && t.split("\"uri\"").skip(1).any(|u| !u.trim_start_matches([' ', ':', '"']).starts_with("data:")))
+}
+
+/// Posts each file raw and compares the answer with the command's JSON line: the same
+/// object for a file measured, the same `{"file", "error"}` for one refused.
+fn compare_with_cli(server: &Server, files: &[PathBuf]) -> usize {
+    let mut compared = 0;
+    for path in files {
+        let (dir, name) = (path.parent().unwrap(), path.file_name().unwrap().to_str().unwrap());
+        let bytes = std::fs::read(path).unwrap();
+        let query = format!("/api/check?name={}", name.replace(' ', "%20").replace('#', "%23"));
+        let (status, body) = server.post(&query, &bytes);
+        let answer = json(&body);
+        if external_buffers(path) {
+            assert_eq!(status, 422, "{name}: {body}");
+            assert!(answer["error"].as_str().unwrap().contains(name), "{name}: {body}");
+            continue;
+        }
+        let expected = cli_check(dir, name, &[]);
+        let want = if expected.get("error").is_some() { 422 } else { 200 };
+        assert_eq!(status, want, "{name}: {body}");
+        assert_eq!(answer, expected, "{name}");
+        compared += 1;
+    }
+    compared
+}
+
+#[test]
+fn every_sample_is_answered_as_the_command_answers_it() {
+    let server = Server::start(&[]);
+    let files = meshes(&samples());
+    assert!(files.len() >= 8, "{files:?}");
+    assert_eq!(compare_with_cli(&server, &files), files.len());
+}
+
+#[test]
+fn every_corpus_file_is_answered_as_the_command_answers_it() {
+    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    if !corpus.is_dir() {
+        eprintln!("skipped: no corpus at {}", corpus.display());
+        return;
+    }
+    let server = Server::start(&[]);
+    let files = meshes(&corpus);
+    let compared = compare_with_cli(&server, &files);
+    eprintln!("{compared} of {} corpus files compared with the command", files.len());
+    assert!(compared > 0);
+}
+
+/// A multipart form with the file and text fields, as a browser sends it.
+fn multipart(name: &str, bytes: &[u8], fields: &[(&str, &str)]) -> (Vec<u8>, String) {
+    let boundary = "meshvol-test-boundary-7d1f";
+    let mut body = Vec::new();
+    for (k, v) in fields {
+        write!(body, "--{boundary}\r\nContent-Disposition: form-data; name=\"{k}\"\r\n\r\n{v}\r\n").unwrap();
+    }
+    write!(
+        body,
+        "--{boundary}\r\nContent-Disposition: form-data; name=\"file\"; filename=\"{name}\"\r\n\
+         Content-Type: application/octet-stream\r\n\r\n"
+    )
+    .unwrap();
+    body.extend_from_slice(bytes);
+    write!(body, "\r\n--{boundary}--\r\n").unwrap();
+    (body, format!("multipart/form-data; boundary={boundary}"))
+}
+
+#[test]
+fn options_and_multipart_forms_give_the_commands_answer_with_its_flags() {
+    let server = Server::start(&[]);
+    let dir = samples();
+    let bytes = std::fs::read(dir.join("flanged-bushing.stl")).unwrap();
+    let flags = ["--units", "mm:cm", "--density", "7.85g/cm3", "--no-intersections"];
+    let expected = cli_check(&dir, "flanged-bushing.stl", &flags);
+    let (form, kind) = multipart(
+        "flanged-bushing.stl",
+        &bytes,
+        &[("units", "mm:cm"), ("density", "7.85g/cm3"), ("no_intersections", "true")],
+    );
+    let (status, body) = server.post_typed("/api/check", &form, &kind);
+    assert_eq!((status, json(&body)), (200, expected.clone()));
+    let query = "/api/check?name=flanged-bushing.stl&units=mm:cm&density=7.85g/cm3&no_intersections=1";
+    let (status, body) = server.post(query, &bytes);
+    assert_eq!((status, json(&body)), (200, expected));
+    // The weld tolerance too.
+    let expected = cli_check(&dir, "part.obj", &["--weld-tolerance", "0.5"]);
+    let bytes = std::fs::read(dir.join("part.obj")).unwrap();
+    let (status, body) = server.post("/api/check?name=part.obj&weld_tolerance=0.5", &bytes);
+    assert_eq!((status, json(&body)), (200, expected));
+    // A wrong option is a 400 naming it.
+    let (status, body) = server.post("/api/check?name=part.obj&units=parsecs", &bytes);
+    assert_eq!(status, 400, "{body}");
+    assert!(json(&body)["error"].as_str().unwrap().starts_with("units: "), "{body}");
+}
+
+#[test]
+fn a_malformed_upload_gets_the_readers_error_and_the_server_stays_up() {
+    let server = Server::start(&[]);
+    let dir = tempfile::tempdir().unwrap();
+    let broken = b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nope\n";
+    write(dir.path(), "part.stl", broken);
+    let expected = cli_check(dir.path(), "part.stl", &[]);
+    let (status, body) = server.post("/api/check?name=part.stl", broken);
+    assert_eq!((status, json(&body)), (422, expected));
+    // A name with folders is only a name; compressed uploads are read as the command
+    // reads compressed files.
+    let gz = std::fs::read(samples().join("part.obj")).unwrap();
+    let (status, body) = server.post("/api/check?name=../../x/part.obj", &gz);
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(json(&body)["file"], "part.obj");
+    // A glTF naming a file beside it, or out of its folder, reads nothing of the server's.
+    for uri in ["../../../../etc/passwd", "Cargo.toml", "/etc/passwd"] {
+        let gltf = format!(
+            r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"uri":"{uri}","byteLength":36}}],
+               "bufferViews":[{{"buffer":0,"byteLength":36}}],
+               "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}],
+               "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}],
+               "nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}]}}"#
+        );
+        let (status, body) = server.post("/api/check?name=evil.gltf", gltf.as_bytes());
+        assert_eq!(status, 422, "{uri}: {body}");
+        let error = json(&body)["error"].as_str().unwrap().to_string();
+        assert!(error.starts_with("evil.gltf"), "{error}");
+        assert!(!error.contains("meshvol-serve-"), "the server's folder is not shown: {error}");
+    }
+    let (status, _) = server.get("/api/limits");
+    assert_eq!(status, 200);
+}
+
+#[test]
+fn an_upload_over_the_limit_is_413_with_a_message() {
+    let server = Server::start(&["--max-upload", "1KiB"]);
+    let big = vec![b'#'; 4096];
+    let (status, body) = server.post("/api/check?name=big.obj", &big);
+    assert_eq!(status, 413, "{body}");
+    assert!(json(&body)["error"].as_str().unwrap().contains("1 KiB (--max-upload)"), "{body}");
+    let (form, kind) = multipart("big.obj", &big, &[]);
+    let (status, body) = server.post_typed("/api/check", &form, &kind);
+    assert_eq!(status, 413, "{body}");
+    // One under the limit is measured.
+    let small = box_obj([0.0; 3], [1.0; 3], 1, true, false);
+    assert!(small.len() < 1024);
+    let (status, body) = server.post("/api/check?name=box.obj", small.as_bytes());
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(json(&body)["solid_volume"], 1.0);
+}
+
+/// Opens a request that announces a body and never sends it: it holds a check's place
+/// (the body is read once the place is taken) until the time limit.
+fn stalled(server: &Server) -> std::net::TcpStream {
+    let address = server.url.trim_start_matches("http://");
+    let mut stream = std::net::TcpStream::connect(address).unwrap();
+    write!(
+        stream,
+        "POST /api/check?name=slow.obj HTTP/1.1\r\nHost: {address}\r\nContent-Length: 100\r\n\r\n"
+    )
+    .unwrap();
+    stream
+}
+
+#[test]
+fn too_many_at_once_is_503_and_a_request_past_the_time_limit_too() {
+    let server = Server::start(&["--max-concurrent", "1", "--queue", "0", "--timeout", "2"]);
+    let mut slow = stalled(&server);
+    let cube = box_obj([0.0; 3], [1.0; 3], 1, true, false);
+    // Until the stalled request holds the one place, a request may still get it; then
+    // every one is turned away at once.
+    let busy = (0..1000).find_map(|_| {
+        let (status, body) = server.post("/api/check?name=box.obj", cube.as_bytes());
+        (status == 503).then_some(body)
+    });
+    let busy = busy.expect("the stalled request takes the place");
+    assert!(json(&busy)["error"].as_str().unwrap().starts_with("busy: "), "{busy}");
+    // The stalled request is answered when its time is up.
+    let mut answer = String::new();
+    slow.read_to_string(&mut answer).unwrap();
+    assert!(answer.starts_with("HTTP/1.1 503"), "{answer}");
+    assert!(answer.contains("longer than the limit of 2 s"), "{answer}");
+    // And its place is free again.
+    let (status, body) = server.post("/api/check?name=box.obj", cube.as_bytes());
+    assert_eq!(status, 200, "{body}");
+}
+
+/// 200 uploads from 8 clients at once, on loopback: every one answered, each with the
+/// command's answer for its file, and the server's memory bounded by the checks that
+/// run at once, not by the uploads it has seen.
+#[test]
+fn two_hundred_uploads_from_eight_clients_are_all_answered_correctly() {
+    let server = Server::start(&["--max-concurrent", "2"]);
+    // The samples, and a sphere of 2 MB (binary STL) that a leak would show.
+    let big = tempfile::tempdir().unwrap();
+    write(big.path(), "sphere.stl", binary_stl(&meshvol::shapes::uv_sphere(10.0, 200, 100)));
+    let files = [
+        (samples(), "flanged-bushing.stl"),
+        (samples(), "part.obj"),
+        (samples(), "tube.obj"),
+        (samples(), "two-objects.obj"),
+        (big.path().to_path_buf(), "sphere.stl"),
+    ];
+    let names: Vec<&str> = files.iter().map(|f| f.1).collect();
+    let expected: Vec<(Vec<u8>, Value)> = files
+        .iter()
+        .map(|(dir, n)| (std::fs::read(dir.join(n)).unwrap(), cli_check(dir, n, &[])))
+        .collect();
+    let answered = std::sync::atomic::AtomicUsize::new(0);
+    std::thread::scope(|s| {
+        for client in 0..8 {
+            let (server, expected, answered) = (&server, &expected, &answered);
+            s.spawn(move || {
+                let agent = agent();
+                for k in 0..25 {
+                    let i = (client * 25 + k) % names.len();
+                    let url = format!("{}/api/check?name={}", server.url, names[i]);
+                    let mut response = agent.post(&url).send(&expected[i].0[..]).unwrap();
+                    let body = response.body_mut().read_to_string().unwrap();
+                    assert_eq!(response.status().as_u16(), 200, "{body}");
+                    assert_eq!(json(&body), expected[i].1, "{}", names[i]);
+                    answered.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                }
+            });
+        }
+    });
+    assert_eq!(answered.into_inner(), 200);
+    // 40 of the uploads are the 2 MB sphere: kept, they alone would hold 80 MB. Two
+    // checks at once of it need a few tens of MB.
+    if let Some(kib) = peak_memory_kib(server.pid()) {
+        eprintln!("server peak memory after 200 uploads: {kib} KiB");
+        assert!(kib < 100 * 1024, "peak {kib} KiB");
+    }
+}
+
+#[test]
+fn the_page_and_its_files_are_served_and_nothing_else() {
+    let server = Server::start(&[]);
+    let (status, page) = server.get("/");
+    assert_eq!(status, 200);
+    assert!(page.contains("<title>meshvol"), "{page}");
+    for asset in ["/app.js", "/style.css", "/vendor/three.min.js", "/vendor/OrbitControls.js"] {
+        assert_eq!(server.get(asset).0, 200, "{asset}");
+    }
+    assert_eq!(server.get("/../Cargo.toml").0, 404);
+    assert_eq!(server.get("/vendor/../../Cargo.toml").0, 404);
+    // The server listens on loopback by default.
+    assert!(server.url.starts_with("http://127.0.0.1:"), "{}", server.url);
+    let help = String::from_utf8(meshvol(&["serve", "--help"]).stdout).unwrap();
+    assert!(help.contains("[default: 127.0.0.1]"), "{help}");
+}
+
+/// A mesh as binary STL.
+fn binary_stl(mesh: &meshvol::Mesh) -> Vec<u8> {
+    use meshvol::Surface;
+    let mut triangles = Vec::new();
+    for f in 0..mesh.face_count() {
+        mesh.fan(f, |a, b, c| triangles.push([a, b, c]));
+    }
+    let mut out = vec![0u8; 80];
+    out.extend((triangles.len() as u32).to_le_bytes());
+    for t in triangles {
+        out.extend([0u8; 12]);
+        for p in t {
+            for x in p {
+                out.extend((x as f32).to_le_bytes());
+            }
+        }
+        out.extend([0u8; 2]);
+    }
+    out
+}
