@@ -285,7 +285,7 @@ const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
 /// 0.92–0.99 GB against 1.00–1.02 GB. (System time still varies, 0.15–1.3 s, with the
 /// kernel's compaction for huge pages on a busy machine.)
 fn keep_freed_memory() {
-    // SAFETY: sets one option value; called first thing in main, before other threads.
+    // SAFETY: sets one option value; called in main before any other thread starts.
     unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
 }
 
@@ -293,7 +293,6 @@ fn keep_freed_memory() {
 const THREADS_PER_CORE: usize = 4;
 
 fn main() -> ExitCode {
-    keep_freed_memory();
     let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     // `meshvol chek part.obj`: a typo of a subcommand, not a file to measure.
     if let Some(first) = args.get(first_argument(&args)) {
@@ -306,6 +305,10 @@ fn main() -> ExitCode {
         }
     }
     let cli = Cli::parse_from(with_default_command(args));
+    // A server runs for long: memory a check frees goes back to the system.
+    if !matches!(cli.command, Command::Serve(_)) {
+        keep_freed_memory();
+    }
     input::TIMINGS.store(cli.timings, std::sync::atomic::Ordering::Relaxed);
     if let Some(n) = cli.threads {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());

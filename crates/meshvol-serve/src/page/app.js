@@ -93,8 +93,9 @@ function fillCard(card, r) {
     rows.push(["bounds", "[" + v.bounds.min.map((x) => fmt(x, 6)).join(", ") + "] – [" + v.bounds.max.map((x) => fmt(x, 6)).join(", ") + "]"]);
   }
   if (v && v.centroid) rows.push(["centroid", v.centroid.map((x) => fmt(x, 6)).join(", ")]);
-  rows.push(["shells", `${c.shells} (${c.cavities} ${c.cavities === 1 ? "cavity" : "cavities"})`]);
-  rows.push(["closed", c.closed ? "yes" : `no: ${c.boundary_edges} boundary edges in ${c.boundary_loops} holes`]);
+  rows.push(["shells", `${c.shells} (${c.cavities === 1 ? "1 cavity" : c.cavities + " cavities"})`]);
+  const plural = (n, one, many) => `${n} ${n === 1 ? one : many}`;
+  rows.push(["closed", c.closed ? "yes" : `no: ${plural(c.boundary_edges, "boundary edge", "boundary edges")} in ${plural(c.boundary_loops, "hole", "holes")}`]);
   rows.push(["manifold", c.non_manifold_edges ? `no: ${c.non_manifold_edges} non-manifold edges` : "yes"]);
   rows.push(["orientation", (c.orientation || "none") + (c.consistently_oriented ? "" : " (inconsistent)")]);
   rows.push(["self-intersections", c.self_intersections === null ? "not checked" : String(c.self_intersections)]);
