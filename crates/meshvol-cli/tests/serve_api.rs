@@ -35,10 +35,8 @@ fn samples() -> PathBuf {
 
 /// The mesh files under `dir`, by the readers' extensions.
 fn meshes(dir: &Path) -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = walk(dir)
-        .into_iter()
-        .filter(|p| meshvol_io::InputKind::Mesh.accepts(p))
-        .collect();
+    let mut files: Vec<PathBuf> =
+        walk(dir).into_iter().filter(|p| meshvol_io::InputKind::Mesh.accepts(p)).collect();
     files.sort();
     files
 }
@@ -60,8 +58,12 @@ fn walk(dir: &Path) -> Vec<PathBuf> {
 /// read in an empty folder of the server's), so it is refused where the command reads it.
 fn external_buffers(path: &Path) -> bool {
     let gltf = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
-    gltf && std::fs::read_to_string(path)
-        .is_ok_and(|t| t.contains("\"uri\"") && t.split("\"uri\"").skip(1).any(|u| !u.trim_start_matches([' ', ':', '"']).starts_with("data:")))
+    gltf && std::fs::read_to_string(path).is_ok_and(|t| {
+        t.contains("\"uri\"")
+            && t.split("\"uri\"")
+                .skip(1)
+                .any(|u| !u.trim_start_matches([' ', ':', '"']).starts_with("data:"))
+    })
 }
 
 /// Posts each file raw and compares the answer with the command's JSON line: the same
@@ -118,7 +120,8 @@ fn multipart(name: &str, bytes: &[u8], fields: &[(&str, &str)]) -> (Vec<u8>, Str
     let boundary = "meshvol-test-boundary-7d1f";
     let mut body = Vec::new();
     for (k, v) in fields {
-        write!(body, "--{boundary}\r\nContent-Disposition: form-data; name=\"{k}\"\r\n\r\n{v}\r\n").unwrap();
+        write!(body, "--{boundary}\r\nContent-Disposition: form-data; name=\"{k}\"\r\n\r\n{v}\r\n")
+            .unwrap();
     }
     write!(
         body,
@@ -145,7 +148,8 @@ fn options_and_multipart_forms_give_the_commands_answer_with_its_flags() {
     );
     let (status, body) = server.post_typed("/api/check", &form, &kind);
     assert_eq!((status, json(&body)), (200, expected.clone()));
-    let query = "/api/check?name=flanged-bushing.stl&units=mm:cm&density=7.85g/cm3&no_intersections=1";
+    let query =
+        "/api/check?name=flanged-bushing.stl&units=mm:cm&density=7.85g/cm3&no_intersections=1";
     let (status, body) = server.post(query, &bytes);
     assert_eq!((status, json(&body)), (200, expected));
     // The weld tolerance too.
@@ -324,23 +328,3 @@ fn the_page_and_its_files_are_served_and_nothing_else() {
     assert!(help.contains("[default: 127.0.0.1]"), "{help}");
 }
 
-/// A mesh as binary STL.
-fn binary_stl(mesh: &meshvol::Mesh) -> Vec<u8> {
-    use meshvol::Surface;
-    let mut triangles = Vec::new();
-    for f in 0..mesh.face_count() {
-        mesh.fan(f, |a, b, c| triangles.push([a, b, c]));
-    }
-    let mut out = vec![0u8; 80];
-    out.extend((triangles.len() as u32).to_le_bytes());
-    for t in triangles {
-        out.extend([0u8; 12]);
-        for p in t {
-            for x in p {
-                out.extend((x as f32).to_le_bytes());
-            }
-        }
-        out.extend([0u8; 2]);
-    }
-    out
-}

@@ -112,7 +112,8 @@ impl Browser {
             "/element",
             json!({ "using": "css selector", "value": "#files" }),
         );
-        let id = element.as_object().unwrap().values().next().unwrap().as_str().unwrap().to_string();
+        let id =
+            element.as_object().unwrap().values().next().unwrap().as_str().unwrap().to_string();
         self.session_call("POST", &format!("/element/{id}/value"), json!({ "text": p(file) }));
     }
 
@@ -146,7 +147,8 @@ fn base64(text: &str) -> Vec<u8> {
     let clean: Vec<u8> = text.bytes().filter(|c| !matches!(c, b'=' | b'\n' | b'\r')).collect();
     let mut out = Vec::with_capacity(clean.len() * 3 / 4);
     for chunk in clean.chunks(4) {
-        let n = chunk.iter().enumerate().fold(0u32, |n, (i, &c)| n | (value(c) as u32) << (18 - 6 * i));
+        let n =
+            chunk.iter().enumerate().fold(0u32, |n, (i, &c)| n | (value(c) as u32) << (18 - 6 * i));
         out.extend(&n.to_be_bytes()[1..chunk.len()]);
     }
     out
@@ -203,7 +205,8 @@ fn assert_agrees(shown: &Value, file: &Path, hole: bool) {
     let shown_volume: f64 = shown["volume"].as_str().unwrap().parse().unwrap();
     assert_eq!(shown_volume, volume["volume"].as_f64().unwrap(), "{shown}");
     // The text says the same number to the digits shown (8).
-    let text: f64 = shown["volume_text"].as_str().unwrap().split(' ').next().unwrap().parse().unwrap();
+    let text: f64 =
+        shown["volume_text"].as_str().unwrap().split(' ').next().unwrap().parse().unwrap();
     assert!((text - shown_volume).abs() <= 1e-7 * shown_volume.abs(), "{shown}");
     assert_eq!(shown["verdict"], check["verdict"], "{shown}");
     assert_eq!(shown["warnings"], volume["warnings"], "{shown}");
@@ -237,14 +240,16 @@ fn the_page_shows_the_commands_numbers_and_draws_the_part_and_its_hole() {
     assert_agrees(&shown, &part, false);
 
     let dir = tempfile::tempdir().unwrap();
-    let open = write(dir.path(), "open-box.obj", box_obj([0.0; 3], [10.0, 20.0, 5.0], 1, true, true));
+    let open =
+        write(dir.path(), "open-box.obj", box_obj([0.0; 3], [10.0, 20.0, 5.0], 1, true, true));
     browser.upload(&open);
     let shown = card(&browser, "open-box.obj");
     browser.screenshot(&shots.join("open-box.png"));
     assert_agrees(&shown, &open, true);
 
     // A file no reader takes: the reader's error on the page, and the server still up.
-    let junk = write(dir.path(), "junk.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nope\n");
+    let junk =
+        write(dir.path(), "junk.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nope\n");
     browser.upload(&junk);
     let shown = card(&browser, "junk.stl");
     let expected = Command::new(env!("CARGO_BIN_EXE_meshvol"))

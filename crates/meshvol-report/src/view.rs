@@ -56,15 +56,16 @@ pub fn view<S: Surface + ?Sized>(surface: &S, check: &Check) -> View {
         crossings: check
             .intersection_examples
             .iter()
-            .map(|&[a, b]| Crossing { faces: [a, b], triangles: [fan(surface, a), fan(surface, b)] })
+            .map(|&[a, b]| Crossing {
+                faces: [a, b],
+                triangles: [fan(surface, a), fan(surface, b)],
+            })
             .collect(),
         ..View::default()
     };
     let triangles = surface.face_count() + check.repairs().2;
     if triangles > MAX_VIEW_FACES {
-        view.omitted = Some(format!(
-            "{triangles} faces: the view draws at most {MAX_VIEW_FACES}"
-        ));
+        view.omitted = Some(format!("{triangles} faces: the view draws at most {MAX_VIEW_FACES}"));
         return view;
     }
     let mesh = check.solid_mesh(true);
@@ -144,13 +145,19 @@ mod tests {
     /// Two cubes overlapping: the shells overlap and some faces cross.
     #[test]
     fn overlapping_cubes_show_their_pair_and_crossing_faces() {
-        let mesh = Mesh::concatenate(&[cuboid([0.0; 3], [2.0; 3]), cuboid([1.0, 1.3, 1.6], [3.1, 3.2, 3.3])]);
+        let mesh = Mesh::concatenate(&[
+            cuboid([0.0; 3], [2.0; 3]),
+            cuboid([1.0, 1.3, 1.6], [3.1, 3.2, 3.3]),
+        ]);
         let c = check(&mesh, &CheckOptions::default()).unwrap();
         let v = view(&mesh, &c);
         assert_eq!(v.overlapping_shells, vec![[0, 1]]);
         assert_eq!(c.intersection_examples.len(), v.crossings.len());
         assert!(!v.crossings.is_empty());
-        assert!(v.crossings.iter().all(|x| x.triangles.iter().all(|t| t.len() % 9 == 0 && !t.is_empty())));
+        assert!(v
+            .crossings
+            .iter()
+            .all(|x| x.triangles.iter().all(|t| t.len() % 9 == 0 && !t.is_empty())));
         assert!(v.boundary_edges.is_empty() && v.non_manifold_edges.is_empty());
         assert_eq!(v.cap_start, 24);
     }

@@ -45,9 +45,12 @@ pub fn router(config: Config) -> Result<Router, String> {
     });
     Ok(Router::new()
         .route("/", get(|| async { page::asset("index.html") }))
-        .route("/{*file}", get(|axum::extract::Path(file): axum::extract::Path<String>| async move {
-            page::asset(&file)
-        }))
+        .route(
+            "/{*file}",
+            get(|axum::extract::Path(file): axum::extract::Path<String>| async move {
+                page::asset(&file)
+            }),
+        )
         .route("/api/limits", get(limits))
         .route("/api/check", post(|s, q, h, r| handle(s, q, h, r, false)))
         .route("/api/view", post(|s, q, h, r| handle(s, q, h, r, true)))
@@ -176,7 +179,8 @@ async fn handle(
             },
         };
         drop(queued);
-        let (params, name, bytes) = match upload(params, &headers, request, config.max_upload).await {
+        let (params, name, bytes) = match upload(params, &headers, request, config.max_upload).await
+        {
             Ok(upload) => upload,
             Err(response) => return response,
         };
@@ -234,7 +238,11 @@ async fn upload(
     let too_large = |status: StatusCode, e: String| {
         if status == StatusCode::PAYLOAD_TOO_LARGE {
             let limit = size_words(max_upload);
-            error(status, None, &format!("the upload is larger than the limit of {limit} (--max-upload)"))
+            error(
+                status,
+                None,
+                &format!("the upload is larger than the limit of {limit} (--max-upload)"),
+            )
         } else {
             error(status, None, &format!("cannot read the upload: {e}"))
         }
@@ -256,7 +264,9 @@ async fn upload(
         .await
         .map_err(|e| too_large(e.status(), e.body_text()))?;
     let mut file = None;
-    while let Some(field) = form.next_field().await.map_err(|e| too_large(e.status(), e.body_text()))? {
+    while let Some(field) =
+        form.next_field().await.map_err(|e| too_large(e.status(), e.body_text()))?
+    {
         let field_name = field.name().unwrap_or_default().to_string();
         if field_name == "file" {
             let name = field.file_name().map(measure::file_name);

@@ -56,7 +56,8 @@ pub fn serve(config: Config, ready: impl FnOnce(SocketAddr)) -> Result<(), Strin
         let listener = tokio::net::TcpListener::bind(address)
             .await
             .map_err(|e| format!("cannot listen on {address}: {e}"))?;
-        let bound = listener.local_addr().map_err(|e| format!("cannot listen on {address}: {e}"))?;
+        let bound =
+            listener.local_addr().map_err(|e| format!("cannot listen on {address}: {e}"))?;
         let app = api::router(config)?;
         ready(bound);
         axum::serve(listener, app).await.map_err(|e| format!("the server stopped: {e}"))
