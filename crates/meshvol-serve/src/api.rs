@@ -258,7 +258,7 @@ async fn upload(
             .await
             .map_err(|e| too_large(e.status(), e.body_text()))?;
         let name = name.unwrap_or_else(|| "upload".to_string());
-        return Ok((params, name, bytes.to_vec()));
+        return Ok((params, name, Vec::from(bytes)));
     }
     let mut form = Multipart::from_request(request, &())
         .await
@@ -271,7 +271,7 @@ async fn upload(
         if field_name == "file" {
             let name = field.file_name().map(measure::file_name);
             let bytes = field.bytes().await.map_err(|e| too_large(e.status(), e.body_text()))?;
-            file = Some((name, bytes.to_vec()));
+            file = Some((name, Vec::from(bytes)));
         } else {
             let value = field.text().await.map_err(|e| too_large(e.status(), e.body_text()))?;
             params.set(&field_name, value);
