@@ -6,7 +6,7 @@
 mod common;
 
 use common::server::{agent, peak_memory_kib, Server};
-use common::{box_obj, meshvol, write};
+use common::{box_obj, meshvol, p, write};
 use serde_json::Value;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -15,12 +15,24 @@ use std::process::Command;
 /// What `meshvol check --json NAME [args]` prints, run in `dir` (so the file is named
 /// as the upload is), as JSON.
 fn cli_check(dir: &Path, name: &str, args: &[&str]) -> Value {
-    let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    parse_line(name, cli_start(dir, name, args))
+}
+
+/// `meshvol check --json NAME [args]` started in `dir`; [`parse_line`] waits for it.
+fn cli_start(dir: &Path, name: &str, args: &[&str]) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_meshvol"))
         .current_dir(dir)
         .args(["check", "--json", name])
         .args(args)
-        .output()
-        .unwrap();
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap()
+}
+
+/// The JSON line the command started for `name` prints.
+fn parse_line(name: &str, child: std::process::Child) -> Value {
+    let out = child.wait_with_output().unwrap();
     let line = String::from_utf8(out.stdout).unwrap();
     serde_json::from_str(line.trim()).unwrap_or_else(|e| panic!("{name}: {e}: {line}"))
 }
@@ -67,16 +79,18 @@ fn external_buffers(path: &Path) -> bool {
 }
 
 /// Posts each file raw and compares the answer with the command's JSON line: the same
-/// object for a file measured, the same `{"file", "error"}` for one refused.
+/// object for a file measured, the same `{"file", "error"}` for one refused. (The
+/// command runs while the server answers: the two share the machine's cores.)
 fn compare_with_cli(server: &Server, files: &[PathBuf]) -> usize {
     let mut compared = 0;
     for path in files {
         let (dir, name) = (path.parent().unwrap(), path.file_name().unwrap().to_str().unwrap());
         let bytes = std::fs::read(path).unwrap();
+        let cli = cli_start(dir, name, &[]);
         let query = format!("/api/check?name={}", name.replace(' ', "%20").replace('#', "%23"));
         let (status, body) = server.post(&query, &bytes);
         let answer = json(&body);
-        let expected = cli_check(dir, name, &[]);
+        let expected = parse_line(name, cli);
         let buffers = |v: &Value| v["error"].as_str().is_some_and(|e| e.contains(": buffers["));
         if external_buffers(path) || buffers(&expected) {
             // Buffers beside the file (or beside a zip): the upload has none, and the
@@ -332,4 +346,38 @@ fn the_page_and_its_files_are_served_and_nothing_else() {
     assert!(server.url.starts_with("http://127.0.0.1:"), "{}", server.url);
     let help = String::from_utf8(meshvol(&["serve", "--help"]).stdout).unwrap();
     assert!(help.contains("[default: 127.0.0.1]"), "{help}");
+}
+
+/// `check --html` writes one page holding the reports the command prints and the view,
+/// with nothing to fetch.
+#[test]
+fn check_html_writes_one_self_contained_page_with_the_commands_reports() {
+    let dir = tempfile::tempdir().unwrap();
+    let open = write(dir.path(), "open.obj", box_obj([0.0; 3], [1.0, 2.0, 3.0], 1, true, true));
+    let html = dir.path().join("open.html");
+    let out = meshvol(&["check", p(&open), "--html", p(&html), "--json", "--units", "mm"]);
+    assert_eq!(out.status.code(), Some(1), "an open box does not bound a volume");
+    let printed: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let page = std::fs::read_to_string(&html).unwrap();
+    let content = page.split("window.MESHVOL_PAGE = ").nth(1).unwrap();
+    let content: Value = json(content.split(";</script>").next().unwrap());
+    assert_eq!(content["check"], printed);
+    let volume = meshvol(&["volume", "--json", "--units", "mm", p(&open)]);
+    assert_eq!(content["volume"], serde_json::from_slice::<Value>(&volume.stdout).unwrap());
+    // The open top's four rim edges, at z = 3.
+    let view = &content["view"];
+    let rim = view["boundary_edges"].as_array().unwrap();
+    assert_eq!(rim.len(), 8);
+    for v in rim {
+        let v = v.as_u64().unwrap() as usize;
+        assert_eq!(view["positions"][3 * v + 2], 3.0);
+    }
+    // Nothing is fetched: no script or stylesheet by address.
+    assert!(!page.contains("<script src"), "a script by address");
+    assert!(!page.contains("<link rel=\"stylesheet\""), "a stylesheet by address");
+
+    // One page for one file.
+    let two = meshvol(&["check", p(&open), p(&open), "--html", p(&html)]);
+    assert_eq!(two.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&two.stderr).contains("--html writes the page of one file"));
 }

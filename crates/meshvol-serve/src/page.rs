@@ -50,8 +50,13 @@ fn json_in_script(json: &str) -> String {
 /// The page as one file: the scripts and the stylesheet inlined, and `content` (the
 /// page's JSON for one file: `Page`) given to it, so it shows that file without a server.
 pub fn standalone(content_json: &str) -> String {
+    // The inlined three.js goes with its licence.
+    let licence = format!(
+        "<!-- three.js, vendored from Debian's libjs-three:\n{}-->",
+        THREE_LICENSE.replace("--", "- -")
+    );
     let scripts = format!(
-        "<style>\n{STYLE}</style>\n<script>\n{}\n</script>\n<script>\n{}\n</script>\n\
+        "<style>\n{STYLE}</style>\n{licence}\n<script>\n{}\n</script>\n<script>\n{}\n</script>\n\
          <script>window.MESHVOL_PAGE = {};</script>\n<script>\n{}\n</script>",
         in_script(THREE),
         in_script(ORBIT),
