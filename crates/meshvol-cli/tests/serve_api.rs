@@ -381,3 +381,54 @@ fn check_html_writes_one_self_contained_page_with_the_commands_reports() {
     assert_eq!(two.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&two.stderr).contains("--html writes the page of one file"));
 }
+
+/// `POST /api/view` answers what the page shows: `check --json`'s object, `volume
+/// --json`'s and `profile --levels 64 --json`'s for the same file and options, and the
+/// view, whose solid is the one measured.
+#[test]
+fn the_pages_answer_holds_the_commands_reports() {
+    let server = Server::start(&[]);
+    let dir = samples();
+    let name = "flanged-bushing.stl";
+    let bytes = std::fs::read(dir.join(name)).unwrap();
+    let (status, body) =
+        server.post(&format!("/api/view?name={name}&units=mm:cm&density=7.85g/cm3"), &bytes);
+    assert_eq!(status, 200, "{body}");
+    let page = json(&body);
+    let flags = ["--units", "mm:cm", "--density", "7.85g/cm3"];
+    let run = |args: &[&str]| -> Value {
+        let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+            .current_dir(&dir)
+            .args(args)
+            .output()
+            .unwrap();
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    assert_eq!(page["check"], run(&[&["check", "--json", name][..], &flags].concat()));
+    assert_eq!(page["volume"], run(&[&["volume", "--json", name][..], &flags].concat()));
+    let profile = run(&[&["profile", "--json", "--levels", "64", name][..], &flags].concat());
+    assert_eq!(page["profile"], profile);
+    // The view's triangles enclose the volume measured (in the file's mm: 1000 mm³ a cm³),
+    // summed here from the arrays, as the divergence theorem gives it.
+    let view = &page["view"];
+    let xyz: Vec<f64> =
+        view["positions"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let ids: Vec<usize> = view["triangles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap() as usize)
+        .collect();
+    let corner = |i: usize| [xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]];
+    let six_v: f64 = ids
+        .chunks(3)
+        .map(|t| {
+            let (a, b, c) = (corner(t[0]), corner(t[1]), corner(t[2]));
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])
+        })
+        .sum();
+    let measured = page["volume"]["volume"].as_f64().unwrap() * 1000.0;
+    // float32 positions: agreement to about 1e-6 of the volume.
+    assert!((six_v / 6.0 - measured).abs() < 1e-5 * measured, "{} vs {measured}", six_v / 6.0);
+}

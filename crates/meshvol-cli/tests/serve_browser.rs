@@ -184,6 +184,8 @@ return {
   warnings: [...card.querySelectorAll('ul.warnings li')].map(li => li.textContent),
   problems: [...card.querySelectorAll('ul.problems li')].map(li => li.dataset.kind),
   error: (card.querySelector('.error') || {}).textContent || null,
+  profile_shown: !document.getElementById('profile').hidden,
+  section_at: document.getElementById('section-at').textContent,
   painted, red,
 };
 "#;
@@ -210,6 +212,9 @@ fn assert_agrees(shown: &Value, file: &Path, hole: bool) {
     assert!((text - shown_volume).abs() <= 1e-7 * shown_volume.abs(), "{shown}");
     assert_eq!(shown["verdict"], check["verdict"], "{shown}");
     assert_eq!(shown["warnings"], volume["warnings"], "{shown}");
+    // The profile's chart and the section at the slider's level (the top: all the volume).
+    assert_eq!(shown["profile_shown"], true, "{shown}");
+    assert!(shown["section_at"].as_str().unwrap().ends_with("(100 %)"), "{shown}");
     // The view is drawn: a good part of the canvas is not background.
     assert!(shown["painted"].as_u64().unwrap() > 2000, "{shown}");
     if hole {

@@ -1,8 +1,10 @@
 //! One upload measured: bytes → reader → check → the reports and the view, exactly as
 //! `meshvol check --json` and `meshvol volume --json` make them.
 
+use meshvol::grid::{Axis, Levels};
 use meshvol::topology::{self, CheckOptions};
 use meshvol_report::check::{check, CheckReport};
+use meshvol_report::profile::{profile, ProfileReport};
 use meshvol_report::subject::{Source, Subject};
 use meshvol_report::units::{Density, UnitOptions};
 use meshvol_report::view::{view, View};
@@ -19,14 +21,19 @@ pub struct Options {
     pub check: CheckOptions,
 }
 
-/// What the page shows of one file: `check`'s report, `volume`'s (absent for a file
-/// without faces: it has no volume to report) and the view.
+/// What the page shows of one file: `check`'s report, `volume`'s and `profile`'s
+/// (`--levels 64` along z; both absent for a file without faces: it has no volume to
+/// report) and the view.
 #[derive(Debug, Serialize)]
 pub struct Page {
     pub check: CheckReport,
     pub volume: Option<VolumeReport>,
+    pub profile: Option<ProfileReport>,
     pub view: View,
 }
+
+/// The profile's levels on the page: its chart, and the section under the clip slider.
+pub const PROFILE_LEVELS: usize = 64;
 
 /// An upload's name as a file name: its last path component, without control
 /// characters; `upload` when nothing is left.
@@ -74,17 +81,20 @@ pub fn page<S: meshvol::Surface>(
     report: CheckReport,
     units: &UnitOptions,
 ) -> Result<Page, String> {
-    let volume = if surface.face_count() == 0 {
-        None
+    let subject = Subject { source, surface, check: Some(c) };
+    let (volume, profile) = if surface.face_count() == 0 {
+        (None, None)
     } else {
         let options = VolumeOptions {
             density: units.density.unwrap_or(Density::plain(1.0)),
             units: units.units,
             exact: false,
         };
-        Some(volume(&Subject { source, surface, check: Some(c) }, &options)?)
+        let levels = Levels::Count(PROFILE_LEVELS);
+        let profile = profile(&subject, Axis::Z, levels)?.in_units(units, source.unit)?;
+        (Some(volume(&subject, &options)?), Some(profile))
     };
-    Ok(Page { check: report, volume, view: view(surface, c) })
+    Ok(Page { check: report, volume, profile, view: view(surface, c) })
 }
 
 #[cfg(test)]

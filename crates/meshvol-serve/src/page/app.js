@@ -159,7 +159,41 @@ function select(index, card) {
   document.querySelectorAll(".card").forEach((c) => c.classList.remove("selected"));
   card.classList.add("selected");
   viewer.show(results[index].view);
+  profile.show(results[index].profile);
 }
+
+// ---- the profile: volume below each level and section area, the level under the slider
+const profile = {
+  show(p) {
+    this.p = p;
+    $("profile").hidden = !p;
+    if (!p) return;
+    const n = p.levels.length, total = p.volume_below[n - 1] || 1;
+    const maxArea = Math.max(...p.section_area.map(Math.abs)) || 1;
+    const x = (k) => (n > 1 ? (600 * k) / (n - 1) : 0);
+    const line = (ys, color) => {
+      const pts = ys.map((y, k) => `${x(k).toFixed(1)},${(115 - 110 * y).toFixed(1)}`).join(" ");
+      return `<polyline fill="none" stroke="${color}" stroke-width="2" vector-effect="non-scaling-stroke" points="${pts}"/>`;
+    };
+    $("profile-chart").innerHTML =
+      line(p.volume_below.map((v) => v / total), "#2e90fa") +
+      line(p.section_area.map((a) => Math.abs(a) / maxArea), "#f79009") +
+      `<line id="profile-level" x1="600" x2="600" y1="0" y2="120" stroke="#101828" stroke-dasharray="3 3" vector-effect="non-scaling-stroke"/>`;
+    this.at(1);
+  },
+  // The level nearest the fraction `f` of the height: its section area and volume below.
+  at(f) {
+    const p = this.p, label = $("section-at");
+    if (!p) { label.textContent = ""; return; }
+    const n = p.levels.length, k = Math.max(0, Math.min(n - 1, Math.round(f * (n - 1))));
+    const u = p.units, total = p.volume_below[n - 1];
+    const share = total ? ` (${fmt((100 * p.volume_below[k]) / total, 3)} %)` : "";
+    label.textContent = `${p.axis} = ${fmt(p.levels[k], 6)}${u ? " " + u.length : ""}: section ${fmt(p.section_area[k], 6)}${u ? " " + u.area : ""}, volume below ${fmt(p.volume_below[k], 6)}${u ? " " + u.volume : ""}${share}`;
+    label.setAttribute("data-level", String(k));
+    const marker = document.getElementById("profile-level");
+    if (marker) { const xk = n > 1 ? (600 * k) / (n - 1) : 0; marker.setAttribute("x1", xk); marker.setAttribute("x2", xk); }
+  },
+};
 
 // ---- the 3D view ----------------------------------------------------------------------
 const COLORS = { solid: 0x9fb4c8, cap: 0xffc83d, hole: 0xff2020, nm: 0xe040fb, cross: 0xff8c00, cavity: 0x22c3e6 };
@@ -272,6 +306,7 @@ const viewer = {
     const z = this.bounds.min.z + f * (this.bounds.max.z - this.bounds.min.z);
     this.clip.constant = f >= 1 ? 1e30 : z;
     $("clip-level").textContent = f >= 1 ? "off" : "z ≤ " + fmt(z, 5);
+    profile.at(f);
     this.render();
   },
   // Frames `target` (edges, coordinates or shells; null: the whole part), boxed.
