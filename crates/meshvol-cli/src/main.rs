@@ -125,7 +125,7 @@ enum Command {
 
 /// `--help`'s examples, per command.
 const EXAMPLES_VOLUME: &str = "Examples:\n  meshvol volume samples/flanged-bushing.stl\n  meshvol volume samples/ --recursive --glob '*.stl' --format csv > volumes.csv\n  meshvol volume samples/flanged-bushing.stl --units mm:cm --density 7.85g/cm3 --json";
-const EXAMPLES_CHECK: &str = "Examples:\n  meshvol check samples/flanged-bushing.stl\n  meshvol check samples/ -r --format csv\n  meshvol check part.stl.gz --no-intersections --json\n  meshvol check samples/part.obj --html part.html";
+const EXAMPLES_CHECK: &str = "Examples:\n  meshvol check samples/flanged-bushing.stl\n  meshvol check samples/ -r --format csv\n  meshvol check part.stl.gz --no-intersections --json\n  meshvol check samples/flanged-bushing.stl --html report.html";
 const EXAMPLES_REPAIR: &str = "Examples:\n  meshvol repair samples/flanged-bushing.stl -o bushing.ply\n  meshvol repair scan.obj --cap -o closed.obj --json";
 const EXAMPLES_AREA: &str = "Examples:\n  meshvol area parcel.wkt lots.geojson\n  meshvol area parcels/ --glob '*.wkt' --json\n  cat lots.wkt | meshvol area -";
 const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt";
@@ -137,7 +137,7 @@ const EXAMPLES_INTERSECT: &str =
     "Examples:\n  meshvol intersect a.stl b.stl --json\n  meshvol intersect parts/ --pairs";
 const EXAMPLES_BELOW: &str = "Examples:\n  meshvol below samples/flanged-bushing.stl --plane 0,0,1,10\n  meshvol below samples/flanged-bushing.stl --volume 10000 --units mm:mL\n  meshvol below hulls/ --volume 4 --heel 10 --format csv";
 const EXAMPLES_CUTFILL: &str = "Examples:\n  meshvol cutfill terrain.obj --level 5\n  meshvol cutfill existing.stl --design design.stl --pitch 10 --out cells.npy";
-const EXAMPLES_SERVE: &str = "Examples:\n  meshvol serve                       # http://127.0.0.1:8765/\n  meshvol serve --port 8080 --max-upload 1GiB\n  curl --data-binary @part.stl 'http://127.0.0.1:8765/api/check?name=part.stl&units=mm'";
+const EXAMPLES_SERVE: &str = "Examples:\n  meshvol serve                       # http://127.0.0.1:8765/\n  meshvol serve --port 8080 --max-upload 1GiB\n  meshvol serve --bind 0.0.0.0 --max-concurrent 4   # answers the network: put it behind a proxy";
 const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish";
 const EXAMPLES_MAN: &str = "Examples:\n  meshvol man > meshvol.1 && man ./meshvol.1\n  meshvol man volume > meshvol-volume.1";
 

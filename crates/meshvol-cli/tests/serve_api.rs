@@ -432,3 +432,20 @@ fn the_pages_answer_holds_the_commands_reports() {
     // float32 positions: agreement to about 1e-6 of the volume.
     assert!((six_v / 6.0 - measured).abs() < 1e-5 * measured, "{} vs {measured}", six_v / 6.0);
 }
+
+/// A file without faces is checked (it bounds nothing), as the command checks it; the
+/// page's answer then has no volume or profile, and an empty view.
+#[test]
+fn a_file_without_faces_is_checked_as_the_command_checks_it() {
+    let server = Server::start(&[]);
+    let dir = tempfile::tempdir().unwrap();
+    let points = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    write(dir.path(), "points.obj", points);
+    let (status, body) = server.post("/api/check?name=points.obj", points.as_bytes());
+    assert_eq!((status, json(&body)), (200, cli_check(dir.path(), "points.obj", &[])));
+    let (status, body) = server.post("/api/view?name=points.obj", points.as_bytes());
+    assert_eq!(status, 200, "{body}");
+    let page = json(&body);
+    assert_eq!((&page["volume"], &page["profile"]), (&Value::Null, &Value::Null));
+    assert_eq!(page["view"]["triangles"], serde_json::json!([]));
+}

@@ -191,21 +191,22 @@ async fn handle(
         let folder = shared.folder.path().to_path_buf();
         let shown = name.clone();
         // The permit goes with the check: one that outlives the time limit still counts.
+        // The answer is written there too (a view can be megabytes of JSON), off the
+        // threads that serve connections.
         let checked = tokio::task::spawn_blocking(move || {
             let _permit = permit;
-            measure::measure(&folder, &name, bytes, &options, view)
+            let (report, page) = measure::measure(&folder, &name, bytes, &options, view)
+                .map_err(|e| (StatusCode::UNPROCESSABLE_ENTITY, e))?;
+            let body = match page {
+                None => meshvol_report::json_line(&report),
+                Some(page) => serde_json::to_string(&page).map_err(|e| e.to_string()),
+            };
+            body.map_err(|e| (StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))
         })
         .await;
         match checked {
-            Ok(Ok((report, None))) => match meshvol_report::json_line(&report) {
-                Ok(line) => json(StatusCode::OK, line),
-                Err(e) => error(StatusCode::INTERNAL_SERVER_ERROR, Some(&shown), &e),
-            },
-            Ok(Ok((_, Some(page)))) => match serde_json::to_string(&page) {
-                Ok(body) => json(StatusCode::OK, body),
-                Err(e) => error(StatusCode::INTERNAL_SERVER_ERROR, Some(&shown), &e.to_string()),
-            },
-            Ok(Err(e)) => error(StatusCode::UNPROCESSABLE_ENTITY, Some(&shown), &e),
+            Ok(Ok(body)) => json(StatusCode::OK, body),
+            Ok(Err((status, e))) => error(status, Some(&shown), &e),
             Err(_) => error(
                 StatusCode::INTERNAL_SERVER_ERROR,
                 Some(&shown),
