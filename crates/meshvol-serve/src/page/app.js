@@ -197,7 +197,8 @@ const profile = {
 
 // ---- the 3D view ----------------------------------------------------------------------
 const COLORS = { solid: 0x9fb4c8, cap: 0xffc83d, hole: 0xff2020, nm: 0xe040fb, cross: 0xff8c00, cavity: 0x22c3e6 };
-const PAIR_TINTS = [0xe4572e, 0x29a329, 0x7e57c2, 0xf3a712, 0x17becf, 0xd62728];
+// Overlapping pairs' tints: none near the problems' red, orange, yellow, magenta, cyan.
+const PAIR_TINTS = [0x7e57c2, 0x29a329, 0x3949ab, 0x8d6e63, 0x9e9d24, 0x00897b];
 
 const viewer = {
   init() {
@@ -277,7 +278,8 @@ const viewer = {
     for (const x of view.crossings) {
       const cg = new THREE.BufferGeometry();
       cg.setAttribute("position", new THREE.BufferAttribute(new Float32Array(x.triangles[0].concat(x.triangles[1])), 3));
-      const m = new THREE.Mesh(cg, new THREE.MeshBasicMaterial({ color: COLORS.cross, side: THREE.DoubleSide, depthTest: false, transparent: true, opacity: 0.85 }));
+      // Drawn over the solid's own copy of these faces (pushed back by its polygon offset).
+      const m = new THREE.Mesh(cg, new THREE.MeshBasicMaterial({ color: COLORS.cross, side: THREE.DoubleSide, clippingPlanes: [this.clip] }));
       m.renderOrder = 2;
       this.group.add(m);
     }
