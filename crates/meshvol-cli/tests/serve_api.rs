@@ -175,6 +175,10 @@ fn options_and_multipart_forms_give_the_commands_answer_with_its_flags() {
     let (status, body) = server.post("/api/check?name=part.obj&units=parsecs", &bytes);
     assert_eq!(status, 400, "{body}");
     assert!(json(&body)["error"].as_str().unwrap().starts_with("units: "), "{body}");
+    // So is a query that is not one (a parameter twice), in JSON too.
+    let (status, body) = server.post("/api/check?name=a.obj&name=b.obj", &bytes);
+    assert_eq!(status, 400, "{body}");
+    assert!(json(&body)["error"].as_str().unwrap().starts_with("the query: "), "{body}");
 }
 
 #[test]

@@ -10,6 +10,7 @@
 use crate::measure::{self, Options};
 use crate::{page, size_words, Config};
 use axum::body::Bytes;
+use axum::extract::rejection::QueryRejection;
 use axum::extract::{DefaultBodyLimit, FromRequest, Multipart, Query, Request, State};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
@@ -151,11 +152,17 @@ impl Drop for Waiting<'_> {
 /// `POST /api/check` (`view` false) and `POST /api/view` (true).
 async fn handle(
     State(shared): State<Arc<Shared>>,
-    Query(params): Query<Params>,
+    query: Result<Query<Params>, QueryRejection>,
     headers: HeaderMap,
     request: Request,
     view: bool,
 ) -> Response {
+    let params = match query {
+        Ok(Query(params)) => params,
+        Err(e) => {
+            return error(StatusCode::BAD_REQUEST, None, &format!("the query: {}", e.body_text()))
+        }
+    };
     let config = shared.config;
     // A free place is taken at once; otherwise the request waits, if the queue has room.
     let free = Arc::clone(&shared.checks).try_acquire_owned().ok();
