@@ -4,9 +4,10 @@
 use crate::driver::{self, Output};
 use crate::input;
 use clap::Args;
-use meshvol_report::check::check;
+use meshvol_report::check::{check, CheckReport};
 use meshvol_report::subject::Source;
-use std::path::PathBuf;
+use meshvol_report::units::UnitOptions;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Args)]
@@ -35,6 +36,11 @@ pub struct CheckArgs {
     weld_tolerance: Option<f64>,
     #[command(flatten)]
     units: crate::units::UnitArgs,
+    /// Also write the report as one self-contained web page (report, 3D view with the
+    /// problems drawn, geometry inlined) to HTML, for one FILE: to attach to an email
+    /// or a ticket.
+    #[arg(long, value_name = "HTML")]
+    html: Option<PathBuf>,
 }
 
 /// Runs the command. A file without faces is checked too: it bounds nothing.
@@ -42,6 +48,13 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
     let options = crate::solid::check_options(args.weld_tolerance, !args.no_intersections);
     let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
     let output = Output::of(args.json, args.format, quiet);
+    if args.html.is_some() && (inputs.files.len() != 1 || !inputs.problems.is_empty()) {
+        eprintln!(
+            "meshvol: error: --html writes the page of one file; {} given",
+            inputs.files.len() + inputs.problems.len()
+        );
+        return ExitCode::from(2);
+    }
     driver::each(&inputs, output, |path, progress| {
         let name = path.display().to_string();
         progress.stage("reading", path);
@@ -54,6 +67,27 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
             &progress.kernel(format!("checking {}", path.display())),
         )
         .map_err(|e| format!("{name}: {e}"))?;
-        check(&Source::of(&name, &loaded), &c).in_units(&args.units.options(), loaded.unit)
+        let source = Source::of(&name, &loaded);
+        let report = check(&source, &c).in_units(&args.units.options(), loaded.unit)?;
+        if let Some(html) = &args.html {
+            progress.stage("writing the page", path);
+            write_page(html, &source, &loaded.surface, &c, &report, &args.units.options())?;
+        }
+        Ok(report)
     })
+}
+
+/// Writes the self-contained page of one checked file to `html`.
+fn write_page<S: meshvol::Surface>(
+    html: &Path,
+    source: &Source,
+    surface: &S,
+    c: &meshvol::topology::Check,
+    report: &CheckReport,
+    units: &UnitOptions,
+) -> Result<(), String> {
+    let page = meshvol_serve::page_content(source, surface, c, report.clone(), units)?;
+    let content = serde_json::to_string(&page).map_err(|e| e.to_string())?;
+    std::fs::write(html, meshvol_serve::standalone(&content))
+        .map_err(|e| format!("{}: cannot write the page: {e}", html.display()))
 }

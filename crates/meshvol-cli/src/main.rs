@@ -16,6 +16,7 @@ mod intersect;
 mod profile;
 mod repair;
 mod section;
+mod serve;
 mod solid;
 mod union;
 mod units;
@@ -100,6 +101,10 @@ enum Command {
     /// (earthwork volumes), exactly; per plan cell with --cells or --pitch.
     #[command(after_help = EXAMPLES_CUTFILL)]
     Cutfill(cutfill::CutFillArgs),
+    /// A page to drop mesh files on (volume, mass, verdict and a 3D view of the
+    /// problems), and its HTTP API: `POST /api/check` answers `check --json`'s object.
+    #[command(after_help = EXAMPLES_SERVE)]
+    Serve(serve::ServeArgs),
     /// Print a completion script for a shell to stdout (`meshvol completions bash >
     /// ~/.local/share/bash-completion/completions/meshvol`).
     #[command(after_help = EXAMPLES_COMPLETIONS)]
@@ -120,7 +125,7 @@ enum Command {
 
 /// `--help`'s examples, per command.
 const EXAMPLES_VOLUME: &str = "Examples:\n  meshvol volume samples/flanged-bushing.stl\n  meshvol volume samples/ --recursive --glob '*.stl' --format csv > volumes.csv\n  meshvol volume samples/flanged-bushing.stl --units mm:cm --density 7.85g/cm3 --json";
-const EXAMPLES_CHECK: &str = "Examples:\n  meshvol check samples/flanged-bushing.stl\n  meshvol check samples/ -r --format csv\n  meshvol check part.stl.gz --no-intersections --json";
+const EXAMPLES_CHECK: &str = "Examples:\n  meshvol check samples/flanged-bushing.stl\n  meshvol check samples/ -r --format csv\n  meshvol check part.stl.gz --no-intersections --json\n  meshvol check samples/flanged-bushing.stl --html report.html";
 const EXAMPLES_REPAIR: &str = "Examples:\n  meshvol repair samples/flanged-bushing.stl -o bushing.ply\n  meshvol repair scan.obj --cap -o closed.obj --json";
 const EXAMPLES_AREA: &str = "Examples:\n  meshvol area parcel.wkt lots.geojson\n  meshvol area parcels/ --glob '*.wkt' --json\n  cat lots.wkt | meshvol area -";
 const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt";
@@ -132,6 +137,7 @@ const EXAMPLES_INTERSECT: &str =
     "Examples:\n  meshvol intersect a.stl b.stl --json\n  meshvol intersect parts/ --pairs";
 const EXAMPLES_BELOW: &str = "Examples:\n  meshvol below samples/flanged-bushing.stl --plane 0,0,1,10\n  meshvol below samples/flanged-bushing.stl --volume 10000 --units mm:mL\n  meshvol below hulls/ --volume 4 --heel 10 --format csv";
 const EXAMPLES_CUTFILL: &str = "Examples:\n  meshvol cutfill terrain.obj --level 5\n  meshvol cutfill existing.stl --design design.stl --pitch 10 --out cells.npy";
+const EXAMPLES_SERVE: &str = "Examples:\n  meshvol serve                       # http://127.0.0.1:8765/\n  meshvol serve --port 8080 --max-upload 1GiB\n  meshvol serve --bind 0.0.0.0 --max-concurrent 4   # answers the network: put it behind a proxy";
 const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish";
 const EXAMPLES_MAN: &str = "Examples:\n  meshvol man > meshvol.1 && man ./meshvol.1\n  meshvol man volume > meshvol-volume.1";
 
@@ -279,7 +285,7 @@ const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
 /// 0.92–0.99 GB against 1.00–1.02 GB. (System time still varies, 0.15–1.3 s, with the
 /// kernel's compaction for huge pages on a busy machine.)
 fn keep_freed_memory() {
-    // SAFETY: sets one option value; called first thing in main, before other threads.
+    // SAFETY: sets one option value; called in main before any other thread starts.
     unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
 }
 
@@ -287,7 +293,6 @@ fn keep_freed_memory() {
 const THREADS_PER_CORE: usize = 4;
 
 fn main() -> ExitCode {
-    keep_freed_memory();
     let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     // `meshvol chek part.obj`: a typo of a subcommand, not a file to measure.
     if let Some(first) = args.get(first_argument(&args)) {
@@ -300,6 +305,10 @@ fn main() -> ExitCode {
         }
     }
     let cli = Cli::parse_from(with_default_command(args));
+    // A server runs for long: memory a check frees goes back to the system.
+    if !matches!(cli.command, Command::Serve(_)) {
+        keep_freed_memory();
+    }
     input::TIMINGS.store(cli.timings, std::sync::atomic::Ordering::Relaxed);
     if let Some(n) = cli.threads {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
@@ -333,6 +342,7 @@ fn main() -> ExitCode {
         Command::Intersect(args) => intersect::run(args, cli.quiet),
         Command::Below(args) => below::run(args, cli.quiet),
         Command::Cutfill(args) => cutfill::run(args, cli.quiet),
+        Command::Serve(args) => serve::run(args, cli.quiet),
         Command::Completions { shell } => completions(shell),
         Command::Man { command } => man(command.as_deref()),
     }

@@ -7,7 +7,7 @@
 
 use crate::input::{self, Progress};
 use clap::Args;
-use meshvol::topology::{self, Check, CheckOptions, Weld};
+use meshvol::topology::{self, Check, CheckOptions};
 use meshvol_io::LoadedSurface;
 use meshvol_report::subject::{Source, Subject};
 use std::path::Path;
@@ -39,17 +39,7 @@ impl SolidArgs {
 }
 
 /// Check options from the weld tolerance flag and whether to search for crossings.
-pub fn check_options(weld_tolerance: Option<f64>, intersections: bool) -> CheckOptions {
-    CheckOptions {
-        weld: match weld_tolerance {
-            None => Weld::Auto,
-            Some(0.0) => Weld::Exact,
-            Some(t) => Weld::Tolerance(t),
-        },
-        intersections,
-        ..CheckOptions::default()
-    }
-}
+pub use meshvol_report::subject::check_options;
 
 /// One input, read and (unless `--no-check`) checked.
 pub struct Input {

@@ -214,6 +214,20 @@ mod tests {
         assert!(err.to_string().contains("Zstandard"), "{err}");
     }
 
+    /// Bytes in memory named `part.obj.gz` (an upload) are read as `read` reads such a
+    /// file: decompressed, then as the OBJ inside, with the same faces as the plain bytes.
+    #[test]
+    fn bytes_with_a_compressed_name_are_decompressed_first() {
+        let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+        let plain = crate::read_bytes(Path::new("part.obj"), obj.to_vec()).unwrap();
+        let packed = crate::read_bytes(Path::new("part.obj.gz"), gz(obj)).unwrap();
+        assert_eq!(packed.format.name(), "obj");
+        assert_eq!(packed.face_count(), plain.face_count());
+        assert_eq!(packed.vertex_count(), plain.vertex_count());
+        let err = crate::read_bytes(Path::new("part.obj.gz"), obj.to_vec()).unwrap_err();
+        assert!(err.to_string().contains("part.obj.gz"), "{err}");
+    }
+
     /// Damaged streams of every form (bytes changed, cut short) are errors or data, never
     /// a panic.
     #[test]

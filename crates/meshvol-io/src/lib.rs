@@ -308,8 +308,15 @@ pub fn read(path: &Path) -> Result<Loaded, ReadError> {
 /// Reads a mesh from bytes already in memory, as [`read`] would read a file at `path`
 /// with these contents (`path` gives the extension, names the file in errors, and is
 /// where a `.gltf` file's external buffers are looked for). Standard input is read with
-/// a path such as `-`: no extension, so the content decides.
+/// a path such as `-`: no extension, so the content decides. A path ending in `.gz`,
+/// `.bz2`, `.zst` or `.zip` is decompressed first, as [`read`] does (an upload named
+/// `part.stl.gz`).
 pub fn read_bytes(path: &Path, bytes: Vec<u8>) -> Result<Loaded, ReadError> {
+    if let Some(compression) = compressed::Compression::of_path(path) {
+        let (inner, data) = compressed::decompress(path, &bytes, compression, has_mesh_extension)?;
+        drop(bytes);
+        return load(&inner, Bytes::Owned(data)).map_err(|e| named(e, path, &inner));
+    }
     load(path, Bytes::Owned(bytes))
 }
 

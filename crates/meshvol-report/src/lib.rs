@@ -49,6 +49,7 @@ pub mod table;
 pub mod timings;
 pub mod union;
 pub mod units;
+pub mod view;
 pub mod volume;
 pub mod written;
 

@@ -3,9 +3,23 @@
 //! the bodies of a union.
 
 use meshvol::surface::{connected_parts, FaceSubset};
-use meshvol::topology::{Check, Measured};
+use meshvol::topology::{Check, CheckOptions, Measured, Weld};
 use meshvol::Surface;
 use meshvol_io::{LengthUnit, Loaded, Object};
+
+/// The check `--weld-tolerance T` (`None`: not given) and `--no-intersections` (when
+/// `intersections` is false) ask for: the command's and the page's (`meshvol serve`).
+pub fn check_options(weld_tolerance: Option<f64>, intersections: bool) -> CheckOptions {
+    CheckOptions {
+        weld: match weld_tolerance {
+            None => Weld::Auto,
+            Some(0.0) => Weld::Exact,
+            Some(t) => Weld::Tolerance(t),
+        },
+        intersections,
+        ..CheckOptions::default()
+    }
+}
 
 /// Where a surface came from: a file as the readers found it, or arrays (all `None`).
 #[derive(Clone, Debug, Default)]

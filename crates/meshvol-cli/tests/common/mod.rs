@@ -89,3 +89,4 @@ pub fn box_obj(min: [f64; 3], max: [f64; 3], base: usize, outward: bool, open: b
     }
     s
 }
+pub mod server;

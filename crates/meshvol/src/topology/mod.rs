@@ -280,6 +280,13 @@ impl Check {
         self.solid.mesh(with_caps)
     }
 
+    /// The shell of each face of [`Check::solid_mesh`] (and [`Check::solid`]): kept
+    /// faces in order, then the caps (the last `repairs().2` faces), numbered as
+    /// [`Check::shells`].
+    pub fn solid_face_shells(&self) -> &[u32] {
+        self.solid.face_shells()
+    }
+
     /// What [`Check::solid`] changes: (faces flipped, faces dropped, cap triangles).
     pub fn repairs(&self) -> (usize, usize, usize) {
         self.solid.changes()

@@ -177,6 +177,11 @@ impl Solid {
         (self.flipped, self.dropped, self.caps.len())
     }
 
+    /// The shell of each face of the solid: kept faces in order, then caps.
+    pub(crate) fn face_shells(&self) -> &[u32] {
+        &self.shell
+    }
+
     /// The solid's faces grouped by `group` of their shell: lists of face indices of
     /// [`SolidView`], in face order, the groups numbered `0..groups`.
     pub(crate) fn faces_by(

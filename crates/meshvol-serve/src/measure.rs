@@ -1,0 +1,113 @@
+//! One upload measured: bytes → reader → check → the reports and the view, exactly as
+//! `meshvol check --json` and `meshvol volume --json` make them.
+
+use meshvol::grid::{Axis, Levels};
+use meshvol::topology::{self, CheckOptions};
+use meshvol_report::check::{check, CheckReport};
+use meshvol_report::profile::{profile, ProfileReport};
+use meshvol_report::subject::{Source, Subject};
+use meshvol_report::units::{Density, UnitOptions};
+use meshvol_report::view::{view, View};
+use meshvol_report::volume::{volume, VolumeOptions, VolumeReport};
+use serde::Serialize;
+use std::path::Path;
+
+/// What the page asks for, as the command's flags do.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// `--units` and `--density`.
+    pub units: UnitOptions,
+    /// `--weld-tolerance` and `--no-intersections`.
+    pub check: CheckOptions,
+}
+
+/// What the page shows of one file: `check`'s report, `volume`'s and `profile`'s
+/// (`--levels 64` along z; both absent for a file without faces: it has no volume to
+/// report) and the view.
+#[derive(Debug, Serialize)]
+pub struct Page {
+    pub check: CheckReport,
+    pub volume: Option<VolumeReport>,
+    pub profile: Option<ProfileReport>,
+    pub view: View,
+}
+
+/// The profile's levels on the page: its chart, and the section under the clip slider.
+pub const PROFILE_LEVELS: usize = 64;
+
+/// An upload's name as a file name: its last path component, without control
+/// characters; `upload` when nothing is left.
+pub fn file_name(given: &str) -> String {
+    let last = given.rsplit(['/', '\\']).next().unwrap_or_default();
+    let clean: String = last.chars().filter(|c| !c.is_control()).collect();
+    match clean.trim() {
+        "" | "." | ".." => "upload".to_string(),
+        name => name.to_string(),
+    }
+}
+
+/// Reads `bytes`, uploaded as `name` (a plain file name), as if it were a file of that
+/// name in `folder` (an empty folder of the server's own: a glTF's external buffers are
+/// looked for there, and found nowhere), checks it and reports, with `view` the page's
+/// geometry too. Errors are the reader's or the kernel's, naming the file as uploaded.
+pub fn measure(
+    folder: &Path,
+    name: &str,
+    bytes: Vec<u8>,
+    options: &Options,
+    with_view: bool,
+) -> Result<(CheckReport, Option<Page>), String> {
+    let path = folder.join(name);
+    let unfold = |e: String| e.replace(&format!("{}/", folder.display()), "");
+    let loaded = meshvol_io::read_bytes(&path, bytes).map_err(|e| unfold(e.to_string()))?;
+    let c =
+        topology::check_assembled(&loaded.surface, loaded.assembly.as_ref(), &options.check, &())
+            .map_err(|e| format!("{name}: {e}"))?;
+    let source = Source::of(name, &loaded);
+    let report = check(&source, &c).in_units(&options.units, loaded.unit)?;
+    if !with_view {
+        return Ok((report, None));
+    }
+    let page = page(&source, &loaded.surface, &c, report.clone(), &options.units)?;
+    Ok((report, Some(page)))
+}
+
+/// The page's content for a surface read from `source` and checked as `c`, whose
+/// `check` report is `report`.
+pub fn page<S: meshvol::Surface>(
+    source: &Source,
+    surface: &S,
+    c: &topology::Check,
+    report: CheckReport,
+    units: &UnitOptions,
+) -> Result<Page, String> {
+    let subject = Subject { source, surface, check: Some(c) };
+    let (volume, profile) = if surface.face_count() == 0 {
+        (None, None)
+    } else {
+        let options = VolumeOptions {
+            density: units.density.unwrap_or(Density::plain(1.0)),
+            units: units.units,
+            exact: false,
+        };
+        let levels = Levels::Count(PROFILE_LEVELS);
+        let profile = profile(&subject, Axis::Z, levels)?.in_units(units, source.unit)?;
+        (Some(volume(&subject, &options)?), Some(profile))
+    };
+    Ok(Page { check: report, volume, profile, view: view(surface, c) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::file_name;
+
+    #[test]
+    fn upload_names_lose_their_folders_and_control_characters() {
+        assert_eq!(file_name("part.stl"), "part.stl");
+        assert_eq!(file_name("../../etc/passwd"), "passwd");
+        assert_eq!(file_name("C:\\parts\\a.obj"), "a.obj");
+        assert_eq!(file_name("a\nb.obj"), "ab.obj");
+        assert_eq!(file_name(".."), "upload");
+        assert_eq!(file_name(""), "upload");
+    }
+}
