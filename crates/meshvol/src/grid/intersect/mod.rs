@@ -14,7 +14,12 @@
 //!   C fill it and the intersection in C is that of the touching ones: `|C|` for none,
 //!   `v` for one, and for t ≥ 2 touching bodies
 //!   `max(0, Σ v_i − (t − 1)|C|) ≤ vol(∩ ∩ C) ≤ min_i v_i` (Bonferroni).
-//! - **Refinement** of open cells, exactly as for the union, with these bounds.
+//! - **Refinement** of open cells, exactly as for the union, with these bounds; but
+//!   where the moments are wanted (always, from [`intersection`]), every column is
+//!   resolved exactly for them anyway, so that pass settles the open columns and
+//!   nothing is refined (refinement only narrows what resolution then closes). Where a
+//!   column fails to resolve, the interval is found by refinement and resolution as
+//!   for the union.
 //! - **Exact resolution.** ∂(A∩B) is the part of ∂A inside B and the part of ∂B inside
 //!   A. Each piece of a triangle in an open cell is split along the other body's
 //!   triangles as for the union, and a sub-piece is kept when, for the other body:
@@ -39,7 +44,8 @@
 //! The same kept pieces, those of one body inside the other, are the interface: their
 //! area and vector area (∫ n dA over ∂B inside A, the derivative of the overlap under a
 //! translation of B) are added up in the same pass; the faces the plan pass sees badly
-//! are counted in two more passes with the bodies' axes turned ([`contact`]).
+//! are counted in two more passes with the bodies' axes turned ([`contact`]), each on
+//! the columns of the full grid that hold such faces only.
 //!
 //! # Interval
 //! `[lower, upper]` adds exact columns, exact cells and open leaves' bounds, is clamped

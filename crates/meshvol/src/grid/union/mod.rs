@@ -537,6 +537,10 @@ fn boundary_pass<S: Surface>(
     resolve_every_column(model, frame, progress).map(|(_, total)| total)
 }
 
+/// One column resolved exactly: its cells' volumes and how many open cells that resolved
+/// ([`Bodies::exact_column`]).
+type ResolvedColumn = (Vec<f64>, usize);
+
 /// Every column resolved exactly ([`Bodies::exact_column_with`]): per column its cells'
 /// volumes and how many open cells that resolved (empty for a column a turned frame
 /// skips), and the sums of the kept pieces ([`BoundarySums`] in `frame`; moments about
@@ -545,7 +549,7 @@ fn resolve_every_column<S: Surface>(
     model: &Bodies<'_, S>,
     frame: Frame,
     progress: &dyn Progress,
-) -> Option<(Vec<(Vec<f64>, usize)>, BoundaryTotal)> {
+) -> Option<(Vec<ResolvedColumn>, BoundaryTotal)> {
     let columns = model.grid.counts[0] * model.grid.counts[1];
     progress.stage(if frame == Frame::Identity { "moments" } else { "contact" });
     let done = Counter::new(progress, columns);
@@ -560,7 +564,7 @@ fn resolve_every_column<S: Surface>(
                 })
             })
     };
-    let per_column: Vec<Option<((Vec<f64>, usize), BoundarySums)>> = (0..columns)
+    let per_column: Vec<Option<(ResolvedColumn, BoundarySums)>> = (0..columns)
         .into_par_iter()
         .map(|c| {
             let mut sums = BoundarySums::new(frame);
