@@ -63,10 +63,11 @@ pub use contact::Contact;
 
 use super::union::{boundary_in_frame, combine, Rule, UnionError};
 use super::Grid;
+use crate::assembly::Affine;
 use crate::progress::Progress;
 use crate::surface::Moved;
 use crate::vector::{cross, sub};
-use crate::{mass_properties, Bounds, Point, Surface};
+use crate::{mass_properties, Bounds, MassProperties, Point, Surface};
 use contact::{Frame, Interface};
 
 /// The intersection of two bodies: the certified interval of its volume, the bodies'
@@ -230,7 +231,7 @@ pub fn intersection_with<S: Surface>(
             contact: Some(Contact { area: 0.0, vector: [0.0; 3], vector_a: [0.0; 3] }),
         });
     }
-    let (u, sums) = combine(&[a, b], Rule::Intersection, tolerance, true, progress)?;
+    let (u, sums) = combine(&[a, b], &[pa, pb], Rule::Intersection, tolerance, true, progress)?;
     let interface_z = sums.as_ref().map(|(_, total)| total.interface());
     let moments = sums
         .and_then(|(origin, sums)| moments::finish(&sums.moments(), origin))
@@ -256,7 +257,9 @@ pub fn intersection_with<S: Surface>(
                     continue;
                 }
                 let turned = [Moved::new(a, frame.turn()), Moved::new(b, frame.turn())];
-                match boundary_in_frame(&turned, Rule::Intersection, frame, progress)? {
+                let properties = [&pa, &pb].map(|p| turned_properties(p, frame));
+                match boundary_in_frame(&turned, &properties, Rule::Intersection, frame, progress)?
+                {
                     Some(total) => parts.push(total.interface()),
                     None => resolved = false,
                 }
@@ -282,6 +285,31 @@ pub fn intersection_with<S: Surface>(
         moments,
         contact,
     })
+}
+
+/// The mass properties of a body turned into `frame` (a permutation of the axes, so
+/// its box, centroid and inertia are `p`'s with their axes permuted, exactly), without
+/// measuring the turned body again.
+fn turned_properties(p: &MassProperties, frame: Frame) -> MassProperties {
+    let turn = frame.turn().unwrap_or(Affine::IDENTITY);
+    let r = |i: usize, k: usize| turn.0[i][k];
+    let inertia = [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let mut sum = 0.0;
+            for k in 0..3 {
+                for l in 0..3 {
+                    sum += r(i, k) * p.inertia[k][l] * r(j, l);
+                }
+            }
+            sum
+        })
+    });
+    MassProperties {
+        bounds: p.bounds.map(|b| Bounds { min: turn.apply(b.min), max: turn.apply(b.max) }),
+        centroid: p.centroid.map(|c| turn.apply(c)),
+        inertia,
+        ..*p
+    }
 }
 
 /// Whether some triangle of `body` whose box meets the common box of `boxes` is counted

@@ -112,7 +112,7 @@ use crate::accumulate::CompensatedSum;
 use crate::grid::intersect::contact::{BoundarySums, BoundaryTotal, Frame};
 use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
-use crate::{mass_properties, Point, Surface};
+use crate::{mass_properties, MassProperties, Point, Surface};
 pub(crate) use bounds::Rule;
 use bounds::{Bodies, Cell};
 use rayon::prelude::*;
@@ -209,7 +209,8 @@ pub fn union_with<S: Surface>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<UnionVolume, UnionError> {
-    combine(bodies, Rule::Union, tolerance, false, progress).map(|(u, _)| u)
+    let properties: Vec<MassProperties> = bodies.iter().map(|b| mass_properties(b)).collect();
+    combine(bodies, &properties, Rule::Union, tolerance, false, progress).map(|(u, _)| u)
 }
 
 /// The bodies as [`combine`] measures them: turned outward, with the box its grid
@@ -227,7 +228,13 @@ struct Setup<'a, S> {
     flat: bool,
 }
 
-fn setup<S: Surface>(bodies: &[S], rule: Rule) -> Setup<'_, S> {
+/// The bodies as measured, from their mass properties (`properties[i]` of `bodies[i]`:
+/// the volume's sign and size, the triangles, the box).
+fn setup<'a, S: Surface>(
+    bodies: &'a [S],
+    properties: &[MassProperties],
+    rule: Rule,
+) -> Setup<'a, S> {
     let mut oriented = Vec::new();
     let mut flipped = Vec::new();
     let mut sum_of_volumes = CompensatedSum::default();
@@ -236,7 +243,7 @@ fn setup<S: Surface>(bodies: &[S], rule: Rule) -> Setup<'_, S> {
     let (mut common_min, mut common_max) = ([f64::NEG_INFINITY; 3], [f64::INFINITY; 3]);
     let mut triangles = 0;
     for (i, body) in bodies.iter().enumerate() {
-        let mp = mass_properties(body);
+        let mp = &properties[i];
         sum_of_volumes.add(mp.signed_volume.abs());
         largest = largest.max(mp.signed_volume.abs());
         smallest = smallest.min(mp.signed_volume.abs());
@@ -293,6 +300,7 @@ impl<S> Setup<'_, S> {
 /// column fails to resolve, and for no volume: then the volume is 0).
 pub(crate) fn combine<S: Surface>(
     bodies: &[S],
+    properties: &[MassProperties],
     rule: Rule,
     tolerance: f64,
     boundary: bool,
@@ -301,7 +309,7 @@ pub(crate) fn combine<S: Surface>(
     if bodies.is_empty() {
         return Err(UnionError::NoBodies);
     }
-    let setup = setup(bodies, rule);
+    let setup = setup(bodies, properties, rule);
     let (min, max) = (setup.min, setup.max);
     let Setup { sum_of_volumes, largest, smallest, .. } = setup;
     if setup.flat {
@@ -592,11 +600,12 @@ fn resolve_every_column<S: Surface>(
 /// a column fails to resolve.
 pub(crate) fn boundary_in_frame<S: Surface>(
     bodies: &[S],
+    properties: &[MassProperties],
     rule: Rule,
     frame: Frame,
     progress: &dyn Progress,
 ) -> Result<Option<BoundaryTotal>, UnionError> {
-    let setup = setup(bodies, rule);
+    let setup = setup(bodies, properties, rule);
     if setup.flat {
         return Ok(None);
     }
