@@ -1,8 +1,10 @@
 //! The interface of two overlapping bodies (`Intersection::contact`): its area against
 //! faces measured by hand (boxes, in any orientation), the spheres' lens against its
-//! spherical caps, and its vector against the derivative of the overlap volume taken by
-//! finite differences of the volume (a second computation); with ∫ n dA over ∂A ∩ B the
-//! opposite of that over ∂B ∩ A, since ∂(A∩B) is closed.
+//! spherical caps, a sphere's vertical band on a slab (turned frames on a strip of
+//! columns) against its faces measured one by one, and its vector against the
+//! derivative of the overlap volume taken by finite differences of the volume (a second
+//! computation); with ∫ n dA over ∂A ∩ B the opposite of that over ∂B ∩ A, since ∂(A∩B)
+//! is closed.
 
 mod common;
 
@@ -148,4 +150,58 @@ fn the_contact_vector_is_the_derivative_of_the_overlap() {
         // ∂(A∩B) is closed: ∫ n dA over ∂A ∩ B is the opposite.
         close(c.vector_a, c.vector.map(|x| -x), 1e-9 * c.area, &format!("round {round}"));
     }
+}
+
+#[test]
+fn level_faces_far_inside_the_common_box_are_counted_in_their_columns() {
+    // A sphere with an odd number of rings has a band of vertical faces across z = 0,
+    // counted in the turned frames only: on a slab holding z < 0, those frames' grids
+    // are thin strips of the common box's columns (the slab's own walls lie outside
+    // it). ∂B ∩ A is the lower half of the sphere's faces, measured here face by face;
+    // ∂A ∩ B is the slab's top inside the sphere, the regular 48-gon of the band's
+    // radius, facing up; the lower half's vector area closes that 48-gon: −its area ẑ.
+    let (segments, rings) = (48, 25);
+    let b = uv_sphere(1.0, segments, rings);
+    let a = cuboid([-2.0, -2.0, -1.5], [2.0, 2.0, 0.0]);
+    let p = b.positions();
+    let mut lower_half = 0.0;
+    for f in 0..b.face_count() {
+        let face = b.face(f);
+        let corners: Vec<[f64; 3]> = face.iter().map(|&v| p[v as usize]).collect();
+        let mut area = [0.0; 3];
+        for k in 1..corners.len() - 1 {
+            let (u, v) = (sub(corners[k], corners[0]), sub(corners[k + 1], corners[0]));
+            let n =
+                [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+            (0..3).for_each(|j| area[j] += 0.5 * n[j]);
+        }
+        let area = area.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let (low, high) = corners
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), c| (l.min(c[2]), h.max(c[2])));
+        // The band's faces are rectangles across z = 0: the part below is in proportion.
+        lower_half += if high <= 0.0 {
+            area
+        } else if low < 0.0 {
+            area * -low / (high - low)
+        } else {
+            0.0
+        };
+    }
+    let pi = std::f64::consts::PI;
+    let radius = (pi * 12.0 / 25.0).sin();
+    let polygon = 0.5 * segments as f64 * radius * radius * (2.0 * pi / segments as f64).sin();
+    let i = intersection(&a, &b, 1e-9).unwrap();
+    let c = i.contact.expect("a contact");
+    let want = lower_half + polygon;
+    assert!((c.area - want).abs() < 1e-9 * want, "{} vs {want}", c.area);
+    close(c.vector, [0.0, 0.0, -polygon], 1e-9, "B's lower half faces down");
+    close(c.vector_a, [0.0, 0.0, polygon], 1e-9, "the slab's top faces up");
+    // By the sphere's symmetry about z = 0, the overlap is half its volume.
+    let half = 0.5 * meshvol::shapes::uv_sphere_volume(1.0, segments, rings);
+    assert!(i.lower - 1e-12 <= half && half <= i.upper + 1e-12, "{half} in {i:?}");
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }

@@ -24,8 +24,10 @@
 //! their coordinates turned cyclically ([`Frame`]: a rotation, so windings and
 //! insideness stay) so that the larger of |N_x|, |N_y| is vertical (ties to x). Each
 //! triangle is counted in exactly one frame; a turned pass is run only when some
-//! triangle in the bodies' common box is counted in it (a CAD part's walls; never for a
-//! smooth body finer than a degree of arc at its steepest).
+//! triangle in the bodies' common box is counted in it (a CAD part's walls, or the few
+//! faces of a turned smooth body whose normals fall within 10⁻³ of level), and only
+//! over the block of columns that holds those triangles: a column's kept pieces depend
+//! on its own faces alone.
 
 use crate::accumulate::CompensatedSum;
 use crate::assembly::Affine;

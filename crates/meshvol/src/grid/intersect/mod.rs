@@ -14,7 +14,12 @@
 //!   C fill it and the intersection in C is that of the touching ones: `|C|` for none,
 //!   `v` for one, and for t ≥ 2 touching bodies
 //!   `max(0, Σ v_i − (t − 1)|C|) ≤ vol(∩ ∩ C) ≤ min_i v_i` (Bonferroni).
-//! - **Refinement** of open cells, exactly as for the union, with these bounds.
+//! - **Refinement** of open cells, exactly as for the union, with these bounds; but
+//!   where the moments are wanted (always, from [`intersection`]), every column is
+//!   resolved exactly for them anyway, so that pass settles the open columns and
+//!   nothing is refined (refinement only narrows what resolution then closes). Where a
+//!   column fails to resolve, the interval is found by refinement and resolution as
+//!   for the union.
 //! - **Exact resolution.** ∂(A∩B) is the part of ∂A inside B and the part of ∂B inside
 //!   A. Each piece of a triangle in an open cell is split along the other body's
 //!   triangles as for the union, and a sub-piece is kept when, for the other body:
@@ -39,7 +44,8 @@
 //! The same kept pieces, those of one body inside the other, are the interface: their
 //! area and vector area (∫ n dA over ∂B inside A, the derivative of the overlap under a
 //! translation of B) are added up in the same pass; the faces the plan pass sees badly
-//! are counted in two more passes with the bodies' axes turned ([`contact`]).
+//! are counted in two more passes with the bodies' axes turned ([`contact`]), each on
+//! the columns of the full grid that hold such faces only.
 //!
 //! # Interval
 //! `[lower, upper]` adds exact columns, exact cells and open leaves' bounds, is clamped
@@ -57,10 +63,11 @@ pub use contact::Contact;
 
 use super::union::{boundary_in_frame, combine, Rule, UnionError};
 use super::Grid;
+use crate::assembly::Affine;
 use crate::progress::Progress;
 use crate::surface::Moved;
 use crate::vector::{cross, sub};
-use crate::{mass_properties, Bounds, Point, Surface};
+use crate::{mass_properties, Bounds, MassProperties, Point, Surface};
 use contact::{Frame, Interface};
 
 /// The intersection of two bodies: the certified interval of its volume, the bodies'
@@ -224,7 +231,7 @@ pub fn intersection_with<S: Surface>(
             contact: Some(Contact { area: 0.0, vector: [0.0; 3], vector_a: [0.0; 3] }),
         });
     }
-    let (u, sums) = combine(&[a, b], Rule::Intersection, tolerance, true, progress)?;
+    let (u, sums) = combine(&[a, b], &[pa, pb], Rule::Intersection, tolerance, true, progress)?;
     let interface_z = sums.as_ref().map(|(_, total)| total.interface());
     let moments = sums
         .and_then(|(origin, sums)| moments::finish(&sums.moments(), origin))
@@ -250,7 +257,9 @@ pub fn intersection_with<S: Surface>(
                     continue;
                 }
                 let turned = [Moved::new(a, frame.turn()), Moved::new(b, frame.turn())];
-                match boundary_in_frame(&turned, Rule::Intersection, frame, progress)? {
+                let properties = [&pa, &pb].map(|p| turned_properties(p, frame));
+                match boundary_in_frame(&turned, &properties, Rule::Intersection, frame, progress)?
+                {
                     Some(total) => parts.push(total.interface()),
                     None => resolved = false,
                 }
@@ -276,6 +285,31 @@ pub fn intersection_with<S: Surface>(
         moments,
         contact,
     })
+}
+
+/// The mass properties of a body turned into `frame` (a permutation of the axes, so
+/// its box, centroid and inertia are `p`'s with their axes permuted, exactly), without
+/// measuring the turned body again.
+fn turned_properties(p: &MassProperties, frame: Frame) -> MassProperties {
+    let turn = frame.turn().unwrap_or(Affine::IDENTITY);
+    let r = |i: usize, k: usize| turn.0[i][k];
+    let inertia = [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let mut sum = 0.0;
+            for k in 0..3 {
+                for l in 0..3 {
+                    sum += r(i, k) * p.inertia[k][l] * r(j, l);
+                }
+            }
+            sum
+        })
+    });
+    MassProperties {
+        bounds: p.bounds.map(|b| Bounds { min: turn.apply(b.min), max: turn.apply(b.max) }),
+        centroid: p.centroid.map(|c| turn.apply(c)),
+        inertia,
+        ..*p
+    }
 }
 
 /// Whether some triangle of `body` whose box meets the common box of `boxes` is counted

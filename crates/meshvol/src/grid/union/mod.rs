@@ -112,7 +112,7 @@ use crate::accumulate::CompensatedSum;
 use crate::grid::intersect::contact::{BoundarySums, BoundaryTotal, Frame};
 use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
-use crate::{mass_properties, Point, Surface};
+use crate::{mass_properties, MassProperties, Point, Surface};
 pub(crate) use bounds::Rule;
 use bounds::{Bodies, Cell};
 use rayon::prelude::*;
@@ -209,7 +209,8 @@ pub fn union_with<S: Surface>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<UnionVolume, UnionError> {
-    combine(bodies, Rule::Union, tolerance, false, progress).map(|(u, _)| u)
+    let properties: Vec<MassProperties> = bodies.iter().map(|b| mass_properties(b)).collect();
+    combine(bodies, &properties, Rule::Union, tolerance, false, progress).map(|(u, _)| u)
 }
 
 /// The bodies as [`combine`] measures them: turned outward, with the box its grid
@@ -227,7 +228,13 @@ struct Setup<'a, S> {
     flat: bool,
 }
 
-fn setup<S: Surface>(bodies: &[S], rule: Rule) -> Setup<'_, S> {
+/// The bodies as measured, from their mass properties (`properties[i]` of `bodies[i]`:
+/// the volume's sign and size, the triangles, the box).
+fn setup<'a, S: Surface>(
+    bodies: &'a [S],
+    properties: &[MassProperties],
+    rule: Rule,
+) -> Setup<'a, S> {
     let mut oriented = Vec::new();
     let mut flipped = Vec::new();
     let mut sum_of_volumes = CompensatedSum::default();
@@ -236,7 +243,7 @@ fn setup<S: Surface>(bodies: &[S], rule: Rule) -> Setup<'_, S> {
     let (mut common_min, mut common_max) = ([f64::NEG_INFINITY; 3], [f64::INFINITY; 3]);
     let mut triangles = 0;
     for (i, body) in bodies.iter().enumerate() {
-        let mp = mass_properties(body);
+        let mp = &properties[i];
         sum_of_volumes.add(mp.signed_volume.abs());
         largest = largest.max(mp.signed_volume.abs());
         smallest = smallest.min(mp.signed_volume.abs());
@@ -293,6 +300,7 @@ impl<S> Setup<'_, S> {
 /// column fails to resolve, and for no volume: then the volume is 0).
 pub(crate) fn combine<S: Surface>(
     bodies: &[S],
+    properties: &[MassProperties],
     rule: Rule,
     tolerance: f64,
     boundary: bool,
@@ -301,7 +309,7 @@ pub(crate) fn combine<S: Surface>(
     if bodies.is_empty() {
         return Err(UnionError::NoBodies);
     }
-    let setup = setup(bodies, rule);
+    let setup = setup(bodies, properties, rule);
     let (min, max) = (setup.min, setup.max);
     let Setup { sum_of_volumes, largest, smallest, .. } = setup;
     if setup.flat {
@@ -350,6 +358,7 @@ pub(crate) fn combine<S: Surface>(
     let mut upper = vec![0.0; columns];
     let mut level = Vec::new();
     let mut open_columns = Vec::new();
+    let mut cells_resolved_exactly_first = 0;
     for c in 0..columns {
         let (i, j) = (c / grid.counts[1], c % grid.counts[1]);
         let mut has_open = false;
@@ -369,6 +378,27 @@ pub(crate) fn combine<S: Surface>(
         }
         if has_open {
             open_columns.push(c);
+        }
+    }
+    // With the boundary wanted, every column is resolved anyway (its kept pieces are
+    // the moments' and the interface's): those resolutions settle the open columns, and
+    // refinement, which only narrows what resolution then closes, is skipped. Where a
+    // column fails to resolve, the interval is found as without the boundary.
+    let mut sums = None;
+    if boundary {
+        if let Some((columns, total)) = resolve_every_column(&model, Frame::Identity, progress) {
+            for (c, (cells, resolved)) in columns.into_iter().enumerate() {
+                if upper[c] > lower[c] {
+                    let mut s = CompensatedSum::default();
+                    cells.iter().for_each(|&v| s.add(v));
+                    exact[c] = s.value();
+                    lower[c] = 0.0;
+                    upper[c] = 0.0;
+                    cells_resolved_exactly_first += resolved;
+                }
+            }
+            level.clear();
+            sums = Some(total);
         }
     }
     let total = |exact: &[f64], bound: &[f64]| {
@@ -442,7 +472,7 @@ pub(crate) fn combine<S: Surface>(
     }
     let gap = total(&upper, &[]) - total(&lower, &[]);
     let low = total(&exact, &lower);
-    let (mut cells_resolved_exactly, mut columns_unresolved) = (0, 0);
+    let (mut cells_resolved_exactly, mut columns_unresolved) = (cells_resolved_exactly_first, 0);
     if gap > tolerance * low.abs() {
         // Resolve every column that still holds an open leaf.
         let targets: Vec<usize> = (0..columns).filter(|&c| upper[c] > lower[c]).collect();
@@ -489,7 +519,6 @@ pub(crate) fn combine<S: Surface>(
     // Ordered for any input: per-column bounds are updated in place (rounding), and a
     // body that is not a solid makes the bounds meaningless (then it is listed).
     let (low, high) = (low.min(high), low.max(high));
-    let sums = if boundary { boundary_pass(&model, Frame::Identity, progress) } else { None };
     let volume = UnionVolume {
         lower: low - allowance,
         upper: high + allowance,
@@ -513,6 +542,22 @@ fn boundary_pass<S: Surface>(
     frame: Frame,
     progress: &dyn Progress,
 ) -> Option<BoundaryTotal> {
+    resolve_every_column(model, frame, progress).map(|(_, total)| total)
+}
+
+/// One column resolved exactly: its cells' volumes and how many open cells that resolved
+/// ([`Bodies::exact_column`]).
+type ResolvedColumn = (Vec<f64>, usize);
+
+/// Every column resolved exactly ([`Bodies::exact_column_with`]): per column its cells'
+/// volumes and how many open cells that resolved (empty for a column a turned frame
+/// skips), and the sums of the kept pieces ([`BoundarySums`] in `frame`; moments about
+/// the grid's origin) added in column order; `None` when some column cannot be resolved.
+fn resolve_every_column<S: Surface>(
+    model: &Bodies<'_, S>,
+    frame: Frame,
+    progress: &dyn Progress,
+) -> Option<(Vec<ResolvedColumn>, BoundaryTotal)> {
     let columns = model.grid.counts[0] * model.grid.counts[1];
     progress.stage(if frame == Frame::Identity { "moments" } else { "contact" });
     let done = Counter::new(progress, columns);
@@ -527,24 +572,27 @@ fn boundary_pass<S: Surface>(
                 })
             })
     };
-    let per_column: Vec<Option<BoundarySums>> = (0..columns)
+    let per_column: Vec<Option<(ResolvedColumn, BoundarySums)>> = (0..columns)
         .into_par_iter()
         .map(|c| {
             let mut sums = BoundarySums::new(frame);
             let resolved = if counts_here(c) {
-                model.exact_column_with(c, Some(&mut sums)).map(|_| sums)
+                model.exact_column_with(c, Some(&mut sums)).map(|cells| (cells, sums))
             } else {
-                Some(sums)
+                Some(((Vec::new(), 0), sums))
             };
             done.add(1);
             resolved
         })
         .collect();
     let mut total = BoundaryTotal::default();
-    for sums in per_column {
-        total.add(&sums?);
+    let mut cells = Vec::with_capacity(columns);
+    for column in per_column {
+        let (volumes, sums) = column?;
+        total.add(&sums);
+        cells.push(volumes);
     }
-    Some(total)
+    Some((cells, total))
 }
 
 /// [`boundary_pass`] over the combination of `bodies` (already turned into `frame`) on
@@ -552,17 +600,63 @@ fn boundary_pass<S: Surface>(
 /// a column fails to resolve.
 pub(crate) fn boundary_in_frame<S: Surface>(
     bodies: &[S],
+    properties: &[MassProperties],
     rule: Rule,
     frame: Frame,
     progress: &dyn Progress,
 ) -> Result<Option<BoundaryTotal>, UnionError> {
-    let setup = setup(bodies, rule);
+    let setup = setup(bodies, properties, rule);
     if setup.flat {
         return Ok(None);
     }
-    let grid = setup.grid()?;
+    let Some(grid) = counted_columns(bodies, frame, &setup.grid()?)? else {
+        return Ok(Some(BoundaryTotal::default()));
+    };
     let model = Bodies::new(setup.oriented, rule, grid, progress)?;
     Ok(boundary_pass(&model, frame, progress))
+}
+
+/// The columns of `full` that a turned `frame` needs: a turned pass adds up only the
+/// faces counted in it (a few steep ones), and a column's kept pieces depend on its own
+/// faces alone (the column–clamp method), so its grid is the block of `full`'s columns
+/// (all its layers) that covers the plan boxes of those faces, clipped to `full`;
+/// `None` when no such face meets `full`.
+fn counted_columns<S: Surface>(
+    bodies: &[S],
+    frame: Frame,
+    full: &Grid,
+) -> Result<Option<Grid>, GridError> {
+    let (min, max) = (full.origin, full.max());
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for body in bodies {
+        for f in 0..body.face_count() {
+            body.fan(f, |p, q, r| {
+                let (a, b) = (
+                    [0, 1, 2].map(|k| p[k].min(q[k]).min(r[k])),
+                    [0, 1, 2].map(|k| p[k].max(q[k]).max(r[k])),
+                );
+                if (0..3).all(|k| a[k] <= max[k] && b[k] >= min[k]) && frame.counts(p, q, r) {
+                    for k in 0..2 {
+                        lo[k] = lo[k].min(a[k]);
+                        hi[k] = hi[k].max(b[k]);
+                    }
+                }
+            });
+        }
+    }
+    if lo[0] > hi[0] {
+        return Ok(None);
+    }
+    // The full grid's column lines, one column of room for rounding either side.
+    let span = |k: usize| {
+        let cell = |v: f64| ((v - min[k]) / full.cell[k]).floor();
+        let first = (cell(lo[k]) - 1.0).max(0.0) as usize;
+        let end = ((cell(hi[k]) + 2.0).max(0.0) as usize).min(full.counts[k]);
+        (first, end.max(first + 1))
+    };
+    let ((i0, i1), (j0, j1)) = (span(0), span(1));
+    let origin = [min[0] + i0 as f64 * full.cell[0], min[1] + j0 as f64 * full.cell[1], min[2]];
+    Grid::new(origin, full.cell, [i1 - i0, j1 - j0, full.counts[2]]).map(Some)
 }
 
 /// The union's volume in every cell of `grid`: exact where at most one body touches a

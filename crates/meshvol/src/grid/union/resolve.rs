@@ -39,6 +39,11 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         let whole = Block::whole(self.grid.counts);
         let (i, j) = (c / ny, c % ny);
         let origin = [i as f64, j as f64];
+        // An intersection's column whose every cell some body misses keeps no piece.
+        let cells = &self.tally[c * nz..(c + 1) * nz];
+        if self.rule == Rule::Intersection && cells.iter().all(|t| t.settled) {
+            return Some((vec![0.0; nz], 0));
+        }
         let touch = self.column_touches(c);
         let m = self.bodies.len();
         let base = c * nz;
@@ -59,9 +64,11 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         // One pass over the column's triangles: each is a cutter of the open layers its
         // closed box meets (where its body touches), and a ray triangle of its body when
         // it is not vertical.
+        // A column without an open layer (most of the moments' pass) casts no ray and
+        // cuts nothing: its pieces are kept or dropped by their cells alone.
         let mut rays = Vec::with_capacity(m);
         let (x, y) = (i as f64, j as f64);
-        for (b, body) in self.bodies.iter().enumerate() {
+        for (b, body) in self.bodies.iter().enumerate().filter(|_| resolved > 0) {
             let mut tris = Vec::new();
             for &f in self.bins[b].column(c) {
                 body.fan(f as usize, |p, q, r| {
