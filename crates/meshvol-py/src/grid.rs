@@ -66,7 +66,8 @@ pub fn counts_of(cells: &Bound<'_, PyAny>) -> PyResult<[usize; 3]> {
 }
 
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
-/// arguments describe, or of the block `region` of it, as a `meshvol.Grid`.
+/// arguments describe, or of the block `region` of it, as a `meshvol.Grid`; the kernel's
+/// stages timed on `clock` when given.
 #[allow(clippy::too_many_arguments)]
 pub fn cell_volumes<'py, S: Surface>(
     py: Python<'py>,
@@ -77,6 +78,7 @@ pub fn cell_volumes<'py, S: Surface>(
     pitch: Option<&Bound<'py, PyAny>>,
     region: Option<&Bound<'py, PyAny>>,
     scale: &meshvol_report::units::Scale,
+    clock: Option<&crate::timings::Clock>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let spacing = match (cells, pitch) {
         (Some(_), Some(_)) => return Err(bad_argument("give cells or pitch, not both")),
@@ -95,7 +97,11 @@ pub fn cell_volumes<'py, S: Surface>(
     let (mut volumes, shape) = match region {
         None => {
             check_memory(grid.counts, 1, "grid").map_err(mesh_error)?;
-            (py.detach(|| grid::cell_volumes(mesh, &grid)).map_err(mesh_error)?, grid.counts)
+            let volumes = py.detach(|| match clock {
+                Some(clock) => grid::cell_volumes_with(mesh, &grid, clock),
+                None => grid::cell_volumes(mesh, &grid),
+            });
+            (volumes.map_err(mesh_error)?, grid.counts)
         }
         Some(region) => {
             let shape = region.clone().map(|r| r.len());

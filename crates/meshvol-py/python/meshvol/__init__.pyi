@@ -132,6 +132,7 @@ class Mesh:
         region: Optional[_ArrayLike] = None,
         units: Optional[str] = None,
         density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Grid:
         """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
         grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
@@ -165,10 +166,11 @@ class Mesh:
         plane: _Union[str, _ArrayLike],
         check: bool = True,
         units: Optional[str] = None,
+        density: Optional[_Density] = None,
         timings: bool = False,
     ) -> Section:
         """The cross-section by a plane: 'z=H', [point, normal] or (nx, ny, nz, d)
-        (`meshvol section`)."""
+        (`meshvol section`); density: a mass per area ('62.8kg/m2'), mass a sheet's."""
     def bodies(self, check: bool = True) -> list[Mesh]:
         """The solid's bodies as meshes (each outermost shell with its cavities)."""
     def triangulated(self) -> Mesh:
@@ -424,6 +426,12 @@ class AreaProperties:
     """The second moments as `meshvol area --json` nests them; None without area."""
     rings: list[dict[str, Any]]
     warnings: list[str]
+    density: float
+    """With density=: as given (else absent)."""
+    density_unit: Optional[str]
+    mass: float
+    """With density=: the mass (else absent)."""
+    mass_unit: Optional[str]
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol area --json`."""
     @property
@@ -478,6 +486,13 @@ class CutFill:
     design_area: Optional[float]
     grid: Optional[dict[str, list[Any]]]
     warnings: list[str]
+    density: float
+    """With density=: as given (else absent)."""
+    density_unit: Optional[str]
+    mass: float
+    """With density=: the mass (else absent)."""
+    mass_unit: Optional[str]
+    timings: _Timings
     @property
     def footprint_bounds(self) -> Optional[_F64]:
         """Shape (2, 2): [[x0, y0], [x1, y1]]; None without a footprint."""
@@ -509,6 +524,13 @@ class Hull:
     file: Optional[str]
     format: Optional[str]
     warnings: list[str]
+    density: float
+    """With density=: as given (else absent)."""
+    density_unit: Optional[str]
+    mass: float
+    """With density=: the mass (else absent)."""
+    mass_unit: Optional[str]
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol hull --json`."""
     @property
@@ -532,6 +554,12 @@ class Section:
     open_chains: int
     units: Optional[dict[str, Any]]
     warnings: list[str]
+    density: float
+    """With density=: as given (else absent)."""
+    density_unit: Optional[str]
+    mass: float
+    """With density=: the mass (else absent)."""
+    mass_unit: Optional[str]
     @property
     def centroid(self) -> Optional[_F64]:
         """Shape (2,), in the plane's coordinates; None without area."""
@@ -575,6 +603,9 @@ class Grid:
         """Shape (2, 3): the box the cells cover."""
     @property
     def fraction(self) -> bool: ...
+    @property
+    def timings(self) -> _Timings:
+        """With Mesh.grid(timings=True): the stages (else absent)."""
     @property
     def cell_volume(self) -> float: ...
     @property
@@ -646,11 +677,15 @@ def polygon_area(
     exterior: _Union[_ArrayLike, Mapping[str, Any], Any],
     holes: Optional[Iterable[_ArrayLike]] = None,
     units: Optional[str] = None,
+    density: Optional[_Density] = None,
 ) -> AreaProperties:
     """Area properties of a polygon with holes, or of a GeoJSON (Multi)Polygon."""
 
 def convex_hull(
-    points: _ArrayLike, units: Optional[str] = None, density: Optional[_Density] = None
+    points: _ArrayLike,
+    units: Optional[str] = None,
+    density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> Hull:
     """The convex hull of an (n, 3) point array (`meshvol hull`)."""
 
@@ -678,5 +713,7 @@ def cutfill(
     cells: Optional[_ArrayLike] = None,
     pitch: Optional[float] = None,
     units: Optional[str] = None,
+    density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> CutFill:
     """Cut and fill between an existing surface and a design or level (`meshvol cutfill`)."""
