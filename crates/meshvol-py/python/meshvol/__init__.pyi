@@ -426,12 +426,6 @@ class AreaProperties:
     """The second moments as `meshvol area --json` nests them; None without area."""
     rings: list[dict[str, Any]]
     warnings: list[str]
-    density: float
-    """With density=: as given (else absent)."""
-    density_unit: Optional[str]
-    mass: float
-    """With density=: the mass (else absent)."""
-    mass_unit: Optional[str]
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol area --json`."""
     @property
@@ -486,12 +480,6 @@ class CutFill:
     design_area: Optional[float]
     grid: Optional[dict[str, list[Any]]]
     warnings: list[str]
-    density: float
-    """With density=: as given (else absent)."""
-    density_unit: Optional[str]
-    mass: float
-    """With density=: the mass (else absent)."""
-    mass_unit: Optional[str]
     timings: _Timings
     @property
     def footprint_bounds(self) -> Optional[_F64]:
@@ -524,12 +512,6 @@ class Hull:
     file: Optional[str]
     format: Optional[str]
     warnings: list[str]
-    density: float
-    """With density=: as given (else absent)."""
-    density_unit: Optional[str]
-    mass: float
-    """With density=: the mass (else absent)."""
-    mass_unit: Optional[str]
     timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol hull --json`."""
@@ -554,12 +536,6 @@ class Section:
     open_chains: int
     units: Optional[dict[str, Any]]
     warnings: list[str]
-    density: float
-    """With density=: as given (else absent)."""
-    density_unit: Optional[str]
-    mass: float
-    """With density=: the mass (else absent)."""
-    mass_unit: Optional[str]
     @property
     def centroid(self) -> Optional[_F64]:
         """Shape (2,), in the plane's coordinates; None without area."""
