@@ -28,10 +28,6 @@ dist=$root/target/dist
 what=${1:-all}
 version=$(sed -n 's/^version = "\(.*\)"$/\1/p' Cargo.toml | head -n 1)
 mkdir -p "$dist"
-# No debug info in release artifacts (the workspace's release profile keeps line tables
-# for profiling); strip what is left of the symbols.
-export CARGO_PROFILE_RELEASE_DEBUG=0
-export CARGO_PROFILE_RELEASE_STRIP=symbols
 
 size() { printf '  %-72s %6s\n' "$(basename "$1")" "$(du -h "$1" | cut -f1)"; }
 
@@ -49,9 +45,9 @@ binary() {
             exit 1
         fi
     fi
-    cargo build --release --locked -p meshvol-cli --target "$target"
+    cargo build --profile dist --locked -p meshvol-cli --target "$target"
     local out=$dist/meshvol-$version-$target
-    cp "target/$target/release/meshvol" "$out"
+    cp "target/$target/dist/meshvol" "$out"
     strip "$out"
     # Static, and it runs: the README's first command.
     if ldd "$out" >/dev/null 2>&1 && ! ldd "$out" 2>&1 | grep -q "statically linked"; then
@@ -71,7 +67,7 @@ wheel() {
         cp "$requirements" "$venv/requirements-installed.txt"
     fi
     rm -f "$dist"/meshvol-*.whl
-    PATH=$venv/bin:$PATH "$venv/bin/maturin" build --release --locked --strip --zig \
+    PATH=$venv/bin:$PATH "$venv/bin/maturin" build --profile dist --locked --strip --zig \
         --compatibility manylinux2014 --manifest-path crates/meshvol-py/Cargo.toml \
         --out "$dist"
     # It installs and measures (in target/dist-venv, with the pinned NumPy).

@@ -95,6 +95,11 @@ def test_grid_stages():
 def test_unchecked_is_one_stage():
     (stage,) = sphere().mass_properties(check=False, timings=True).timings
     assert stage["stage"] == "measuring"
+    # A check's mass properties: the check is done, measuring is all that is left.
+    (stage,) = sphere().check().mass_properties(timings=True).timings
+    assert stage["stage"] == "measuring"
+    (stage,) = meshvol.polygon_area([[0, 0], [1, 0], [1, 1]], timings=True).timings
+    assert stage["stage"] == "measuring" and stage["wall_s"] >= 0 and stage["cpu_s"] >= 0
 
 
 @pytest.mark.skipif(not COMMAND, reason="MESHVOL_BIN names no meshvol command to compare with")

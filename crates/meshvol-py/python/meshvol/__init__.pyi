@@ -300,7 +300,11 @@ class Check(_CheckFacts):
     intersection_examples: list[Tuple[int, int]]
     repairs: Tuple[int, int, int]
     def mass_properties(
-        self, density: _Density = 1.0, exact: bool = False, units: Optional[str] = None
+        self,
+        density: _Density = 1.0,
+        exact: bool = False,
+        units: Optional[str] = None,
+        timings: bool = False,
     ) -> MassProperties:
         """Mass properties of the repaired solid (`meshvol volume`)."""
     def solid_mesh(self, caps: bool = False) -> Mesh:
@@ -426,6 +430,7 @@ class AreaProperties:
     """The second moments as `meshvol area --json` nests them; None without area."""
     rings: list[dict[str, Any]]
     warnings: list[str]
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol area --json`."""
     @property
@@ -654,6 +659,7 @@ def polygon_area(
     holes: Optional[Iterable[_ArrayLike]] = None,
     units: Optional[str] = None,
     density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> AreaProperties:
     """Area properties of a polygon with holes, or of a GeoJSON (Multi)Polygon."""
 
