@@ -14,7 +14,7 @@
 # Needs: rustup (the musl target is added), musl-gcc for mimalloc's C code (apt-get
 # install musl-tools, done here when running as root on Debian/Ubuntu), python3 with
 # venv. maturin and zig come from PyPI, pinned in crates/meshvol-py/requirements-dist.txt,
-# into target/dist-venv (once). Cargo profile `dist`: the release profile's code (thin
+# into target/dist-venv (once). Cargo profile `release-dist`: the release profile's code (thin
 # LTO, one codegen unit) without debug info (the 48 MB of a plain `cargo build
 # --release`), stripped.
 #
@@ -47,9 +47,9 @@ binary() {
             exit 1
         fi
     fi
-    cargo build --profile dist --locked -p meshvol-cli --target "$target"
+    cargo build --profile release-dist --locked -p meshvol-cli --target "$target"
     local out=$dist/meshvol-$version-$target
-    cp "target/$target/dist/meshvol" "$out"
+    cp "target/$target/release-dist/meshvol" "$out"
     strip "$out"
     # Static, and it runs: the README's first command.
     if ldd "$out" >/dev/null 2>&1 && ! ldd "$out" 2>&1 | grep -q "statically linked"; then
@@ -69,7 +69,7 @@ wheel() {
         cp "$requirements" "$venv/requirements-installed.txt"
     fi
     rm -f "$dist"/meshvol-*.whl
-    PATH=$venv/bin:$PATH "$venv/bin/maturin" build --profile dist --locked --strip --zig \
+    PATH=$venv/bin:$PATH "$venv/bin/maturin" build --profile release-dist --locked --strip --zig \
         --compatibility manylinux2014 --manifest-path crates/meshvol-py/Cargo.toml \
         --out "$dist"
     # It installs and measures (in target/dist-venv, with the pinned NumPy).
@@ -88,4 +88,4 @@ case $what in
 esac
 
 echo "target/dist:"
-for f in "$dist"/*; do size "$f"; done
+for f in "$dist"/meshvol-*; do size "$f"; done
