@@ -14,15 +14,16 @@
 # Needs: rustup (the musl target is added), musl-gcc for mimalloc's C code (apt-get
 # install musl-tools, done here when running as root on Debian/Ubuntu), python3 with
 # venv. maturin and zig come from PyPI, pinned in crates/meshvol-py/requirements-dist.txt,
-# into target/dist-venv (once). Cargo profile `release-dist`: the release profile's code (thin
-# LTO, one codegen unit) without debug info (the 48 MB of a plain `cargo build
-# --release`), stripped.
+# into target/dist-venv (once). Cargo profile `release-dist`: the release profile's
+# code (thin LTO, one codegen unit) without debug info (the 48 MB of a plain `cargo
+# build --release`), stripped.
 #
 # Part of .ci/run, whose Python tests then run against this wheel (not a second, debug
-# one). Measured from nothing built (target/dist-venv made too) on the shared 2-core
-# machine, load average 3 to 7 from other builds, 2026-11-26: 8m50s wall, 6m26s user
-# (binary 4m39s, wheel 3m58s). The Python suite took 26 s on this wheel against 100 s
-# on the debug one.
+# one). Measured with nothing of the profile built (target/dist-venv already made) on the
+# shared 2-core machine, 2026-11-26 21:37 UTC, load average 2.5 to 7 from other builds:
+# 6m00s wall, 5m32s user + 21 s system (binary 3m26s, wheel 2m30s); at 20:15 UTC with
+# target/dist-venv made too, load 3 to 7: 8m50s. The Python suite took 15 to 26 s on this
+# wheel against 100 s on the debug one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
