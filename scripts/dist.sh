@@ -14,13 +14,16 @@
 # Needs: rustup (the musl target is added), musl-gcc for mimalloc's C code (apt-get
 # install musl-tools, done here when running as root on Debian/Ubuntu), python3 with
 # venv. maturin and zig come from PyPI, pinned in crates/meshvol-py/requirements-dist.txt,
-# into target/dist-venv (once). Release profile without debug info (the 48 MB of a
-# plain `cargo build --release`), then stripped.
+# into target/dist-venv (once). Cargo profile `release-dist`: the release profile's
+# code (thin LTO, one codegen unit) without debug info (the 48 MB of a plain `cargo
+# build --release`), stripped.
 #
-# Not part of .ci/run: a clean-clone .ci/run took 31 min wall (12m47s user) on 2 shared
-# cores without it (its budget is 15), and this script adds two release builds (thin
-# LTO, one codegen unit): 10m41s wall / 3m38s user for the binary and 6m51s / 2m36s for
-# the wheel, measured on the same machine. Run it in a release job.
+# Part of .ci/run, whose Python tests then run against this wheel (not a second, debug
+# one). Measured with nothing of the profile built (target/dist-venv already made) on the
+# shared 2-core machine, 2026-11-26 21:37 UTC, load average 2.5 to 7 from other builds:
+# 6m00s wall, 5m32s user + 21 s system (binary 3m26s, wheel 2m30s); at 20:15 UTC with
+# target/dist-venv made too, load 3 to 7: 8m50s. The Python suite took 15 to 26 s on this
+# wheel against 100 s on the debug one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -28,10 +31,6 @@ dist=$root/target/dist
 what=${1:-all}
 version=$(sed -n 's/^version = "\(.*\)"$/\1/p' Cargo.toml | head -n 1)
 mkdir -p "$dist"
-# No debug info in release artifacts (the workspace's release profile keeps line tables
-# for profiling); strip what is left of the symbols.
-export CARGO_PROFILE_RELEASE_DEBUG=0
-export CARGO_PROFILE_RELEASE_STRIP=symbols
 
 size() { printf '  %-72s %6s\n' "$(basename "$1")" "$(du -h "$1" | cut -f1)"; }
 
@@ -49,9 +48,9 @@ binary() {
             exit 1
         fi
     fi
-    cargo build --release --locked -p meshvol-cli --target "$target"
+    cargo build --profile release-dist --locked -p meshvol-cli --target "$target"
     local out=$dist/meshvol-$version-$target
-    cp "target/$target/release/meshvol" "$out"
+    cp "target/$target/release-dist/meshvol" "$out"
     strip "$out"
     # Static, and it runs: the README's first command.
     if ldd "$out" >/dev/null 2>&1 && ! ldd "$out" 2>&1 | grep -q "statically linked"; then
@@ -71,7 +70,7 @@ wheel() {
         cp "$requirements" "$venv/requirements-installed.txt"
     fi
     rm -f "$dist"/meshvol-*.whl
-    PATH=$venv/bin:$PATH "$venv/bin/maturin" build --release --locked --strip --zig \
+    PATH=$venv/bin:$PATH "$venv/bin/maturin" build --profile release-dist --locked --strip --zig \
         --compatibility manylinux2014 --manifest-path crates/meshvol-py/Cargo.toml \
         --out "$dist"
     # It installs and measures (in target/dist-venv, with the pinned NumPy).
@@ -90,4 +89,4 @@ case $what in
 esac
 
 echo "target/dist:"
-for f in "$dist"/*; do size "$f"; done
+for f in "$dist"/meshvol-*; do size "$f"; done

@@ -8,6 +8,8 @@
 # CARGO_TARGET_DIR (default target/, so the dependencies `cargo test` built are reused),
 # packed as a wheel and reinstalled from the local file (no network after the first run).
 #
+# MESHVOL_WHEEL, when set, names a wheel to test instead (CI: the release wheel
+# scripts/dist.sh built from the same sources), so that no second wheel is built.
 # MESHVOL_BIN, when set (or when $CARGO_TARGET_DIR/debug/meshvol is newer than the
 # sources), names a meshvol command the tests compare the bindings' facts with.
 # Arguments are passed to pytest.
@@ -26,12 +28,16 @@ if ! cmp -s "$requirements" "$venv/requirements-installed.txt"; then
     cp "$requirements" "$venv/requirements-installed.txt"
 fi
 
-wheels=$CARGO_TARGET_DIR/py-wheels
-rm -rf "$wheels"
-"$venv/bin/maturin" build --quiet --profile dev --strip --interpreter "$venv/bin/python" \
-    --manifest-path crates/meshvol-py/Cargo.toml --out "$wheels"
+wheel=${MESHVOL_WHEEL:-}
+if [ -z "$wheel" ]; then
+    wheels=$CARGO_TARGET_DIR/py-wheels
+    rm -rf "$wheels"
+    "$venv/bin/maturin" build --quiet --profile dev --strip --interpreter "$venv/bin/python" \
+        --manifest-path crates/meshvol-py/Cargo.toml --out "$wheels"
+    wheel=$(echo "$wheels"/meshvol-*.whl)
+fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check --no-index --no-deps \
-    --force-reinstall "$wheels"/meshvol-*.whl
+    --force-reinstall "$wheel"
 
 if [ -z "${MESHVOL_BIN:-}" ]; then
     command=$CARGO_TARGET_DIR/debug/meshvol

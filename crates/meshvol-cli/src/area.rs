@@ -20,7 +20,7 @@ pub struct AreaArgs {
     #[arg(long)]
     json: bool,
     #[command(flatten)]
-    units: crate::units::LengthUnitArgs,
+    units: crate::units::AreaUnitArgs,
 }
 
 /// Runs the command.

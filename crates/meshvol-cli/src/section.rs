@@ -33,7 +33,7 @@ pub struct SectionArgs {
     #[arg(long, short, value_name = "OUT")]
     out: Option<PathBuf>,
     #[command(flatten)]
-    units: crate::units::LengthUnitArgs,
+    units: crate::units::AreaUnitArgs,
     #[command(flatten)]
     solid: crate::solid::SolidArgs,
 }

@@ -1,5 +1,6 @@
-//! `--units` and `--density`, the same on every measuring command; what they mean lives in
-//! the report layer (`meshvol_report::units`).
+//! `--units` and `--density`, the same on every measuring command (a mass per volume, or
+//! per area for the commands that measure areas); what they mean lives in the report
+//! layer (`meshvol_report::units`).
 
 use clap::Args;
 use meshvol_report::units::{Density, UnitOptions, UnitsArg};
@@ -18,8 +19,18 @@ pub struct UnitArgs {
     /// Density: VALUE (mass per reported volume unit) or VALUE with a unit, e.g.
     /// `7.85g/cm3`, `7850kg/m3`, `62.4lb/ft3` (mass units: mg, g, kg, t, oz, lb); a unit
     /// needs the file's length unit (--units). Adds the mass, with its unit.
-    #[arg(long, value_name = "RHO[UNIT]", allow_hyphen_values = true)]
+    #[arg(long, value_name = "RHO[UNIT]", allow_hyphen_values = true, value_parser = volume_density)]
     pub density: Option<Density>,
+}
+
+/// A density in mass per volume (or a bare number).
+fn volume_density(s: &str) -> Result<Density, String> {
+    s.parse::<Density>()?.of_volume()
+}
+
+/// A density in mass per area (or a bare number).
+fn area_density(s: &str) -> Result<Density, String> {
+    s.parse::<Density>()?.of_area()
 }
 
 impl UnitArgs {
@@ -29,19 +40,25 @@ impl UnitArgs {
     }
 }
 
-/// `--units` alone: for commands that measure areas (no volume, so no mass).
+/// `--units` and a density per area: for the commands that measure areas (`section`,
+/// `area`), whose mass is that of a sheet with the outline measured.
 #[derive(Args, Clone, Copy, Debug)]
-pub struct LengthUnitArgs {
+pub struct AreaUnitArgs {
     /// The file's length unit and the unit to report in: FILE[:REPORT], e.g. `mm`,
     /// `mm:cm`, `ft:yd`, or `:REPORT` to convert from the unit the file declares. File
     /// units: um, mm, cm, m, in, ft; REPORT may also be dm, km, yd (or acre-ft: areas in
     /// acres).
     #[arg(long, value_name = "FILE[:REPORT]")]
     pub units: Option<UnitsArg>,
+    /// Mass per area: VALUE (per reported area unit) or VALUE with a unit, e.g.
+    /// `62.8kg/m2` (an 8 mm steel plate), `0.27g/cm2`, `2lb/ft2`; a unit needs the
+    /// file's length unit (--units). Adds the mass of a sheet with this outline.
+    #[arg(long, value_name = "RHO[UNIT]", allow_hyphen_values = true, value_parser = area_density)]
+    pub density: Option<Density>,
 }
 
-impl LengthUnitArgs {
+impl AreaUnitArgs {
     pub fn options(&self) -> UnitOptions {
-        UnitOptions { units: self.units, density: None }
+        UnitOptions { units: self.units, density: self.density }
     }
 }

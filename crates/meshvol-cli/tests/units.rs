@@ -100,12 +100,40 @@ fn one_cube_in_three_units_is_one_cubic_metre_everywhere() {
         near(&v["area"], 1.0);
         near(&v["perimeter"], 4.0);
         near(&v["inertia"]["ix"], 1.0 / 12.0);
+        // A mass per area: a sheet of 62.8 kg/m² (8 mm of steel) cut to the 1 m² section.
+        let v = json(&[
+            "section",
+            &a,
+            "--plane",
+            &z,
+            "--units",
+            unit,
+            "--density",
+            "62.8kg/m2",
+            "--json",
+        ]);
+        near(&v["mass"], 62.8);
+        assert_eq!(
+            (v["mass_unit"].as_str(), v["density_unit"].as_str()),
+            (Some("kg"), Some("kg/m^2"))
+        );
 
         let wkt = format!("POLYGON((0 0, {s} 0, {s} {s}, 0 {s}, 0 0))");
         let poly = write(dir.path(), &format!("sq-{unit}.wkt"), wkt);
         let v = json(&["area", p(&poly), "--units", &format!("{unit}:m"), "--json"]);
         near(&v["area"], 1.0);
         near(&v["perimeter"], 4.0);
+        let v = json(&[
+            "area",
+            p(&poly),
+            "--units",
+            &format!("{unit}:cm"),
+            "--density",
+            "0.5g/cm2",
+            "--json",
+        ]);
+        near(&v["mass"], 5000.0); // 1 m² = 10⁴ cm², at 0.5 g/cm²
+        assert_eq!(v["mass_unit"], "g");
 
         let sheet = format!("v 0 0 0\nv {s} 0 0\nv {s} {s} 0\nv 0 {s} 0\nf 1 2 3\nf 1 3 4\n");
         let sheet = write(dir.path(), &format!("ground-{unit}.obj"), sheet);
@@ -166,6 +194,28 @@ fn bad_units_and_densities_are_refused() {
     for bad in ["0", "-2", "inf", "NaN", "0g/cm3", "1g/furlong"] {
         let out = meshvol(&["grid", &a, "--cells", "1,1,1", "--density", bad]);
         assert_eq!(out.status.code(), Some(2), "{bad}");
+    }
+    // A density of the other kind: per area for volumes, per volume for areas.
+    for (args, wanted) in [
+        (vec!["volume", a.as_str(), "--units", "mm", "--density", "62.8kg/m2"], "mass per volume"),
+        (
+            vec![
+                "section",
+                a.as_str(),
+                "--plane",
+                "z=1",
+                "--units",
+                "mm",
+                "--density",
+                "7.85g/cm3",
+            ],
+            "mass per area",
+        ),
+    ] {
+        let out = meshvol(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(wanted), "{err}");
     }
     // A density with a unit needs the file's length unit.
     let out = meshvol(&["volume", &a, "--density", "7.85g/cm3"]);

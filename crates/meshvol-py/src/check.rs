@@ -130,16 +130,22 @@ impl PyCheck {
     /// them by default (`meshvol volume` with this check's options): shells turned
     /// outward, cavities subtracted, degenerate and duplicate faces dropped, holes capped;
     /// signed_volume, faces and triangles are the surface's as wound, and warnings say
-    /// why the solid may not be the one meant.
-    #[pyo3(signature = (density = None, exact = false, units = None), text_signature = "(self, density=1.0, exact=False, units=None)")]
+    /// why the solid may not be the one meant. timings=True adds `timings`: one stage,
+    /// `measuring` (the check is this one, not run again).
+    #[pyo3(signature = (density = None, exact = false, units = None, timings = false), text_signature = "(self, density=1.0, exact=False, units=None, timings=False)")]
     fn mass_properties(
         &self,
         py: Python<'_>,
         density: Option<&Bound<'_, PyAny>>,
         exact: bool,
         units: Option<&str>,
+        timings: bool,
     ) -> PyResult<PyMassProperties> {
-        properties::measure(py, self.mesh.get(), Some(&self.check), density, exact, units)
+        let clock = timings.then(crate::timings::Clock::new);
+        crate::timings::stage(clock.as_ref(), "measuring");
+        let measured =
+            properties::measure(py, self.mesh.get(), Some(&self.check), density, exact, units)?;
+        measured.timed(clock.map(|c| c.finish()))
     }
 
     /// The repaired solid as a new welded Mesh (what `meshvol repair` writes): shells

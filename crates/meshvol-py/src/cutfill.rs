@@ -5,7 +5,7 @@ use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error, warn_all};
 use crate::mesh::{load, mesh_of, PyMesh};
 use meshvol::cutfill::CellCutFill;
-use meshvol_report::cutfill::{cutfill as report, Against, CutFillReport, Spacing};
+use meshvol_report::cutfill::{cutfill as report, cutfill_with, Against, CutFillReport, Spacing};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;
@@ -84,9 +84,12 @@ fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)>
 /// the plane z = Z. cells=(nx, ny) or pitch=p adds per-cell volumes over the common
 /// footprint's box (cut_cells, fill_cells). A surface that folds over itself in plan
 /// raises MeshError naming its faces. units as the command's --units ('m:yd': cubic
-/// yards, also for cut_cells and fill_cells; level and pitch in the files' units).
+/// yards, also for cut_cells and fill_cells; level and pitch in the files' units);
+/// density as its --density ('1.8t/m3'): `mass`, the mass of the fill. timings=True
+/// adds `timings`, the kernel's stages with their wall and CPU seconds.
 #[pyfunction]
-#[pyo3(signature = (existing, design = None, level = None, cells = None, pitch = None, units = None))]
+#[pyo3(signature = (existing, design = None, level = None, cells = None, pitch = None, units = None, density = None, timings = false))]
+#[allow(clippy::too_many_arguments)]
 pub fn cutfill(
     py: Python<'_>,
     existing: &Bound<'_, PyAny>,
@@ -95,8 +98,10 @@ pub fn cutfill(
     cells: Option<&Bound<'_, PyAny>>,
     pitch: Option<f64>,
     units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<PyCutFill> {
-    let options = crate::units::options(units, None)?;
+    let options = crate::units::options(units, density)?;
     let cells = cells
         .map(|c| crate::convert::int_argument(c, "cells", &[2], "(nx, ny)"))
         .transpose()?
@@ -127,8 +132,13 @@ pub fn cutfill(
         (None, Some(z)) => Against::Level(z),
         _ => return Err(bad_argument("give design=SURFACE or level=Z, not both")),
     };
+    let clock = timings.then(crate::timings::Clock::new);
+    crate::timings::stage(clock.as_ref(), "measuring");
     let (report, mut cells) = py
-        .detach(|| report(&existing.source, &existing.mesh, against, spacing))
+        .detach(|| match &clock {
+            Some(clock) => cutfill_with(&existing.source, &existing.mesh, against, spacing, clock),
+            None => report(&existing.source, &existing.mesh, against, spacing),
+        })
         .map_err(mesh_error)?;
     let mut files = vec![(existing.source.name(), existing.source.unit)];
     files.extend(design_mesh.map(|d| (d.source.name(), d.source.unit)));
@@ -145,5 +155,6 @@ pub fn cutfill(
         report.warnings.iter().filter(|w| !existing.source.warnings.contains(w)).cloned().collect()
     };
     warn_all(py, &new)?;
-    Ok(PyCutFill { fields: Fields::new(&report)?, report, cells })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyCutFill { fields, report, cells })
 }

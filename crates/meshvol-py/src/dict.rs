@@ -124,7 +124,7 @@ const COUNTS: [(&str, &str); 6] = [
 const DEPRECATED: [&str; 2] = ["vertices", "faces"];
 
 /// A JSON value as plain Python values: None, bool, int, float, str, list, dict.
-fn to_python<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
+pub fn to_python<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
     Ok(match v {
         Value::Null => py.None().into_bound(py),
         Value::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),

@@ -147,7 +147,8 @@ pub fn cut_cells<'py, S: Surface>(
 }
 
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
-/// arguments describe, or of the block `region` of it, as a `meshvol.Grid`.
+/// arguments describe, or of the block `region` of it, as a `meshvol.Grid`; the kernel's
+/// stages timed on `clock` when given.
 #[allow(clippy::too_many_arguments)]
 pub fn cell_volumes<'py, S: Surface>(
     py: Python<'py>,
@@ -158,6 +159,7 @@ pub fn cell_volumes<'py, S: Surface>(
     pitch: Option<&Bound<'py, PyAny>>,
     region: Option<&Bound<'py, PyAny>>,
     scale: &meshvol_report::units::Scale,
+    clock: Option<&crate::timings::Clock>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let grid = grid_of(py, mesh, cells, bounds, pitch)?;
     let region = region.map(region_of).transpose()?;
@@ -165,7 +167,11 @@ pub fn cell_volumes<'py, S: Surface>(
     let (mut volumes, shape) = match region {
         None => {
             check_memory(grid.counts, 1, "grid").map_err(mesh_error)?;
-            (py.detach(|| grid::cell_volumes(mesh, &grid)).map_err(mesh_error)?, grid.counts)
+            let volumes = py.detach(|| match clock {
+                Some(clock) => grid::cell_volumes_with(mesh, &grid, clock),
+                None => grid::cell_volumes(mesh, &grid),
+            });
+            (volumes.map_err(mesh_error)?, grid.counts)
         }
         Some(region) => {
             let shape = region.clone().map(|r| r.len());

@@ -46,10 +46,20 @@ impl PyHull {
     }
 }
 
-/// The hull of `points`, an (n, 3) array, with the GIL released.
-fn hull_of(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<(usize, Hull)> {
+/// The hull of `points`, an (n, 3) array, with the GIL released; the kernel's stages
+/// timed on `clock` when given.
+fn hull_of(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    clock: Option<&crate::timings::Clock>,
+) -> PyResult<(usize, Hull)> {
     let points = coordinates::<3>(points, "points")?;
-    let hull = py.detach(|| hull::convex_hull(&points)).map_err(|e| match e {
+    crate::timings::stage(clock, "measuring");
+    let hull = py.detach(|| match clock {
+        Some(clock) => hull::convex_hull_with(&points, clock),
+        None => hull::convex_hull(&points),
+    });
+    let hull = hull.map_err(|e| match e {
         HullError::NonFinite { .. } => invalid(e),
         e => mesh_error(e),
     })?;
@@ -59,17 +69,20 @@ fn hull_of(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<(usize, Hull)>
 /// The convex hull of points, an (n, 3) array: its mesh, volume, area and centroid.
 /// Degenerate sets (no points, all equal, collinear, coplanar) have volume 0 and say why.
 /// units and density as the command's --units and --density (the mesh stays in the
-/// points' coordinates).
+/// points' coordinates). timings=True adds `timings`, the kernel's stages with their
+/// wall and CPU seconds.
 #[pyfunction]
-#[pyo3(signature = (points, units = None, density = None))]
+#[pyo3(signature = (points, units = None, density = None, timings = false))]
 pub fn convex_hull(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
     units: Option<&str>,
     density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<PyHull> {
     let options = crate::units::options(units, density)?;
-    let (count, hull) = hull_of(py, points)?;
+    let clock = timings.then(crate::timings::Clock::new);
+    let (count, hull) = hull_of(py, points, clock.as_ref())?;
     let report = meshvol_report::hull::hull(None, None, count, &hull, Vec::new())
         .in_units(&options, None)
         .map_err(mesh_error)?;
@@ -77,14 +90,15 @@ pub fn convex_hull(
         Some(m) => Some(Py::new(py, PyMesh::from(m))?),
         None => None,
     };
-    Ok(PyHull { fields: Fields::new(&report)?, report, mesh })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyHull { fields, report, mesh })
 }
 
 /// The volume of the convex hull of points, an (n, 3) array (0 for degenerate sets):
 /// convex_hull(points).volume.
 #[pyfunction]
 pub fn hull_volume(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<f64> {
-    Ok(hull_of(py, points)?.1.volume())
+    Ok(hull_of(py, points, None)?.1.volume())
 }
 
 crate::dict::report_methods!(PyHull, "Hull");

@@ -391,7 +391,10 @@ impl PyMesh {
     /// units as the command's --units ('mm:mL': values in mL, origin and spacing in the
     /// report's length unit; bounds and pitch are given in the file's units); density
     /// makes the values masses (a mass per cell; not with fraction=True).
-    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None, units = None, density = None))]
+    ///
+    /// timings=True adds `timings` to the Grid: the check's stages, then the kernel's, as
+    /// in mass_properties.
+    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None, units = None, density = None, timings = false))]
     #[allow(clippy::too_many_arguments)]
     fn grid<'py>(
         &self,
@@ -404,6 +407,7 @@ impl PyMesh {
         region: Option<&Bound<'py, PyAny>>,
         units: Option<&str>,
         density: Option<&Bound<'py, PyAny>>,
+        timings: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         properties::require_faces(&self.mesh)?;
         let options = crate::units::options(units, density)?;
@@ -412,12 +416,19 @@ impl PyMesh {
         }
         let (scale, warning) = meshvol_report::units::Scale::resolve(&options, self.source.unit)
             .map_err(crate::errors::bad_argument)?;
-        let subject = self.subject(py, check)?;
-        let mut warnings = subject.warnings();
-        warnings.extend(warning);
-        self.warn(py, &warnings)?;
-        let measured = subject.measured();
-        grid::cell_volumes(py, &measured, cells, bounds, fraction, pitch, region, &scale)
+        let clock = timings.then(crate::timings::Clock::new);
+        let grid = self.with_subject(py, check, clock.as_ref(), |subject| {
+            let mut warnings = subject.warnings();
+            warnings.extend(warning);
+            self.warn(py, &warnings)?;
+            let measured = subject.measured();
+            let c = clock.as_ref();
+            grid::cell_volumes(py, &measured, cells, bounds, fraction, pitch, region, &scale, c)
+        })?;
+        if let Some(clock) = clock {
+            grid.setattr("_timings", crate::timings::to_python(py, &clock.finish())?)?;
+        }
+        Ok(grid)
     }
 
     /// The cut-cell geometry of the solid on a grid (`meshvol grid --moments`): a

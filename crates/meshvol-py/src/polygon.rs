@@ -185,16 +185,23 @@ fn polygons_of_geojson(geometry: &Bound<'_, PyAny>) -> PyResult<Vec<Polygon>> {
 /// Polygon or MultiPolygon geometry can be given: a dict, or any object with
 /// `__geo_interface__` (shapely and geopandas geometries).
 ///
-/// units as the command's --units ('m:ft': areas in ft²).
+/// units as the command's --units ('m:ft': areas in ft²); density as its --density: a
+/// mass per area ('62.8kg/m2' with units naming the file's length unit, or a number per
+/// reported area unit), giving `mass`, that of a sheet with this outline. timings=True
+/// adds `timings`: one stage, `measuring`.
 #[pyfunction]
-#[pyo3(signature = (exterior, holes = None, units = None))]
+#[pyo3(signature = (exterior, holes = None, units = None, density = None, timings = false))]
 pub fn polygon_area(
     py: Python<'_>,
     exterior: &Bound<'_, PyAny>,
     holes: Option<&Bound<'_, PyAny>>,
     units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<PyAreaProperties> {
-    let options = crate::units::options(units, None)?;
+    let options = crate::units::area_options(units, density)?;
+    let clock = timings.then(crate::timings::Clock::new);
+    crate::timings::stage(clock.as_ref(), "measuring");
     let geometry = if exterior.hasattr("__geo_interface__")? {
         Some(exterior.getattr("__geo_interface__")?)
     } else if exterior.cast::<PyDict>().is_ok() {
@@ -231,7 +238,8 @@ pub fn polygon_area(
         (area(None, None, &features, Vec::new()), issues)
     });
     let report = report.map_err(mesh_error)?.in_units(&options, None).map_err(mesh_error)?;
-    Ok(PyAreaProperties { fields: Fields::new(&report)?, report, issues })
+    let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
+    Ok(PyAreaProperties { fields, report, issues })
 }
 
 crate::dict::report_methods!(PyAreaProperties, "AreaProperties");

@@ -180,19 +180,22 @@ impl PyMesh {
     /// d) for the plane n·x = d (as Mesh.below takes it). check=True (the default) cuts
     /// the checked solid, as the command does; check=False the surface as wound. units
     /// as in mass_properties ('mm:cm'; the outline stays in the file's coordinates).
+    /// density as the command's --density: a mass per area ('62.8kg/m2', or a number
+    /// per reported area unit), giving `mass`, that of a sheet with the section's outline.
     /// timings=True adds `timings`, as in mass_properties.
-    #[pyo3(signature = (plane, check = true, units = None, timings = false))]
+    #[pyo3(signature = (plane, check = true, units = None, density = None, timings = false))]
     fn section(
         &self,
         py: Python<'_>,
         plane: &Bound<'_, PyAny>,
         check: bool,
         units: Option<&str>,
+        density: Option<&Bound<'_, PyAny>>,
         timings: bool,
     ) -> PyResult<PySection> {
         require_faces(&self.mesh)?;
         let plane = plane_of(plane)?;
-        let options = crate::units::options(units, None)?;
+        let options = crate::units::area_options(units, density)?;
         let clock = timings.then(crate::timings::Clock::new);
         let (report, polygons) = self.with_subject(py, check, clock.as_ref(), |subject| {
             Ok(py.detach(|| section(&subject, &plane)))

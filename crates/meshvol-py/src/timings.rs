@@ -3,6 +3,7 @@
 //! (the core's progress hook names them), then the measuring.
 
 use meshvol_report::timings::StageTiming;
+use pyo3::prelude::*;
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -60,4 +61,10 @@ pub fn stage(clock: Option<&Clock>, stage: &str) {
     if let Some(c) = clock {
         c.start(stage);
     }
+}
+
+/// The stages as Python sees them in every report: a list of {stage, wall_s, cpu_s}.
+pub fn to_python<'py>(py: Python<'py>, stages: &[StageTiming]) -> PyResult<Bound<'py, PyAny>> {
+    let value = serde_json::to_value(stages).map_err(crate::errors::mesh_error)?;
+    crate::dict::to_python(py, &value)
 }

@@ -1,5 +1,6 @@
 //! `units=` and `density=` as every measuring method takes them: the command's
-//! `--units FILE[:REPORT]` and `--density VALUE[UNIT]`, converted by the report layer
+//! `--units FILE[:REPORT]` and `--density VALUE[UNIT]` (a mass per volume; per area for
+//! the methods that measure areas), converted by the report layer
 //! (`meshvol_report::units`), so that Python reports what the command reports.
 
 use crate::errors::bad_argument;
@@ -10,6 +11,11 @@ use pyo3::prelude::*;
 /// A density: a positive number (mass per reported volume unit), or text with a unit
 /// as the command's --density takes it ('7.85g/cm3', '7850kg/m3').
 pub fn density(d: &Bound<'_, PyAny>) -> PyResult<Density> {
+    any_density(d)?.of_volume().map_err(bad_argument)
+}
+
+/// A number, or a mass per volume or per area.
+fn any_density(d: &Bound<'_, PyAny>) -> PyResult<Density> {
     if let Ok(text) = d.extract::<String>() {
         return text.parse::<Density>().map_err(bad_argument);
     }
@@ -27,6 +33,21 @@ pub fn density(d: &Bound<'_, PyAny>) -> PyResult<Density> {
 pub fn options(units: Option<&str>, density: Option<&Bound<'_, PyAny>>) -> PyResult<UnitOptions> {
     let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
     let density = density.filter(|d| !d.is_none()).map(self::density).transpose()?;
+    Ok(UnitOptions { units, density })
+}
+
+/// The unit options of the methods that measure areas (`Mesh.section`,
+/// `meshvol.polygon_area`): `density` is a mass per area ('62.8kg/m2', or a number per
+/// reported area unit), the mass that of a sheet with the outline measured.
+pub fn area_options(
+    units: Option<&str>,
+    density: Option<&Bound<'_, PyAny>>,
+) -> PyResult<UnitOptions> {
+    let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
+    let density = density
+        .filter(|d| !d.is_none())
+        .map(|d| any_density(d)?.of_area().map_err(bad_argument))
+        .transpose()?;
     Ok(UnitOptions { units, density })
 }
 

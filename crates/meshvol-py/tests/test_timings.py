@@ -6,6 +6,7 @@ import os
 import subprocess
 import time
 
+import numpy as np
 import pytest
 
 import meshvol
@@ -45,9 +46,60 @@ def test_stages_add_up_to_the_call(call):
     assert sum(s["wall_s"] for s in stages) <= elapsed
 
 
+def terrain(n=24):
+    """A height field z = sin x cos y over n x n squares, two triangles each."""
+    x, y = np.meshgrid(np.linspace(0, 3, n + 1), np.linspace(0, 3, n + 1), indexing="ij")
+    vertices = np.column_stack([x.ravel(), y.ravel(), (np.sin(x) * np.cos(y)).ravel()])
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    a = (i * (n + 1) + j).ravel()
+    faces = np.concatenate([np.column_stack([a, a + n + 1, a + n + 2]),
+                            np.column_stack([a, a + n + 2, a + 1])])
+    return meshvol.Mesh(vertices, faces)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda t: meshvol.convex_hull(sphere().vertices, timings=t),
+        lambda t: meshvol.cutfill(terrain(), level=0.0, timings=t),
+    ],
+)
+def test_the_kernels_stages(call):
+    # No check: the stages are the kernel's, after the arguments are read ("measuring").
+    assert "timings" not in call(False).to_dict()
+    start = time.perf_counter()
+    report = call(True)
+    elapsed = time.perf_counter() - start
+    stages = report.timings
+    assert stages == report.to_dict()["timings"] and list(report.to_dict())[-1] == "timings"
+    assert [set(s) for s in stages] == [{"stage", "wall_s", "cpu_s"}] * len(stages)
+    assert stages[0]["stage"] == "measuring" and len(stages) >= 2
+    assert all(s["wall_s"] >= 0 and s["cpu_s"] >= 0 for s in stages)
+    assert sum(s["wall_s"] for s in stages) <= elapsed
+
+
+def test_grid_stages():
+    mesh = sphere()
+    assert not hasattr(mesh.grid(cells=(4, 4, 4)), "timings")
+    start = time.perf_counter()
+    grid = mesh.grid(cells=(4, 4, 4), timings=True)
+    elapsed = time.perf_counter() - start
+    names = [s["stage"] for s in grid.timings]
+    assert names[0] == "checking" and "welding" in names and "measuring" in names
+    assert names[-1] != "measuring"  # the kernel's stages follow
+    assert sum(s["wall_s"] for s in grid.timings) <= elapsed
+    # The same cells as without timings.
+    assert np.array_equal(grid.values, mesh.grid(cells=(4, 4, 4)).values)
+
+
 def test_unchecked_is_one_stage():
     (stage,) = sphere().mass_properties(check=False, timings=True).timings
     assert stage["stage"] == "measuring"
+    # A check's mass properties: the check is done, measuring is all that is left.
+    (stage,) = sphere().check().mass_properties(timings=True).timings
+    assert stage["stage"] == "measuring"
+    (stage,) = meshvol.polygon_area([[0, 0], [1, 0], [1, 1]], timings=True).timings
+    assert stage["stage"] == "measuring" and stage["wall_s"] >= 0 and stage["cpu_s"] >= 0
 
 
 @pytest.mark.skipif(not COMMAND, reason="MESHVOL_BIN names no meshvol command to compare with")

@@ -58,6 +58,45 @@ def test_cutfill_in_cubic_yards():
     assert float(r.cut_cells.sum()) == pytest.approx(100.0 / cubic_yard)
 
 
+@pytest.mark.parametrize("unit", ["mm", "in", "m"])
+def test_masses_of_sections_polygons_and_fill(unit):
+    # The section at half height and the 20 x 30 mm rectangle: 6 cm² = 6e-4 m²; a sheet
+    # of 62.8 kg/m² (8 mm of steel) with that outline weighs 62.8 * 6e-4 kg.
+    mesh, half = part(unit), 20.0 / MM[unit]
+    section = mesh.section(f"z={half}", units=f"{unit}:cm", density="62.8kg/m2")
+    assert section.area == pytest.approx(6.0)
+    assert section.mass == pytest.approx(62.8 * 6e-4) and section.mass_unit == "kg"
+    assert section.density_unit == "kg/m^2" and section.to_dict()["mass"] == section.mass
+    rectangle = np.array([[0, 0], [20, 0], [20, 30], [0, 30]]) / MM[unit]
+    plate = meshvol.polygon_area(rectangle, units=unit, density="62.8kg/m2")
+    assert plate.mass == pytest.approx(62.8 * 6e-4) and plate.mass_unit == "kg"
+    # A bare number is mass per reported area unit.
+    assert mesh.section(f"z={half}", units=f"{unit}:cm", density=2.0).mass == pytest.approx(12.0)
+    # 10 x 10 m of ground at z = 1 m filled to the level z = 2 m: 100 m³ of fill, at
+    # 1.8 t/m³ 180 t, whatever unit the coordinates are in.
+    m = 1000.0 / MM[unit]
+    vertices = np.array([[0, 0, 1], [10, 0, 1], [10, 10, 1], [0, 10, 1]], dtype=float) * m
+    ground = meshvol.Mesh(vertices, [[0, 1, 2], [0, 2, 3]])
+    r = meshvol.cutfill(ground, level=2.0 * m, units=f"{unit}:m3", density="1.8t/m3")
+    assert (r.cut, r.fill) == (0.0, pytest.approx(100.0))
+    assert r.mass == pytest.approx(180.0) and r.mass_unit == "t"
+
+
+def test_a_density_of_the_wrong_kind_is_refused():
+    mesh = part("mm")
+    with pytest.raises(ValueError, match="mass per volume; this command measures areas"):
+        mesh.section("z=20", units="mm", density="7.85g/cm3")
+    with pytest.raises(ValueError, match="mass per area; this command measures volumes"):
+        mesh.mass_properties(units="mm", density="62.8kg/m2")
+    with pytest.raises(ValueError, match="mass per area"):
+        meshvol.cutfill(mesh, level=0.0, units="mm", density="62.8kg/m2")
+    with pytest.raises(ValueError, match="density must be a positive number"):
+        meshvol.polygon_area([[0, 0], [1, 0], [1, 1]], density=-1.0)
+    for bad in (0.0, float("nan"), float("inf"), "0kg/m2", "-2kg/m3"):
+        with pytest.raises(ValueError, match="positive number"):
+            mesh.section("z=20", density=bad)
+
+
 def test_bad_units_and_densities():
     mesh = part("mm")
     with pytest.raises(ValueError, match="furlong|unknown|known"):
@@ -88,3 +127,5 @@ def test_the_commands_reports(tmp_path):
     assert mesh.below(plane=(0, 0, 1, 20), units="mm:m", density="1025kg/m3").to_dict() == command(
         "below", str(path), "--plane", "0,0,1,20", "--units", "mm:m", "--density", "1025kg/m3")
     assert mesh.check(units="mm:cm").to_dict() == command("check", str(path), "--units", "mm:cm")
+    assert mesh.section("z=20", units="mm:cm", density="62.8kg/m2").to_dict() == command(
+        "section", str(path), "--plane", "z=20", "--units", "mm:cm", "--density", "62.8kg/m2")

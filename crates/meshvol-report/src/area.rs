@@ -345,6 +345,8 @@ impl AreaReport {
             f.centroid = f.centroid.map(|c| scale.point(c));
             f.inertia = f.inertia.map(|i| i.scaled(&scale));
         }
+        // With a density per area, the mass of a sheet of the polygons' outline.
+        self.mass = scale.mass(self.area);
         self.units = scale.names();
         Ok(self)
     }

@@ -193,6 +193,8 @@ impl SectionReport {
         self.centroid = self.centroid.map(|c| scale.point(c));
         self.centroid_3d = self.centroid_3d.map(|c| scale.point(c));
         self.inertia = self.inertia.map(|i| i.scaled(&scale));
+        // With a density per area, the mass of a sheet of the section's outline.
+        self.mass = scale.mass(self.area);
         self.units = scale.names();
         Ok(self)
     }

@@ -273,23 +273,55 @@ fn mass_unit(s: &str) -> Option<MassUnit> {
 }
 
 /// `--density VALUE[MASS/VOLUME]`: `2.5` (mass per reported volume unit), `7.85g/cm3`,
-/// `7850kg/m3`, `62.4lb/ft3`, `1kg/L`.
+/// `7850kg/m3`, `62.4lb/ft3`, `1kg/L`. The commands that measure areas (`section`,
+/// `area`) take a mass per area instead, `VALUE[MASS/AREA]` (`62.8kg/m2`: an 8 mm steel
+/// plate; a bare number is per reported area unit), and report the mass of a sheet
+/// with that outline.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Density {
     pub value: f64,
-    /// The mass and volume units, when given.
+    /// The mass and volume (or area) units, when given.
     pub unit: Option<(MassUnit, Unit)>,
+    /// Whether the unit is a mass per area (`kg/m2`).
+    pub per_area: bool,
 }
 
 impl Density {
-    /// A density without a unit: mass per reported volume unit.
+    /// A density without a unit: mass per reported volume (or area) unit.
     pub fn plain(value: f64) -> Density {
-        Density { value, unit: None }
+        Density { value, unit: None, per_area: false }
     }
 
-    /// The unit as written: `g/cm^3`.
+    /// The unit as written: `g/cm^3`, `kg/m^2`.
     pub fn unit_name(&self) -> Option<String> {
-        self.unit.map(|(m, v)| format!("{}/{}", m.symbol, v.volume))
+        self.unit
+            .map(|(m, v)| format!("{}/{}", m.symbol, if self.per_area { v.area } else { v.volume }))
+    }
+
+    /// The density of a command that measures volumes: not a mass per area.
+    pub fn of_volume(self) -> Result<Density, String> {
+        if self.per_area {
+            return Err(format!(
+                "density {}{} is a mass per area; this command measures volumes: give a mass \
+                 per volume, e.g. 7.85g/cm3 or 7850kg/m3",
+                self.value,
+                self.unit_name().unwrap_or_default()
+            ));
+        }
+        Ok(self)
+    }
+
+    /// The density of a command that measures areas (`section`, `area`): a mass per area.
+    pub fn of_area(self) -> Result<Density, String> {
+        if self.unit.is_some() && !self.per_area {
+            return Err(format!(
+                "density {}{} is a mass per volume; this command measures areas: give a mass \
+                 per area (a sheet's), e.g. 62.8kg/m2 or 0.785g/cm2",
+                self.value,
+                self.unit_name().unwrap_or_default()
+            ));
+        }
+        Ok(Density { per_area: true, ..self })
     }
 
     /// Checks the value: positive and finite.
@@ -314,19 +346,34 @@ impl FromStr for Density {
             .ok_or_else(|| format!("'{s}': expected a number, e.g. 2.5, 7.85g/cm3 or 7850kg/m3"))?;
         let value: f64 = t[..split].parse().map_err(|_| format!("'{s}': not a number"))?;
         let rest = t[split..].trim();
+        let mut per_area = false;
         let unit = if rest.is_empty() {
             None
         } else {
             let (mass, volume) = rest.split_once('/').ok_or_else(|| {
-                format!("'{s}': a density's unit is MASS/VOLUME, e.g. g/cm3 or kg/m3")
+                format!(
+                    "'{s}': a density's unit is MASS/VOLUME, e.g. g/cm3 or kg/m3 (MASS/AREA, \
+                     e.g. kg/m2, for section and area)"
+                )
             })?;
             let mass = mass_unit(mass.trim()).ok_or_else(|| {
                 format!("'{s}': unknown mass unit '{mass}': known units are {KNOWN_MASSES}")
             })?;
-            let volume: Unit = volume.trim().parse().map_err(|e| format!("'{s}': {e}"))?;
-            Some((mass, volume))
+            let per = volume.trim();
+            // A length squared is an area: kg/m2, g/cm^2, lb/ft².
+            let squared = ["^2", "²", "2"].iter().find_map(|suffix| per.strip_suffix(suffix));
+            match squared.and_then(report_length) {
+                Some(area) => {
+                    per_area = true;
+                    Some((mass, area))
+                }
+                None => {
+                    let volume: Unit = per.parse().map_err(|e| format!("'{s}': {e}"))?;
+                    Some((mass, volume))
+                }
+            }
         };
-        let density = Density { value, unit };
+        let density = Density { value, unit, per_area };
         density.validate().map_err(|e| format!("'{s}': {e}"))?;
         Ok(density)
     }
@@ -409,6 +456,9 @@ impl Scale {
             d.validate()?;
             scale.rho = Some(match (d.unit, units) {
                 (None, _) => d.value,
+                (Some((_, per)), Some(u)) if d.per_area => {
+                    d.value * u.report.square_metres / per.square_metres
+                }
                 (Some((_, per)), Some(u)) => d.value * u.report.cubic_metres / per.cubic_metres,
                 (Some(_), None) => {
                     return Err(format!(
@@ -487,7 +537,8 @@ impl Scale {
         self.rho.unwrap_or(1.0)
     }
 
-    /// The mass of `volume` (in reported units), with `--density`.
+    /// The mass of `volume` (in reported units), with `--density`; for a density per
+    /// area, the mass of a sheet of `volume`'s area.
     pub fn mass(&self, volume: f64) -> Option<Mass> {
         let (rho, d) = (self.rho?, self.density?);
         Some(Mass {
@@ -591,6 +642,25 @@ mod tests {
         let m = scale.mass(scale.volume(1e9)).unwrap();
         assert!((m.mass - 7.85e6).abs() < 1e-6, "{m:?}");
         assert_eq!(m.mass_unit.as_deref(), Some("g"));
+        // A mass per area (section, area): 62.8 kg/m² over 1 m² reported in cm².
+        let d: Density = "62.8kg/m2".parse().unwrap();
+        assert_eq!((d.per_area, d.unit_name().as_deref()), (true, Some("kg/m^2")));
+        assert!(d.of_volume().unwrap_err().contains("mass per area"));
+        let options = UnitOptions {
+            units: Some("mm:cm".parse().unwrap()),
+            density: Some(d.of_area().unwrap()),
+        };
+        let (scale, _) = Scale::resolve(&options, None).unwrap();
+        let m = scale.mass(scale.area(1e6)).unwrap();
+        assert!((m.mass - 62.8).abs() < 1e-12, "{m:?}");
+        assert_eq!(m.mass_unit.as_deref(), Some("kg"));
+        assert!("7.85g/cm3"
+            .parse::<Density>()
+            .unwrap()
+            .of_area()
+            .unwrap_err()
+            .contains("per area"));
+        assert!("2.5".parse::<Density>().unwrap().of_area().unwrap().per_area);
         // A density with a unit needs a length unit.
         let options = UnitOptions { units: None, density: Some("7.85g/cm3".parse().unwrap()) };
         assert!(Scale::resolve(&options, None).unwrap_err().contains("--units"));

@@ -132,6 +132,7 @@ class Mesh:
         region: Optional[_ArrayLike] = None,
         units: Optional[str] = None,
         density: Optional[_Density] = None,
+        timings: bool = False,
     ) -> Grid:
         """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
         grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
@@ -176,10 +177,11 @@ class Mesh:
         plane: _Union[str, _ArrayLike],
         check: bool = True,
         units: Optional[str] = None,
+        density: Optional[_Density] = None,
         timings: bool = False,
     ) -> Section:
         """The cross-section by a plane: 'z=H', [point, normal] or (nx, ny, nz, d)
-        (`meshvol section`)."""
+        (`meshvol section`); density: a mass per area ('62.8kg/m2'), mass a sheet's."""
     def bodies(self, check: bool = True) -> list[Mesh]:
         """The solid's bodies as meshes (each outermost shell with its cavities)."""
     def triangulated(self) -> Mesh:
@@ -309,7 +311,11 @@ class Check(_CheckFacts):
     intersection_examples: list[Tuple[int, int]]
     repairs: Tuple[int, int, int]
     def mass_properties(
-        self, density: _Density = 1.0, exact: bool = False, units: Optional[str] = None
+        self,
+        density: _Density = 1.0,
+        exact: bool = False,
+        units: Optional[str] = None,
+        timings: bool = False,
     ) -> MassProperties:
         """Mass properties of the repaired solid (`meshvol volume`)."""
     def solid_mesh(self, caps: bool = False) -> Mesh:
@@ -435,6 +441,7 @@ class AreaProperties:
     """The second moments as `meshvol area --json` nests them; None without area."""
     rings: list[dict[str, Any]]
     warnings: list[str]
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol area --json`."""
     @property
@@ -489,6 +496,7 @@ class CutFill:
     design_area: Optional[float]
     grid: Optional[dict[str, list[Any]]]
     warnings: list[str]
+    timings: _Timings
     @property
     def footprint_bounds(self) -> Optional[_F64]:
         """Shape (2, 2): [[x0, y0], [x1, y1]]; None without a footprint."""
@@ -520,6 +528,7 @@ class Hull:
     file: Optional[str]
     format: Optional[str]
     warnings: list[str]
+    timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol hull --json`."""
     @property
@@ -600,6 +609,9 @@ class Grid:
     @property
     def fraction(self) -> bool: ...
     @property
+    def timings(self) -> _Timings:
+        """With Mesh.grid(timings=True): the stages (else absent)."""
+    @property
     def cell_volume(self) -> float: ...
     @property
     def shape(self) -> Tuple[int, ...]: ...
@@ -670,11 +682,16 @@ def polygon_area(
     exterior: _Union[_ArrayLike, Mapping[str, Any], Any],
     holes: Optional[Iterable[_ArrayLike]] = None,
     units: Optional[str] = None,
+    density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> AreaProperties:
     """Area properties of a polygon with holes, or of a GeoJSON (Multi)Polygon."""
 
 def convex_hull(
-    points: _ArrayLike, units: Optional[str] = None, density: Optional[_Density] = None
+    points: _ArrayLike,
+    units: Optional[str] = None,
+    density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> Hull:
     """The convex hull of an (n, 3) point array (`meshvol hull`)."""
 
@@ -702,5 +719,7 @@ def cutfill(
     cells: Optional[_ArrayLike] = None,
     pitch: Optional[float] = None,
     units: Optional[str] = None,
+    density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> CutFill:
     """Cut and fill between an existing surface and a design or level (`meshvol cutfill`)."""

@@ -25,7 +25,7 @@ class Grid(NDArrayOperatorsMixin):
     and the array's attributes are its attributes (shape, dtype, ravel, ...).
     """
 
-    __slots__ = ("_values", "_origin", "_spacing", "_fraction")
+    __slots__ = ("_values", "_origin", "_spacing", "_fraction", "_timings")
 
     def __init__(
         self,
@@ -40,8 +40,16 @@ class Grid(NDArrayOperatorsMixin):
         self._origin = np.array(origin, dtype=np.float64).reshape(3)
         self._spacing = np.array(spacing, dtype=np.float64).reshape(3)
         self._fraction = bool(fraction)
+        self._timings: Optional[list] = None
         for a in (self._origin, self._spacing):
             a.setflags(write=False)
+
+    @property
+    def timings(self) -> list:
+        """With Mesh.grid(timings=True): the stages' {stage, wall_s, cpu_s} (else absent)."""
+        if self._timings is None:
+            raise AttributeError("timings: ask Mesh.grid(..., timings=True)")
+        return self._timings
 
     @property
     def values(self) -> np.ndarray:
