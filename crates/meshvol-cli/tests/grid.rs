@@ -353,19 +353,12 @@ fn grid_moments_write_the_cut_cells_of_a_box() {
     let (lo, hi) = ([0.25, 0.5, -0.3], [1.5, 1.25, 0.9]);
     let mesh = write(dir.path(), "box.obj", box_obj(lo, hi, 1));
     let (origin, cell) = ([0.0, 0.0, -0.5], [0.5, 0.5, 0.3]);
+    let moments_to = |out: &Path| {
+        let args = ["grid", p(&mesh), "--cells", "4,3,5", "--bounds", "0,0,-0.5,2,1.5,1"];
+        json(&meshvol(&[&args[..], &["--moments", "--out", p(out), "--json"]].concat()))
+    };
     let npz = dir.path().join("c.npz");
-    let summary = json(&meshvol(&[
-        "grid",
-        p(&mesh),
-        "--cells",
-        "4,3,5",
-        "--bounds",
-        "0,0,-0.5,2,1.5,1",
-        "--moments",
-        "--out",
-        p(&npz),
-        "--json",
-    ]));
+    let summary = moments_to(&npz);
     assert_eq!(summary["moments"], true);
     let arrays = read_npz(&npz);
     let names: Vec<&str> = arrays.keys().map(String::as_str).collect();
@@ -428,18 +421,7 @@ fn grid_moments_write_the_cut_cells_of_a_box() {
 
     // .vti: the same arrays by name; the apertures as field arrays.
     let vti = dir.path().join("c.vti");
-    json(&meshvol(&[
-        "grid",
-        p(&mesh),
-        "--cells",
-        "4,3,5",
-        "--bounds",
-        "0,0,-0.5,2,1.5,1",
-        "--moments",
-        "--out",
-        p(&vti),
-        "--json",
-    ]));
+    moments_to(&vti);
     let xml = String::from_utf8_lossy(&std::fs::read(&vti).unwrap()).to_string();
     for name in [
         "centroid\" NumberOfComponents=\"3\"",

@@ -19,13 +19,31 @@ use crate::{Point, Surface};
 use rayon::prelude::*;
 use std::ops::Range;
 
-/// One tile's slices of the cell arrays, and of the z apertures (`depth + 1` per column).
-struct TileCells<'a> {
+/// Slices of the cell arrays: a tile's, or one column's of it.
+struct CellSlices<'a> {
     volume: &'a mut [f64],
     centroid: &'a mut [Point],
     boundary_area: &'a mut [f64],
     boundary_vector: &'a mut [Point],
     boundary_centroid: &'a mut [Point],
+}
+
+impl CellSlices<'_> {
+    /// The cells `range` of these.
+    fn part(&mut self, range: Range<usize>) -> CellSlices<'_> {
+        CellSlices {
+            volume: &mut self.volume[range.clone()],
+            centroid: &mut self.centroid[range.clone()],
+            boundary_area: &mut self.boundary_area[range.clone()],
+            boundary_vector: &mut self.boundary_vector[range.clone()],
+            boundary_centroid: &mut self.boundary_centroid[range],
+        }
+    }
+}
+
+/// One tile's slices of the cell arrays, and of the z apertures (`depth + 1` per column).
+struct TileCells<'a> {
+    cells: CellSlices<'a>,
     aperture_z: &'a mut [f64],
 }
 
@@ -39,11 +57,7 @@ pub(super) fn face_areas(cell: [f64; 3]) -> [f64; 3] {
 /// `boundary_centroid` the area-weighted local centroids; `handed[m]` the area and its x
 /// and y moments of the parts in layer `first + m` (the last entry: above the grid).
 struct MomentSink<'a> {
-    volume: &'a mut [f64],
-    centroid: &'a mut [Point],
-    boundary_area: &'a mut [f64],
-    boundary_vector: &'a mut [Point],
-    boundary_centroid: &'a mut [Point],
+    cells: CellSlices<'a>,
     handed: &'a mut [[f64; 3]],
     /// The projected area of the parts lying on the grid's top face.
     on_top: &'a mut f64,
@@ -61,7 +75,7 @@ impl LayerSink for MomentSink<'_> {
             return;
         };
         let [i, j] = self.column;
-        if local >= self.volume.len() {
+        if local >= self.cells.volume.len() {
             let h = handed_down(part, [i, j]);
             for d in 0..3 {
                 self.handed[local][d] += h[d];
@@ -74,8 +88,8 @@ impl LayerSink for MomentSink<'_> {
         h[0] += p.area;
         h[1] += p.area_x;
         h[2] += p.area_y;
-        self.volume[local] += p.z;
-        let m = &mut self.centroid[local];
+        self.cells.volume[local] += p.z;
+        let m = &mut self.cells.centroid[local];
         m[0] += p.xz;
         m[1] += p.yz;
         m[2] += p.zz_half;
@@ -93,7 +107,7 @@ impl LayerSink for MomentSink<'_> {
         // faces are closed), and not beyond it for the aperture there.
         let (z0, z1) = part.range(2);
         let layer = self.first + top - 1;
-        if z0 == z1 && z0 == (layer + 1) as f64 && top - 1 < self.volume.len() {
+        if z0 == z1 && z0 == (layer + 1) as f64 && top - 1 < self.cells.volume.len() {
             *self.on_top += h[0];
             let [i, j] = self.column;
             self.surface(top - 1, part, [i, j, layer as f64]);
@@ -107,8 +121,8 @@ impl MomentSink<'_> {
     fn surface<const N: usize>(&mut self, local: usize, part: &Polygon<N>, corner: [f64; 3]) {
         if let Some((vector, centre)) = surface_part(part, corner) {
             add_surface(
-                (&mut self.boundary_area[local], &mut self.boundary_vector[local]),
-                &mut self.boundary_centroid[local],
+                (&mut self.cells.boundary_area[local], &mut self.cells.boundary_vector[local]),
+                &mut self.cells.boundary_centroid[local],
                 (vector, centre, self.normal),
                 self.scale,
             );
@@ -240,14 +254,15 @@ fn finish_column(
         if k < depth {
             let n = range.start + k;
             let layer = first + k;
-            let v = cells.volume[n] + area.value();
-            cells.volume[n] = v * scale;
-            let m = cells.centroid[n];
+            let v = cells.cells.volume[n] + area.value();
+            cells.cells.volume[n] = v * scale;
+            let m = cells.cells.centroid[n];
             let moment = [m[0] + area_x.value(), m[1] + area_y.value(), m[2] + 0.5 * area.value()];
             let magnitude = v.abs();
             let trivial =
                 magnitude <= OCCUPANCY_TOLERANCE || (magnitude - 1.0).abs() <= OCCUPANCY_TOLERANCE;
-            cells.centroid[n] = [0, 1, 2].map(|d| cell_at(d, within(moment[d], v, trivial), layer));
+            cells.cells.centroid[n] =
+                [0, 1, 2].map(|d| cell_at(d, within(moment[d], v, trivial), layer));
             // The plane at the bottom of layer `first + k + 1`: everything above it (on
             // the grid's top face, but the parts lying on it).
             let beyond = if k + 2 == handed.len() { on_top } else { 0.0 };
@@ -314,11 +329,13 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
         .enumerate()
         .for_each(|(tile, (((((volume, centroid), area), vector), centre), aperture_z))| {
             let mut cells = TileCells {
-                volume,
-                centroid,
-                boundary_area: area,
-                boundary_vector: vector,
-                boundary_centroid: centre,
+                cells: CellSlices {
+                    volume,
+                    centroid,
+                    boundary_area: area,
+                    boundary_vector: vector,
+                    boundary_centroid: centre,
+                },
                 aperture_z,
             };
             let run = tiling.range(tile);
@@ -333,11 +350,7 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                         let [i, j] = column_of(run.start + column);
                         let cells_of = column * depth..(column + 1) * depth;
                         let mut sink = MomentSink {
-                            volume: &mut cells.volume[cells_of.clone()],
-                            centroid: &mut cells.centroid[cells_of.clone()],
-                            boundary_area: &mut cells.boundary_area[cells_of.clone()],
-                            boundary_vector: &mut cells.boundary_vector[cells_of.clone()],
-                            boundary_centroid: &mut cells.boundary_centroid[cells_of],
+                            cells: cells.cells.part(cells_of),
                             handed: &mut handed[column * areas..(column + 1) * areas],
                             on_top: &mut on_top[column],
                             first,
