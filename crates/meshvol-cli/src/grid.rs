@@ -293,16 +293,16 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         union_cell_volumes_with(&bodies, &grid, &hook).map_err(|e| e.to_string())?
     } else if args.moments {
         let hook = progress.kernel("computing the cut cells".to_string());
-        let cells = cut_cells_with(&together, &grid, &hook).map_err(|e| e.to_string())?;
-        let volumes = cells.volume.clone();
-        cut = Some(cells);
-        (volumes, 0)
+        cut = Some(cut_cells_with(&together, &grid, &hook).map_err(|e| e.to_string())?);
+        (Vec::new(), 0)
     } else {
         let hook = progress.kernel("computing cell volumes".to_string());
         (cell_volumes_with(&together, &grid, &hook).map_err(|e| e.to_string())?, 0)
     };
     run.seconds = start.elapsed().as_secs_f64();
     run.columns_unresolved = columns_unresolved;
+    // The cut cells hold the volumes (the same bits as cell_volumes'): not copied.
+    let volumes: &[f64] = cut.as_ref().map_or(&volumes, |c| &c.volume);
 
     if let Some(out) = &args.out {
         let file = std::fs::File::create(out)
@@ -310,22 +310,22 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         let mut w = BufWriter::new(file);
         let written = match (out_kind.as_deref(), &cut) {
             (Some("npz"), Some(cells)) => grid_out::npz_cut_cells(&mut w, cells),
-            (Some("npz"), None) => grid_out::npz(&mut w, &grid, &volumes),
+            (Some("npz"), None) => grid_out::npz(&mut w, &grid, volumes),
             (Some("vti"), Some(cells)) => grid_out::vti_cut_cells(&mut w, cells),
-            (Some("npy"), _) => grid_out::npy(&mut w, &grid, &volumes, args.fraction),
-            (Some("vti"), None) => grid_out::vti(&mut w, &grid, &volumes),
-            _ => grid_out::csv(&mut w, &grid, &volumes).map(|_| ()),
+            (Some("npy"), _) => grid_out::npy(&mut w, &grid, volumes, args.fraction),
+            (Some("vti"), None) => grid_out::vti(&mut w, &grid, volumes),
+            _ => grid_out::csv(&mut w, &grid, volumes).map(|_| ()),
         };
         written.and_then(|()| w.flush()).map_err(|e| format!("{}: {e}", out.display()))?;
     }
     if let (Some(png), Some(at)) = (&args.png, args.slice) {
         let slice = slice_of(at, &grid)?;
         let mut bytes = Vec::new();
-        grid_out::png(&mut bytes, &grid, &volumes, slice).map_err(|e| e.to_string())?;
+        grid_out::png(&mut bytes, &grid, volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
     let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
-    summary(&grid, &volumes, run).in_units(&args.units.options(), &files)
+    summary(&grid, volumes, run).in_units(&args.units.options(), &files)
 }
 
 #[cfg(test)]

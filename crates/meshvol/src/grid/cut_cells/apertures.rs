@@ -14,7 +14,7 @@
 //! face is cut from the few faces that reach it.
 
 use super::integrals::surface_part;
-use super::kernel::{add_surface, face_areas, polygon_normal};
+use super::kernel::{add_surface, face_areas, finish_boundary_centroids, polygon_normal};
 use super::CutCells;
 use crate::accumulate::two_sum;
 use crate::grid::cells::{cover, sweep_axis, Piece, Units};
@@ -102,8 +102,9 @@ fn normal_component<const N: usize>(part: &Polygon<N>, axis: usize) -> f64 {
     0.5 * twice
 }
 
-/// Fills `cells.aperture[0]` and `[1]` from the boundary vectors: the cells' region must
-/// reach the grid's far x and y faces (the sums run from there).
+/// Fills `cells.aperture[0]` and `[1]` from the boundary vectors, and finishes the surface
+/// centroids: the cells' region must reach the grid's far x and y faces (the sums run
+/// from there).
 pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
     let [beyond_x, beyond_y] = beyond(surface, cells);
     let grid = cells.grid;
@@ -112,7 +113,8 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
     let [i0, j0, k0] = cells.region.clone().map(|r| r.start);
     debug_assert!(i0 + bx == grid.counts[0] && j0 + by == grid.counts[1]);
     let face = [grid.cell[1] * grid.cell[2], grid.cell[0] * grid.cell[2]];
-    let vectors = &cells.boundary_vector;
+    let (vectors, areas) = (&cells.boundary_vector, &cells.boundary_area);
+    let centroids = &mut cells.boundary_centroid;
     let [aperture_x, aperture_y, _] = &mut cells.aperture;
 
     // x: plane by plane from the far face down, every tube (j, k) in parallel.
@@ -133,9 +135,13 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
             });
     }
 
-    // y: within each slab x = i, from the far face down.
-    aperture_y.par_chunks_mut((by + 1) * bz).enumerate().for_each(|(i, out)| {
+    // y: within each slab x = i, from the far face down; and the slab's surface
+    // centroids, now that every part is in (one pass over the slab for both).
+    let slabs = aperture_y.par_chunks_mut((by + 1) * bz).zip(centroids.par_chunks_mut(plane));
+    slabs.enumerate().for_each(|(i, (out, centroids))| {
         let cells_i = &vectors[i * plane..(i + 1) * plane];
+        let slab = &areas[i * plane..(i + 1) * plane];
+        finish_boundary_centroids(&grid, [i0 + i, j0, k0], [1, by, bz], centroids, slab);
         let first = (i0 + i) * nz + k0;
         let mut state: Vec<(f64, f64)> =
             beyond_y[first..first + bz].iter().map(|&b| (b, 0.0)).collect();

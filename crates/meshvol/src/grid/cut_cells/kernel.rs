@@ -179,20 +179,21 @@ pub(super) fn polygon_normal<S: Surface + ?Sized>(
     (triangles > 1 && length > 0.0).then(|| total.map(|x| x / length))
 }
 
-/// Turns the cells' area-weighted local surface centroids into world centroids (the
-/// middle of a cell without surface), once every part has been added.
-pub(super) fn finish_boundary_centroids(cells: &mut CutCells) {
-    let grid = cells.grid;
-    let start = cells.region.clone().map(|r| r.start);
-    let [_, ny, nz] = cells.shape();
-    cells.boundary_centroid.par_iter_mut().zip(&cells.boundary_area).enumerate().for_each(
-        |(n, (c, &w))| {
-            let at = [start[0] + n / (ny * nz), start[1] + n / nz % ny, start[2] + n % nz];
-            *c = [0, 1, 2].map(|d| {
-                grid.origin[d] + (at[d] as f64 + within(c[d], w, w == 0.0)) * grid.cell[d]
-            });
-        },
-    );
+/// Turns the area-weighted local surface centroids of the cells of `first` (a slab of a
+/// region, `plane` cells of `[_, ny, nz]` each) into world centroids (the middle of a cell
+/// without surface), once every part has been added.
+pub(super) fn finish_boundary_centroids(
+    grid: &Grid,
+    first: [usize; 3],
+    [_, ny, nz]: [usize; 3],
+    centroids: &mut [Point],
+    areas: &[f64],
+) {
+    for (n, (c, &w)) in centroids.iter_mut().zip(areas).enumerate() {
+        let at = [first[0] + n / (ny * nz), first[1] + n / nz % ny, first[2] + n % nz];
+        *c = [0, 1, 2]
+            .map(|d| grid.origin[d] + (at[d] as f64 + within(c[d], w, w == 0.0)) * grid.cell[d]);
+    }
 }
 
 /// A compensated running sum (TwoSum), taken from the top of a column down.

@@ -54,7 +54,7 @@
 //! |---|---|
 //! | the integrals over one part | [`integrals`] |
 //! | sweeps, sums and per-column finish | [`kernel`] |
-//! | x and y apertures | [`apertures`] |
+//! | x and y apertures, surface centroids | [`apertures`] |
 //!
 //! ```
 //! use meshvol::grid::{cut_cells, Grid};
@@ -204,7 +204,6 @@ fn computed<S: Surface + ?Sized>(
     let mut cells = kernel::cut_cells(surface, grid, block, progress)?;
     progress.stage("summing apertures");
     apertures::fill(surface, &mut cells);
-    kernel::finish_boundary_centroids(&mut cells);
     Ok(cells)
 }
 
