@@ -71,6 +71,7 @@ impl CompensatedSum {
         self.compensation += other.compensation;
     }
 
+    #[inline]
     pub fn value(&self) -> f64 {
         self.sum + self.compensation
     }

@@ -16,7 +16,7 @@
 use super::integrals::surface_part;
 use super::kernel::{add_surface, face_areas, finish_boundary_centroids, polygon_normal};
 use super::CutCells;
-use crate::accumulate::two_sum;
+use crate::accumulate::CompensatedSum;
 use crate::grid::cells::{cover, sweep_axis, Piece, Units};
 use crate::grid::clip::Polygon;
 use crate::Surface;
@@ -120,8 +120,9 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
     // x: plane by plane from the far face down, every tube (j, k) in parallel.
     let plane = by * bz;
     let tube = |t: usize| (j0 + t / bz) * nz + k0 + t % bz;
-    let mut state: Vec<(f64, f64)> = (0..plane).map(|t| (beyond_x[tube(t)], 0.0)).collect();
-    aperture_x[bx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.0 + s.1);
+    let start = |b: f64| CompensatedSum::from_parts(b, 0.0);
+    let mut state: Vec<CompensatedSum> = (0..plane).map(|t| start(beyond_x[tube(t)])).collect();
+    aperture_x[bx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.value());
     for i in (0..bx).rev() {
         let cells_i = &vectors[i * plane..(i + 1) * plane];
         aperture_x[i * plane..(i + 1) * plane]
@@ -129,9 +130,8 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
             .zip(state.par_iter_mut())
             .zip(cells_i.par_iter())
             .for_each(|((a, s), v)| {
-                let (sum, e) = two_sum(s.0, v[0] / face[0]);
-                *s = (sum, s.1 + e);
-                *a = s.0 + s.1;
+                s.add(v[0] / face[0]);
+                *a = s.value();
             });
     }
 
@@ -143,17 +143,16 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
         let slab = &areas[i * plane..(i + 1) * plane];
         finish_boundary_centroids(&grid, [i0 + i, j0, k0], [1, by, bz], centroids, slab);
         let first = (i0 + i) * nz + k0;
-        let mut state: Vec<(f64, f64)> =
-            beyond_y[first..first + bz].iter().map(|&b| (b, 0.0)).collect();
+        let mut state: Vec<CompensatedSum> =
+            beyond_y[first..first + bz].iter().map(|&b| start(b)).collect();
         for (a, s) in out[by * bz..].iter_mut().zip(&state) {
-            *a = s.0 + s.1;
+            *a = s.value();
         }
         for j in (0..by).rev() {
             let row = &cells_i[j * bz..(j + 1) * bz];
             for ((a, s), v) in out[j * bz..(j + 1) * bz].iter_mut().zip(&mut state).zip(row) {
-                let (sum, e) = two_sum(s.0, v[1] / face[1]);
-                *s = (sum, s.1 + e);
-                *a = s.0 + s.1;
+                s.add(v[1] / face[1]);
+                *a = s.value();
             }
         }
     });

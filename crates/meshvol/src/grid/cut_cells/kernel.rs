@@ -8,7 +8,7 @@
 
 use super::integrals::{handed_down, projected, surface_part};
 use super::CutCells;
-use crate::accumulate::two_sum;
+use crate::accumulate::CompensatedSum;
 use crate::grid::cells::{
     for_each_piece, sweep_layers, zeroed, Bins, Block, LayerSink, Piece, Tiling, Units,
 };
@@ -196,27 +196,6 @@ pub(super) fn finish_boundary_centroids(
     }
 }
 
-/// A compensated running sum (TwoSum), taken from the top of a column down.
-#[derive(Clone, Copy, Default)]
-struct Running {
-    sum: f64,
-    compensation: f64,
-}
-
-impl Running {
-    #[inline(always)]
-    fn add(&mut self, x: f64) {
-        let (s, e) = two_sum(self.sum, x);
-        self.sum = s;
-        self.compensation += e;
-    }
-
-    #[inline(always)]
-    fn value(&self) -> f64 {
-        self.sum + self.compensation
-    }
-}
-
 /// `m / v` as a position within a cell, clamped to [0, 1] (rounding can push the ratio
 /// of two small sums past the cell), or the middle for an empty or full cell.
 #[inline(always)]
@@ -242,7 +221,7 @@ fn finish_column(
     grid: &Grid,
 ) {
     let scale = grid.cell_volume();
-    let [mut area, mut area_x, mut area_y] = [Running::default(); 3];
+    let [mut area, mut area_x, mut area_y] = [CompensatedSum::default(); 3];
     let depth = range.len();
     let cell_at = |d: usize, local: f64, k: usize| {
         grid.origin[d] + ([i, j, k][d] as f64 + local) * grid.cell[d]
