@@ -37,7 +37,8 @@
 //! - r is a vertex of the surface, never the world origin: the terms stay the size of the
 //!   mesh, not of its offset, so a part at 10⁷ keeps all the digits of a part at 0.
 //! - Every sum is compensated (TwoSum) and the chunks combine in a fixed order: the same
-//!   bits for any thread count.
+//!   bits for any thread count. Within a chunk the triangles go to four interleaved sums
+//!   (the k-th to sum k mod 4; `volume::LaneSums`), merged in order: one SIMD lane each.
 //! - `volume_error_bound` bounds |computed − exact| for the polyhedron the f64
 //!   coordinates describe: each D carries at most 8 roundings (3 subtractions of r,
 //!   the cross and dot products), so |D̂ − D| ≤ γ(8)·P with P = Σ|aᵢ||bⱼ||cₖ| over the
@@ -268,6 +269,18 @@ impl Partial {
         self.double_area.add(block[9]);
     }
 
+    /// A chunk's four interleaved sums (see `volume::LaneSums`), their blocks flushed,
+    /// merged in order, with the chunk's bounds.
+    fn merged(mut lanes: [Partial; 4], bounds: Bounds) -> Partial {
+        lanes.iter_mut().for_each(Partial::flush_block);
+        let [mut total, rest @ ..] = lanes;
+        for lane in rest {
+            total.merge(lane);
+        }
+        total.bounds = Some(bounds);
+        total
+    }
+
     #[inline(always)]
     fn add_triangle(&mut self, a: Point, b: Point, c: Point) {
         let d = self.volume.add_determinant(a, b, c);
@@ -310,9 +323,11 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
             if let Some((positions, triangles)) = surface.indexed_triangles() {
                 return triangles_partial(positions, triangles, range, r);
             }
-            let mut part = Partial::default();
+            // The chunk's k-th triangle and k-th face to sum k mod 4 (`volume::LaneSums`).
+            let mut lanes = [Partial::default(); 4];
             let mut bounds = Bounds::of(r);
-            for face in range {
+            let mut triangle = 0usize;
+            for (k, face) in range.enumerate() {
                 let mut vector_area = [0.0; 3];
                 let mut magnitude = [0.0; 3];
                 let mut fan = 0usize;
@@ -329,17 +344,17 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
                     bounds.include(a);
                     bounds.include(b);
                     bounds.include(c);
-                    part.add_triangle(sub(a, r), sub(b, r), sub(c, r));
+                    lanes[triangle % 4].add_triangle(sub(a, r), sub(b, r), sub(c, r));
+                    triangle += 1;
                 });
-                part.block[9] += norm(vector_area);
-                part.volume.add_vector_area(vector_area, magnitude, fan);
+                let lane = &mut lanes[k % 4];
+                lane.block[9] += norm(vector_area);
+                lane.volume.add_vector_area(vector_area, magnitude, fan);
                 if face % BLOCK_FACES == BLOCK_FACES - 1 {
-                    part.flush_block();
+                    lanes.iter_mut().for_each(Partial::flush_block);
                 }
             }
-            part.flush_block();
-            part.bounds = Some(bounds);
-            part
+            Partial::merged(lanes, bounds)
         },
         Partial::merge,
     )
@@ -359,27 +374,27 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
 
 /// One chunk of [`mass_properties`] over an indexed triangle mesh (a validated
 /// [`crate::Mesh`]), four triangles a SIMD step: every per-triangle quantity of the
-/// scalar loop (the same IEEE operations, lane by lane), then the sums folded in face
-/// order, the compensated and block sums as lanes of a few vectors. The same bits as
-/// the scalar loop, which the tests compare (`tests/volume.rs`). The bounds are
-/// lane-wise minima and maxima, their zeros (whose sign depends on the order) redone
-/// in order.
+/// scalar loop (the same IEEE operations, lane by lane), and every sum too, lane j
+/// holding the chunk's j-th interleaved sum (`volume::LaneSums`): the same bits as the
+/// scalar loop, which the tests compare (`tests/volume.rs`). The bounds are lane-wise
+/// minima and maxima, their zeros (whose sign depends on the order) redone in order.
 fn triangles_partial(
     positions: &[Point],
     triangles: &[[u32; 3]],
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
-    use crate::volume::VolumeLanes;
+    use crate::volume::{add_compensated, VolumeLanes};
     use wide::f64x4;
     let zero = f64x4::ZERO;
     let first = range.start;
     let tris = &triangles[range];
-    let mut part = Partial::default();
     let mut bounds = Bounds::of(r);
-    // The volume's sums in `VolumeLanes`; the block's ten plain sums in three more lanes.
+    // The volume's sums in `VolumeLanes`; the block's ten plain sums (first and second
+    // moments, double area) and their compensated sums, one triangle a lane likewise.
     let mut lanes = VolumeLanes::new(r);
-    let mut block = [zero; 3];
+    let mut block = [zero; 10];
+    let (mut sum, mut compensation) = ([zero; 10], [zero; 10]);
     // The bounds lane by lane; see below for their signed zeros.
     let rl = r.map(f64x4::splat);
     let (mut low, mut high) = (rl, rl);
@@ -402,26 +417,37 @@ fn triangles_partial(
             high[k] = high[k].max(x).max(y).max(z);
         }
         let (area, d, [a, b, c]) = lanes.add(corners);
-        let norm = (area[0] * area[0] + area[1] * area[1] + area[2] * area[2]).sqrt();
-        // The moments' terms, as `Partial::add_triangle`, four triangles at once.
-        let moment = moment_terms(a, b, c).map(|t| (d * t).to_array());
-        let norm = norm.to_array();
-        for t in 0..4 {
-            block[0] += f64x4::new([moment[0][t], moment[1][t], moment[2][t], moment[3][t]]);
-            block[1] += f64x4::new([moment[4][t], moment[5][t], moment[6][t], moment[7][t]]);
-            block[2] += f64x4::new([moment[8][t], norm[t], 0.0, 0.0]);
-            if (face + t) % BLOCK_FACES == BLOCK_FACES - 1 {
-                let [b0, b1, b2] = block.map(|x| x.to_array());
-                part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
-                part.flush_block();
-                block = [zero; 3];
+        // The moments' terms and the double area, as `Partial::add_triangle`.
+        for (sum, t) in block.iter_mut().zip(moment_terms(a, b, c)) {
+            *sum += d * t;
+        }
+        block[9] += (area[0] * area[0] + area[1] * area[1] + area[2] * area[2]).sqrt();
+        // The group's last face ends a block: `Partial::flush_block`, lane by lane.
+        if (face + 3) % BLOCK_FACES == BLOCK_FACES - 1 {
+            for k in 0..10 {
+                add_compensated(&mut sum[k], &mut compensation[k], block[k]);
             }
+            block = [zero; 10];
         }
         face += 4;
     }
-    part.volume = lanes.sums();
-    let [b0, b1, b2] = block.map(|x| x.to_array());
-    part.block = [b0[0], b0[1], b0[2], b0[3], b1[0], b1[1], b1[2], b1[3], b2[0], b2[1]];
+    let volume = lanes.lanes();
+    let (sum, compensation, block) = (
+        sum.map(|x| x.to_array()),
+        compensation.map(|x| x.to_array()),
+        block.map(|x| x.to_array()),
+    );
+    let mut parts: [Partial; 4] = std::array::from_fn(|j| {
+        let compensated = |k: usize| CompensatedSum::from_parts(sum[k][j], compensation[k][j]);
+        Partial {
+            volume: volume.0[j],
+            first: [0, 1, 2].map(compensated),
+            second: [3, 4, 5, 6, 7, 8].map(compensated),
+            double_area: compensated(9),
+            block: block.map(|b| b[j]),
+            bounds: None,
+        }
+    });
     for k in 0..3 {
         let pick = |lanes: f64x4, better: fn(f64, f64) -> bool| {
             lanes.to_array().into_iter().fold(r[k], |m, x| if better(x, m) { x } else { m })
@@ -429,8 +455,9 @@ fn triangles_partial(
         bounds.min[k] = pick(low[k], |x, m| x < m);
         bounds.max[k] = pick(high[k], |x, m| x > m);
     }
-    // The last few triangles as the scalar loop reads them.
-    for t in groups.remainder() {
+    // The last few triangles as the scalar loop reads them; the remainder starts at a
+    // multiple of 4 from the chunk's start, so at lane 0.
+    for (lane, t) in groups.remainder().iter().enumerate() {
         let [a, b, c] = t.map(|i| positions[i as usize]);
         let (u, v) = (sub(b, a), sub(c, a));
         let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
@@ -444,21 +471,29 @@ fn triangles_partial(
         bounds.include(a);
         bounds.include(b);
         bounds.include(c);
+        let part = &mut parts[lane];
         part.add_triangle(sub(a, r), sub(b, r), sub(c, r));
         part.block[9] += norm(vector_area);
         part.volume.add_vector_area(vector_area, magnitude, 1);
         if face % BLOCK_FACES == BLOCK_FACES - 1 {
-            part.flush_block();
+            parts.iter_mut().for_each(Partial::flush_block);
         }
         face += 1;
     }
-    part.flush_block();
     // `Bounds::include` keeps the first of equal extremes, so its result has the same
     // bits in any order except for a zero extreme (−0.0 or +0.0, whichever came
-    // first): recompute those in the scalar loop's order (r, then each triangle's
-    // corners).
+    // first). r comes first: a zero extreme is r's when r is at zero on that axis (a
+    // part standing on z = 0 whose first vertex is there); otherwise recompute it in
+    // the scalar loop's order (r, then each triangle's corners).
     for k in 0..3 {
-        if bounds.min[k] == 0.0 || bounds.max[k] == 0.0 {
+        let unsure = |extreme: f64| extreme == 0.0 && r[k] != 0.0;
+        if bounds.min[k] == 0.0 && r[k] == 0.0 {
+            bounds.min[k] = r[k];
+        }
+        if bounds.max[k] == 0.0 && r[k] == 0.0 {
+            bounds.max[k] = r[k];
+        }
+        if unsure(bounds.min[k]) || unsure(bounds.max[k]) {
             let (mut low, mut high) = (r[k], r[k]);
             for &i in tris.iter().flatten() {
                 let x = positions[i as usize][k];
@@ -473,8 +508,7 @@ fn triangles_partial(
             }
         }
     }
-    part.bounds = Some(bounds);
-    part
+    Partial::merged(parts, bounds)
 }
 
 /// How much wider than the bound of the sum about r the correction to the origin may

@@ -10,9 +10,11 @@
 //! six terms; and, for the move from r to the origin, each face's vector area
 //! S_f = Σ (b − a)×(c − a) over its fan, summed compensated over faces, with the
 //! magnitudes of its cross products' two products. The faces are cut into the same
-//! fixed chunks as [`crate::mass_properties`], each summed in face order, the chunks
-//! combined left to right: the same bits at any thread count, and the same bits as
-//! `mass_properties(surface).signed_volume` and `.volume_error_bound`.
+//! fixed chunks as [`crate::mass_properties`]; within a chunk, triangle k (and face k)
+//! goes to the (k mod 4)-th of four interleaved sums, merged in order at the chunk's
+//! end ([`LaneSums`]), and the chunks are combined left to right: the same bits at any
+//! thread count, and the same bits as `mass_properties(surface).signed_volume` and
+//! `.volume_error_bound`.
 //!
 //! # The bound (rigorous)
 //! With u = 2⁻⁵³ and γ(n) = n·u/(1 − n·u), `volume_error_bound` bounds |computed − V|,
@@ -35,10 +37,10 @@
 //! An indexed triangle mesh (a [`crate::Mesh`] of triangles, or borrowed arrays through
 //! [`triangles_signed_volume`]) is read four triangles at a time: the differences,
 //! cross and dot products and magnitudes in SIMD lanes (`wide::f64x4`, one triangle a
-//! lane, the same IEEE operations as the scalar code, so the same bits); only the sums,
-//! whose order makes the bits, stay sequential, and their four compensated sums (D and
-//! the three components of S) run side by side as the four lanes of one TwoSum, as do
-//! the eight plain sums in two vectors. Below [`PARALLEL_TRIANGLES`] the chunks run on
+//! lane, the same IEEE operations as the scalar code, so the same bits), and the sums
+//! too: the interleaved order makes lane j of every running sum the j-th of the four
+//! sums, so no value crosses lanes until the chunk's end (summing the four lanes one
+//! after another, in face order, was half the time of the pass). Below [`PARALLEL_TRIANGLES`] the chunks run on
 //! the caller's thread (the pool's hand-offs cost more than the whole sum there); above
 //! it, on the caller's rayon pool.
 
@@ -124,8 +126,10 @@ pub fn signed_volume<S: Surface + ?Sized>(surface: &S) -> Volume {
         faces,
         CHUNK_FACES,
         |range| {
-            let mut sums = VolumeSums::default();
-            for face in range {
+            // The chunk's k-th triangle and k-th face to sum k mod 4 (see `LaneSums`).
+            let mut lanes = LaneSums::default();
+            let mut triangle = 0usize;
+            for (k, face) in range.enumerate() {
                 let mut vector_area = [0.0; 3];
                 let mut magnitude = [0.0; 3];
                 let mut fan = 0usize;
@@ -136,11 +140,12 @@ pub fn signed_volume<S: Surface + ?Sized>(surface: &S) -> Volume {
                         magnitude[k] += plus[k].abs() + minus[k].abs();
                     }
                     fan += 1;
-                    sums.add_determinant(sub(a, r), sub(b, r), sub(c, r));
+                    lanes.0[triangle % 4].add_determinant(sub(a, r), sub(b, r), sub(c, r));
+                    triangle += 1;
                 });
-                sums.add_vector_area(vector_area, magnitude, fan);
+                lanes.0[k % 4].add_vector_area(vector_area, magnitude, fan);
             }
-            sums
+            lanes.merged()
         },
         |total, part| total.merge(&part),
     )
@@ -263,39 +268,48 @@ impl<I: VertexIndex> Surface for Borrowed<'_, I> {
     }
 }
 
-/// One chunk's sums, four triangles at a time; `first` is the chunk's first face.
-/// The volume's sums of triangles taken four at a time in SIMD lanes: lane by lane in
-/// the scalar loop's order, so their bits are those of [`VolumeSums::add_determinant`]
-/// and [`VolumeSums::add_vector_area`] over the same triangles, one after another.
+/// The volume's sums of triangles taken four at a time in SIMD lanes, lane `j` holding
+/// the sums of a chunk's triangles `j`, `j + 4`, `j + 8`, ...: the same IEEE operations
+/// as [`VolumeSums::add_determinant`] and [`VolumeSums::add_vector_area`] applied to
+/// [`LaneSums`]' sum `j`, so the bits of the scalar loop over the same triangles.
 pub(crate) struct VolumeLanes {
     r: [f64x4; 3],
-    // Lanes: D, S_x, S_y, S_z (compensated); Σ|D|, ΣP, ΣM_x, ΣM_y; ΣM_z, Σ5M_x, Σ5M_y,
-    // Σ5M_z (plain). A triangle is a face of one triangle: its weight is 1 + 4.
-    sum: f64x4,
-    compensation: f64x4,
-    plain_a: f64x4,
-    plain_b: f64x4,
+    /// Compensated, one triangle a lane: D, S_x, S_y, S_z.
+    sum: [f64x4; 4],
+    compensation: [f64x4; 4],
+    /// Plain: Σ|D|, ΣP, ΣM_x, ΣM_y, ΣM_z, Σ5M_x, Σ5M_y, Σ5M_z (a triangle is a face of
+    /// one triangle: its weight is 1 + 4).
+    plain: [f64x4; 8],
     triangles: usize,
 }
 
 /// Four triangles' corners: `[corner][axis]`, one triangle a lane.
 pub(crate) type Corners = [[f64x4; 3]; 3];
 
+/// TwoSum lane by lane (`accumulate::two_sum`), into a running sum and compensation.
+#[inline(always)]
+pub(crate) fn add_compensated(sum: &mut f64x4, compensation: &mut f64x4, x: f64x4) {
+    let s = *sum + x;
+    let z = s - *sum;
+    *compensation += (*sum - (s - z)) + (x - z);
+    *sum = s;
+}
+
 impl VolumeLanes {
     pub(crate) fn new(r: Point) -> Self {
         let zero = f64x4::ZERO;
         VolumeLanes {
             r: r.map(f64x4::splat),
-            sum: zero,
-            compensation: zero,
-            plain_a: zero,
-            plain_b: zero,
+            sum: [zero; 4],
+            compensation: [zero; 4],
+            plain: [zero; 8],
             triangles: 0,
         }
     }
 
     /// Adds four triangles; returns, for callers that sum more of them, their vector
     /// areas (b − a)×(c − a), their determinants D and their corners about r.
+    #[inline(always)]
     pub(crate) fn add(
         &mut self,
         [[ax, ay, az], [bx, by, bz], [cx, cy, cz]]: Corners,
@@ -320,39 +334,59 @@ impl VolumeLanes {
         let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
             + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
             + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
-        let determinant = d;
-        let (d, abs_d, permanent) = (d.to_array(), d.abs().to_array(), permanent.to_array());
-        let lanes = area.map(|x| x.to_array());
-        let weighted = magnitude.map(|m| (f64x4::splat(5.0) * m).to_array());
-        let magnitude = magnitude.map(|m| m.to_array());
-        for t in 0..4 {
-            let x = f64x4::new([d[t], lanes[0][t], lanes[1][t], lanes[2][t]]);
-            // TwoSum, lane by lane (`accumulate::two_sum`).
-            let s = self.sum + x;
-            let z = s - self.sum;
-            self.compensation += (self.sum - (s - z)) + (x - z);
-            self.sum = s;
-            self.plain_a += f64x4::new([abs_d[t], permanent[t], magnitude[0][t], magnitude[1][t]]);
-            self.plain_b +=
-                f64x4::new([magnitude[2][t], weighted[0][t], weighted[1][t], weighted[2][t]]);
+        for (k, x) in [d, area[0], area[1], area[2]].into_iter().enumerate() {
+            add_compensated(&mut self.sum[k], &mut self.compensation[k], x);
+        }
+        let five = f64x4::splat(5.0);
+        let plain = [
+            d.abs(),
+            permanent,
+            magnitude[0],
+            magnitude[1],
+            magnitude[2],
+            five * magnitude[0],
+            five * magnitude[1],
+            five * magnitude[2],
+        ];
+        for (sum, x) in self.plain.iter_mut().zip(plain) {
+            *sum += x;
         }
         self.triangles += 4;
-        (area, determinant, [a, b, c])
+        (area, d, [a, b, c])
     }
 
-    /// The sums so far.
-    pub(crate) fn sums(&self) -> VolumeSums {
-        let (s, c) = (self.sum.to_array(), self.compensation.to_array());
-        let (pa, pb) = (self.plain_a.to_array(), self.plain_b.to_array());
-        VolumeSums {
-            six_volume: CompensatedSum::from_parts(s[0], c[0]),
-            vector_area: [1, 2, 3].map(|k| CompensatedSum::from_parts(s[k], c[k])),
-            vector_area_magnitude: [pa[2], pa[3], pb[0]],
-            vector_area_weighted: [pb[1], pb[2], pb[3]],
-            determinant_magnitude: pa[1],
-            abs_six_volume: pa[0],
-            triangles: self.triangles,
+    /// The sums so far, lane by lane.
+    pub(crate) fn lanes(&self) -> LaneSums {
+        let (s, c) = (self.sum.map(|x| x.to_array()), self.compensation.map(|x| x.to_array()));
+        let p = self.plain.map(|x| x.to_array());
+        LaneSums(std::array::from_fn(|j| VolumeSums {
+            six_volume: CompensatedSum::from_parts(s[0][j], c[0][j]),
+            vector_area: [1, 2, 3].map(|k| CompensatedSum::from_parts(s[k][j], c[k][j])),
+            abs_six_volume: p[0][j],
+            determinant_magnitude: p[1][j],
+            vector_area_magnitude: [p[2][j], p[3][j], p[4][j]],
+            vector_area_weighted: [p[5][j], p[6][j], p[7][j]],
+            triangles: self.triangles / 4,
+        }))
+    }
+}
+
+/// A chunk's volume sums as four interleaved sums: the chunk's `k`-th triangle (and for
+/// the per-face sums its `k`-th face) goes to sum `k mod 4`, and the four are merged in
+/// order at the chunk's end. This is the summation order of every path, scalar or SIMD
+/// ([`VolumeLanes`]), so all give the same bits; the error bound is that of a
+/// compensated sum cut into parts merged in order, as the chunks already are.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct LaneSums(pub(crate) [VolumeSums; 4]);
+
+impl LaneSums {
+    /// The four sums merged in order.
+    pub(crate) fn merged(&self) -> VolumeSums {
+        let mut total = self.0[0];
+        for lane in &self.0[1..] {
+            total.merge(lane);
         }
+        total
     }
 }
 
@@ -381,8 +415,8 @@ fn chunk_sums<I: VertexIndex>(
         lanes.add(p.map(|corner| corner.map(f64x4::new)));
         face += 4;
     }
-    let mut sums = lanes.sums();
-    for t in groups.remainder() {
+    let mut sums = lanes.lanes();
+    for (lane, t) in groups.remainder().iter().enumerate() {
         let mut corner = [r; 3];
         for (k, &i) in t.iter().enumerate() {
             corner[k] =
@@ -392,9 +426,11 @@ fn chunk_sums<I: VertexIndex>(
         let (plus, minus) = cross_products(a, b, c);
         let area = [0, 1, 2].map(|k| 0.0 + (plus[k] - minus[k]));
         let magnitude = [0, 1, 2].map(|k| plus[k].abs() + minus[k].abs());
+        // The remainder starts at a multiple of 4 from the chunk's start.
+        let sums = &mut sums.0[lane];
         sums.add_determinant(sub(a, r), sub(b, r), sub(c, r));
         sums.add_vector_area(area, magnitude, 1);
         face += 1;
     }
-    Ok(sums)
+    Ok(sums.merged())
 }
