@@ -51,6 +51,10 @@ pub struct Slices {
     /// `meshvol grid --cells NX,NY,NZ --json`'s report for the grid (with `--units` and
     /// `--density`).
     pub grid: GridReport,
+    /// The grid's origin and cell size in the file's coordinates (the report's `bounds`
+    /// and `cell_size` are in the units asked for): where the outlines lie on it.
+    pub origin: [f64; 3],
+    pub cell: [f64; 3],
     /// At each level, the grid layer (k, from 0) that holds it.
     pub layers: Vec<usize>,
     /// Each cell's round(255 × volume / cell volume), in C order (i, j, k: k fastest) as
@@ -91,8 +95,8 @@ pub fn slices<S: Surface>(
         mass: None,
         warnings: input_warnings(std::slice::from_ref(subject)),
     };
-    let cell = grid.cell_volume();
-    let fractions = volumes.iter().map(|v| (255.0 * v / cell).round() as i32).collect();
+    let full = grid.cell_volume();
+    let fractions = volumes.iter().map(|v| (255.0 * (v / full)).round() as i32).collect();
     let report = summary(&grid, &volumes, run).in_units(units, &[(&name, subject.source.unit)])?;
     let (z0, h) = (grid.origin[2], grid.cell[2]);
     let levels: Vec<f64> = (0..SLICE_LEVELS).map(|k| z0 + (k as f64 + 0.5) * h).collect();
@@ -106,7 +110,8 @@ pub fn slices<S: Surface>(
         sections.push(report.in_units(&lengths, subject.source.unit)?);
         outlines.push(outline(&polygons));
     }
-    Ok(Some(Slices { levels, sections, outlines, grid: report, layers, fractions }))
+    let (origin, cell) = (grid.origin, grid.cell);
+    Ok(Some(Slices { levels, sections, outlines, grid: report, origin, cell, layers, fractions }))
 }
 
 /// The grid's cells over the box `min`–`max`: [`SLICE_LEVELS`] along z; along x and y,
