@@ -377,7 +377,8 @@ const viewer = {
   setClip() {
     const f = $("clip").value / 1000;
     const k = slices.s ? slices.level(f) : -1;
-    profile.at(f);
+    // The profile's level nearest the section's (the middle of its layer: (k + ½) / n).
+    profile.at(k >= 0 && f < 1 ? (k + 0.5) / slices.s.levels.length : f);
     slices.at(k);
     if (!this.bounds || this.bounds.isEmpty()) return;
     // With sections, the cut snaps to the level of the section shown.
