@@ -225,16 +225,19 @@ fn number_after(text: &str, word: &str) -> f64 {
     rest.split([' ', ',']).next().unwrap().parse().unwrap_or_else(|e| panic!("{word}: {e}: {text}"))
 }
 
-/// Moves the slider to two heights on the page showing `file` and checks each time that
+/// Moves the slider to three heights on the page showing `file` and checks each time that
 /// the area and perimeter shown are `meshvol section --plane z=H --json`'s at the level
 /// shown (to the 8 digits shown), that the picture is of the layer holding that level,
 /// cell by cell as `meshvol grid --cells ... --fraction` gives the layer (every cell
 /// wholly inside the part blue, every cell wholly outside white), and that it changes
-/// between the two heights (the flange, then the tube).
+/// from one height to the next.
 fn assert_slices_agree(browser: &Browser, file: &Path, shots: &Path, shot: &str) {
     let work = tempfile::tempdir().unwrap();
     let mut pictures = Vec::new();
-    for value in [100, 700] {
+    // Levels 12, 31 and 32 (of 64): the top of the flange, the tube, and the cross
+    // holes, each unlike the layer above or below it, so a picture of the wrong layer
+    // or a section of the wrong level shows.
+    for value in [195, 490, 505] {
         let shown = browser.run(&SLIDER.replace("VALUE", &value.to_string()));
         assert_eq!(shown["shown"], true, "{shown}");
         let text = shown["text"].as_str().unwrap();
@@ -274,6 +277,7 @@ fn assert_slices_agree(browser: &Browser, file: &Path, shots: &Path, shot: &str)
         pictures.push(shown["centres"].clone());
     }
     assert_ne!(pictures[0], pictures[1], "the picture changes with the level");
+    assert_ne!(pictures[1], pictures[2], "the picture changes with the level");
 }
 
 fn card(browser: &Browser, name: &str) -> Value {
