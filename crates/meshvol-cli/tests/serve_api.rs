@@ -494,9 +494,15 @@ fn slices_of(server: &Server, dir: &Path, name: &str, options: &str) -> Value {
 #[test]
 fn the_pages_sections_and_grid_are_the_commands() {
     let server = Server::start(&[]);
-    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/trimesh-models");
+    let corpus =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/trimesh-models");
     let mut files = vec![
-        (samples(), "flanged-bushing.stl", vec!["--units", "mm:cm"], vec!["--density", "7.85g/cm3"]),
+        (
+            samples(),
+            "flanged-bushing.stl",
+            vec!["--units", "mm:cm"],
+            vec!["--density", "7.85g/cm3"],
+        ),
         (samples(), "mound.obj", vec![], vec![]),
     ];
     if corpus.join("bunny.ply").is_file() {
@@ -506,9 +512,13 @@ fn the_pages_sections_and_grid_are_the_commands() {
     }
     let work = tempfile::tempdir().unwrap();
     for (dir, name, units, density) in &files {
-        let query: String = units.iter().chain(density).collect::<Vec<_>>().chunks(2).map(|kv| {
-            format!("&{}={}", kv[0].trim_start_matches("--"), kv[1])
-        }).collect();
+        let query: String = units
+            .iter()
+            .chain(density)
+            .collect::<Vec<_>>()
+            .chunks(2)
+            .map(|kv| format!("&{}={}", kv[0].trim_start_matches("--"), kv[1]))
+            .collect();
         let slices = slices_of(&server, dir, name, &query);
         let levels: Vec<f64> = slices["levels"].as_array().unwrap().iter().map(f).collect();
         assert_eq!(levels.len(), 64, "{name}");
@@ -569,8 +579,10 @@ fn the_pages_grid_and_sections_of_two_boxes_are_the_analytic_ones() {
     assert_eq!(grid["cells"], serde_json::json!([64, 14, 64]));
     let (dx, dy, dz) = (4.5 / 64.0, 1.0 / 14.0, 1.0 / 64.0);
     assert!((f(&grid["total"]) - 2.5).abs() < 1e-12, "{grid}");
-    let inside = |a: f64, b: f64| (b.min(1.0) - a.max(0.0)).max(0.0) + (b.min(4.5) - a.max(3.0)).max(0.0);
-    let q: Vec<i64> = slices["fractions"].as_array().unwrap().iter().map(|v| v.as_i64().unwrap()).collect();
+    let inside =
+        |a: f64, b: f64| (b.min(1.0) - a.max(0.0)).max(0.0) + (b.min(4.5) - a.max(3.0)).max(0.0);
+    let q: Vec<i64> =
+        slices["fractions"].as_array().unwrap().iter().map(|v| v.as_i64().unwrap()).collect();
     assert_eq!(q.len(), 64 * 14 * 64);
     let (mut sum, mut partial) = (0.0, 0);
     for i in 0..64 {
@@ -579,7 +591,10 @@ fn the_pages_grid_and_sections_of_two_boxes_are_the_analytic_ones() {
         for j in 0..14 {
             for k in 0..64 {
                 let shown = q[(i * 14 + j) * 64 + k];
-                assert!((shown as f64 / 255.0 - fraction).abs() <= 0.5 / 255.0 + 1e-12, "cell {i},{j},{k}: {shown}");
+                assert!(
+                    (shown as f64 / 255.0 - fraction).abs() <= 0.5 / 255.0 + 1e-12,
+                    "cell {i},{j},{k}: {shown}"
+                );
                 if fraction == 0.0 || fraction == 1.0 {
                     assert_eq!(shown as f64, 255.0 * fraction, "cell {i},{j},{k}");
                 }
@@ -593,7 +608,10 @@ fn the_pages_grid_and_sections_of_two_boxes_are_the_analytic_ones() {
     for k in 0..64 {
         let s = &slices["sections"][k];
         assert_eq!(f(&slices["levels"][k]), (k as f64 + 0.5) / 64.0);
-        assert!((f(&s["area"]) - 2.5).abs() < 1e-12 && (f(&s["perimeter"]) - 9.0).abs() < 1e-12, "{s}");
+        assert!(
+            (f(&s["area"]) - 2.5).abs() < 1e-12 && (f(&s["perimeter"]) - 9.0).abs() < 1e-12,
+            "{s}"
+        );
         assert_eq!((s["polygons"].as_u64(), s["holes"].as_u64()), (Some(2), Some(0)));
     }
 }

@@ -249,30 +249,62 @@ fn assert_slices_agree(browser: &Browser, file: &Path, shots: &Path, shot: &str)
         }
         let level: usize = shown["level"].as_str().unwrap().parse().unwrap();
         assert!(text.contains(&format!("(level {} of 64)", level + 1)), "{text}");
-        let (nx, ny) = (shown["nx"].as_u64().unwrap() as usize, shown["ny"].as_u64().unwrap() as usize);
+        let (nx, ny) =
+            (shown["nx"].as_u64().unwrap() as usize, shown["ny"].as_u64().unwrap() as usize);
         let npy = work.path().join("cells.npy");
         let cells = format!("{nx},{ny},64");
-        let grid = cli_json(&["grid", p(file), "--json", "--cells", &cells, "--fraction", "--out", p(&npy)]);
-        let (z0, h) = (grid["bounds"]["min"][2].as_f64().unwrap(), grid["cell_size"][2].as_f64().unwrap());
+        let grid = cli_json(&[
+            "grid",
+            p(file),
+            "--json",
+            "--cells",
+            &cells,
+            "--fraction",
+            "--out",
+            p(&npy),
+        ]);
+        let (z0, h) =
+            (grid["bounds"]["min"][2].as_f64().unwrap(), grid["cell_size"][2].as_f64().unwrap());
         let z: f64 = z.parse().unwrap();
         let layer = ((z - z0) / h).floor() as usize;
         assert_eq!(shown["layer"], layer.to_string(), "{shown}");
-        assert!(shown["caption"].as_str().unwrap().contains(&format!("layer k = {layer}:")), "{shown}");
+        assert!(
+            shown["caption"].as_str().unwrap().contains(&format!("layer k = {layer}:")),
+            "{shown}"
+        );
         let (_, fractions) = common::read_npy(&npy);
         let (mut full, mut empty) = (0, 0);
         for i in 0..nx {
             for j in 0..ny {
                 let fraction = fractions[(i * ny + j) * 64 + layer];
-                let colour: Vec<i64> = shown["centres"][i * ny + j].as_array().unwrap().iter().map(|v| v.as_i64().unwrap()).collect();
-                let want = if fraction == 1.0 { [24, 64, 160] } else if fraction == 0.0 { [255, 255, 255] } else { continue };
+                let colour: Vec<i64> = shown["centres"][i * ny + j]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_i64().unwrap())
+                    .collect();
+                let want = if fraction == 1.0 {
+                    [24, 64, 160]
+                } else if fraction == 0.0 {
+                    [255, 255, 255]
+                } else {
+                    continue;
+                };
                 full += usize::from(fraction == 1.0);
                 empty += usize::from(fraction == 0.0);
                 let near = colour.iter().zip(want).all(|(c, w)| (c - w).abs() <= 2);
-                assert!(near, "cell {i},{j} of layer {layer}: fraction {fraction}, colour {colour:?}");
+                assert!(
+                    near,
+                    "cell {i},{j} of layer {layer}: fraction {fraction}, colour {colour:?}"
+                );
             }
         }
         assert!(full > 50 && empty > 50, "{full} full, {empty} empty cells");
-        assert!(shown["painted"].as_u64().unwrap() > 2000, "the picture is drawn: {}", shown["painted"]);
+        assert!(
+            shown["painted"].as_u64().unwrap() > 2000,
+            "the picture is drawn: {}",
+            shown["painted"]
+        );
         browser.screenshot(&shots.join(format!("{shot}-{value}.png")));
         pictures.push(shown["centres"].clone());
     }
