@@ -63,8 +63,8 @@ pub struct Slices {
     pub fractions: Vec<i32>,
 }
 
-/// The slices of `subject`'s solid, or `None` where the solid is flat along an axis (no
-/// grid spans it). `units` are the page's options: the grid's report takes them all,
+/// The slices of `subject`'s solid, or `None` where no grid spans it (the solid is flat
+/// along an axis, or its cells' volume would overflow). `units` are the page's options: the grid's report takes them all,
 /// the sections their `--units` only (the page's density is per volume).
 pub fn slices<S: Surface>(
     subject: &Subject<'_, S>,
@@ -74,7 +74,7 @@ pub fn slices<S: Surface>(
     let mp = mass_properties(&measured);
     let Some(bounds) = mp.bounds else { return Ok(None) };
     let Some(counts) = grid_counts(bounds.min, bounds.max) else { return Ok(None) };
-    let grid = Grid::from_bounds(bounds.min, bounds.max, counts).map_err(|e| e.to_string())?;
+    let Ok(grid) = Grid::from_bounds(bounds.min, bounds.max, counts) else { return Ok(None) };
     let start = Instant::now();
     let volumes = cell_volumes(&measured, &grid).map_err(|e| e.to_string())?;
     let name = subject.source.name().to_string();
