@@ -452,7 +452,8 @@ fn the_pages_answer_holds_the_commands_reports() {
 }
 
 /// A file without faces is checked (it bounds nothing), as the command checks it; the
-/// page's answer then has no volume or profile, and an empty view.
+/// page's answer then has no volume, profile or slices, and an empty view; a sheet flat
+/// along x has a profile along z and no slices.
 #[test]
 fn a_file_without_faces_is_checked_as_the_command_checks_it() {
     let server = Server::start(&[]);
@@ -465,7 +466,15 @@ fn a_file_without_faces_is_checked_as_the_command_checks_it() {
     assert_eq!(status, 200, "{body}");
     let page = json(&body);
     assert_eq!((&page["volume"], &page["profile"]), (&Value::Null, &Value::Null));
+    assert_eq!(page["slices"], Value::Null);
     assert_eq!(page["view"]["triangles"], serde_json::json!([]));
+    // A sheet upright in x = 0: measured along z, but no grid spans it (no slices).
+    let sheet = "v 0 0 0\nv 0 1 0\nv 0 1 1\nv 0 0 1\nf 1 2 3 4\n";
+    let (status, body) = server.post("/api/view?name=sheet.obj", sheet.as_bytes());
+    assert_eq!(status, 200, "{body}");
+    let page = json(&body);
+    assert!(page["profile"].is_object(), "{body}");
+    assert_eq!(page["slices"], Value::Null);
 }
 
 /// `meshvol ARGS` run in `dir`, its JSON line.
