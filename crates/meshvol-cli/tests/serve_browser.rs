@@ -234,8 +234,8 @@ fn number_after(text: &str, word: &str) -> f64 {
 fn assert_slices_agree(browser: &Browser, file: &Path, shots: &Path, shot: &str) {
     let work = tempfile::tempdir().unwrap();
     let mut pictures = Vec::new();
-    // Levels 12, 31 and 32 (of 64): the top of the flange, the tube, and the cross
-    // holes, each unlike the layer above or below it, so a picture of the wrong layer
+    // Levels 12, 31 and 32 (of 64): the top of the flange, the tube, and its narrower
+    // band, each unlike the layer above or below it, so a picture of the wrong layer
     // or a section of the wrong level shows.
     for value in [195, 490, 505] {
         let shown = browser.run(&SLIDER.replace("VALUE", &value.to_string()));
