@@ -9,7 +9,9 @@ use meshvol::grid::{cell_volumes_with, cut_cells_with, union_cell_volumes_with, 
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};
-use meshvol_report::grid::{check_memory, choose, summary, GridReport, GridRun, Spacing};
+use meshvol_report::grid::{
+    check_memory, choose, layer_holding, summary, GridReport, GridRun, Spacing,
+};
 use meshvol_report::subject::{union_bodies, Subject};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -157,9 +159,8 @@ fn parse_slice(s: &str) -> Result<SliceAt, String> {
     }
 }
 
-/// The layer of cells `at` names in `grid`: a coordinate's is the cell [c_k, c_(k+1))
-/// holding it, where c_k = origin + k · cell (so a coordinate on the boundary of two
-/// layers picks the upper one), and the grid's far face the last layer.
+/// The layer of cells `at` names in `grid`: a coordinate's is the one holding it
+/// (`layer_holding`).
 fn slice_of(at: SliceAt, grid: &meshvol::grid::Grid) -> Result<Slice, String> {
     let name = |axis: usize| ["x", "y", "z"][axis];
     match at {
@@ -175,26 +176,17 @@ fn slice_of(at: SliceAt, grid: &meshvol::grid::Grid) -> Result<Slice, String> {
             Ok(Slice { axis, index })
         }
         SliceAt::Coordinate { axis, value } => {
-            let n = grid.counts[axis];
-            let plane = |k: usize| grid.origin[axis] + k as f64 * grid.cell[axis];
-            if !(value >= plane(0) && value <= plane(n)) {
-                return Err(format!(
+            let index = layer_holding(grid, axis, value).ok_or_else(|| {
+                let plane = |k: usize| grid.origin[axis] + k as f64 * grid.cell[axis];
+                format!(
                     "--slice {}={value} is outside the grid ({} from {} to {})",
                     name(axis),
                     name(axis),
                     plane(0),
-                    plane(n)
-                ));
-            }
-            let guess = ((value - plane(0)) / grid.cell[axis]).floor();
-            let mut k = if guess > 0.0 { (guess as usize).min(n - 1) } else { 0 };
-            while k > 0 && value < plane(k) {
-                k -= 1;
-            }
-            while k + 1 < n && value >= plane(k + 1) {
-                k += 1;
-            }
-            Ok(Slice { axis, index: k })
+                    plane(grid.counts[axis])
+                )
+            })?;
+            Ok(Slice { axis, index })
         }
     }
 }

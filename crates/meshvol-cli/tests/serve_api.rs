@@ -6,7 +6,7 @@
 mod common;
 
 use common::server::{agent, peak_memory_kib, Server};
-use common::{box_obj, meshvol, p, write};
+use common::{box_obj, f, meshvol, p, read_npy, write};
 use serde_json::Value;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -452,7 +452,8 @@ fn the_pages_answer_holds_the_commands_reports() {
 }
 
 /// A file without faces is checked (it bounds nothing), as the command checks it; the
-/// page's answer then has no volume or profile, and an empty view.
+/// page's answer then has no volume, profile or slices, and an empty view; a sheet flat
+/// along x has a profile along z and no slices.
 #[test]
 fn a_file_without_faces_is_checked_as_the_command_checks_it() {
     let server = Server::start(&[]);
@@ -465,5 +466,161 @@ fn a_file_without_faces_is_checked_as_the_command_checks_it() {
     assert_eq!(status, 200, "{body}");
     let page = json(&body);
     assert_eq!((&page["volume"], &page["profile"]), (&Value::Null, &Value::Null));
+    assert_eq!(page["slices"], Value::Null);
     assert_eq!(page["view"]["triangles"], serde_json::json!([]));
+    // A sheet upright in x = 0: measured along z, but no grid spans it (no slices).
+    let sheet = "v 0 0 0\nv 0 1 0\nv 0 1 1\nv 0 0 1\nf 1 2 3 4\n";
+    let (status, body) = server.post("/api/view?name=sheet.obj", sheet.as_bytes());
+    assert_eq!(status, 200, "{body}");
+    let page = json(&body);
+    assert!(page["profile"].is_object(), "{body}");
+    assert_eq!(page["slices"], Value::Null);
+}
+
+/// `meshvol ARGS` run in `dir`, its JSON line.
+fn cli_in(dir: &Path, args: &[&str]) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_meshvol")).current_dir(dir).args(args).output();
+    let out = out.unwrap();
+    serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{args:?}: {e}: {}", String::from_utf8_lossy(&out.stderr)))
+}
+
+/// `/api/view`'s `slices` for `dir/name`, posted with the query options `options`.
+fn slices_of(server: &Server, dir: &Path, name: &str, options: &str) -> Value {
+    let bytes = std::fs::read(dir.join(name)).unwrap();
+    let (status, body) = server.post(&format!("/api/view?name={name}{options}"), &bytes);
+    assert_eq!(status, 200, "{name}: {body}");
+    json(&body)["slices"].clone()
+}
+
+/// The page's sections under its slider are `meshvol section --plane z=H --json`'s
+/// reports at their levels (the whole object: area, perimeter, warnings, units), on the
+/// sample part with units and on broken meshes (a sample with a hole; the corpus's
+/// bunny, holes and non-manifold edges, when the corpus is there). Its grid is `meshvol
+/// grid --cells NX,NY,NZ`'s: the same summary, and each cell's fraction as `--out
+/// cells.npy --fraction` writes it (×255, rounded); and level k lies in the layer the
+/// page names, found here from the command's grid by arithmetic.
+#[test]
+fn the_pages_sections_and_grid_are_the_commands() {
+    let server = Server::start(&[]);
+    let corpus =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/trimesh-models");
+    let mut files = vec![
+        (
+            samples(),
+            "flanged-bushing.stl",
+            vec!["--units", "mm:cm"],
+            vec!["--density", "7.85g/cm3"],
+        ),
+        (samples(), "mound.obj", vec![], vec![]),
+    ];
+    if corpus.join("bunny.ply").is_file() {
+        files.push((corpus, "bunny.ply", vec![], vec![]));
+    } else {
+        eprintln!("no corpus: the bunny is not compared");
+    }
+    let work = tempfile::tempdir().unwrap();
+    for (dir, name, units, density) in &files {
+        let query: String = units
+            .iter()
+            .chain(density)
+            .collect::<Vec<_>>()
+            .chunks(2)
+            .map(|kv| format!("&{}={}", kv[0].trim_start_matches("--"), kv[1]))
+            .collect();
+        let slices = slices_of(&server, dir, name, &query);
+        let levels: Vec<f64> = slices["levels"].as_array().unwrap().iter().map(f).collect();
+        assert_eq!(levels.len(), 64, "{name}");
+        for k in [0, 1, 20, 31, 32, 47, 62, 63] {
+            let plane = format!("z={:?}", levels[k]);
+            let args = [&["section", name, "--json", "--plane", &plane][..], units].concat();
+            assert_eq!(slices["sections"][k], cli_in(dir, &args), "{name}, level {k}");
+        }
+        // The grid, as the command computes it for the same counts.
+        let cells: Vec<String> =
+            slices["grid"]["cells"].as_array().unwrap().iter().map(|n| n.to_string()).collect();
+        let cells = cells.join(",");
+        let npy = work.path().join("cells.npy");
+        let args = [
+            &["grid", name, "--json", "--cells", &cells, "--fraction", "--out", p(&npy)][..],
+            units,
+            density,
+        ]
+        .concat();
+        let mut expected = cli_in(dir, &args);
+        let mut shown = slices["grid"].clone();
+        for key in ["seconds", "out", "fraction"] {
+            expected.as_object_mut().unwrap().remove(key);
+            shown.as_object_mut().unwrap().remove(key);
+        }
+        assert_eq!(shown, expected, "{name}");
+        let (shape, fractions) = read_npy(&npy);
+        let quantized: Vec<i64> = fractions.iter().map(|x| (255.0 * x).round() as i64).collect();
+        let page: Vec<i64> =
+            slices["fractions"].as_array().unwrap().iter().map(|v| v.as_i64().unwrap()).collect();
+        assert_eq!(page, quantized, "{name}: cells {shape:?}");
+        // Level k in layer k: (z − z0) / h in the file's coordinates (the grid without
+        // --units), floored.
+        let plain = cli_in(dir, &["grid", name, "--json", "--cells", &cells]);
+        let (z0, h) = (f(&plain["bounds"]["min"][2]), f(&plain["cell_size"][2]));
+        for (k, z) in levels.iter().enumerate() {
+            let layer = ((z - z0) / h).floor() as u64;
+            assert_eq!(slices["layers"][k], layer, "{name}, level {k} at {z}");
+            assert!((z - z0 - (k as f64 + 0.5) * h).abs() < 1e-9 * h, "{name}: the middle");
+        }
+    }
+}
+
+/// Two boxes, 1 × 1 × 1 at x 0..1 and 1.5 × 1 × 1 at x 3..4.5: the grid is 64 × 14 ×
+/// 64 over 4.5 × 1 × 1 (cells 4.5/64 × 1/14 × 1/64), so each cell's fraction is the
+/// part of its x span inside the boxes, computed here; the sections are a unit square
+/// and a 1.5 × 1 rectangle (area 2.5, perimeter 9) at every level; the cells add up to
+/// the volume 2.5.
+#[test]
+fn the_pages_grid_and_sections_of_two_boxes_are_the_analytic_ones() {
+    let server = Server::start(&[]);
+    let dir = tempfile::tempdir().unwrap();
+    let two = box_obj([0.0; 3], [1.0; 3], 1, true, false)
+        + &box_obj([3.0, 0.0, 0.0], [4.5, 1.0, 1.0], 9, true, false);
+    write(dir.path(), "two.obj", two);
+    let slices = slices_of(&server, dir.path(), "two.obj", "");
+    let grid = &slices["grid"];
+    assert_eq!(grid["cells"], serde_json::json!([64, 14, 64]));
+    let (dx, dy, dz) = (4.5 / 64.0, 1.0 / 14.0, 1.0 / 64.0);
+    assert!((f(&grid["total"]) - 2.5).abs() < 1e-12, "{grid}");
+    let inside =
+        |a: f64, b: f64| (b.min(1.0) - a.max(0.0)).max(0.0) + (b.min(4.5) - a.max(3.0)).max(0.0);
+    let q: Vec<i64> =
+        slices["fractions"].as_array().unwrap().iter().map(|v| v.as_i64().unwrap()).collect();
+    assert_eq!(q.len(), 64 * 14 * 64);
+    let (mut sum, mut partial) = (0.0, 0);
+    for i in 0..64 {
+        let fraction = inside(i as f64 * dx, (i + 1) as f64 * dx) / dx;
+        partial += usize::from(fraction > 0.0 && fraction < 1.0);
+        for j in 0..14 {
+            for k in 0..64 {
+                let shown = q[(i * 14 + j) * 64 + k];
+                assert!(
+                    (shown as f64 / 255.0 - fraction).abs() <= 0.5 / 255.0 + 1e-12,
+                    "cell {i},{j},{k}: {shown}"
+                );
+                if fraction == 0.0 || fraction == 1.0 {
+                    assert_eq!(shown as f64, 255.0 * fraction, "cell {i},{j},{k}");
+                }
+                sum += shown as f64 / 255.0 * dx * dy * dz;
+            }
+        }
+    }
+    assert_eq!(partial, 2, "x = 1 and x = 4.5 are inside cells");
+    // Σ fraction × cell volume: 2.5, up to the rounding to 1/255 of the partial cells.
+    assert!((sum - 2.5).abs() <= (partial * 14 * 64) as f64 * 0.5 / 255.0 * dx * dy * dz, "{sum}");
+    for k in 0..64 {
+        let s = &slices["sections"][k];
+        assert_eq!(f(&slices["levels"][k]), (k as f64 + 0.5) / 64.0);
+        assert!(
+            (f(&s["area"]) - 2.5).abs() < 1e-12 && (f(&s["perimeter"]) - 9.0).abs() < 1e-12,
+            "{s}"
+        );
+        assert_eq!((s["polygons"].as_u64(), s["holes"].as_u64()), (Some(2), Some(0)));
+    }
 }

@@ -190,6 +190,128 @@ return {
 };
 "#;
 
+/// Moves the clip slider to VALUE (of 0..1000) as a hand would (an `input` event), then
+/// reads what the page shows of the section and the grid slice: the label's text and
+/// level, the picture's layer and caption, how many pixels are painted (neither the
+/// canvas's grey nor white), and the colour at the centre of each cell (i major, j
+/// minor) where the page placed the cells.
+const SLIDER: &str = r#"
+const clip = document.getElementById('clip');
+clip.value = VALUE;
+clip.dispatchEvent(new Event('input'));
+const label = document.getElementById('cut-at'), canvas = document.getElementById('grid-slice');
+const d = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+let painted = 0;
+for (let i = 0; i < d.length; i += 4) {
+  const grey = d[i] === 242 && d[i + 1] === 244 && d[i + 2] === 247;
+  if (!grey && !(d[i] > 250 && d[i + 1] > 250 && d[i + 2] > 250)) painted++;
+}
+const caption = document.getElementById('slice-caption').textContent;
+const [nx, ny] = caption.match(/grid (\d+) × (\d+)/).slice(1).map(Number);
+const c = JSON.parse(canvas.dataset.cells), centres = [];
+for (let i = 0; i < nx; i++) for (let j = 0; j < ny; j++) {
+  const x = Math.floor(c.x0 + (i + 0.5) * c.sx), y = Math.floor(c.y0 - (j + 0.5) * c.sy);
+  const k = 4 * (y * canvas.width + x);
+  centres.push([d[k], d[k + 1], d[k + 2]]);
+}
+return { text: label.textContent, z: label.dataset.z, level: label.dataset.level,
+         layer: canvas.dataset.layer, caption, painted, nx, ny, centres,
+         shown: !document.getElementById('slices').hidden };
+"#;
+
+/// The number after `word ` in `text`.
+fn number_after(text: &str, word: &str) -> f64 {
+    let rest = text.split(&format!("{word} ")).nth(1).unwrap_or_else(|| panic!("{word}: {text}"));
+    rest.split([' ', ',']).next().unwrap().parse().unwrap_or_else(|e| panic!("{word}: {e}: {text}"))
+}
+
+/// Moves the slider to three heights on the page showing `file` and checks each time that
+/// the area and perimeter shown are `meshvol section --plane z=H --json`'s at the level
+/// shown (to the 8 digits shown), that the picture is of the layer holding that level,
+/// cell by cell as `meshvol grid --cells ... --fraction` gives the layer (every cell
+/// wholly inside the part blue, every cell wholly outside white), and that it changes
+/// from one height to the next.
+fn assert_slices_agree(browser: &Browser, file: &Path, shots: &Path, shot: &str) {
+    let work = tempfile::tempdir().unwrap();
+    let mut pictures = Vec::new();
+    // Levels 12, 31 and 32 (of 64): the top of the flange, the tube, and its narrower
+    // band, each unlike the layer above or below it, so a picture of the wrong layer
+    // or a section of the wrong level shows.
+    for value in [195, 490, 505] {
+        let shown = browser.run(&SLIDER.replace("VALUE", &value.to_string()));
+        assert_eq!(shown["shown"], true, "{shown}");
+        let text = shown["text"].as_str().unwrap();
+        let z = shown["z"].as_str().unwrap();
+        let section = cli_json(&["section", p(file), "--json", "--plane", &format!("z={z}")]);
+        for key in ["area", "perimeter"] {
+            let (on_page, cli) = (number_after(text, key), section[key].as_f64().unwrap());
+            assert!((on_page - cli).abs() <= 5e-8 * cli.abs(), "{key}: {text} vs {cli}");
+        }
+        let level: usize = shown["level"].as_str().unwrap().parse().unwrap();
+        assert!(text.contains(&format!("(level {} of 64)", level + 1)), "{text}");
+        let (nx, ny) =
+            (shown["nx"].as_u64().unwrap() as usize, shown["ny"].as_u64().unwrap() as usize);
+        let npy = work.path().join("cells.npy");
+        let cells = format!("{nx},{ny},64");
+        let grid = cli_json(&[
+            "grid",
+            p(file),
+            "--json",
+            "--cells",
+            &cells,
+            "--fraction",
+            "--out",
+            p(&npy),
+        ]);
+        let (z0, h) =
+            (grid["bounds"]["min"][2].as_f64().unwrap(), grid["cell_size"][2].as_f64().unwrap());
+        let z: f64 = z.parse().unwrap();
+        let layer = ((z - z0) / h).floor() as usize;
+        assert_eq!(shown["layer"], layer.to_string(), "{shown}");
+        assert!(
+            shown["caption"].as_str().unwrap().contains(&format!("layer k = {layer}:")),
+            "{shown}"
+        );
+        let (_, fractions) = common::read_npy(&npy);
+        let (mut full, mut empty) = (0, 0);
+        for i in 0..nx {
+            for j in 0..ny {
+                let fraction = fractions[(i * ny + j) * 64 + layer];
+                let colour: Vec<i64> = shown["centres"][i * ny + j]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_i64().unwrap())
+                    .collect();
+                let want = if fraction == 1.0 {
+                    [24, 64, 160]
+                } else if fraction == 0.0 {
+                    [255, 255, 255]
+                } else {
+                    continue;
+                };
+                full += usize::from(fraction == 1.0);
+                empty += usize::from(fraction == 0.0);
+                let near = colour.iter().zip(want).all(|(c, w)| (c - w).abs() <= 2);
+                assert!(
+                    near,
+                    "cell {i},{j} of layer {layer}: fraction {fraction}, colour {colour:?}"
+                );
+            }
+        }
+        assert!(full > 50 && empty > 50, "{full} full, {empty} empty cells");
+        assert!(
+            shown["painted"].as_u64().unwrap() > 2000,
+            "the picture is drawn: {}",
+            shown["painted"]
+        );
+        browser.screenshot(&shots.join(format!("{shot}-{value}.png")));
+        pictures.push(shown["centres"].clone());
+    }
+    assert_ne!(pictures[0], pictures[1], "the picture changes with the level");
+    assert_ne!(pictures[1], pictures[2], "the picture changes with the level");
+}
+
 fn card(browser: &Browser, name: &str) -> Value {
     browser.until(&CARD.replace("NAME", &serde_json::to_string(name).unwrap()))
 }
@@ -243,6 +365,7 @@ fn the_page_shows_the_commands_numbers_and_draws_the_part_and_its_hole() {
     let shown = card(&browser, "flanged-bushing.stl");
     browser.screenshot(&shots.join("part.png"));
     assert_agrees(&shown, &part, false);
+    assert_slices_agree(&browser, &part, &shots, "part-slices");
 
     let dir = tempfile::tempdir().unwrap();
     let open =
@@ -275,5 +398,14 @@ fn the_page_shows_the_commands_numbers_and_draws_the_part_and_its_hole() {
     let shown = card(&browser, &name);
     browser.screenshot(&shots.join("open-box-html.png"));
     assert_agrees(&shown, &open, true);
+
+    // The sample part's page from `check --html`: the same sections and grid, no server.
+    let html = dir.path().join("part.html");
+    let out = meshvol(&["check", p(&part), "--html", p(&html)]);
+    assert_eq!(out.status.code(), Some(0));
+    browser.open(&format!("file://{}", p(&html)));
+    let shown = card(&browser, p(&part));
+    assert_agrees(&shown, &part, false);
+    assert_slices_agree(&browser, &part, &shots, "part-html-slices");
     eprintln!("screenshots in {}", shots.display());
 }

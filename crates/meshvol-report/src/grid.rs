@@ -49,6 +49,28 @@ pub fn choose(
     Ok((grid, from))
 }
 
+/// The layer of cells of `grid` along `axis` holding the coordinate `value` (`grid
+/// --slice z=Z`, and the page's grid slice): the cell [c_k, c_(k+1)) holding it, where
+/// c_k = origin + k · cell as the grid computes it (so a coordinate on the boundary of
+/// two layers picks the upper one), and the grid's far face the last layer. `None`
+/// outside the grid.
+pub fn layer_holding(grid: &Grid, axis: usize, value: f64) -> Option<usize> {
+    let n = grid.counts[axis];
+    let plane = |k: usize| grid.origin[axis] + k as f64 * grid.cell[axis];
+    if !(value >= plane(0) && value <= plane(n)) {
+        return None;
+    }
+    let guess = ((value - plane(0)) / grid.cell[axis]).floor();
+    let mut k = if guess > 0.0 { (guess as usize).min(n - 1) } else { 0 };
+    while k > 0 && value < plane(k) {
+        k -= 1;
+    }
+    while k + 1 < n && value >= plane(k + 1) {
+        k += 1;
+    }
+    Some(k)
+}
+
 /// Memory the machine has available, from /proc/meminfo where there is one.
 fn available_memory() -> Option<u128> {
     let info = std::fs::read_to_string("/proc/meminfo").ok()?;

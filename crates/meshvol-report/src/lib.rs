@@ -50,6 +50,7 @@ pub mod timings;
 pub mod union;
 pub mod units;
 pub mod view;
+pub mod view_slices;
 pub mod volume;
 pub mod written;
 

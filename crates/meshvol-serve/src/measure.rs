@@ -8,6 +8,7 @@ use meshvol_report::profile::{profile, ProfileReport};
 use meshvol_report::subject::{Source, Subject};
 use meshvol_report::units::{Density, UnitOptions};
 use meshvol_report::view::{view, View};
+use meshvol_report::view_slices::{slices, Slices};
 use meshvol_report::volume::{volume, VolumeOptions, VolumeReport};
 use serde::Serialize;
 use std::path::Path;
@@ -23,16 +24,18 @@ pub struct Options {
 
 /// What the page shows of one file: `check`'s report, `volume`'s and `profile`'s
 /// (`--levels 64` along z; both absent for a file without faces: it has no volume to
-/// report) and the view.
+/// report), the sections and grid under the slider (`view_slices`; absent too for a
+/// solid flat along an axis) and the view.
 #[derive(Debug, Serialize)]
 pub struct Page {
     pub check: CheckReport,
     pub volume: Option<VolumeReport>,
     pub profile: Option<ProfileReport>,
+    pub slices: Option<Slices>,
     pub view: View,
 }
 
-/// The profile's levels on the page: its chart, and the section under the clip slider.
+/// The profile's levels on the page: its chart, and the volume below the clip slider.
 pub const PROFILE_LEVELS: usize = 64;
 
 /// An upload's name as a file name: its last path component, without control
@@ -82,8 +85,8 @@ pub fn page<S: meshvol::Surface>(
     units: &UnitOptions,
 ) -> Result<Page, String> {
     let subject = Subject { source, surface, check: Some(c) };
-    let (volume, profile) = if surface.face_count() == 0 {
-        (None, None)
+    let (volume, profile, slices) = if surface.face_count() == 0 {
+        (None, None, None)
     } else {
         let options = VolumeOptions {
             density: units.density.unwrap_or(Density::plain(1.0)),
@@ -92,9 +95,9 @@ pub fn page<S: meshvol::Surface>(
         };
         let levels = Levels::Count(PROFILE_LEVELS);
         let profile = profile(&subject, Axis::Z, levels)?.in_units(units, source.unit)?;
-        (Some(volume(&subject, &options)?), Some(profile))
+        (Some(volume(&subject, &options)?), Some(profile), slices(&subject, units)?)
     };
-    Ok(Page { check: report, volume, profile, view: view(surface, c) })
+    Ok(Page { check: report, volume, profile, slices, view: view(surface, c) })
 }
 
 #[cfg(test)]

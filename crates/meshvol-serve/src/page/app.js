@@ -158,8 +158,9 @@ function select(index, card) {
   selected = index;
   document.querySelectorAll(".card").forEach((c) => c.classList.remove("selected"));
   card.classList.add("selected");
-  viewer.show(results[index].view);
   profile.show(results[index].profile);
+  slices.show(results[index].slices);
+  viewer.show(results[index].view);
 }
 
 // ---- the profile: volume below each level and section area, the level under the slider
@@ -195,6 +196,76 @@ const profile = {
   },
 };
 
+// ---- the section and the grid slice at the slider's level --------------------------------
+// The server (or `check --html`) cut the solid at 64 levels, one in the middle of each
+// layer of a grid over it: `section`'s report and outline at each, and the grid's cell
+// fractions. The slider picks a level; nothing is computed here.
+const slices = {
+  show(s) {
+    this.s = s;
+    $("slices").hidden = !s;
+    if (s) this.at(this.level($("clip").value / 1000));
+  },
+  // The level whose grid layer holds the fraction `f` of the height (the top one at 1).
+  level(f) {
+    const n = this.s.levels.length;
+    return Math.max(0, Math.min(n - 1, Math.floor(f * n)));
+  },
+  at(k) {
+    if (!this.s) return;
+    this.label(k);
+    this.draw(k);
+  },
+  label(k) {
+    const s = this.s, r = s.sections[k], u = r.units, lu = u ? " " + u.length : "";
+    const label = $("cut-at");
+    label.textContent = `section at z = ${fmt(r.plane.origin[2], 6)}${lu} (level ${k + 1} of ${s.levels.length}): ` +
+      `area ${fmt(r.area)}${u ? " " + u.area : ""}, perimeter ${fmt(r.perimeter)}${lu}`;
+    label.setAttribute("data-level", String(k));
+    label.setAttribute("data-z", String(s.levels[k]));
+    const g = s.grid, [nx, ny, nz] = g.cells, layer = s.layers[k], h = g.cell_size[2];
+    const bottom = g.bounds.min[2] + layer * h;
+    $("slice-caption").textContent = `grid ${nx} × ${ny} × ${nz} (meshvol grid --cells ${nx},${ny},${nz}), ` +
+      `cells ${g.cell_size.map((c) => fmt(c, 4)).join(" × ")}${lu}; layer k = ${layer}: z from ${fmt(bottom, 6)} to ${fmt(bottom + h, 6)}${lu}`;
+  },
+  // The layer's cells to scale, x to the right and y up, and the section's outline over them.
+  draw(k) {
+    const s = this.s, canvas = $("grid-slice"), g = canvas.getContext("2d");
+    const [nx, ny, nz] = s.grid.cells, layer = s.layers[k], [dx, dy] = s.cell;
+    const scale = Math.min((canvas.width - 8) / (nx * dx), (canvas.height - 8) / (ny * dy));
+    const x0 = (canvas.width - nx * dx * scale) / 2, y0 = (canvas.height + ny * dy * scale) / 2;
+    const px = (i) => Math.round(x0 + i * dx * scale), py = (j) => Math.round(y0 - j * dy * scale);
+    g.fillStyle = "#f2f4f7";
+    g.fillRect(0, 0, canvas.width, canvas.height);
+    for (let i = 0; i < nx; i++) {
+      for (let j = 0; j < ny; j++) {
+        g.fillStyle = ramp(s.fractions[(i * ny + j) * nz + layer] / 255);
+        g.fillRect(px(i), py(j + 1), px(i + 1) - px(i), py(j) - py(j + 1));
+      }
+    }
+    g.strokeStyle = "#f79009";
+    g.lineWidth = 1.5;
+    for (const ring of s.outlines[k]) {
+      g.beginPath();
+      for (let m = 0; m + 1 < ring.length; m += 2) {
+        g.lineTo(x0 + (ring[m] - s.origin[0]) * scale, y0 - (ring[m + 1] - s.origin[1]) * scale);
+      }
+      g.closePath();
+      g.stroke();
+    }
+    canvas.setAttribute("data-layer", String(layer));
+    canvas.setAttribute("data-cells", JSON.stringify({ x0, y0, sx: dx * scale, sy: dy * scale }));
+  },
+};
+
+// A fraction's colour, as `meshvol grid --png` draws it: white at 0, dark blue at 1,
+// dark red at -1 (inward-wound).
+function ramp(f) {
+  const t = Math.max(-1, Math.min(1, f)), a = Math.abs(t);
+  const target = t >= 0 ? [24, 64, 160] : [170, 30, 30];
+  return "rgb(" + target.map((c) => Math.round(255 + (c - 255) * a)).join(",") + ")";
+}
+
 // ---- the 3D view ----------------------------------------------------------------------
 const COLORS = { solid: 0x9fb4c8, cap: 0xffc83d, hole: 0xff2020, nm: 0xe040fb, cross: 0xff8c00, cavity: 0x22c3e6 };
 // Overlapping pairs' tints: none near the problems' red, orange, yellow, magenta, cyan.
@@ -204,6 +275,8 @@ const viewer = {
   init() {
     const box = $("view");
     this.box = box;
+    // The slider moves the section shown even where there is no 3D view to cut.
+    $("clip").addEventListener("input", () => this.setClip());
     if (!window.THREE || !box) return;
     try {
       this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -226,7 +299,6 @@ const viewer = {
     this.clip = new THREE.Plane(new THREE.Vector3(0, 0, -1), 1e30);
     this.group = null;
     new ResizeObserver(() => this.resize()).observe(box);
-    $("clip").addEventListener("input", () => this.setClip());
     $("reset-view").addEventListener("click", () => this.frame(null));
     this.resize();
   },
@@ -304,11 +376,15 @@ const viewer = {
   },
   setClip() {
     const f = $("clip").value / 1000;
+    const k = slices.s ? slices.level(f) : -1;
+    // The profile's level nearest the section's (the middle of its layer: (k + ½) / n).
+    profile.at(k >= 0 && f < 1 ? (k + 0.5) / slices.s.levels.length : f);
+    slices.at(k);
     if (!this.bounds || this.bounds.isEmpty()) return;
-    const z = this.bounds.min.z + f * (this.bounds.max.z - this.bounds.min.z);
+    // With sections, the cut snaps to the level of the section shown.
+    const z = k >= 0 ? slices.s.levels[k] : this.bounds.min.z + f * (this.bounds.max.z - this.bounds.min.z);
     this.clip.constant = f >= 1 ? 1e30 : z;
     $("clip-level").textContent = f >= 1 ? "off" : "z ≤ " + fmt(z, 5);
-    profile.at(f);
     this.render();
   },
   // Frames `target` (edges, coordinates or shells; null: the whole part), boxed.
