@@ -453,7 +453,7 @@ fn the_pages_answer_holds_the_commands_reports() {
 
 /// A file without faces is checked (it bounds nothing), as the command checks it; the
 /// page's answer then has no volume, profile or slices, and an empty view; a sheet flat
-/// along x has a profile along z and no slices.
+/// along x has a profile along z and no slices; one flat along z neither.
 #[test]
 fn a_file_without_faces_is_checked_as_the_command_checks_it() {
     let server = Server::start(&[]);
@@ -475,6 +475,23 @@ fn a_file_without_faces_is_checked_as_the_command_checks_it() {
     let page = json(&body);
     assert!(page["profile"].is_object(), "{body}");
     assert_eq!(page["slices"], Value::Null);
+    // A sheet flat in z = 0 (one triangle): nothing to profile along z, and the page
+    // still answers, with the check's and volume's reports, as `check --html` does.
+    let flat = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    write(dir.path(), "flat.obj", flat);
+    let (status, body) = server.post("/api/view?name=flat.obj", flat.as_bytes());
+    assert_eq!(status, 200, "{body}");
+    let page = json(&body);
+    assert_eq!(page["check"], cli_check(dir.path(), "flat.obj", &[]));
+    assert_eq!(page["volume"]["volume"], 0.0);
+    assert_eq!((&page["profile"], &page["slices"]), (&Value::Null, &Value::Null));
+    let html = dir.path().join("flat.html");
+    let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+        .current_dir(dir.path())
+        .args(["check", "flat.obj", "--html", html.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(html.exists(), "{}", String::from_utf8_lossy(&out.stderr));
 }
 
 /// `meshvol ARGS` run in `dir`, its JSON line.

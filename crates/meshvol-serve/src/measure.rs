@@ -24,7 +24,7 @@ pub struct Options {
 
 /// What the page shows of one file: `check`'s report, `volume`'s and `profile`'s
 /// (`--levels 64` along z; both absent for a file without faces: it has no volume to
-/// report), the sections and grid under the slider (`view_slices`; absent too for a
+/// report; the profile absent too for a solid flat along z), the sections and grid under the slider (`view_slices`; absent too for a
 /// solid flat along an axis) and the view.
 #[derive(Debug, Serialize)]
 pub struct Page {
@@ -93,9 +93,15 @@ pub fn page<S: meshvol::Surface>(
             units: units.units,
             exact: false,
         };
-        let levels = Levels::Count(PROFILE_LEVELS);
-        let profile = profile(&subject, Axis::Z, levels)?.in_units(units, source.unit)?;
-        (Some(volume(&subject, &options)?), Some(profile), slices(&subject, units)?)
+        let volume = volume(&subject, &options)?;
+        // A solid flat along z (a sheet lying in a plane) has nothing to profile.
+        let profile = if volume.bounds.as_ref().is_some_and(|b| b.max[2] > b.min[2]) {
+            let levels = Levels::Count(PROFILE_LEVELS);
+            Some(profile(&subject, Axis::Z, levels)?.in_units(units, source.unit)?)
+        } else {
+            None
+        };
+        (Some(volume), profile, slices(&subject, units)?)
     };
     Ok(Page { check: report, volume, profile, slices, view: view(surface, c) })
 }
