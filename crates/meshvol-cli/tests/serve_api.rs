@@ -401,7 +401,7 @@ fn check_html_writes_one_self_contained_page_with_the_commands_reports() {
 }
 
 /// `POST /api/view` answers what the page shows: `check --json`'s object, `volume
-/// --json`'s and `profile --levels 64 --json`'s for the same file and options, and the
+/// --json`'s and `profile --levels 128 --json`'s for the same file and options, and the
 /// view, whose solid is the one measured.
 #[test]
 fn the_pages_answer_holds_the_commands_reports() {
@@ -424,7 +424,7 @@ fn the_pages_answer_holds_the_commands_reports() {
     };
     assert_eq!(page["check"], run(&[&["check", "--json", name][..], &flags].concat()));
     assert_eq!(page["volume"], run(&[&["volume", "--json", name][..], &flags].concat()));
-    let profile = run(&[&["profile", "--json", "--levels", "64", name][..], &flags].concat());
+    let profile = run(&[&["profile", "--json", "--levels", "128", name][..], &flags].concat());
     assert_eq!(page["profile"], profile);
     // The view's triangles enclose the volume measured (in the file's mm: 1000 mm³ a cm³),
     // summed here from the arrays, as the divergence theorem gives it.

@@ -215,6 +215,7 @@ for (let i = 0; i < nx; i++) for (let j = 0; j < ny; j++) {
   centres.push([d[k], d[k + 1], d[k + 2]]);
 }
 return { text: label.textContent, z: label.dataset.z, level: label.dataset.level,
+         profile: document.getElementById('section-at').textContent,
          layer: canvas.dataset.layer, caption, painted, nx, ny, centres,
          shown: !document.getElementById('slices').hidden };
 "#;
@@ -227,7 +228,8 @@ fn number_after(text: &str, word: &str) -> f64 {
 
 /// Moves the slider to three heights on the page showing `file` and checks each time that
 /// the area and perimeter shown are `meshvol section --plane z=H --json`'s at the level
-/// shown (to the 8 digits shown), that the picture is of the layer holding that level,
+/// shown (to the 8 digits shown), that the profile's label beside it names the same
+/// level with `meshvol below`'s volume there (to its 6 digits), that the picture is of the layer holding that level,
 /// cell by cell as `meshvol grid --cells ... --fraction` gives the layer (every cell
 /// wholly inside the part blue, every cell wholly outside white), and that it changes
 /// from one height to the next.
@@ -247,6 +249,13 @@ fn assert_slices_agree(browser: &Browser, file: &Path, shots: &Path, shot: &str)
             let (on_page, cli) = (number_after(text, key), section[key].as_f64().unwrap());
             assert!((on_page - cli).abs() <= 5e-8 * cli.abs(), "{key}: {text} vs {cli}");
         }
+        // The profile's label is at the same level: `meshvol below`'s volume there.
+        let profile = shown["profile"].as_str().unwrap();
+        let below = cli_json(&["below", p(file), "--json", "--plane", &format!("0,0,1,{z}")]);
+        let (on_page, cli) = (number_after(profile, "below"), below["volume"].as_f64().unwrap());
+        assert!((on_page - cli).abs() <= 5e-6 * cli.abs(), "{profile} vs {cli}");
+        let zs = [profile, text].map(|t| t.split(": ").next().unwrap().to_string());
+        assert_eq!(zs[0], zs[1], "the two labels name one level");
         let level: usize = shown["level"].as_str().unwrap().parse().unwrap();
         assert!(text.contains(&format!("(level {} of 64)", level + 1)), "{text}");
         let (nx, ny) =

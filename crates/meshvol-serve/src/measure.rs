@@ -23,7 +23,7 @@ pub struct Options {
 }
 
 /// What the page shows of one file: `check`'s report, `volume`'s and `profile`'s
-/// (`--levels 64` along z; both absent for a file without faces: it has no volume to
+/// (`--levels 128` along z; both absent for a file without faces: it has no volume to
 /// report; the profile absent too for a solid flat along z), the sections and grid under the slider (`view_slices`; absent too for a
 /// solid flat along an axis) and the view.
 #[derive(Debug, Serialize)]
@@ -36,7 +36,10 @@ pub struct Page {
 }
 
 /// The profile's levels on the page: its chart, and the volume below the clip slider.
-pub const PROFILE_LEVELS: usize = 64;
+///
+/// Twice the sections' 64 layers: every other level is a section's level (the middle of
+/// its layer), so the volume below shown beside a section is at the section's level.
+pub const PROFILE_LEVELS: usize = 128;
 
 /// An upload's name as a file name: its last path component, without control
 /// characters; `upload` when nothing is left.

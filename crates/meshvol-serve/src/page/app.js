@@ -377,7 +377,8 @@ const viewer = {
   setClip() {
     const f = $("clip").value / 1000;
     const k = slices.s ? slices.level(f) : -1;
-    // The profile's level nearest the section's (the middle of its layer: (k + ½) / n).
+    // The profile's level at the section's (the middle of its layer, (k + ½) / n: the
+    // profile has two levels a layer).
     profile.at(k >= 0 && f < 1 ? (k + 0.5) / slices.s.levels.length : f);
     slices.at(k);
     if (!this.bounds || this.bounds.isEmpty()) return;
