@@ -12,6 +12,11 @@
 //!   apertures as field arrays (VTK `FieldData`, which has no shape): `aperture_x` with
 //!   `(NX+1)·NY·NZ` tuples in VTK's order, x fastest (`(k·NY + j)·(NX+1) + i`), and
 //!   likewise `aperture_y` and `aperture_z`.
+//!
+//! [`cut_cell_arrays`] lists the cut-cell arrays (name, shape, values) once, for the
+//! `.npz` and for the Zarr group (`zarr::ZarrGroup`, feature `zarr`): `volume`,
+//! `fraction`, `centroid`, `boundary_area`, `boundary_vector`, `boundary_centroid`,
+//! `aperture_x`, `aperture_y`, `aperture_z`.
 
 use super::{check_len, npy_array, vti_arrays, VtiArray, VtiField};
 use meshvol::grid::{CutCells, Grid};

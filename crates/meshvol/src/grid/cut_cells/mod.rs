@@ -180,7 +180,8 @@ pub fn cut_cells_with<S: Surface + ?Sized>(
 ///
 /// The x and y apertures sum the surface from the grid's far x and y faces down, so a
 /// region is computed over the cells from its start to those faces (and cut back): a
-/// block near the grid's low corner costs about as much as the whole grid.
+/// block near the grid's low corner costs about as much as the whole grid. To compute
+/// a whole grid in parts, take its rows from the far x face down: [`cut_cells_rows`].
 pub fn cut_cells_region<S: Surface + ?Sized>(
     surface: &S,
     grid: &Grid,
