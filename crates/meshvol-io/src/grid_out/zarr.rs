@@ -128,7 +128,8 @@ impl RowArray {
         // Values per (i, j, k): the components along the last axes, whole in each chunk.
         let inner: usize = shape[3..].iter().product();
         let cx = chunks[0];
-        let aligned = layers.start % cx == 0 && (layers.end % cx == 0 || layers.end == shape[0]);
+        let aligned = layers.start.is_multiple_of(cx)
+            && (layers.end.is_multiple_of(cx) || layers.end == shape[0]);
         if !aligned || layers.end > shape[0] || values.len() != layers.len() * ny * nz * inner {
             return Err(invalid(format!(
                 "{} values for layers {layers:?} of an array of shape {shape:?} in chunks {chunks:?}",
