@@ -15,10 +15,11 @@
 //!   bits) and `values` (`volume` or `fraction`).
 //! - [`ZarrGroup`]: a group (attributes `origin` and `cell_size`) of named arrays over
 //!   the cells ([`CellArray`]: the cut-cell geometry), each an array of the group named
-//!   as in the `.npz`: chunks of the cells' chunk shape (and whole along a last axis of
-//!   vector components, named `component`); an array on the faces across an axis has
-//!   one more layer along it (`NX + 1` for the x faces), named `x_face`, `y_face` or
-//!   `z_face`, and the chunk row that ends the grid writes its far faces.
+//!   as in the `.npz`: chunks of the cells' chunk shape, and whole along the axes after
+//!   the third (vector components, named `component`, then `component_2`, ...). An
+//!   array on the faces across an axis has one more layer along it (`NX + 1` for the x
+//!   faces), named `x_face`, `y_face` or `z_face`; the chunk row that ends the grid
+//!   writes the far x faces.
 
 use super::CellArray;
 use meshvol::grid::Grid;
@@ -130,7 +131,11 @@ impl RowArray {
         let cx = chunks[0];
         let aligned = layers.start.is_multiple_of(cx)
             && (layers.end.is_multiple_of(cx) || layers.end == shape[0]);
-        if !aligned || layers.end > shape[0] || values.len() != layers.len() * ny * nz * inner {
+        if !aligned
+            || layers.is_empty()
+            || layers.end > shape[0]
+            || values.len() != layers.len() * ny * nz * inner
+        {
             return Err(invalid(format!(
                 "{} values for layers {layers:?} of an array of shape {shape:?} in chunks {chunks:?}",
                 values.len()
@@ -263,6 +268,9 @@ impl ZarrGroup {
     /// written here only by the row that ends the grid). The same arrays, in the same
     /// order, every row.
     pub fn write_row(&mut self, row: usize, arrays: &[CellArray]) -> io::Result<()> {
+        if row >= self.rows() {
+            return Err(invalid(format!("no chunk row {row}: the grid has {}", self.rows())));
+        }
         let cells = self.row_cells(row);
         let [nx, ny, nz] = self.rows.counts;
         let mismatch = |a: &CellArray| {
@@ -294,7 +302,10 @@ impl ZarrGroup {
                         }
                     })
                     .collect();
-                names.extend((3..shape.len()).map(|_| "component".to_string()));
+                names.extend((3..shape.len()).map(|d| match d {
+                    3 => "component".to_string(),
+                    _ => format!("component_{}", d - 2),
+                }));
                 let at = format!("/{}", a.name);
                 let chunks = self.rows.chunks;
                 let array = RowArray::create(
@@ -325,5 +336,54 @@ impl ZarrGroup {
             })?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use zarrs::array_subset::ArraySubset;
+
+    /// A 5-axis array on the x faces (a 2 × 3 block per face, value = its C-order index
+    /// in the whole array), written by rows from the far face down, reads back whole.
+    #[test]
+    fn face_arrays_of_any_rank_come_back_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let grid = Grid::new([0.0; 3], [1.0; 3], [5, 3, 4]).unwrap();
+        let [nx, ny, nz] = grid.counts;
+        let whole = [nx + 1, ny, nz, 2, 3];
+        let per_layer: usize = whole[1..].iter().product();
+        let all: Vec<f64> = (0..whole.iter().product::<usize>()).map(|n| n as f64).collect();
+        let mut group = ZarrGroup::create(dir.path(), &grid, [2, 2, 3]).unwrap();
+        for row in (0..group.rows()).rev() {
+            let cells = group.row_cells(row);
+            // The row's faces and the one beyond it, as the cut cells of a row hold them.
+            let values = &all[cells.start * per_layer..(cells.end + 1) * per_layer];
+            let shape = vec![cells.len() + 1, ny, nz, 2, 3];
+            let array = CellArray { name: "faces", shape, values, divisor: 1.0 };
+            group.write_row(row, &[array]).unwrap();
+        }
+        let store = Arc::new(FilesystemStore::new(dir.path()).unwrap());
+        let array = Array::open(store, "/faces").unwrap();
+        let shape: Vec<u64> = whole.iter().map(|&n| n as u64).collect();
+        assert_eq!(array.shape(), shape.as_slice());
+        let names: Vec<String> = array
+            .dimension_names()
+            .clone()
+            .unwrap()
+            .into_iter()
+            .map(|n| n.unwrap_or_default())
+            .collect();
+        assert_eq!(names, ["x_face", "y", "z", "component", "component_2"]);
+        let back: Vec<f64> =
+            array.retrieve_array_subset_elements(&ArraySubset::new_with_shape(shape)).unwrap();
+        assert_eq!(back, all);
+        // Misuse is an error, not a panic: a row past the grid, arrays that change.
+        let array = CellArray { name: "faces", shape: vec![1, ny, nz], values: &[], divisor: 1.0 };
+        assert!(group.write_row(3, &[array]).is_err());
+        let values = vec![0.0; 2 * ny * nz];
+        let other =
+            CellArray { name: "other", shape: vec![2, ny, nz], values: &values, divisor: 1.0 };
+        assert!(group.write_row(0, &[other]).is_err());
     }
 }
