@@ -42,14 +42,15 @@ pub struct GridArgs {
     /// (NumPy arrays `volume`, `fraction`, `origin`, `cell_size`; with --moments the
     /// cut-cell arrays too), .vti (VTK image data, cell arrays `volume` and `fraction`, and
     /// with --moments the rest), .csv (non-empty cells), or .zarr (a Zarr v3 array, written
-    /// chunk by chunk: for grids larger than memory).
+    /// chunk by chunk: for grids larger than memory; with --moments a group of the
+    /// cut-cell arrays).
     #[arg(long, short, value_name = "OUT", value_parser = parse_out)]
     out: Option<PathBuf>,
     /// The chunk shape of a .zarr output (default 64 cells along each axis, at most the
     /// grid's): memory holds one slab of CX × NY × NZ cells at a time.
     #[arg(long, value_name = "CX,CY,CZ", value_parser = parse_cells)]
     chunks: Option<[usize; 3]>,
-    /// Write the cut-cell geometry of every cell to --out (.npz or .vti): the solid's
+    /// Write the cut-cell geometry of every cell to --out (.npz, .vti or .zarr): the solid's
     /// `centroid` in the cell, the surface's `boundary_area`, `boundary_vector` (∫ n dA)
     /// and `boundary_centroid`, and the fraction of each cell face inside the solid,
     /// `aperture_x`, `aperture_y`, `aperture_z` (docs/cells.md).
@@ -250,8 +251,10 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
                         is of one surface (the files' solids together)"
                 .into());
         }
-        if !matches!(out_kind.as_deref(), Some("npz" | "vti")) {
-            return Err("--moments writes several arrays: give --out cells.npz or cells.vti".into());
+        if !matches!(out_kind.as_deref(), Some("npz" | "vti" | "zarr")) {
+            return Err("--moments writes several arrays: give --out cells.npz, cells.vti or \
+                        cells.zarr"
+                .into());
         }
     }
     let zarr = args.out.as_deref().filter(|out| extension(out).as_deref() == Some("zarr"));
@@ -262,8 +265,12 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
                 .into());
         }
         let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
-        return zarr::write(&together, &grid, out, args.chunks, run, progress)?
-            .in_units(&args.units.options(), &files);
+        let report = if args.moments {
+            zarr::write_cut_cells(&together, &grid, out, args.chunks, run, progress)?
+        } else {
+            zarr::write(&together, &grid, out, args.chunks, run, progress)?
+        };
+        return report.in_units(&args.units.options(), &files);
     }
     if args.chunks.is_some() {
         return Err("--chunks is for a .zarr output (--out cells.zarr)".into());

@@ -3,7 +3,7 @@
 //! grid, and against a box's closed-form volume.
 
 mod common;
-use common::{f, meshvol, p, read_npy, write};
+use common::{box_obj, f, meshvol, p, read_npy, read_npz, write};
 
 use serde_json::Value;
 use std::path::Path;
@@ -30,8 +30,8 @@ fn numbers(v: &Value) -> Vec<usize> {
     v.as_array().unwrap().iter().map(|x| x.as_u64().unwrap() as usize).collect()
 }
 
-/// The whole array of a Zarr v3 store with the `bytes` codec, chunk by chunk: a missing
-/// chunk is the fill value, edge chunks are whole (padded).
+/// The whole array of a Zarr v3 array with the `bytes` codec (of any number of axes),
+/// chunk by chunk: a missing chunk is the fill value, edge chunks are whole (padded).
 fn read_zarr(path: &Path) -> (Value, Vec<f64>) {
     let meta: Value =
         serde_json::from_slice(&std::fs::read(path.join("zarr.json")).unwrap()).unwrap();
@@ -47,28 +47,36 @@ fn read_zarr(path: &Path) -> (Value, Vec<f64>) {
     let fill = f(&meta["fill_value"]);
     let shape = numbers(&meta["shape"]);
     let chunk = numbers(&meta["chunk_grid"]["configuration"]["chunk_shape"]);
+    let d = shape.len();
+    let blocks: Vec<usize> = (0..d).map(|a| shape[a].div_ceil(chunk[a])).collect();
+    // C-order index of `at` in an array of `shape`.
+    let index = |at: &[usize], shape: &[usize]| at.iter().zip(shape).fold(0, |n, (i, s)| n * s + i);
+    let unravel = |mut n: usize, shape: &[usize]| {
+        let mut at = vec![0; shape.len()];
+        for a in (0..shape.len()).rev() {
+            at[a] = n % shape[a];
+            n /= shape[a];
+        }
+        at
+    };
     let mut out = vec![f64::NAN; shape.iter().product()];
-    let blocks: Vec<usize> = (0..3).map(|a| shape[a].div_ceil(chunk[a])).collect();
-    for bi in 0..blocks[0] {
-        for bj in 0..blocks[1] {
-            for bk in 0..blocks[2] {
-                let file = path.join(format!("c/{bi}/{bj}/{bk}"));
-                let values: Vec<f64> = match std::fs::read(&file) {
-                    Ok(bytes) => {
-                        assert_eq!(bytes.len(), chunk.iter().product::<usize>() * 8, "{file:?}");
-                        let v = bytes.chunks_exact(8);
-                        v.map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
-                    }
-                    Err(_) => vec![fill; chunk.iter().product()],
-                };
-                for (n, &v) in values.iter().enumerate() {
-                    let local = [n / (chunk[1] * chunk[2]), n / chunk[2] % chunk[1], n % chunk[2]];
-                    let at = [bi * chunk[0], bj * chunk[1], bk * chunk[2]];
-                    let g: Vec<usize> = (0..3).map(|a| at[a] + local[a]).collect();
-                    if (0..3).all(|a| g[a] < shape[a]) {
-                        out[(g[0] * shape[1] + g[1]) * shape[2] + g[2]] = v;
-                    }
-                }
+    for b in 0..blocks.iter().product() {
+        let block = unravel(b, &blocks);
+        let key: Vec<String> = block.iter().map(|i| i.to_string()).collect();
+        let file = path.join(format!("c/{}", key.join("/")));
+        let values: Vec<f64> = match std::fs::read(&file) {
+            Ok(bytes) => {
+                assert_eq!(bytes.len(), chunk.iter().product::<usize>() * 8, "{file:?}");
+                let v = bytes.chunks_exact(8);
+                v.map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
+            }
+            Err(_) => vec![fill; chunk.iter().product()],
+        };
+        for (n, &v) in values.iter().enumerate() {
+            let local = unravel(n, &chunk);
+            let g: Vec<usize> = (0..d).map(|a| block[a] * chunk[a] + local[a]).collect();
+            if (0..d).all(|a| g[a] < shape[a]) {
+                out[index(&g, &shape)] = v;
             }
         }
     }
@@ -145,4 +153,90 @@ fn zarr_misuse_is_refused_by_name() {
     assert!(err.contains("need the whole grid in memory"), "{err}");
     let (code, _) = run(&["--out", p(&store), "--chunks", "0,2,2"]);
     assert_eq!(code, Some(2));
+}
+
+#[test]
+fn zarr_moments_group_holds_the_npz_arrays_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let (centre, r) = ([0.31, -0.17, 0.23], 1.1);
+    let octahedron = write(dir.path(), "octahedron.obj", octahedron(centre, r));
+    // A box on its own bounding box: its faces on the grid's far faces, whose cells and
+    // apertures (the far x faces, written by the last chunk row) hold them.
+    let cube =
+        write(dir.path(), "box.obj", box_obj([0.1, -0.3, 0.2], [1.4, 0.9, 1.1], 1, true, false));
+    let cases = [
+        // Bounds through the solid: its section on the far faces is their aperture.
+        (&octahedron, vec!["--cells", "12,9,13", "--bounds", "-0.5,-1.4,-1.1,0.9,0.6,1.0"]),
+        (&cube, vec!["--cells", "11,7,5"]),
+    ];
+    let (npz, store) = (dir.path().join("c.npz"), dir.path().join("c.zarr"));
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for (mesh, grid) in cases {
+        let args = [&["grid", p(mesh), "--moments", "--json"][..], &grid[..]].concat();
+        let from_npz = json(&[&args[..], &["--out", p(&npz)]].concat());
+        let arrays = read_npz(&npz);
+        let nx: usize = grid[1].split(',').next().unwrap().parse().unwrap();
+        // Chunks that divide NX (the x faces' NX + 1 layers then end in a chunk row of
+        // their own) and that do not, one cell thick, and the whole grid.
+        for chunks in ["4,5,6", "3,2,13", "5,4,4", "1,3,2", &format!("{nx},64,64")] {
+            let from_zarr = json(&[&args[..], &["--out", p(&store), "--chunks", chunks]].concat());
+            let group: Value =
+                serde_json::from_slice(&std::fs::read(store.join("zarr.json")).unwrap()).unwrap();
+            assert_eq!(group["node_type"], "group");
+            for (key, name) in [("origin", "origin"), ("cell_size", "cell_size")] {
+                let want = &arrays[name].1;
+                let got: Vec<f64> =
+                    group["attributes"][key].as_array().unwrap().iter().map(f).collect();
+                assert_eq!(bits(&got), bits(want), "{key}");
+            }
+            let mut names = Vec::new();
+            for (name, (shape, values)) in &arrays {
+                if name == "origin" || name == "cell_size" {
+                    continue;
+                }
+                let (meta, stored) = read_zarr(&store.join(name));
+                assert_eq!(&numbers(&meta["shape"]), shape, "{name} in chunks {chunks}");
+                assert_eq!(bits(&stored), bits(values), "{name} in chunks {chunks}");
+                names.push(name.clone());
+            }
+            // Every cut-cell array, no other.
+            let mut held: Vec<String> = std::fs::read_dir(&store)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .filter(|n| n != "zarr.json")
+                .collect();
+            held.sort();
+            assert_eq!(held, names);
+            assert_eq!(names.len(), 9, "{names:?}");
+            let (meta, _) = read_zarr(&store.join("aperture_x"));
+            assert_eq!(meta["dimension_names"], serde_json::json!(["x_face", "y", "z"]));
+            let (meta, _) = read_zarr(&store.join("centroid"));
+            assert_eq!(meta["dimension_names"], serde_json::json!(["x", "y", "z", "component"]));
+            for key in ["total", "cells_full", "cells_partial", "cells_empty", "moments", "cells"] {
+                assert_eq!(from_zarr[key], from_npz[key], "{key}");
+            }
+        }
+    }
+    // Independent of both: the octahedron's volume in the cells.
+    json(
+        &[
+            &["grid", p(&octahedron), "--cells", "5,6,7", "--moments"][..],
+            &["--json", "--out", p(&store)],
+        ]
+        .concat(),
+    );
+    let (_, volume) = read_zarr(&store.join("volume"));
+    assert!((volume.iter().sum::<f64>() - 4.0 * r * r * r / 3.0).abs() < 1e-13);
+}
+
+#[test]
+fn a_moments_group_over_a_volumes_array_leaves_none_of_its_chunks() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = write(dir.path(), "o.obj", octahedron([0.0; 3], 1.0));
+    let store = dir.path().join("c.zarr");
+    let grid = ["grid", p(&mesh), "--cells", "4,4,4", "--out", p(&store), "--chunks", "2,2,2"];
+    json(&[&grid[..], &["--json"]].concat());
+    assert!(store.join("c/0/0/0").exists());
+    json(&[&grid[..], &["--json", "--moments"]].concat());
+    assert!(!store.join("c/0/0/0").exists() && store.join("volume/c/0/0/0").exists());
 }

@@ -123,6 +123,43 @@ def test_the_commands_zarr_is_its_npy(sphere_file, tmp_path):
     assert same_bits(stored[...], np.load(npy))
 
 
+@pytest.mark.skipif(not COMMAND, reason="MESHVOL_BIN names no meshvol command to compare with")
+def test_the_commands_moments_zarr_is_its_npz(sphere_file, tmp_path):
+    """grid --moments --out cells.zarr: a group of the .npz's arrays, the same bits, for
+    chunks that divide the grid and chunks that do not; bounds through the sphere, so
+    that the far faces' apertures are not zero."""
+    grid = ["grid", str(sphere_file), "--cells", "8,10,11", "--moments",
+            "--bounds", "-0.7,-1.3,-0.8,0.6,0.9,1.1"]
+    npz = tmp_path / "cells.npz"
+    run = subprocess.run([COMMAND, *grid, "--out", str(npz)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    arrays = np.load(npz)
+    assert np.any(arrays["aperture_x"][-1] != 0) and np.any(arrays["aperture_z"][:, :, -1] != 0)
+    for chunks in ((4, 5, 6), (3, 4, 11), (8, 10, 11), (1, 3, 2)):
+        store = tmp_path / f"cells-{'-'.join(map(str, chunks))}.zarr"
+        run = subprocess.run(
+            [COMMAND, *grid, "--out", str(store), "--chunks", ",".join(map(str, chunks))],
+            capture_output=True,
+            text=True,
+        )
+        assert run.returncode == 0, run.stderr
+        group = zarr.open_group(str(store), mode="r")
+        assert same_bits(group.attrs["origin"], arrays["origin"])
+        assert same_bits(group.attrs["cell_size"], arrays["cell_size"])
+        names = sorted(set(arrays.files) - {"origin", "cell_size"})
+        assert sorted(group.array_keys()) == names
+        for name in names:
+            stored = group[name]
+            assert stored.chunks[:3] == chunks, name
+            assert same_bits(stored[...], arrays[name]), name
+    # The dimension names make one xarray Dataset (apertures on x_face, y_face, z_face).
+    xarray = pytest.importorskip("xarray")
+    data = xarray.open_zarr(str(store), consolidated=False)
+    assert dict(data.sizes) == {"x": 8, "y": 10, "z": 11, "x_face": 9, "y_face": 11,
+                                "z_face": 12, "component": 3}
+    assert same_bits(data["aperture_y"].values, arrays["aperture_y"])
+
+
 def test_measure_many_files_on_the_cluster(client, tmp_path):
     pandas = pytest.importorskip("pandas")
     pytest.importorskip("dask.dataframe")

@@ -285,6 +285,14 @@ impl Report for GridReport {
                 Some(e) if e.eq_ignore_ascii_case("npz") => {
                     "NumPy arrays volume, fraction, origin, cell_size".to_string()
                 }
+                Some(e) if e.eq_ignore_ascii_case("zarr") && r.moments => {
+                    let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
+                    format!(
+                        "Zarr v3 group of float64 arrays volume, fraction, centroid, \
+                         boundary_area, boundary_vector, boundary_centroid, aperture_x, _y, _z, \
+                         chunks ({cx}, {cy}, {cz})"
+                    )
+                }
                 Some(e) if e.eq_ignore_ascii_case("zarr") => {
                     let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
                     format!(

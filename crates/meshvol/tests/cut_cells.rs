@@ -579,3 +579,67 @@ fn non_convex_polygon_faces_count_their_own_area() {
         }
     }
 }
+
+/// Every value of `c` as bits, array by array (cells, then each axis's faces).
+fn bits(c: &CutCells) -> Vec<Vec<u64>> {
+    let flat = |v: &[P]| v.as_flattened().iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let scalars = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let mut out = vec![
+        scalars(&c.volume),
+        flat(&c.centroid),
+        scalars(&c.boundary_area),
+        flat(&c.boundary_vector),
+        flat(&c.boundary_centroid),
+    ];
+    out.extend(c.aperture.iter().map(|a| scalars(a)));
+    out
+}
+
+#[test]
+fn rows_from_the_far_face_are_the_whole_grids_bits() {
+    use meshvol::grid::cut_cells_rows;
+    let (lo, hi) = ([0.13, -0.27, 0.31], [1.71, 0.94, 1.05]);
+    let cases = [
+        (uv_sphere(1.0, 40, 20), Grid::new([-1.1; 3], [0.2, 0.26, 0.24], [11, 9, 9]).unwrap()),
+        // The box's faces on the grid's far faces (closed: counted in the cells inside).
+        (cuboid(lo, hi), Grid::from_bounds(lo, hi, [7, 4, 3]).unwrap()),
+        (solids().remove(4).1, Grid::from_bounds([-0.1; 3], [1.4, 1.2, 1.3], [6, 7, 5]).unwrap()),
+    ];
+    for (mesh, grid) in cases {
+        let whole = cut_cells(&mesh, &grid).unwrap();
+        let nx = grid.counts[0];
+        for row in [1, 2, 3, 4, nx - 1, nx, nx + 3] {
+            for threads in [1, 2, 5] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let rows: Vec<CutCells> = pool.install(|| {
+                    cut_cells_rows(&mesh, &grid, row).unwrap().map(|r| r.unwrap()).collect()
+                });
+                // From the far face down, starting at multiples of the row.
+                let starts: Vec<usize> = rows.iter().map(|r| r.region[0].start).collect();
+                let expected: Vec<usize> = (0..nx).step_by(row.min(nx)).rev().collect();
+                assert_eq!(starts, expected, "row {row}");
+                for r in &rows {
+                    let [x, y, z] = r.region.clone();
+                    assert_eq!((y, z), (0..grid.counts[1], 0..grid.counts[2]));
+                    let [_, ny, nz] = grid.counts;
+                    let plane = ny * nz;
+                    let (cells, faces) = (x.start * plane..x.end * plane, x.clone());
+                    let w = bits(&whole);
+                    let got = bits(r);
+                    for (a, name) in
+                        ["volume", "centroid", "area", "vector", "bcentroid"].iter().enumerate()
+                    {
+                        let per = if [1, 3, 4].contains(&a) { 3 } else { 1 };
+                        let range = cells.start * per..cells.end * per;
+                        assert_eq!(got[a], w[a][range], "{name}, row {row} at {x:?}");
+                    }
+                    // x faces: the row's planes and the one beyond it; y and z: its cells'.
+                    assert_eq!(got[5], w[5][faces.start * plane..(faces.end + 1) * plane]);
+                    let (py, pz) = ((ny + 1) * nz, ny * (nz + 1));
+                    assert_eq!(got[6], w[6][x.start * py..x.end * py]);
+                    assert_eq!(got[7], w[7][x.start * pz..x.end * pz]);
+                }
+            }
+        }
+    }
+}

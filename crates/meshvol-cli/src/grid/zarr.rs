@@ -3,11 +3,18 @@
 //! however large the grid. Each row is a block of the grid (`cell_volumes_region`): the
 //! same bits as the whole grid's cells, and the rows in order are the whole array in C
 //! order, so the summary's total is the in-memory one's.
+//!
+//! With `--moments`, a Zarr group of the cut-cell arrays: the x apertures are sums from
+//! the grid's far x face down, so the rows are computed from the far face down
+//! (`cut_cells_rows`: each alone, the same bits as the whole grid's), and the summary's
+//! total from the rows' volumes again from the near face (the volume kernel alone: the
+//! same bits as the cut cells' volumes, summed in the in-memory order).
 
 use crate::input::Progress;
-use meshvol::grid::{cell_volumes_region, Grid};
+use meshvol::grid::{cell_volumes_region, cut_cells_rows, CutCells, Grid};
 use meshvol::Surface;
-use meshvol_io::grid_out::zarr::ZarrCells;
+use meshvol_io::grid_out::cut_cell_arrays;
+use meshvol_io::grid_out::zarr::{ZarrCells, ZarrGroup};
 use meshvol_report::grid::{check_memory, tallied_summary, CellTally, GridReport, GridRun};
 use std::path::Path;
 use std::time::Instant;
@@ -15,6 +22,73 @@ use std::time::Instant;
 /// Chunks along each axis when --chunks is not given: 2 MiB of float64, a common size
 /// for Zarr readers.
 const DEFAULT_CHUNK: usize = 64;
+
+/// The chunk shape: --chunks, or [`DEFAULT_CHUNK`], at most the grid's counts (a larger
+/// chunk would only pad it with zeros).
+fn chunk_shape(grid: &Grid, chunks: Option<[usize; 3]>) -> [usize; 3] {
+    [0, 1, 2].map(|a| chunks.map_or(DEFAULT_CHUNK, |c| c[a]).min(grid.counts[a]))
+}
+
+/// The summary's tally of the cells' volumes, row by row from the near x face (C order).
+fn tally_rows<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    rows: impl Iterator<Item = std::ops::Range<usize>>,
+    progress: &Progress,
+) -> Result<CellTally, String> {
+    let [_, ny, nz] = grid.counts;
+    let mut tally = CellTally::default();
+    for cells in rows {
+        progress.stage_all(&format!("summing the volumes of cells {cells:?} along x"));
+        let volumes = cell_volumes_region(surface, grid, &[cells, 0..ny, 0..nz])
+            .map_err(|e| e.to_string())?;
+        tally.add(grid, &volumes);
+    }
+    Ok(tally)
+}
+
+/// Computes the cut cells of `grid` row by row, from the far x face down, into a Zarr
+/// group at `out` (module docs).
+pub fn write_cut_cells<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    out: &Path,
+    chunks: Option<[usize; 3]>,
+    mut run: GridRun,
+    progress: &Progress,
+) -> Result<GridReport, String> {
+    let chunks = chunk_shape(grid, chunks);
+    let [_, ny, nz] = grid.counts;
+    // A row of the cut cells (and its faces), a row of volumes for the tally, and the
+    // copy of one chunk per thread beside them.
+    let arrays = CutCells::bytes(grid) / grid.array_bytes().max(1) + 2;
+    check_memory([chunks[0], ny, nz], arrays, "chunk row")?;
+    let name = out.display();
+    let mut group = ZarrGroup::create(out, grid, chunks).map_err(|e| format!("{name}: {e}"))?;
+    let mut rows = cut_cells_rows(surface, grid, chunks[0]).map_err(|e| e.to_string())?;
+    // The seconds computing, not writing (as for the volumes).
+    let mut seconds = 0.0;
+    for row in (0..group.rows()).rev() {
+        progress.stage_all(&format!(
+            "computing chunk row {} of {} (from the far x face)",
+            row + 1,
+            group.rows()
+        ));
+        let start = Instant::now();
+        let cells = match rows.next() {
+            Some(cells) => cells.map_err(|e| e.to_string())?,
+            None => break,
+        };
+        seconds += start.elapsed().as_secs_f64();
+        debug_assert_eq!(cells.region[0], group.row_cells(row));
+        group.write_row(row, &cut_cell_arrays(&cells)).map_err(|e| format!("{name}: {e}"))?;
+    }
+    let start = Instant::now();
+    let tally = tally_rows(surface, grid, (0..group.rows()).map(|r| group.row_cells(r)), progress)?;
+    run.seconds = seconds + start.elapsed().as_secs_f64();
+    run.chunks = Some(chunks);
+    Ok(tallied_summary(grid, &tally, run))
+}
 
 /// Computes the cells of `grid` row by row into a Zarr array at `out`.
 pub fn write<S: Surface + ?Sized>(
@@ -25,8 +99,7 @@ pub fn write<S: Surface + ?Sized>(
     mut run: GridRun,
     progress: &Progress,
 ) -> Result<GridReport, String> {
-    // A chunk larger than the grid would only pad it with zeros.
-    let chunks = [0, 1, 2].map(|a| chunks.map_or(DEFAULT_CHUNK, |c| c[a]).min(grid.counts[a]));
+    let chunks = chunk_shape(grid, chunks);
     let [_, ny, nz] = grid.counts;
     // The row of cells, and the copy of one chunk per thread beside it.
     check_memory([chunks[0], ny, nz], 1, "chunk row")?;

@@ -12,6 +12,11 @@
 //!   apertures as field arrays (VTK `FieldData`, which has no shape): `aperture_x` with
 //!   `(NX+1)·NY·NZ` tuples in VTK's order, x fastest (`(k·NY + j)·(NX+1) + i`), and
 //!   likewise `aperture_y` and `aperture_z`.
+//!
+//! [`cut_cell_arrays`] lists the cut-cell arrays (name, shape, values) once, for the
+//! `.npz` and for the Zarr group (`zarr::ZarrGroup`, feature `zarr`): `volume`,
+//! `fraction`, `centroid`, `boundary_area`, `boundary_vector`, `boundary_centroid`,
+//! `aperture_x`, `aperture_y`, `aperture_z`.
 
 use super::{check_len, npy_array, vti_arrays, VtiArray, VtiField};
 use meshvol::grid::{CutCells, Grid};
@@ -56,27 +61,57 @@ pub fn npz<W: Write + Seek>(out: W, grid: &Grid, volumes: &[f64]) -> io::Result<
     Ok(())
 }
 
+/// One float64 array of the cut-cell geometry: its name, its shape (the cells' along x,
+/// y and z, one more along the axis of an array on faces, and a last axis of 3 for
+/// vectors) and its values in C order, each divided by `divisor` when written.
+pub struct CellArray<'a> {
+    pub name: &'static str,
+    pub shape: Vec<usize>,
+    pub values: &'a [f64],
+    pub divisor: f64,
+}
+
+impl CellArray<'_> {
+    /// The values as written.
+    pub fn written(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.values.iter().map(|v| v / self.divisor)
+    }
+}
+
+/// The arrays of `cells` as every cut-cell output names and orders them (module docs),
+/// over the cells' region: the whole grid, or a block of it.
+pub fn cut_cell_arrays(cells: &CutCells) -> Vec<CellArray<'_>> {
+    let shape = cells.shape();
+    let vectors = vec![shape[0], shape[1], shape[2], 3];
+    let array = |name, shape: Vec<usize>, values| CellArray { name, shape, values, divisor: 1.0 };
+    let mut arrays = vec![
+        array("volume", shape.to_vec(), &cells.volume),
+        CellArray {
+            divisor: cells.grid.cell_volume(),
+            ..array("fraction", shape.to_vec(), &cells.volume)
+        },
+        array("centroid", vectors.clone(), cells.centroid.as_flattened()),
+        array("boundary_area", shape.to_vec(), &cells.boundary_area),
+        array("boundary_vector", vectors.clone(), cells.boundary_vector.as_flattened()),
+        array("boundary_centroid", vectors, cells.boundary_centroid.as_flattened()),
+    ];
+    for (axis, name) in ["aperture_x", "aperture_y", "aperture_z"].into_iter().enumerate() {
+        let mut faces = shape.to_vec();
+        faces[axis] += 1;
+        arrays.push(array(name, faces, &cells.aperture[axis]));
+    }
+    arrays
+}
+
 /// A `.npz` of the cut-cell geometry (module docs).
 pub fn npz_cut_cells<W: Write + Seek>(out: W, cells: &CutCells) -> io::Result<()> {
     let grid = &cells.grid;
+    check_len(grid, &cells.volume)?;
     let mut zip = ZipWriter::new(out);
-    grid_entries(&mut zip, grid, &cells.volume)?;
-    let [nx, ny, nz] = grid.counts;
-    let vectors = [nx, ny, nz, 3];
-    entry(&mut zip, "centroid", &vectors, cells.centroid.as_flattened().iter().copied())?;
-    entry(&mut zip, "boundary_area", &grid.counts, cells.boundary_area.iter().copied())?;
-    entry(
-        &mut zip,
-        "boundary_vector",
-        &vectors,
-        cells.boundary_vector.as_flattened().iter().copied(),
-    )?;
-    let centres = cells.boundary_centroid.as_flattened().iter().copied();
-    entry(&mut zip, "boundary_centroid", &vectors, centres)?;
-    for (axis, name) in ["aperture_x", "aperture_y", "aperture_z"].into_iter().enumerate() {
-        let mut shape = grid.counts;
-        shape[axis] += 1;
-        entry(&mut zip, name, &shape, cells.aperture[axis].iter().copied())?;
+    entry(&mut zip, "origin", &[3], grid.origin.into_iter())?;
+    entry(&mut zip, "cell_size", &[3], grid.cell.into_iter())?;
+    for array in cut_cell_arrays(cells) {
+        entry(&mut zip, array.name, &array.shape, array.written())?;
     }
     zip.finish().map_err(io::Error::other)?;
     Ok(())

@@ -34,7 +34,7 @@ pub mod zarr;
 use meshvol::grid::{Grid, OCCUPANCY_TOLERANCE};
 use std::io::{self, Write};
 
-pub use cut_cells::{npz, npz_cut_cells, vti_cut_cells};
+pub use cut_cells::{cut_cell_arrays, npz, npz_cut_cells, vti_cut_cells, CellArray};
 pub use picture::{png, png_map, Legend};
 
 fn check_len(grid: &Grid, volumes: &[f64]) -> io::Result<()> {

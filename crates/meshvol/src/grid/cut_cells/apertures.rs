@@ -103,15 +103,21 @@ fn normal_component<const N: usize>(part: &Polygon<N>, axis: usize) -> f64 {
 }
 
 /// Fills `cells.aperture[0]` and `[1]` from the boundary vectors, and finishes the surface
-/// centroids: the cells' region must reach the grid's far x and y faces (the sums run
-/// from there).
-pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
+/// centroids: the cells' region must reach the grid's far y face, and the far x face
+/// unless `carried` holds the x sums of every tube at the plane where the region ends
+/// (what this returned for the cells beyond: the sums run from the far faces down).
+/// Returns the x sums at the region's first plane.
+pub(super) fn fill<S: Surface + ?Sized>(
+    surface: &S,
+    cells: &mut CutCells,
+    carried: Option<Vec<CompensatedSum>>,
+) -> Vec<CompensatedSum> {
     let [beyond_x, beyond_y] = beyond(surface, cells);
     let grid = cells.grid;
     let nz = grid.counts[2];
     let [bx, by, bz] = cells.shape();
     let [i0, j0, k0] = cells.region.clone().map(|r| r.start);
-    debug_assert!(i0 + bx == grid.counts[0] && j0 + by == grid.counts[1]);
+    debug_assert!((carried.is_some() || i0 + bx == grid.counts[0]) && j0 + by == grid.counts[1]);
     let face = [grid.cell[1] * grid.cell[2], grid.cell[0] * grid.cell[2]];
     let (vectors, areas) = (&cells.boundary_vector, &cells.boundary_area);
     let centroids = &mut cells.boundary_centroid;
@@ -121,7 +127,8 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
     let plane = by * bz;
     let tube = |t: usize| (j0 + t / bz) * nz + k0 + t % bz;
     let start = |b: f64| CompensatedSum::from_parts(b, 0.0);
-    let mut state: Vec<CompensatedSum> = (0..plane).map(|t| start(beyond_x[tube(t)])).collect();
+    let mut state =
+        carried.unwrap_or_else(|| (0..plane).map(|t| start(beyond_x[tube(t)])).collect());
     aperture_x[bx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.value());
     for i in (0..bx).rev() {
         let cells_i = &vectors[i * plane..(i + 1) * plane];
@@ -156,4 +163,5 @@ pub(super) fn fill<S: Surface + ?Sized>(surface: &S, cells: &mut CutCells) {
             }
         }
     });
+    state
 }

@@ -78,6 +78,7 @@ mod kernel;
 
 use super::cells::Block;
 use super::{Grid, GridError, Region};
+use crate::accumulate::CompensatedSum;
 use crate::progress::Progress;
 use crate::{Point, Surface};
 
@@ -179,7 +180,8 @@ pub fn cut_cells_with<S: Surface + ?Sized>(
 ///
 /// The x and y apertures sum the surface from the grid's far x and y faces down, so a
 /// region is computed over the cells from its start to those faces (and cut back): a
-/// block near the grid's low corner costs about as much as the whole grid.
+/// block near the grid's low corner costs about as much as the whole grid. To compute
+/// a whole grid in parts, take its rows from the far x face down: [`cut_cells_rows`].
 pub fn cut_cells_region<S: Surface + ?Sized>(
     surface: &S,
     grid: &Grid,
@@ -203,8 +205,60 @@ fn computed<S: Surface + ?Sized>(
 ) -> Result<CutCells, GridError> {
     let mut cells = kernel::cut_cells(surface, grid, block, progress)?;
     progress.stage("summing apertures");
-    apertures::fill(surface, &mut cells);
+    apertures::fill(surface, &mut cells, None);
     Ok(cells)
+}
+
+/// The cut cells of a grid as its *rows* (the blocks of every cell along y and z and
+/// `row` cells along x, the last one shorter), from the far x face down: each the same
+/// bits as those cells of [`cut_cells`], and each computed alone (the x apertures' sums
+/// of the rows beyond, a plane of them, are carried down), so that memory holds one row
+/// however large the grid. What [`cut_cells_rows`] returns.
+pub struct CutCellRows<'a, S: Surface + ?Sized> {
+    surface: &'a S,
+    grid: Grid,
+    row: usize,
+    /// Where the next row ends along x (0: done).
+    end: usize,
+    /// The x apertures' running sums at plane `end` (none at the far face).
+    carried: Option<Vec<CompensatedSum>>,
+}
+
+/// The rows of `row` cells along x of the cut cells of `surface` on `grid`, from the far
+/// x face down ([`CutCellRows`]): row `r` holds cells `r·row..min((r+1)·row, NX)` and
+/// comes after the rows beyond it.
+pub fn cut_cells_rows<'a, S: Surface + ?Sized>(
+    surface: &'a S,
+    grid: &Grid,
+    row: usize,
+) -> Result<CutCellRows<'a, S>, GridError> {
+    let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
+    let row = row.clamp(1, grid.counts[0]);
+    Ok(CutCellRows { surface, grid, row, end: grid.counts[0], carried: None })
+}
+
+impl<S: Surface + ?Sized> Iterator for CutCellRows<'_, S> {
+    type Item = Result<CutCells, GridError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.end == 0 {
+            return None;
+        }
+        let [_, ny, nz] = self.grid.counts;
+        // Rows start at multiples of `row`: the last one holds what is left.
+        let start = (self.end - 1) / self.row * self.row;
+        let block = Block { counts: self.grid.counts, region: [start..self.end, 0..ny, 0..nz] };
+        self.end = start;
+        let mut cells = match kernel::cut_cells(self.surface, &self.grid, &block, &()) {
+            Ok(cells) => cells,
+            Err(e) => {
+                self.end = 0;
+                return Some(Err(e));
+            }
+        };
+        self.carried = Some(apertures::fill(self.surface, &mut cells, self.carried.take()));
+        Some(Ok(cells))
+    }
 }
 
 /// The entries `offset + (i, j, k)` for `(i, j, k)` in `to` of a C-order array of shape
