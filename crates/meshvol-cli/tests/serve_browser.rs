@@ -223,7 +223,11 @@ return { text: label.textContent, z: label.dataset.z, level: label.dataset.level
 /// The number after `word ` in `text`.
 fn number_after(text: &str, word: &str) -> f64 {
     let rest = text.split(&format!("{word} ")).nth(1).unwrap_or_else(|| panic!("{word}: {text}"));
-    rest.split([' ', ',']).next().unwrap().parse().unwrap_or_else(|e| panic!("{word}: {e}: {text}"))
+    rest.split([' ', ',', ':'])
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap_or_else(|e| panic!("{word}: {e}: {text}"))
 }
 
 /// Moves the slider to three heights on the page showing `file` and checks each time that
@@ -254,8 +258,8 @@ fn assert_slices_agree(browser: &Browser, file: &Path, shots: &Path, shot: &str)
         let below = cli_json(&["below", p(file), "--json", "--plane", &format!("0,0,1,{z}")]);
         let (on_page, cli) = (number_after(profile, "below"), below["volume"].as_f64().unwrap());
         assert!((on_page - cli).abs() <= 5e-6 * cli.abs(), "{profile} vs {cli}");
-        let zs = [profile, text].map(|t| t.split(": ").next().unwrap().to_string());
-        assert_eq!(zs[0], zs[1], "the two labels name one level");
+        let zs = [profile, text].map(|t| number_after(t, "="));
+        assert_eq!(zs[0], zs[1], "the two labels name one level: {profile} | {text}");
         let level: usize = shown["level"].as_str().unwrap().parse().unwrap();
         assert!(text.contains(&format!("(level {} of 64)", level + 1)), "{text}");
         let (nx, ny) =
