@@ -5,7 +5,9 @@ use crate::driver::{self, Output};
 use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{cell_volumes_with, cut_cells_extras, union_cell_volumes_with, CutCells, Extras};
+use meshvol::grid::{
+    cell_volumes_with, cut_cells_extras, union_cell_volumes_with, CutCells, Extras,
+};
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};

@@ -455,7 +455,10 @@ fn grid_second_moments_and_face_centroids_of_a_box() {
     };
     let npz = dir.path().join("c.npz");
     let summary = json(&run(&npz, &["--second-moments", "--face-centroids", "--json"]));
-    assert_eq!((&summary["second_moments"], &summary["face_centroids"]), (&true.into(), &true.into()));
+    assert_eq!(
+        (&summary["second_moments"], &summary["face_centroids"]),
+        (&true.into(), &true.into())
+    );
     let arrays = read_npz(&npz);
     assert_eq!(arrays["inertia"].0, [4, 3, 5, 3, 3]);
     assert_eq!(arrays["aperture_x_centroid"].0, [5, 3, 5, 3]);
@@ -514,7 +517,8 @@ fn grid_second_moments_and_face_centroids_of_a_box() {
     let summary = json(&run(&plain, &["--json"]));
     assert_eq!(summary["second_moments"], false);
     assert!(!read_npz(&plain).contains_key("inertia"));
-    let out = meshvol(&["grid", p(&mesh), "--cells", "4,3,5", "--out", p(&npz), "--second-moments"]);
+    let out =
+        meshvol(&["grid", p(&mesh), "--cells", "4,3,5", "--out", p(&npz), "--second-moments"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--moments"));
 }

@@ -153,8 +153,9 @@ pub fn cut_cells<'py, S: Surface>(
         put("inertia", vec![nx, ny, nz, 3, 3], values)?;
     }
     let shapes = [[nx + 1, ny, nz, 3], [nx, ny + 1, nz, 3], [nx, ny, nz + 1, 3]];
-    for (axis, name) in
-        ["aperture_x_centroid", "aperture_y_centroid", "aperture_z_centroid"].into_iter().enumerate()
+    for (axis, name) in ["aperture_x_centroid", "aperture_y_centroid", "aperture_z_centroid"]
+        .into_iter()
+        .enumerate()
     {
         if !c.aperture_centroid[axis].is_empty() {
             put(name, shapes[axis].to_vec(), points(&c.aperture_centroid[axis]))?;

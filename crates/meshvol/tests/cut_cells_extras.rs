@@ -173,9 +173,8 @@ fn reference(
         |r| r[0] * r[0] * r[2] / 2.0,
     ];
     let local = |p: P| [0, 1, 2].map(|d| p[d] - lo[d]);
-    let n_x = |o: P, a: P, b: P| {
-        0.5 * ((a[1] - o[1]) * (b[2] - o[2]) - (a[2] - o[2]) * (b[1] - o[1]))
-    };
+    let n_x =
+        |o: P, a: P, b: P| 0.5 * ((a[1] - o[1]) * (b[2] - o[2]) - (a[2] - o[2]) * (b[1] - o[1]));
     let mut sums = [0.0; 10];
     for t in triangles {
         let mut poly = t.to_vec();

@@ -135,9 +135,8 @@ pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
     };
     let vtk = |axis: usize| move |t: usize, _| cells.aperture[axis][c_order(axis, t)];
     let (ax, ay, az) = (vtk(0), vtk(1), vtk(2));
-    let centre = |axis: usize| {
-        move |t: usize, m: usize| cells.aperture_centroid[axis][c_order(axis, t)][m]
-    };
+    let centre =
+        |axis: usize| move |t: usize, m: usize| cells.aperture_centroid[axis][c_order(axis, t)][m];
     let (cx, cy, cz) = (centre(0), centre(1), centre(2));
     let tuples = |axis: usize| shapes[axis].iter().product();
     let fields = [

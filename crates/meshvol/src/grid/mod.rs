@@ -38,7 +38,9 @@ mod intersect;
 mod profile;
 mod union;
 
-pub use cut_cells::{cut_cells, cut_cells_extras, cut_cells_region, cut_cells_with, CutCells, Extras};
+pub use cut_cells::{
+    cut_cells, cut_cells_extras, cut_cells_region, cut_cells_with, CutCells, Extras,
+};
 pub use intersect::{
     intersection, intersection_with, overlapping_boxes, Bounded, Contact, Intersection, Moments,
 };

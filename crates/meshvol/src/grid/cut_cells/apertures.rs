@@ -158,8 +158,7 @@ pub(super) fn fill<S: Surface + ?Sized>(
     let plane = by * bz;
     let tube = |t: usize| (j0 + t / bz) * nz + k0 + t % bz;
     let start = |b: f64| CompensatedSum::from_parts(b, 0.0);
-    let mut state: Vec<CompensatedSum> =
-        (0..plane).map(|t| start(beyond_x[tube(t)][0])).collect();
+    let mut state: Vec<CompensatedSum> = (0..plane).map(|t| start(beyond_x[tube(t)][0])).collect();
     aperture_x[bx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.value());
     for i in (0..bx).rev() {
         let cells_i = &vectors[i * plane..(i + 1) * plane];

@@ -136,7 +136,10 @@ fn triple(f: [f64; 3], g: [f64; 3], h: [f64; 3]) -> f64 {
     let sum = |v: [f64; 3]| v[0] + v[1] + v[2];
     let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
     let fgh = f[0] * g[0] * h[0] + f[1] * g[1] * h[1] + f[2] * g[2] * h[2];
-    sum(f) * sum(g) * sum(h) + dot(f, g) * sum(h) + dot(g, h) * sum(f) + dot(f, h) * sum(g)
+    sum(f) * sum(g) * sum(h)
+        + dot(f, g) * sum(h)
+        + dot(g, h) * sum(f)
+        + dot(f, h) * sum(g)
         + 2.0 * fgh
 }
 
@@ -247,7 +250,8 @@ mod tests {
             sq.push(v);
         }
         let got = second(&sq, [2.0, 3.0, 5.0]);
-        let want = [0.25, 1.0 / 6.0, 1.0 / 6.0, 0.125, 1.0 / 12.0, 1.0 / 12.0, 1.0 / 3.0, 1.0 / 3.0, 0.25];
+        let want =
+            [0.25, 1.0 / 6.0, 1.0 / 6.0, 0.125, 1.0 / 12.0, 1.0 / 12.0, 1.0 / 3.0, 1.0 / 3.0, 0.25];
         for (g, w) in got.iter().zip(want) {
             assert!((g - w).abs() < 1e-15, "{got:?}");
         }

@@ -329,8 +329,14 @@ fn finish_column<const X: bool>(
                 let [xx, yy, xy] = squares.map(|s| s.value());
                 let (a, ax, ay) = (area.value(), area_x.value(), area_y.value());
                 // (xx, yy, zz, xy, yz, zx) about the cell's corner, grid units.
-                let about_corner =
-                    [l[0] + xx, l[1] + yy, l[5] + a / 3.0, l[2] + xy, l[4] + 0.5 * ay, l[3] + 0.5 * ax];
+                let about_corner = [
+                    l[0] + xx,
+                    l[1] + yy,
+                    l[5] + a / 3.0,
+                    l[2] + xy,
+                    l[4] + 0.5 * ay,
+                    l[3] + 0.5 * ax,
+                ];
                 e.second = central(about_corner, moment, v, (local, trivial), grid.cell);
                 let off = if top { on_top_moments } else { [0.0; 2] };
                 cells.planes[apertures.start + k + 1] = [ax - off[0], ay - off[1]];
@@ -501,7 +507,11 @@ pub(super) fn cut_cells<S: Surface + ?Sized, const X: bool>(
                 let sums = ColumnSums {
                     handed: &handed[column * areas..(column + 1) * areas],
                     on_top: on_top[column],
-                    second: if X { &handed_second[column * areas..(column + 1) * areas] } else { &[] },
+                    second: if X {
+                        &handed_second[column * areas..(column + 1) * areas]
+                    } else {
+                        &[]
+                    },
                     on_top_moments: if X { on_top_moments[column] } else { [0.0; 2] },
                 };
                 finish_column::<X>(

@@ -287,12 +287,14 @@ fn computed<S: Surface + ?Sized>(
     progress: &dyn Progress,
 ) -> Result<CutCells, GridError> {
     if extras == Extras::default() {
-        let (mut cells, mut none, _) = kernel::cut_cells::<S, false>(surface, grid, block, progress)?;
+        let (mut cells, mut none, _) =
+            kernel::cut_cells::<S, false>(surface, grid, block, progress)?;
         progress.stage("summing apertures");
         apertures::fill(surface, &mut cells, &mut none);
         return Ok(cells);
     }
-    let (mut cells, mut sums, planes) = kernel::cut_cells::<S, true>(surface, grid, block, progress)?;
+    let (mut cells, mut sums, planes) =
+        kernel::cut_cells::<S, true>(surface, grid, block, progress)?;
     progress.stage("summing apertures");
     let beyond = apertures::fill(surface, &mut cells, &mut sums);
     if extras.face_centroids {
