@@ -479,3 +479,42 @@ fn any_block_is_the_same_bits_as_the_whole_grid() {
         }
     }
 }
+
+#[test]
+fn a_box_on_its_own_bounding_box() {
+    // Every cell full; the box's faces lie on the grid's outer faces, whose apertures are
+    // the section beyond them (0: NaN centroids), and the inner faces are whole (their
+    // middles).
+    let (lo, hi) = ([0.5, -1.0, 2.0], [1.7, 0.5, 2.9]);
+    let grid = Grid::from_bounds(lo, hi, [3, 4, 5]).unwrap();
+    let c = extras(&cuboid(lo, hi), &grid);
+    let h = grid.cell;
+    let own = [0, 1, 2].map(|a| {
+        let v = grid.cell_volume();
+        v * (h[(a + 1) % 3].powi(2) + h[(a + 2) % 3].powi(2)) / 12.0
+    });
+    for n in 0..grid.cell_count() {
+        for a in 0..3 {
+            for b in 0..3 {
+                let want = if a == b { own[a] } else { 0.0 };
+                assert!((c.inertia[n][a][b] - want).abs() < 1e-15 * own[a], "{n} [{a}][{b}]");
+            }
+        }
+    }
+    for axis in 0..3 {
+        let mut shape = grid.counts;
+        shape[axis] += 1;
+        for (n, at) in cells(shape).enumerate() {
+            let got = c.aperture_centroid[axis][n];
+            if at[axis] == 0 || at[axis] == grid.counts[axis] {
+                assert!(got.iter().all(|x| x.is_nan()), "{axis} {at:?}: {got:?}");
+                continue;
+            }
+            for d in 0..3 {
+                let middle = if d == axis { 0.0 } else { 0.5 };
+                let want = grid.origin[d] + (at[d] as f64 + middle) * h[d];
+                assert!((got[d] - want).abs() < 1e-14, "{axis} {at:?}: {got:?}");
+            }
+        }
+    }
+}

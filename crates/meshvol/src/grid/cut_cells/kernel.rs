@@ -117,7 +117,9 @@ impl<const X: bool> LayerSink for MomentSink<'_, X> {
             for (e, t) in self.extra[local].second.iter_mut().zip(&s[..6]) {
                 *e += t;
             }
-            self.hand_down(local, part, corner);
+            for (h, t) in self.handed_extra.second[local].iter_mut().zip(&s[6..]) {
+                *h += t;
+            }
         }
         let p = projected(part, corner);
         let h = &mut self.handed[local];
