@@ -5,7 +5,9 @@ use crate::driver::{self, Output};
 use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol::grid::{cell_volumes_with, cut_cells_with, union_cell_volumes_with, CutCells};
+use meshvol::grid::{
+    cell_volumes_with, cut_cells_extras, union_cell_volumes_with, CutCells, Extras,
+};
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point};
 use meshvol_io::grid_out::{self, Slice};
@@ -56,6 +58,14 @@ pub struct GridArgs {
     /// `aperture_x`, `aperture_y`, `aperture_z` (docs/cells.md).
     #[arg(long, requires = "out")]
     moments: bool,
+    /// With --moments: each cell's `inertia` (NX, NY, NZ, 3, 3), the inertia tensor of the
+    /// solid in the cell about its centroid, unit density, as `volume` reports a solid's.
+    #[arg(long, requires = "moments")]
+    second_moments: bool,
+    /// With --moments: the centroid of the part of each cell face inside the solid,
+    /// `aperture_x_centroid` (NX+1, NY, NZ, 3), `_y_` and `_z_` (NaN where the aperture is 0).
+    #[arg(long, requires = "moments")]
+    face_centroids: bool,
     /// Store volume / cell volume in .npy or .zarr instead of volumes.
     #[arg(long)]
     fraction: bool,
@@ -242,6 +252,8 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         mass: None,
         png: args.png.as_ref().map(|p| p.display().to_string()),
         moments: args.moments,
+        second_moments: args.second_moments,
+        face_centroids: args.face_centroids,
         warnings,
     };
     let out_kind = args.out.as_deref().and_then(extension);
@@ -257,6 +269,8 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
                 .into());
         }
     }
+    let extras =
+        Extras { second_moments: args.second_moments, face_centroids: args.face_centroids };
     let zarr = args.out.as_deref().filter(|out| extension(out).as_deref() == Some("zarr"));
     if let Some(out) = zarr {
         if args.union || args.png.is_some() {
@@ -266,7 +280,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         }
         let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
         let report = if args.moments {
-            zarr::write_cut_cells(&together, &grid, out, args.chunks, run, progress)?
+            zarr::write_cut_cells(&together, &grid, out, args.chunks, extras, run, progress)?
         } else {
             zarr::write(&together, &grid, out, args.chunks, run, progress)?
         };
@@ -277,7 +291,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     }
     // The cell array, with --union four more per-cell arrays, with --moments the cut cells.
     let arrays = if args.moments {
-        CutCells::bytes(&grid) / grid.array_bytes().max(1) + 1
+        CutCells::bytes_with(&grid, extras) / grid.array_bytes().max(1) + 1
     } else if args.union {
         5
     } else {
@@ -292,7 +306,9 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         union_cell_volumes_with(&bodies, &grid, &hook).map_err(|e| e.to_string())?
     } else if args.moments {
         let hook = progress.kernel("computing the cut cells".to_string());
-        cut = Some(cut_cells_with(&together, &grid, &hook).map_err(|e| e.to_string())?);
+        let whole = grid.counts.map(|n| 0..n);
+        let cells = cut_cells_extras(&together, &grid, &whole, extras, &hook);
+        cut = Some(cells.map_err(|e| e.to_string())?);
         (Vec::new(), 0)
     } else {
         let hook = progress.kernel("computing cell volumes".to_string());

@@ -457,3 +457,83 @@ fn grid_moments_write_the_cut_cells_of_a_box() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--moments with --union is not available yet"), "{err}");
 }
+
+#[test]
+fn grid_second_moments_and_face_centroids_of_a_box() {
+    let dir = tempfile::tempdir().unwrap();
+    let (lo, hi) = ([0.25, 0.5, -0.3], [1.5, 1.25, 0.9]);
+    let mesh = write(dir.path(), "box.obj", box_obj(lo, hi, 1));
+    let (origin, cell) = ([0.0, 0.0, -0.5], [0.5, 0.5, 0.3]);
+    let run = |out: &Path, extra: &[&str]| {
+        let args = ["grid", p(&mesh), "--cells", "4,3,5", "--bounds", "0,0,-0.5,2,1.5,1"];
+        meshvol(&[&args[..], &["--moments", "--out", p(out)], extra].concat())
+    };
+    let npz = dir.path().join("c.npz");
+    let summary = json(&run(&npz, &["--second-moments", "--face-centroids", "--json"]));
+    assert_eq!(
+        (&summary["second_moments"], &summary["face_centroids"]),
+        (&true.into(), &true.into())
+    );
+    let arrays = read_npz(&npz);
+    assert_eq!(arrays["inertia"].0, [4, 3, 5, 3, 3]);
+    assert_eq!(arrays["aperture_x_centroid"].0, [5, 3, 5, 3]);
+    assert_eq!(arrays["aperture_y_centroid"].0, [4, 4, 5, 3]);
+    assert_eq!(arrays["aperture_z_centroid"].0, [4, 3, 6, 3]);
+    let range = |a: usize, n: usize| {
+        let c0 = origin[a] + n as f64 * cell[a];
+        (c0.max(lo[a]), (c0 + cell[a]).min(hi[a]))
+    };
+    for n in 0..60 {
+        let at = [n / 15, n / 5 % 3, n % 5];
+        let len = [0, 1, 2].map(|a| {
+            let (a0, a1) = range(a, at[a]);
+            (a1 - a0).max(0.0)
+        });
+        let v: f64 = len.iter().product();
+        // The overlap box about its centre: V (l_b² + l_c²) / 12 on the diagonal, no products.
+        for a in 0..3 {
+            for b in 0..3 {
+                let want = if a == b {
+                    v * (len[(a + 1) % 3].powi(2) + len[(a + 2) % 3].powi(2)) / 12.0
+                } else {
+                    0.0
+                };
+                let got = arrays["inertia"].1[9 * n + 3 * a + b];
+                assert!((got - want).abs() < 1e-15, "{at:?} [{a}][{b}]: {got} vs {want}");
+            }
+        }
+    }
+    // z faces: the rectangle of the box in the face, its middle; NaN outside the box.
+    let z = |i: usize, j: usize, k: usize| {
+        let n = ((i * 3 + j) * 6 + k) * 3;
+        arrays["aperture_z_centroid"].1[n..n + 3].to_vec()
+    };
+    let middle = |a: usize, n: usize| 0.5 * (range(a, n).0 + range(a, n).1);
+    for (i, j, k) in [(0, 1, 2), (1, 1, 3), (2, 2, 1)] {
+        let want = [middle(0, i), middle(1, j), origin[2] + k as f64 * cell[2]];
+        let got = z(i, j, k);
+        assert!(got.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-14), "{got:?} vs {want:?}");
+    }
+    assert!(z(3, 0, 2).iter().all(|x| x.is_nan()) && z(1, 1, 5).iter().all(|x| x.is_nan()));
+
+    // .vti: the inertia as a 9-component cell array, the centroids as field arrays.
+    let vti = dir.path().join("c.vti");
+    assert!(run(&vti, &["--second-moments", "--face-centroids"]).status.success());
+    let xml = String::from_utf8_lossy(&std::fs::read(&vti).unwrap()).to_string();
+    for name in [
+        "inertia\" NumberOfComponents=\"9\"",
+        "aperture_x_centroid\" NumberOfComponents=\"3\" NumberOfTuples=\"75\"",
+        "aperture_z_centroid\" NumberOfComponents=\"3\" NumberOfTuples=\"72\"",
+    ] {
+        assert!(xml.contains(name), "{name}");
+    }
+    // Without the flags, none of it; the flags need --moments.
+    let plain = dir.path().join("plain.npz");
+    let summary = json(&run(&plain, &["--json"]));
+    assert_eq!(summary["second_moments"], false);
+    assert!(!read_npz(&plain).contains_key("inertia"));
+    let out =
+        meshvol(&["grid", p(&mesh), "--cells", "4,3,5", "--out", p(&npz), "--second-moments"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--moments"));
+}

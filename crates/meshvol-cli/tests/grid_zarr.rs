@@ -171,8 +171,10 @@ fn zarr_moments_group_holds_the_npz_arrays_bit_for_bit() {
     ];
     let (npz, store) = (dir.path().join("c.npz"), dir.path().join("c.zarr"));
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    for (mesh, grid) in cases {
-        let args = [&["grid", p(mesh), "--moments", "--json"][..], &grid[..]].concat();
+    let extras = ["--second-moments", "--face-centroids"];
+    let cases = cases.into_iter().flat_map(|(m, g)| [(m, g.clone(), &[][..]), (m, g, &extras[..])]);
+    for (mesh, grid, flags) in cases {
+        let args = [&["grid", p(mesh), "--moments", "--json"][..], &grid[..], flags].concat();
         let from_npz = json(&[&args[..], &["--out", p(&npz)]].concat());
         let arrays = read_npz(&npz);
         let nx: usize = grid[1].split(',').next().unwrap().parse().unwrap();
@@ -207,12 +209,22 @@ fn zarr_moments_group_holds_the_npz_arrays_bit_for_bit() {
                 .collect();
             held.sort();
             assert_eq!(held, names);
-            assert_eq!(names.len(), 9, "{names:?}");
+            // The 9 arrays, and with the extras `inertia` and the 3 face centroids.
+            assert_eq!(names.len(), 9 + 4 * usize::from(!flags.is_empty()), "{names:?}");
+            if !flags.is_empty() {
+                let (meta, _) = read_zarr(&store.join("inertia"));
+                let dims = serde_json::json!(["x", "y", "z", "row", "column"]);
+                assert_eq!(meta["dimension_names"], dims);
+                let (meta, _) = read_zarr(&store.join("aperture_y_centroid"));
+                let dims = serde_json::json!(["x", "y_face", "z", "component"]);
+                assert_eq!(meta["dimension_names"], dims);
+            }
             let (meta, _) = read_zarr(&store.join("aperture_x"));
             assert_eq!(meta["dimension_names"], serde_json::json!(["x_face", "y", "z"]));
             let (meta, _) = read_zarr(&store.join("centroid"));
             assert_eq!(meta["dimension_names"], serde_json::json!(["x", "y", "z", "component"]));
-            for key in ["total", "cells_full", "cells_partial", "cells_empty", "moments", "cells"] {
+            let keys = ["total", "cells_full", "cells_partial", "cells_empty", "moments", "cells"];
+            for key in keys.into_iter().chain(["second_moments", "face_centroids"]) {
                 assert_eq!(from_zarr[key], from_npz[key], "{key}");
             }
         }
@@ -230,7 +242,7 @@ fn zarr_moments_group_holds_the_npz_arrays_bit_for_bit() {
 }
 
 #[test]
-fn a_moments_group_over_a_volumes_array_leaves_none_of_its_chunks() {
+fn a_moments_group_and_a_volumes_array_over_each_other_leave_nothing_behind() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = write(dir.path(), "o.obj", octahedron([0.0; 3], 1.0));
     let store = dir.path().join("c.zarr");
@@ -239,4 +251,10 @@ fn a_moments_group_over_a_volumes_array_leaves_none_of_its_chunks() {
     assert!(store.join("c/0/0/0").exists());
     json(&[&grid[..], &["--json", "--moments"]].concat());
     assert!(!store.join("c/0/0/0").exists() && store.join("volume/c/0/0/0").exists());
+    // And back: the volumes alone over the group leave none of its arrays, and a file of
+    // the user's in the folder is not touched.
+    std::fs::write(store.join("notes.txt"), "mine").unwrap();
+    json(&[&grid[..], &["--json"]].concat());
+    assert!(store.join("c/0/0/0").exists() && !store.join("volume").exists());
+    assert!(!store.join("centroid").exists() && store.join("notes.txt").exists());
 }

@@ -486,13 +486,17 @@ fn small(x: f64, bound: f64) -> bool {
 
 /// The cut cells of a real file (`grid --moments` over its box) against `volume` and
 /// `grid`: the same total as `grid`, the divergence theorem on every cell, Σ
-/// `boundary_area` = the solid's area, Σ `volume · centroid` = its first moment, and
-/// Σ `boundary_vector` = 0 (the checked solid is closed).
+/// `boundary_area` = the solid's area, Σ `volume · centroid` = its first moment, Σ
+/// `boundary_vector` = 0 (the checked solid is closed), and the cells' `inertia` moved to
+/// the solid's centroid (parallel axis theorem) sum to its `inertia`.
 fn cut_cells_disagree(path: &str, volume: &Value, grid: &Value) -> Option<String> {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("cells.npz");
-    let args =
-        ["grid", path, "--cells", "4,4,4", "--moments", "--out", common::p(&out), "--json", "-q"];
+    let args = [
+        &["grid", path, "--cells", "4,4,4", "--moments", "--second-moments"][..],
+        &["--face-centroids", "--out", common::p(&out), "--json", "-q"],
+    ]
+    .concat();
     let run = meshvol(&args);
     if !run.status.success() {
         return Some(format!("grid --moments failed: {}", String::from_utf8_lossy(&run.stderr)));
@@ -552,8 +556,38 @@ fn cut_cells_disagree(path: &str, volume: &Value, grid: &Value) -> Option<String
                 return Some(format!("first moment {d}: {moment} vs {expected}"));
             }
         }
+        let g: Vec<f64> = (0..3).map(|d| f(&centroid[d])).collect();
+        let inertia = volume["inertia"].as_array().unwrap();
+        let want = |a: usize, b: usize| f(&inertia[a].as_array().unwrap()[b]);
+        let scale = (0..3).map(|a| want(a, a).abs()).fold(0.0, f64::max);
+        let summed = summed_inertia(&a["inertia"].1, &a["volume"].1, &a["centroid"].1, &g);
+        for (n, got) in summed.iter().enumerate() {
+            let (r, c) = (n / 3, n % 3);
+            if !small(got - want(r, c), 1e-9 * scale + tolerance * extent * extent * extent) {
+                return Some(format!("Σ inertia [{r}][{c}]: {got} vs {}", want(r, c)));
+            }
+        }
     }
     None
+}
+
+/// The cells' inertia tensors (9 a cell) moved to `g` and summed (parallel axis theorem:
+/// the covariance about `g` is `Σ C_cell + V (c − g)(c − g)ᵀ`), row by row.
+fn summed_inertia(inertia: &[f64], volume: &[f64], centroid: &[f64], g: &[f64]) -> [f64; 9] {
+    let mut cov = [0.0; 9];
+    for (n, v) in volume.iter().enumerate() {
+        let i = &inertia[9 * n..9 * n + 9];
+        let half_trace = (i[0] + i[4] + i[8]) / 2.0;
+        let r: Vec<f64> = (0..3).map(|d| centroid[3 * n + d] - g[d]).collect();
+        for a in 0..3 {
+            for b in 0..3 {
+                let own = if a == b { half_trace - i[4 * a] } else { -i[3 * a + b] };
+                cov[3 * a + b] += own + v * r[a] * r[b];
+            }
+        }
+    }
+    let trace = cov[0] + cov[4] + cov[8];
+    std::array::from_fn(|n| if n % 4 == 0 { trace - cov[n] } else { -cov[n] })
 }
 
 /// On every real file, `volume`, Σ `grid` (over the file's box) and the top of its

@@ -91,32 +91,39 @@ fn grid_of<'py, S: Surface>(
 /// The cut-cell geometry of `mesh` on the grid the arguments describe, as a
 /// `meshvol.CutCells` (a dict of arrays named as `meshvol grid --moments` writes them),
 /// lengths, areas and volumes in the report's units (apertures and fractions are ratios).
+/// Where `Mesh.cells` measures: the grid (`cells`, `bounds`, `pitch`) and the block.
+pub struct Place<'a, 'py> {
+    pub cells: Option<&'a Bound<'py, PyAny>>,
+    pub bounds: Option<&'a Bound<'py, PyAny>>,
+    pub pitch: Option<&'a Bound<'py, PyAny>>,
+    pub region: Option<&'a Bound<'py, PyAny>>,
+}
+
 pub fn cut_cells<'py, S: Surface>(
     py: Python<'py>,
     mesh: &S,
-    cells: Option<&Bound<'py, PyAny>>,
-    bounds: Option<&Bound<'py, PyAny>>,
-    pitch: Option<&Bound<'py, PyAny>>,
-    region: Option<&Bound<'py, PyAny>>,
+    Place { cells, bounds, pitch, region }: Place<'_, 'py>,
+    extras: grid::Extras,
     scale: &meshvol_report::units::Scale,
 ) -> PyResult<Bound<'py, PyAny>> {
     use numpy::ndarray::{Array, IxDyn};
     let grid = grid_of(py, mesh, cells, bounds, pitch)?;
-    let arrays = meshvol::grid::CutCells::bytes(&grid) / grid.array_bytes().max(1);
-    let c = match region.map(region_of).transpose()? {
-        None => {
-            check_memory(grid.counts, arrays, "grid").map_err(mesh_error)?;
-            py.detach(|| grid::cut_cells(mesh, &grid)).map_err(mesh_error)?
-        }
+    let arrays = grid::CutCells::bytes_with(&grid, extras) / grid.array_bytes().max(1);
+    let region = region.map(region_of).transpose()?;
+    match &region {
+        None => check_memory(grid.counts, arrays, "grid").map_err(mesh_error)?,
         Some(region) => {
             // Computed up to the grid's far x and y faces, then cut back.
             let [nx, ny, _] = grid.counts;
             let (i0, j0) = (region[0].start.min(nx), region[1].start.min(ny));
             let reach = [nx - i0, ny - j0, region[2].len()];
             check_memory(reach, arrays, "block").map_err(mesh_error)?;
-            py.detach(|| grid::cut_cells_region(mesh, &grid, &region)).map_err(mesh_error)?
         }
-    };
+    }
+    let region = region.unwrap_or_else(|| grid.counts.map(|n| 0..n));
+    let c = py
+        .detach(|| grid::cut_cells_extras(mesh, &grid, &region, extras, &()))
+        .map_err(mesh_error)?;
     let [nx, ny, nz] = c.shape();
     let dict = pyo3::types::PyDict::new(py);
     let put = |name: &str, shape: Vec<usize>, values: Vec<f64>| -> PyResult<()> {
@@ -140,6 +147,20 @@ pub fn cut_cells<'py, S: Surface>(
     put("aperture_x", vec![nx + 1, ny, nz], ax)?;
     put("aperture_y", vec![nx, ny + 1, nz], ay)?;
     put("aperture_z", vec![nx, ny, nz + 1], az)?;
+    if !c.inertia.is_empty() {
+        let inertia = c.inertia.as_flattened().as_flattened();
+        let values = inertia.iter().map(|x| scale.volume_moment(*x)).collect();
+        put("inertia", vec![nx, ny, nz, 3, 3], values)?;
+    }
+    let shapes = [[nx + 1, ny, nz, 3], [nx, ny + 1, nz, 3], [nx, ny, nz + 1, 3]];
+    for (axis, name) in ["aperture_x_centroid", "aperture_y_centroid", "aperture_z_centroid"]
+        .into_iter()
+        .enumerate()
+    {
+        if !c.aperture_centroid[axis].is_empty() {
+            put(name, shapes[axis].to_vec(), points(&c.aperture_centroid[axis]))?;
+        }
+    }
     let class = py.import("meshvol._grid")?.getattr("CutCells")?;
     let origin: [f64; 3] =
         [0, 1, 2].map(|a| grid.origin[a] + c.region[a].start as f64 * grid.cell[a]);

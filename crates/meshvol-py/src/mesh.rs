@@ -440,8 +440,11 @@ impl PyMesh {
     /// units; fractions and apertures are ratios). region=((i0, i1), (j0, j1), (k0, k1))
     /// gives the block of those cells (and the apertures of their faces), the same bits as
     /// the whole grid's (meshvol.dask.grid(moments=True) computes blocks this way).
-    /// docs/cells.md has the definitions.
-    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None))]
+    /// second_moments=True adds inertia (cells, 3, 3): each cell's solid's inertia tensor
+    /// about its centroid, unit density, as mass_properties' inertia; face_centroids=True
+    /// adds aperture_x_centroid, … (faces, 3): the centroid of each face's part inside the
+    /// solid, NaN where the aperture is 0. docs/cells.md has the definitions.
+    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None, second_moments = false, face_centroids = false))]
     #[allow(clippy::too_many_arguments)]
     fn cells<'py>(
         &self,
@@ -452,6 +455,8 @@ impl PyMesh {
         check: bool,
         region: Option<&Bound<'py, PyAny>>,
         units: Option<&str>,
+        second_moments: bool,
+        face_centroids: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         properties::require_faces(&self.mesh)?;
         let options = crate::units::options(units, None)?;
@@ -462,7 +467,9 @@ impl PyMesh {
         warnings.extend(warning);
         self.warn(py, &warnings)?;
         let measured = subject.measured();
-        grid::cut_cells(py, &measured, cells, bounds, pitch, region, &scale)
+        let extras = meshvol::grid::Extras { second_moments, face_centroids };
+        let place = grid::Place { cells, bounds, pitch, region };
+        grid::cut_cells(py, &measured, place, extras, &scale)
     }
 
     /// Pickling (multiprocessing, Dask): a Mesh travels as its vertex and face arrays and

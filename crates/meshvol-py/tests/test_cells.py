@@ -98,12 +98,13 @@ def test_the_same_arrays_as_the_command(tmp_path):
     sample = os.path.join(os.path.dirname(__file__), "../../../samples/flanged-bushing.stl")
     out = tmp_path / "c.npz"
     subprocess.run(
-        [COMMAND, "grid", sample, "--cells", "12,11,10", "--moments", "--out", str(out)],
+        [COMMAND, "grid", sample, "--cells", "12,11,10", "--moments", "--second-moments",
+         "--face-centroids", "--out", str(out)],
         check=True,
         capture_output=True,
     )
     written = np.load(out)
-    c = meshvol.load(sample).cells(cells=(12, 11, 10))
+    c = meshvol.load(sample).cells(cells=(12, 11, 10), second_moments=True, face_centroids=True)
     for name, values in c.items():
         np.testing.assert_array_equal(written[name], values, err_msg=name)
     np.testing.assert_array_equal(written["origin"], c.origin)
@@ -123,3 +124,76 @@ def test_blocks_and_dask_chunks_are_the_whole_grid_bit_for_bit():
     assert sorted(lazy) == sorted(whole)
     for name, values in lazy.items():
         np.testing.assert_array_equal(values.compute(scheduler="threads"), whole[name], err_msg=name)
+
+
+def summed_inertia(c, about):
+    """Σ over the cells of their inertia moved to `about` (parallel axis theorem: the
+    covariance there is Σ C_cell + V (c − about)(c − about)ᵀ), as an inertia tensor."""
+    eye = np.eye(3)
+    inertia = c["inertia"].reshape(-1, 3, 3)
+    cov = np.trace(inertia, axis1=1, axis2=2)[:, None, None] / 2 * eye - inertia
+    r = c["centroid"].reshape(-1, 3) - about
+    total = cov.sum(axis=0) + np.einsum("n,ni,nj->ij", c["volume"].reshape(-1), r, r)
+    return np.trace(total) * eye - total
+
+
+def test_second_moments_sum_to_trimeshs_inertia():
+    # An ellipsoid turned and moved: every product of inertia is non-zero.
+    solid = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    solid.apply_scale([1.3, 0.8, 0.6])
+    solid.apply_transform(trimesh.transformations.rotation_matrix(0.7, [1, 2, 3], [0, 0, 0]))
+    solid.apply_translation([2.0, -1.0, 0.5])
+    mesh = meshvol.Mesh(solid.vertices, solid.faces)
+    for cells in [(5, 4, 6), (13, 11, 9)]:
+        c = mesh.cells(cells=cells, second_moments=True)
+        assert c["inertia"].shape == cells + (3, 3)
+        np.testing.assert_allclose(c["inertia"], np.swapaxes(c["inertia"], -1, -2), atol=0)
+        got = summed_inertia(c, solid.center_mass)
+        np.testing.assert_allclose(got, solid.moment_inertia, atol=1e-12 * solid.moment_inertia.max())
+
+
+def test_a_boxs_inertia_and_face_centroids_by_closed_forms():
+    c = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS, second_moments=True, face_centroids=True)
+    lower = c.origin + np.indices((4, 3, 5)).transpose(1, 2, 3, 0) * c.spacing
+    lo, hi = np.maximum(lower, LO), np.minimum(lower + c.spacing, HI)
+    l = np.clip(hi - lo, 0, None)
+    v = l.prod(axis=-1)
+    diagonal = v[..., None] * (l[..., [1, 0, 0]] ** 2 + l[..., [2, 2, 1]] ** 2) / 12
+    np.testing.assert_allclose(c["inertia"], diagonal[..., None] * np.eye(3), atol=1e-15)
+    # The z faces: the box's rectangle in each, its middle; NaN where the face is dry.
+    z = c["aperture_z_centroid"]
+    assert z.shape == (4, 3, 6, 3)
+    planes = c.origin[2] + np.arange(6) * c.spacing[2]
+    wet = c["aperture_z"] > 0
+    assert np.isnan(z[~wet]).all() and not np.isnan(z[wet]).any()
+    middle = ((lo + hi) / 2)[:, :, :1, :2]
+    expected_xy = np.broadcast_to(middle, (4, 3, 6, 2))
+    np.testing.assert_allclose(z[..., :2][wet], expected_xy[wet], atol=1e-14)
+    np.testing.assert_allclose(z[..., 2][wet], np.broadcast_to(planes, (4, 3, 6))[wet], atol=1e-14)
+    ds = c.to_xarray()
+    assert ds["inertia"].dims == ("x", "y", "z", "row", "column")
+    assert ds["aperture_y_centroid"].dims == ("x", "y_face", "z", "component")
+    # Units: the inertia is a volume times a length squared.
+    cm = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS, second_moments=True, units="mm:cm")
+    np.testing.assert_allclose(cm["inertia"], c["inertia"] * 1e-5, rtol=1e-15, atol=1e-300)
+
+
+def test_extras_by_blocks_and_dask_chunks_are_the_whole_grid_bit_for_bit():
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=1.0)
+    mesh = meshvol.Mesh(sphere.vertices, sphere.faces)
+    bounds = [[-1.1, -1.1, -1.1], [0.6, 0.7, 0.5]]
+    extras = dict(second_moments=True, face_centroids=True)
+    whole = mesh.cells(cells=(7, 6, 5), bounds=bounds, **extras)
+    block = mesh.cells(cells=(7, 6, 5), bounds=bounds, region=((2, 5), (1, 6), (0, 3)), **extras)
+    np.testing.assert_array_equal(block["inertia"], whole["inertia"][2:5, 1:6, 0:3])
+    np.testing.assert_array_equal(
+        block["aperture_x_centroid"], whole["aperture_x_centroid"][2:6, 1:6, 0:3]
+    )
+    lazy = meshvol.dask.grid(
+        mesh, cells=(7, 6, 5), bounds=bounds, chunks=(3, 4, 2), moments=True, **extras
+    )
+    assert sorted(lazy) == sorted(whole)
+    for name, values in lazy.items():
+        np.testing.assert_array_equal(values.compute(scheduler="threads"), whole[name], err_msg=name)
+    with pytest.raises(ValueError, match="moments=True"):
+        meshvol.dask.grid(mesh, cells=(7, 6, 5), bounds=bounds, second_moments=True)

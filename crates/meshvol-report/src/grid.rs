@@ -146,6 +146,10 @@ pub struct GridRun {
     pub png: Option<String>,
     /// Whether `out` holds the cut-cell geometry (`--moments`) beside the volumes.
     pub moments: bool,
+    /// Whether it holds each cell's `inertia` too (`--second-moments`).
+    pub second_moments: bool,
+    /// Whether it holds the faces' wetted centroids too (`--face-centroids`).
+    pub face_centroids: bool,
     /// The units the numbers are in (`--units`, or the unit the file declares); null:
     /// the file's own numbers, unit unknown.
     pub units: Option<UnitNames>,
@@ -269,19 +273,21 @@ impl Report for GridReport {
                     "float64 {}, shape ({nx}, {ny}, {nz}), C order",
                     if r.fraction { "fractions" } else { "volumes" }
                 ),
-                Some(e) if e.eq_ignore_ascii_case("vti") && r.moments => {
+                Some(e) if e.eq_ignore_ascii_case("vti") && r.moments => format!(
                     "VTK image data: cell arrays volume, fraction, centroid, boundary_area, \
-                     boundary_vector, boundary_centroid; field arrays aperture_x, _y, _z"
-                        .to_string()
-                }
+                     boundary_vector, boundary_centroid{}; field arrays aperture_x, _y, _z{}",
+                    if r.second_moments { ", inertia" } else { "" },
+                    if r.face_centroids { ", aperture_x_centroid, _y_, _z_" } else { "" }
+                ),
                 Some(e) if e.eq_ignore_ascii_case("vti") => {
                     "VTK image data, cell arrays volume and fraction".to_string()
                 }
-                Some(e) if e.eq_ignore_ascii_case("npz") && r.moments => {
+                Some(e) if e.eq_ignore_ascii_case("npz") && r.moments => format!(
                     "NumPy arrays volume, fraction, centroid, boundary_area, boundary_vector, \
-                     boundary_centroid, aperture_x, _y, _z, origin, cell_size"
-                        .to_string()
-                }
+                     boundary_centroid, aperture_x, _y, _z{}{}, origin, cell_size",
+                    if r.second_moments { ", inertia" } else { "" },
+                    if r.face_centroids { ", aperture_x_centroid, _y_, _z_" } else { "" }
+                ),
                 Some(e) if e.eq_ignore_ascii_case("npz") => {
                     "NumPy arrays volume, fraction, origin, cell_size".to_string()
                 }
@@ -289,8 +295,10 @@ impl Report for GridReport {
                     let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
                     format!(
                         "Zarr v3 group of float64 arrays volume, fraction, centroid, \
-                         boundary_area, boundary_vector, boundary_centroid, aperture_x, _y, _z, \
-                         chunks ({cx}, {cy}, {cz})"
+                         boundary_area, boundary_vector, boundary_centroid, aperture_x, _y, _z{}{}, \
+                         chunks ({cx}, {cy}, {cz})",
+                        if r.second_moments { ", inertia" } else { "" },
+                        if r.face_centroids { ", aperture_x_centroid, _y_, _z_" } else { "" }
                     )
                 }
                 Some(e) if e.eq_ignore_ascii_case("zarr") => {

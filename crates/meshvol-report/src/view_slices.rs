@@ -91,6 +91,8 @@ pub fn slices<S: Surface>(
         fraction: false,
         png: None,
         moments: false,
+        second_moments: false,
+        face_centroids: false,
         units: None,
         mass: None,
         warnings: input_warnings(std::slice::from_ref(subject)),

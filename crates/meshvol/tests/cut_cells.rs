@@ -6,7 +6,7 @@
 mod common;
 
 use common::{mapped, XorShift};
-use meshvol::grid::{cell_volumes, cut_cells, CutCells, Grid};
+use meshvol::grid::{cell_volumes, cut_cells, cut_cells_extras, CutCells, Extras, Grid};
 use meshvol::section::{section, Plane};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
 use meshvol::{mass_properties, Mesh};
@@ -592,6 +592,8 @@ fn bits(c: &CutCells) -> Vec<Vec<u64>> {
         flat(&c.boundary_centroid),
     ];
     out.extend(c.aperture.iter().map(|a| scalars(a)));
+    out.push(flat(c.inertia.as_flattened()));
+    out.extend(c.aperture_centroid.iter().map(|a| flat(a)));
     out
 }
 
@@ -605,14 +607,19 @@ fn rows_from_the_far_face_are_the_whole_grids_bits() {
         (cuboid(lo, hi), Grid::from_bounds(lo, hi, [7, 4, 3]).unwrap()),
         (solids().remove(4).1, Grid::from_bounds([-0.1; 3], [1.4, 1.2, 1.3], [6, 7, 5]).unwrap()),
     ];
-    for (mesh, grid) in cases {
-        let whole = cut_cells(&mesh, &grid).unwrap();
+    let all = Extras { second_moments: true, face_centroids: true };
+    for ((mesh, grid), extras) in
+        cases.into_iter().flat_map(|c| [(c.clone(), Extras::default()), (c, all)])
+    {
+        let everything = [0..grid.counts[0], 0..grid.counts[1], 0..grid.counts[2]];
+        let whole = cut_cells_extras(&mesh, &grid, &everything, extras, &()).unwrap();
         let nx = grid.counts[0];
         for row in [1, 2, 3, 4, nx - 1, nx, nx + 3] {
             for threads in [1, 2, 5] {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
                 let rows: Vec<CutCells> = pool.install(|| {
-                    cut_cells_rows(&mesh, &grid, row).unwrap().map(|r| r.unwrap()).collect()
+                    let rows = cut_cells_rows(&mesh, &grid, row, extras).unwrap();
+                    rows.map(|r| r.unwrap()).collect()
                 });
                 // From the far face down, starting at multiples of the row.
                 let starts: Vec<usize> = rows.iter().map(|r| r.region[0].start).collect();
@@ -638,6 +645,23 @@ fn rows_from_the_far_face_are_the_whole_grids_bits() {
                     let (py, pz) = ((ny + 1) * nz, ny * (nz + 1));
                     assert_eq!(got[6], w[6][x.start * py..x.end * py]);
                     assert_eq!(got[7], w[7][x.start * pz..x.end * pz]);
+                    // The extras (empty without them): inertia per cell, face centroids
+                    // as the apertures, 3 components each.
+                    let inertia = if w[8].is_empty() {
+                        &[][..]
+                    } else {
+                        &w[8][cells.start * 9..cells.end * 9]
+                    };
+                    assert_eq!(got[8], inertia, "inertia");
+                    let (x3, y3, z3) = (3 * plane, 3 * py, 3 * pz);
+                    let [cx, cy, cz] = [&got[9], &got[10], &got[11]];
+                    if !w[9].is_empty() {
+                        assert_eq!(*cx, w[9][faces.start * x3..(faces.end + 1) * x3]);
+                        assert_eq!(*cy, w[10][x.start * y3..x.end * y3]);
+                        assert_eq!(*cz, w[11][x.start * z3..x.end * z3]);
+                    } else {
+                        assert!(cx.is_empty() && cy.is_empty() && cz.is_empty());
+                    }
                 }
             }
         }

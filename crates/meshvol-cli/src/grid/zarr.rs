@@ -11,7 +11,7 @@
 //! same bits as the cut cells' volumes, summed in the in-memory order).
 
 use crate::input::Progress;
-use meshvol::grid::{cell_volumes_region, cut_cells_rows, CutCells, Grid};
+use meshvol::grid::{cell_volumes_region, cut_cells_rows, CutCells, Extras, Grid};
 use meshvol::Surface;
 use meshvol_io::grid_out::cut_cell_arrays;
 use meshvol_io::grid_out::zarr::{ZarrCells, ZarrGroup};
@@ -54,6 +54,7 @@ pub fn write_cut_cells<S: Surface + ?Sized>(
     grid: &Grid,
     out: &Path,
     chunks: Option<[usize; 3]>,
+    extras: Extras,
     mut run: GridRun,
     progress: &Progress,
 ) -> Result<GridReport, String> {
@@ -61,11 +62,11 @@ pub fn write_cut_cells<S: Surface + ?Sized>(
     let [_, ny, nz] = grid.counts;
     // A row of the cut cells (and its faces), a row of volumes for the tally, and the
     // copy of one chunk per thread beside them.
-    let arrays = CutCells::bytes(grid) / grid.array_bytes().max(1) + 2;
+    let arrays = CutCells::bytes_with(grid, extras) / grid.array_bytes().max(1) + 2;
     check_memory([chunks[0], ny, nz], arrays, "chunk row")?;
     let name = out.display();
     let mut group = ZarrGroup::create(out, grid, chunks).map_err(|e| format!("{name}: {e}"))?;
-    let mut rows = cut_cells_rows(surface, grid, chunks[0]).map_err(|e| e.to_string())?;
+    let mut rows = cut_cells_rows(surface, grid, chunks[0], extras).map_err(|e| e.to_string())?;
     // The seconds computing, not writing (as for the volumes).
     let mut seconds = 0.0;
     for row in (0..group.rows()).rev() {

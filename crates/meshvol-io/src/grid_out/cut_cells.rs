@@ -5,24 +5,33 @@
 //!   `volume` and `fraction` (NX, NY, NZ), `centroid`, `boundary_vector` and
 //!   `boundary_centroid` (NX, NY, NZ, 3), `boundary_area` (NX, NY, NZ), and the
 //!   apertures `aperture_x` (NX+1, NY, NZ), `aperture_y` (NX, NY+1, NZ) and `aperture_z`
-//!   (NX, NY, NZ+1), all float64 in C order. A grid of volumes alone (no `--moments`)
-//!   has `origin`, `cell_size`, `volume` and `fraction`.
+//!   (NX, NY, NZ+1), all float64 in C order; where computed, `inertia` (NX, NY, NZ, 3, 3)
+//!   and the face centroids `aperture_x_centroid` (NX+1, NY, NZ, 3), `aperture_y_centroid`
+//!   and `aperture_z_centroid`. A grid of volumes alone (no `--moments`) has `origin`,
+//!   `cell_size`, `volume` and `fraction`.
 //! - **`.vti`**: the cell arrays `volume`, `fraction`, `centroid`, `boundary_area`,
 //!   `boundary_vector`, `boundary_centroid` (3 components for the vectors), and the
 //!   apertures as field arrays (VTK `FieldData`, which has no shape): `aperture_x` with
 //!   `(NX+1)·NY·NZ` tuples in VTK's order, x fastest (`(k·NY + j)·(NX+1) + i`), and
-//!   likewise `aperture_y` and `aperture_z`.
+//!   likewise `aperture_y` and `aperture_z`; where computed, the cell array `inertia` (9
+//!   components, row by row) and the field arrays `aperture_x_centroid`, … (3 components,
+//!   in the apertures' order).
 //!
 //! [`cut_cell_arrays`] lists the cut-cell arrays (name, shape, values) once, for the
 //! `.npz` and for the Zarr group (`zarr::ZarrGroup`, feature `zarr`): `volume`,
 //! `fraction`, `centroid`, `boundary_area`, `boundary_vector`, `boundary_centroid`,
-//! `aperture_x`, `aperture_y`, `aperture_z`.
+//! `aperture_x`, `aperture_y`, `aperture_z`, and where computed `inertia` (shape
+//! `(NX, NY, NZ, 3, 3)`) and `aperture_x_centroid`, `aperture_y_centroid`,
+//! `aperture_z_centroid` (the apertures' shapes with a last axis of 3).
 
 use super::{check_len, npy_array, vti_arrays, VtiArray, VtiField};
 use meshvol::grid::{CutCells, Grid};
 use std::io::{self, Seek, Write};
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, ZipWriter};
+
+/// The names of the face centroids' arrays.
+const CENTROIDS: [&str; 3] = ["aperture_x_centroid", "aperture_y_centroid", "aperture_z_centroid"];
 
 /// Adds `name.npy` (float64 `values` of `shape`) to a zip.
 fn entry<W: Write + Seek>(
@@ -100,6 +109,18 @@ pub fn cut_cell_arrays(cells: &CutCells) -> Vec<CellArray<'_>> {
         faces[axis] += 1;
         arrays.push(array(name, faces, &cells.aperture[axis]));
     }
+    if !cells.inertia.is_empty() {
+        let tensors = vec![shape[0], shape[1], shape[2], 3, 3];
+        arrays.push(array("inertia", tensors, cells.inertia.as_flattened().as_flattened()));
+    }
+    for (axis, name) in CENTROIDS.into_iter().enumerate() {
+        let centroids = &cells.aperture_centroid[axis];
+        if !centroids.is_empty() {
+            let mut faces = vec![shape[0], shape[1], shape[2], 3];
+            faces[axis] += 1;
+            arrays.push(array(name, faces, centroids.as_flattened()));
+        }
+    }
     arrays
 }
 
@@ -122,6 +143,7 @@ pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
     let grid = &cells.grid;
     let cell = grid.cell_volume();
     let [nx, ny, nz] = grid.counts;
+    let inertia = |c: usize, m: usize| cells.inertia[c][m / 3][m % 3];
     let arrays = [
         VtiArray { name: "volume", components: 1, values: &|c, _| cells.volume[c] },
         VtiArray { name: "fraction", components: 1, values: &|c, _| cells.volume[c] / cell },
@@ -137,17 +159,22 @@ pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
             components: 3,
             values: &|c, m| cells.boundary_centroid[c][m],
         },
+        VtiArray { name: "inertia", components: 9, values: &inertia },
     ];
+    // The extra arrays last, written where computed.
+    let arrays = &arrays[..if cells.inertia.is_empty() { 6 } else { 7 }];
     // Each aperture array in VTK's order (x fastest) over its own shape.
     let shapes = [[nx + 1, ny, nz], [nx, ny + 1, nz], [nx, ny, nz + 1]];
-    let vtk = |axis: usize| {
+    let c_order = move |axis: usize, t: usize| {
         let [sx, sy, sz] = shapes[axis];
-        move |t: usize, _| {
-            let (i, j, k) = (t % sx, t / sx % sy, t / (sx * sy));
-            cells.aperture[axis][(i * sy + j) * sz + k]
-        }
+        let (i, j, k) = (t % sx, t / sx % sy, t / (sx * sy));
+        (i * sy + j) * sz + k
     };
+    let vtk = |axis: usize| move |t: usize, _| cells.aperture[axis][c_order(axis, t)];
     let (ax, ay, az) = (vtk(0), vtk(1), vtk(2));
+    let centre =
+        |axis: usize| move |t: usize, m: usize| cells.aperture_centroid[axis][c_order(axis, t)][m];
+    let (cx, cy, cz) = (centre(0), centre(1), centre(2));
     let tuples = |axis: usize| shapes[axis].iter().product();
     let fields = [
         VtiField {
@@ -162,6 +189,19 @@ pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
             array: VtiArray { name: "aperture_z", components: 1, values: &az },
             tuples: tuples(2),
         },
+        VtiField {
+            array: VtiArray { name: CENTROIDS[0], components: 3, values: &cx },
+            tuples: tuples(0),
+        },
+        VtiField {
+            array: VtiArray { name: CENTROIDS[1], components: 3, values: &cy },
+            tuples: tuples(1),
+        },
+        VtiField {
+            array: VtiArray { name: CENTROIDS[2], components: 3, values: &cz },
+            tuples: tuples(2),
+        },
     ];
-    vti_arrays(out, grid, &arrays, &fields)
+    let fields = &fields[..if cells.aperture_centroid[0].is_empty() { 3 } else { 6 }];
+    vti_arrays(out, grid, arrays, fields)
 }

@@ -4,8 +4,9 @@
 //!
 //! Each array (through the `zarrs` crate, filesystem store): float64, regular chunks,
 //! the `bytes` codec (little-endian, no compression), fill value 0, chunk keys
-//! `c/I/J/K`. Chunks whose every value is +0.0 are not stored (readers return the fill
-//! value; a chunk left by an earlier array at the same path is erased), which leaves
+//! `c/I/J/K`. What a Zarr array or group written at the same path before left there
+//! (its chunks, its member arrays) is erased first. Chunks whose every value is +0.0 are
+//! not stored (readers return the fill value), which leaves
 //! the empty space around a solid off the disk; a chunk holding -0.0 is stored, so that
 //! every value reads back as the same bits. Edge chunks are stored whole, padded with
 //! zeros, as Zarr's regular grid has them.
@@ -16,7 +17,8 @@
 //! - [`ZarrGroup`]: a group (attributes `origin` and `cell_size`) of named arrays over
 //!   the cells ([`CellArray`]: the cut-cell geometry), each an array of the group named
 //!   as in the `.npz`: chunks of the cells' chunk shape, and whole along the axes after
-//!   the third (vector components, named `component`, then `component_2`, ...). An
+//!   the third (a vector's `component`; a tensor's `row` and `column`: the dimension
+//!   names of Python's `CutCells.to_xarray()`). An
 //!   array on the faces across an axis has one more layer along it (`NX + 1` for the x
 //!   faces), named `x_face`, `y_face` or `z_face`; the chunk row that ends the grid
 //!   writes the far x faces.
@@ -78,7 +80,41 @@ fn store_at(path: &Path, what: &str) -> io::Result<Arc<FilesystemStore>> {
         ));
     }
     std::fs::create_dir_all(path)?;
-    Ok(Arc::new(FilesystemStore::new(path).map_err(failed)?))
+    let store = Arc::new(FilesystemStore::new(path).map_err(failed)?);
+    erase_earlier(path, &store)?;
+    Ok(store)
+}
+
+/// Erases what a Zarr node written at `path` before left there, so that none of it is
+/// read with (or kept on disk beside) the new one: an array's chunks, a group's member
+/// nodes (each a folder with its own `zarr.json`). Nothing that is not Zarr's is touched.
+fn erase_earlier(path: &Path, store: &FilesystemStore) -> io::Result<()> {
+    let node_type = |at: &Path| {
+        let bytes = std::fs::read(at.join("zarr.json")).ok()?;
+        let meta: serde_json::Value = serde_json::from_slice(&bytes).ok()?;
+        meta["node_type"].as_str().map(String::from)
+    };
+    let erase = |prefix: &str| {
+        let prefix = StorePrefix::new(prefix).map_err(failed)?;
+        store.erase_prefix(&prefix).map_err(failed)
+    };
+    match node_type(path).as_deref() {
+        Some("array") => erase("c/"),
+        Some("group") => {
+            for entry in std::fs::read_dir(path)? {
+                let entry = entry?;
+                let name = entry.file_name();
+                match name.to_str() {
+                    Some(name) if entry.path().is_dir() && node_type(&entry.path()).is_some() => {
+                        erase(&format!("{name}/"))?
+                    }
+                    _ => {}
+                }
+            }
+            Ok(())
+        }
+        _ => Ok(()),
+    }
 }
 
 /// One float64 array over the cells (or faces) of a grid, chunked along its first three
@@ -232,16 +268,10 @@ pub struct ZarrGroup {
 impl ZarrGroup {
     /// Creates the group at `path` (a directory; made if missing) for the cells of
     /// `grid` in chunks of `chunks` cells (as [`ZarrCells::create`]), and writes its
-    /// metadata. The chunks of a Zarr array written there before are erased.
+    /// metadata. What a Zarr array or group written there before left is erased.
     pub fn create(path: &Path, grid: &Grid, chunks: [usize; 3]) -> io::Result<ZarrGroup> {
         let rows = Rows::new(grid, chunks)?;
         let store = store_at(path, "group")?;
-        // An array's chunks would be left beside the group's arrays, read by no one.
-        let before = std::fs::read(path.join("zarr.json")).ok();
-        let meta = before.and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok());
-        if meta.is_some_and(|m| m["node_type"] == "array") {
-            store.erase_prefix(&StorePrefix::new("c/").map_err(failed)?).map_err(failed)?;
-        }
         let attributes = serde_json::json!({ "origin": grid.origin, "cell_size": grid.cell });
         let group = GroupBuilder::new()
             .attributes(attributes.as_object().cloned().unwrap_or_default())
@@ -302,10 +332,12 @@ impl ZarrGroup {
                         }
                     })
                     .collect();
-                names.extend((3..shape.len()).map(|d| match d {
-                    3 => "component".to_string(),
-                    _ => format!("component_{}", d - 2),
-                }));
+                // As `CutCells.to_xarray()` names them in Python.
+                names.extend(match shape.len() {
+                    4 => vec!["component".to_string()],
+                    5 => vec!["row".to_string(), "column".to_string()],
+                    n => (3..n).map(|d| format!("component_{}", d - 2)).collect(),
+                });
                 let at = format!("/{}", a.name);
                 let chunks = self.rows.chunks;
                 let array = RowArray::create(
@@ -374,7 +406,7 @@ mod tests {
             .into_iter()
             .map(|n| n.unwrap_or_default())
             .collect();
-        assert_eq!(names, ["x_face", "y", "z", "component", "component_2"]);
+        assert_eq!(names, ["x_face", "y", "z", "row", "column"]);
         let back: Vec<f64> =
             array.retrieve_array_subset_elements(&ArraySubset::new_with_shape(shape)).unwrap();
         assert_eq!(back, all);

@@ -145,9 +145,12 @@ class Mesh:
         check: bool = True,
         region: Optional[_ArrayLike] = None,
         units: Optional[str] = None,
+        second_moments: bool = False,
+        face_centroids: bool = False,
     ) -> CutCells:
         """The cut-cell geometry on a grid (`meshvol grid --moments`): volume, fraction,
-        centroid, boundary_area, boundary_vector, boundary_centroid, aperture_x/_y/_z."""
+        centroid, boundary_area, boundary_vector, boundary_centroid, aperture_x/_y/_z;
+        with second_moments, inertia; with face_centroids, aperture_x/_y/_z_centroid."""
     def profile(
         self,
         axis: str = "z",

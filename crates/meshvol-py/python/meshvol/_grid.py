@@ -183,8 +183,12 @@ class CutCells(dict):  # type: ignore[type-arg]
     Cell arrays, shape (nx, ny, nz) or (nx, ny, nz, 3): volume, fraction, centroid,
     boundary_area, boundary_vector, boundary_centroid. Face arrays: aperture_x
     (nx + 1, ny, nz), aperture_y (nx, ny + 1, nz), aperture_z (nx, ny, nz + 1), the
-    fraction of each cell face inside the solid. origin and spacing place the cells as
-    Grid's do.
+    fraction of each cell face inside the solid. With second_moments=True, inertia
+    (nx, ny, nz, 3, 3): each cell's solid's inertia tensor about its centroid (unit
+    density, as mass_properties' inertia). With face_centroids=True, aperture_x_centroid
+    (nx + 1, ny, nz, 3), aperture_y_centroid, aperture_z_centroid: the centroid of each
+    face's part inside the solid, NaN where the aperture is 0. origin and spacing place
+    the cells as Grid's do.
     """
 
     def __init__(self, arrays: Any, origin: Any, spacing: Any) -> None:
@@ -212,18 +216,19 @@ class CutCells(dict):  # type: ignore[type-arg]
         planes = [self.origin[a] + np.arange(n[a] + 1) * self.spacing[a] for a in range(3)]
         cell_dims = ("x", "y", "z")
         variables = {}
+        # Trailing axes: a vector's component; a tensor's row and column.
+        trailing = {3: (), 4: ("component",), 5: ("row", "column")}
         for name, values in self.items():
             if name.startswith("aperture_"):
-                a = "xyz".index(name[-1])
+                a = "xyz".index(name[len("aperture_")])
                 dims = tuple(f"{d}_face" if i == a else d for i, d in enumerate(cell_dims))
-            elif values.ndim == 4:
-                dims = cell_dims + ("component",)
             else:
                 dims = cell_dims
-            variables[name] = (dims, values)
+            variables[name] = (dims + trailing[values.ndim], values)
         coords = {d: centres[a] for a, d in enumerate(cell_dims)}
         coords.update({f"{d}_face": planes[a] for a, d in enumerate(cell_dims)})
-        coords["component"] = ["x", "y", "z"]
+        for axis in ("component", "row", "column"):
+            coords[axis] = ["x", "y", "z"]
         attrs = {"origin": self.origin.tolist(), "spacing": self.spacing.tolist()}
         return xarray.Dataset(variables, coords=coords, attrs=attrs)
 

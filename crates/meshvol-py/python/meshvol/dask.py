@@ -97,20 +97,36 @@ def _cut_block(
     bounds: Tuple[Tuple[float, ...], Tuple[float, ...]],
     check: bool,
     region: Tuple[Tuple[int, int], ...],
+    extras: Tuple[bool, bool],
 ) -> Dict[str, np.ndarray]:
-    """One chunk of the cut cells, on a worker; each aperture array cut to the faces the
+    """One chunk of the cut cells, on a worker; each face array cut to the faces the
     chunk owns (its low faces, and its high faces where it ends the grid)."""
     mesh = source if isinstance(source, Mesh) else _mesh_at(*source)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", MeshWarning)
-        block = mesh.cells(cells=cells, bounds=bounds, check=check, region=region)
+        block = mesh.cells(cells=cells, bounds=bounds, check=check, region=region,
+                           second_moments=extras[0], face_centroids=extras[1])
     arrays = dict(block)
-    for a, name in enumerate(("aperture_x", "aperture_y", "aperture_z")):
-        if region[a][1] < cells[a]:
+    for name in arrays:
+        a = _face_axis(name)
+        if a is not None and region[a][1] < cells[a]:
             keep = [slice(None)] * 3
             keep[a] = slice(0, -1)
             arrays[name] = arrays[name][tuple(keep)]
     return arrays
+
+
+def _face_axis(name: str) -> Optional[int]:
+    """The axis of a face array (aperture_x, aperture_x_centroid, ...), else None."""
+    if not name.startswith("aperture_"):
+        return None
+    return "xyz".index(name[len("aperture_")])
+
+
+# The trailing axes of each cut-cell array beyond its cells or faces.
+_TRAILING = {"centroid": (3,), "boundary_vector": (3,), "boundary_centroid": (3,),
+             "inertia": (3, 3), "aperture_x_centroid": (3,), "aperture_y_centroid": (3,),
+             "aperture_z_centroid": (3,)}
 
 
 def _moments(
@@ -119,6 +135,7 @@ def _moments(
     fixed: Tuple[Tuple[float, ...], Tuple[float, ...]],
     check: bool,
     chunks: Tuple[Tuple[int, ...], ...],
+    extras: Tuple[bool, bool],
 ) -> Dict[str, da.Array]:
     """The cut cells as a dict of lazy arrays, each chunk computed once by _cut_block."""
     source_key = dask.delayed(where, pure=True, traverse=False)
@@ -126,6 +143,10 @@ def _moments(
     starts = [np.cumsum((0,) + c)[:-1].tolist() for c in chunks]
     names = ["volume", "fraction", "centroid", "boundary_area", "boundary_vector",
              "boundary_centroid", "aperture_x", "aperture_y", "aperture_z"]
+    if extras[0]:
+        names.append("inertia")
+    if extras[1]:
+        names += ["aperture_x_centroid", "aperture_y_centroid", "aperture_z_centroid"]
     nested: Dict[str, List[Any]] = {name: [] for name in names}
     for i0, bx in zip(starts[0], chunks[0]):
         planes: Dict[str, List[Any]] = {name: [] for name in names}
@@ -133,18 +154,19 @@ def _moments(
             lines: Dict[str, List[Any]] = {name: [] for name in names}
             for k0, bz in zip(starts[2], chunks[2]):
                 region = ((i0, i0 + bx), (j0, j0 + by), (k0, k0 + bz))
-                arrays = block(source_key, counts, fixed, check, region)
+                arrays = block(source_key, counts, fixed, check, region, extras)
                 for name in names:
                     shape: Tuple[int, ...] = (bx, by, bz)
-                    if name.startswith("aperture_"):
-                        a = "xyz".index(name[-1])
+                    a = _face_axis(name)
+                    if a is not None:
                         end = region[a][1] == counts[a]
                         shape = tuple(n + (1 if d == a and end else 0) for d, n in enumerate(shape))
-                    elif name in ("centroid", "boundary_vector", "boundary_centroid"):
-                        shape = shape + (3,)
-                    part = da.from_delayed(arrays[name], shape, dtype=np.float64)
-                    # da.block nests as deep as the arrays: vectors have one more axis.
-                    lines[name].append([part] if len(shape) == 4 else part)
+                    shape = shape + _TRAILING.get(name, ())
+                    part: Any = da.from_delayed(arrays[name], shape, dtype=np.float64)
+                    # da.block nests as deep as the arrays: one more list a trailing axis.
+                    for _ in shape[3:]:
+                        part = [part]
+                    lines[name].append(part)
             for name in names:
                 planes[name].append(lines[name])
         for name in names:
@@ -174,6 +196,8 @@ def grid(
     fraction: bool = ...,
     *,
     moments: Literal[True],
+    second_moments: bool = ...,
+    face_centroids: bool = ...,
 ) -> Dict[str, da.Array]: ...
 
 
@@ -185,6 +209,8 @@ def grid(
     check: bool = True,
     fraction: bool = False,
     moments: bool = False,
+    second_moments: bool = False,
+    face_centroids: bool = False,
 ) -> Union[da.Array, Dict[str, da.Array]]:
     """The volume of the solid in each cell of a grid as a lazy (nx, ny, nz) float64
     dask.array: Mesh.grid(cells, bounds, fraction=fraction, check=check), bit for bit,
@@ -195,7 +221,8 @@ def grid(
     apertures have one more face along their axis), each chunk computed once by
     Mesh.cells(region=...). A chunk's x and y apertures sum the surface from the grid's
     far faces, so a chunk costs the cells from it to those faces: split x and y in few
-    chunks.
+    chunks. second_moments=True and face_centroids=True (with moments=True) add the arrays
+    Mesh.cells adds for them (inertia; aperture_x_centroid, ...), bit for bit too.
 
     source: a mesh file's path (each worker reads it once and keeps it; the file must be
     at that path on every worker, as on shared storage) or a Mesh (sent to each worker
@@ -228,10 +255,12 @@ def grid(
         bounds = found
     fixed = (tuple(map(float, bounds[0])), tuple(map(float, bounds[1])))
     chunks = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
+    if (second_moments or face_centroids) and not moments:
+        raise ValueError("second_moments and face_centroids are cut-cell arrays: give moments=True")
     if moments:
         if fraction:
             raise ValueError("moments=True gives fraction among its arrays: leave fraction=False")
-        return _moments(where, counts, fixed, check, chunks)
+        return _moments(where, counts, fixed, check, chunks, (second_moments, face_centroids))
 
     # One graph key holds the mesh (or its path): each worker receives it once.
     source_key = dask.delayed(where, pure=True, traverse=False)

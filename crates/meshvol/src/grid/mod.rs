@@ -39,7 +39,8 @@ mod profile;
 mod union;
 
 pub use cut_cells::{
-    cut_cells, cut_cells_region, cut_cells_rows, cut_cells_with, CutCellRows, CutCells,
+    cut_cells, cut_cells_extras, cut_cells_region, cut_cells_rows, cut_cells_with, CutCellRows,
+    CutCells, Extras,
 };
 pub use intersect::{
     intersection, intersection_with, overlapping_boxes, Bounded, Contact, Intersection, Moments,

@@ -5,8 +5,11 @@
 //! The cells' arrays are filled in place, tile by tile as `grid` fills its volumes: the
 //! terms in face order during the sweep, then one pass per column from the top down
 //! turning them into world values. Only the columns' handed-down sums are scratch.
+//!
+//! The sums that only the second moments and the face centroids need ([`Extra`]) are
+//! behind the const parameter `X`: without them the sweep is compiled without them.
 
-use super::integrals::{handed_down, projected, surface_part};
+use super::integrals::{face_moments, handed_down, projected, second, surface_part};
 use super::CutCells;
 use crate::accumulate::CompensatedSum;
 use crate::grid::cells::{
@@ -41,10 +44,31 @@ impl CellSlices<'_> {
     }
 }
 
-/// One tile's slices of the cell arrays, and of the z apertures (`depth + 1` per column).
+/// One tile's slices of the cell arrays, and of the z apertures (`depth + 1` per column);
+/// with `X`, of the extra sums per cell and the z faces' moments per plane (else empty).
 struct TileCells<'a> {
     cells: CellSlices<'a>,
     aperture_z: &'a mut [f64],
+    extra: &'a mut [Extra],
+    planes: &'a mut [[f64; 2]],
+}
+
+/// A cell's sums for the second moments and the face centroids.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Extra {
+    /// During the sweep the in-layer terms of [`second`]'s first six; once the column is
+    /// finished, the solid's second moments about the cell's centroid, world units,
+    /// `(xx, yy, zz, xy, yz, zx)`.
+    pub(super) second: [f64; 6],
+    /// [`face_moments`] of the surface in the cell (grid units).
+    pub(super) face: [f64; 4],
+}
+
+/// The extra sums handed down a column with `X`: `(∫ x'², ∫ y'², ∫ x'y') n_z dA` per
+/// layer, and the first moments of the parts on the grid's top face.
+struct HandedExtra<'a> {
+    second: &'a mut [[f64; 3]],
+    on_top: &'a mut [f64; 2],
 }
 
 /// World scale of a grid-unit area vector's components: `(dy·dz, dx·dz, dx·dy)`.
@@ -56,8 +80,10 @@ pub(super) fn face_areas(cell: [f64; 3]) -> [f64; 3] {
 /// `centroid` holds `(∫ x'z', ∫ y'z', ½∫ z'²) n_z dA` of the parts in each cell, and
 /// `boundary_centroid` the area-weighted local centroids; `handed[m]` the area and its x
 /// and y moments of the parts in layer `first + m` (the last entry: above the grid).
-struct MomentSink<'a> {
+struct MomentSink<'a, const X: bool> {
     cells: CellSlices<'a>,
+    extra: &'a mut [Extra],
+    handed_extra: HandedExtra<'a>,
     handed: &'a mut [[f64; 3]],
     /// The projected area of the parts lying on the grid's top face.
     on_top: &'a mut f64,
@@ -68,21 +94,33 @@ struct MomentSink<'a> {
     normal: Option<Point>,
 }
 
-impl LayerSink for MomentSink<'_> {
+impl<const X: bool> LayerSink for MomentSink<'_, X> {
     #[inline(always)]
     fn slab<const N: usize>(&mut self, layer: usize, part: &Polygon<N>) {
         let Some(local) = layer.checked_sub(self.first) else {
             return;
         };
         let [i, j] = self.column;
+        let corner = [i, j, layer as f64];
         if local >= self.cells.volume.len() {
             let h = handed_down(part, [i, j]);
             for d in 0..3 {
                 self.handed[local][d] += h[d];
             }
+            if X {
+                self.hand_down(local, part, corner);
+            }
             return;
         }
-        let corner = [i, j, layer as f64];
+        if X {
+            let s = second(part, corner);
+            for (e, t) in self.extra[local].second.iter_mut().zip(&s[..6]) {
+                *e += t;
+            }
+            for (h, t) in self.handed_extra.second[local].iter_mut().zip(&s[6..]) {
+                *h += t;
+            }
+        }
         let p = projected(part, corner);
         let h = &mut self.handed[local];
         h[0] += p.area;
@@ -103,22 +141,45 @@ impl LayerSink for MomentSink<'_> {
         for d in 0..3 {
             self.handed[top][d] += h[d];
         }
+        if X {
+            let [i, j] = self.column;
+            self.hand_down(top, part, [i, j, 0.0]);
+        }
         // A part lying on the grid's top face is the top layer's surface (the grid's far
         // faces are closed), and not beyond it for the aperture there.
         let (z0, z1) = part.range(2);
         let layer = self.first + top - 1;
         if z0 == z1 && z0 == (layer + 1) as f64 && top - 1 < self.cells.volume.len() {
             *self.on_top += h[0];
+            if X {
+                self.handed_extra.on_top[0] += h[1];
+                self.handed_extra.on_top[1] += h[2];
+            }
             let [i, j] = self.column;
             self.surface(top - 1, part, [i, j, layer as f64]);
         }
     }
 }
 
-impl MomentSink<'_> {
+impl<const X: bool> MomentSink<'_, X> {
+    /// Adds a part's degree-2 column terms to those handed down from layer `local`.
+    #[inline(always)]
+    fn hand_down<const N: usize>(&mut self, local: usize, part: &Polygon<N>, corner: [f64; 3]) {
+        let s = second(part, corner);
+        for (h, t) in self.handed_extra.second[local].iter_mut().zip(&s[6..]) {
+            *h += t;
+        }
+    }
+
     /// Adds a part to the surface sums of cell `local` (`corner`: its first corner).
     #[inline(always)]
     fn surface<const N: usize>(&mut self, local: usize, part: &Polygon<N>, corner: [f64; 3]) {
+        if X {
+            let m = face_moments(part, corner);
+            for (e, t) in self.extra[local].face.iter_mut().zip(m) {
+                *e += t;
+            }
+        }
         if let Some((vector, centre)) = surface_part(part, corner) {
             add_surface(
                 (&mut self.cells.boundary_area[local], &mut self.cells.boundary_vector[local]),
@@ -207,21 +268,32 @@ fn within(m: f64, v: f64, empty: bool) -> f64 {
     }
 }
 
+/// A column's handed-down sums: per layer and on the grid's top face; with `X` the extra
+/// ones too (else empty).
+struct ColumnSums<'a> {
+    handed: &'a [[f64; 3]],
+    on_top: f64,
+    second: &'a [[f64; 3]],
+    on_top_moments: [f64; 2],
+}
+
 /// Turns a column's sums into world values: the suffix sums of the handed-down terms,
 /// taken from the grid's top down exactly as [`crate::grid::cells::finish_column`] does
 /// for the volumes (so the volumes are the same bits), the centroids, and the z
-/// apertures at the planes `first..=first + depth`.
-#[allow(clippy::too_many_arguments)]
-fn finish_column(
+/// apertures at the planes `first..=first + depth`; with `X`, the second moments about
+/// the centroids and the z faces' moments too (the same suffix sums).
+fn finish_column<const X: bool>(
     cells: &mut TileCells,
     range: Range<usize>,
     apertures: Range<usize>,
-    (handed, on_top): (&[[f64; 3]], f64),
+    sums: ColumnSums,
     [i, j, first]: [usize; 3],
     grid: &Grid,
 ) {
+    let ColumnSums { handed, on_top, second, on_top_moments } = sums;
     let scale = grid.cell_volume();
     let [mut area, mut area_x, mut area_y] = [CompensatedSum::default(); 3];
+    let mut squares = [CompensatedSum::default(); 3];
     let depth = range.len();
     let cell_at = |d: usize, local: f64, k: usize| {
         grid.origin[d] + ([i, j, k][d] as f64 + local) * grid.cell[d]
@@ -231,6 +303,11 @@ fn finish_column(
         area.add(above[0]);
         area_x.add(above[1]);
         area_y.add(above[2]);
+        if X {
+            for (s, t) in squares.iter_mut().zip(second[k + 1]) {
+                s.add(t);
+            }
+        }
         if k < depth {
             let n = range.start + k;
             let layer = first + k;
@@ -241,28 +318,79 @@ fn finish_column(
             let magnitude = v.abs();
             let trivial =
                 magnitude <= OCCUPANCY_TOLERANCE || (magnitude - 1.0).abs() <= OCCUPANCY_TOLERANCE;
-            cells.cells.centroid[n] =
-                [0, 1, 2].map(|d| cell_at(d, within(moment[d], v, trivial), layer));
+            let local = moment.map(|m| within(m, v, trivial));
+            cells.cells.centroid[n] = [0, 1, 2].map(|d| cell_at(d, local[d], layer));
             // The plane at the bottom of layer `first + k + 1`: everything above it (on
             // the grid's top face, but the parts lying on it).
-            let beyond = if k + 2 == handed.len() { on_top } else { 0.0 };
+            let top = k + 2 == handed.len();
+            let beyond = if top { on_top } else { 0.0 };
             cells.aperture_z[apertures.start + k + 1] = area.value() - beyond;
+            if X {
+                let e = &mut cells.extra[n];
+                let l = e.second;
+                let [xx, yy, xy] = squares.map(|s| s.value());
+                let (a, ax, ay) = (area.value(), area_x.value(), area_y.value());
+                // (xx, yy, zz, xy, yz, zx) about the cell's corner, grid units.
+                let about_corner = [
+                    l[0] + xx,
+                    l[1] + yy,
+                    l[5] + a / 3.0,
+                    l[2] + xy,
+                    l[4] + 0.5 * ay,
+                    l[3] + 0.5 * ax,
+                ];
+                e.second = central(about_corner, moment, v, (local, trivial), grid.cell);
+                let off = if top { on_top_moments } else { [0.0; 2] };
+                cells.planes[apertures.start + k + 1] = [ax - off[0], ay - off[1]];
+            }
         }
     }
     let mut bottom = area;
     bottom.add(handed[0][0]);
     cells.aperture_z[apertures.start] = bottom.value();
+    if X {
+        let [mut x, mut y] = [area_x, area_y];
+        x.add(handed[0][1]);
+        y.add(handed[0][2]);
+        cells.planes[apertures.start] = [x.value(), y.value()];
+    }
 }
+
+/// The second moments `(xx, yy, zz, xy, yz, zx)` of a cell's solid about its reported
+/// centroid, world units, from those about its corner (`m2`), its first moment `m1` and
+/// volume `v` (grid units) and its centroid `c` (local, clamped): `m2 − c m1ᵀ − m1 cᵀ +
+/// v c cᵀ`, exact about any point, so the centroid's clamping cannot break the parallel
+/// axis theorem. An empty cell has none; a full one the box's own, `d_a² / 12`.
+fn central(m2: [f64; 6], m1: Point, v: f64, (c, trivial): (Point, bool), cell: Point) -> [f64; 6] {
+    const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0)];
+    let volume = cell[0] * cell[1] * cell[2];
+    let mut out = [0.0; 6];
+    for (n, &(a, b)) in PAIRS.iter().enumerate() {
+        let local = if !trivial {
+            m2[n] - c[a] * m1[b] - m1[a] * c[b] + v * c[a] * c[b]
+        } else if v.abs() <= OCCUPANCY_TOLERANCE || a != b {
+            0.0
+        } else {
+            v.signum() / 12.0
+        };
+        out[n] = local * cell[a] * cell[b] * volume;
+    }
+    out
+}
+
+/// The sweep's results: the cut cells, and with `X` each cell's [`Extra`] and the
+/// moments `(∫ x', ∫ y') dA` (grid units) of each z face's wetted part (else empty).
+pub(super) type Swept = (CutCells, Vec<Extra>, Vec<[f64; 2]>);
 
 /// The cut-cell values of the cells of `block` of `grid` (validated), from `surface`'s
 /// faces, and the z apertures of its columns; the x and y apertures are left to
 /// [`super::apertures`] and the surface centroids to [`finish_boundary_centroids`].
-pub(super) fn cut_cells<S: Surface + ?Sized>(
+pub(super) fn cut_cells<S: Surface + ?Sized, const X: bool>(
     surface: &S,
     grid: &Grid,
     block: &Block,
     progress: &dyn Progress,
-) -> Result<CutCells, GridError> {
+) -> Result<Swept, GridError> {
     let [bx, by, depth] = block.shape();
     let len = bx * by * depth;
     let mut out = CutCells {
@@ -278,7 +406,11 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
             zeroed(bx * (by + 1) * depth)?,
             zeroed(len + bx * by)?,
         ],
+        inertia: Vec::new(),
+        aperture_centroid: Default::default(),
     };
+    let mut extra: Vec<Extra> = if X { zeroed(len)? } else { Vec::new() };
+    let mut planes: Vec<[f64; 2]> = if X { zeroed(len + bx * by)? } else { Vec::new() };
     let nz = grid.counts[2];
     let (x0, y0, first) = (block.region[0].start, block.region[1].start, block.region[2].start);
     let areas = block.areas();
@@ -299,6 +431,18 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
     // Column `c` of the block is cell column (x0 + c / by, y0 + c % by) of the grid.
     let column_of = |c: usize| [x0 + c / by, y0 + c % by];
     let [_, _, aperture_z] = &mut out.aperture;
+    // The extra arrays by tile, or an empty slice for every tile.
+    let tiles = tiling.tiles();
+    let extra_tiles: Vec<&mut [Extra]> = if X {
+        extra.chunks_mut(tile_cells).collect()
+    } else {
+        (0..tiles).map(|_| Default::default()).collect()
+    };
+    let plane_tiles: Vec<&mut [[f64; 2]]> = if X {
+        planes.chunks_mut(tile_planes).collect()
+    } else {
+        (0..tiles).map(|_| Default::default()).collect()
+    };
     out.volume
         .par_chunks_mut(tile_cells)
         .zip(out.centroid.par_chunks_mut(tile_cells))
@@ -306,8 +450,10 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
         .zip(out.boundary_vector.par_chunks_mut(tile_cells))
         .zip(out.boundary_centroid.par_chunks_mut(tile_cells))
         .zip(aperture_z.par_chunks_mut(tile_planes))
+        .zip(extra_tiles.into_par_iter().zip(plane_tiles))
         .enumerate()
-        .for_each(|(tile, (((((volume, centroid), area), vector), centre), aperture_z))| {
+        .for_each(|(tile, (tile_arrays, (extra, planes)))| {
+            let (((((volume, centroid), area), vector), centre), aperture_z) = tile_arrays;
             let mut cells = TileCells {
                 cells: CellSlices {
                     volume,
@@ -317,10 +463,15 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                     boundary_centroid: centre,
                 },
                 aperture_z,
+                extra,
+                planes,
             };
             let run = tiling.range(tile);
             let mut handed = vec![[0.0; 3]; run.len() * areas];
             let mut on_top = vec![0.0; run.len()];
+            let extra_len = if X { run.len() } else { 0 };
+            let mut handed_second = vec![[0.0; 3]; extra_len * areas];
+            let mut on_top_moments = vec![[0.0; 2]; extra_len];
             for face in bins.faces(tile) {
                 let normal =
                     if polygons { polygon_normal(surface, face, &units, scale) } else { None };
@@ -329,9 +480,20 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
                     for_each_piece(&t, block, &run, false, |column, piece| {
                         let [i, j] = column_of(run.start + column);
                         let cells_of = column * depth..(column + 1) * depth;
-                        let mut sink = MomentSink {
+                        let column_areas = column * areas..(column + 1) * areas;
+                        let mut no_top = [0.0; 2];
+                        let mut sink = MomentSink::<X> {
+                            extra: if X { &mut cells.extra[cells_of.clone()] } else { &mut [] },
                             cells: cells.cells.part(cells_of),
-                            handed: &mut handed[column * areas..(column + 1) * areas],
+                            handed_extra: HandedExtra {
+                                second: if X {
+                                    &mut handed_second[column_areas.clone()]
+                                } else {
+                                    &mut []
+                                },
+                                on_top: if X { &mut on_top_moments[column] } else { &mut no_top },
+                            },
+                            handed: &mut handed[column_areas],
                             on_top: &mut on_top[column],
                             first,
                             column: [i as f64, j as f64],
@@ -344,16 +506,26 @@ pub(super) fn cut_cells<S: Surface + ?Sized>(
             }
             for column in 0..run.len() {
                 let [i, j] = column_of(run.start + column);
-                finish_column(
+                let sums = ColumnSums {
+                    handed: &handed[column * areas..(column + 1) * areas],
+                    on_top: on_top[column],
+                    second: if X {
+                        &handed_second[column * areas..(column + 1) * areas]
+                    } else {
+                        &[]
+                    },
+                    on_top_moments: if X { on_top_moments[column] } else { [0.0; 2] },
+                };
+                finish_column::<X>(
                     &mut cells,
                     column * depth..(column + 1) * depth,
                     column * (depth + 1)..(column + 1) * (depth + 1),
-                    (&handed[column * areas..(column + 1) * areas], on_top[column]),
+                    sums,
                     [i, j, first],
                     grid,
                 );
             }
             done.add(1);
         });
-    Ok(out)
+    Ok((out, extra, planes))
 }

@@ -19,6 +19,23 @@
 //! suffix sums of the volume kernel. The integrands are polynomials of degree ≤ 2 over
 //! planar parts ([`integrals`]). The `centroid` is `∫ x dV / V`.
 //!
+//! The second moments ([`Extras::second_moments`]) are the same with degree-2 fields:
+//!
+//! | quantity | f | in the cell's layer | each layer below a part gets |
+//! |---|---|---|---|
+//! | `∫ x'² dV` | `x'² g` | `∫ x'² z' n_z dA` | `∫ x'² n_z dA` |
+//! | `∫ y'² dV` | `y'² g` | `∫ y'² z' n_z dA` | `∫ y'² n_z dA` |
+//! | `∫ x'y' dV` | `x'y' g` | `∫ x'y' z' n_z dA` | `∫ x'y' n_z dA` |
+//! | `∫ x'z' dV` | `½ x' g²` | `∫ ½ x' z'² n_z dA` | `½ ∫ x' n_z dA` |
+//! | `∫ y'z' dV` | `½ y' g²` | `∫ ½ y' z'² n_z dA` | `½ ∫ y' n_z dA` |
+//! | `∫ z'² dV` | `⅓ g³` | `∫ ⅓ z'³ n_z dA` | `⅓ A` |
+//!
+//! (three more sums handed down; integrands of degree ≤ 3), in the cell's own
+//! coordinates, so that nothing cancels far from the origin; then moved to the cell's
+//! centroid `c` (`M₂ − c M₁ᵀ − M₁ cᵀ + V c cᵀ`, exact about any point) and scaled to
+//! world units. `inertia` is `tr(C)·𝟙 − C` of that covariance `C` (unit density, products
+//! of inertia negative), as [`MassProperties::inertia`](crate::MassProperties) is.
+//!
 //! The surface inside a cell is the set of parts the sweeps cut (each a convex polygon,
 //! the triangle ∩ the cell): `boundary_area` sums their areas, `boundary_vector` their
 //! area vectors `∫ n dA`, `boundary_centroid` is their area-weighted centroid. Faces
@@ -28,7 +45,8 @@
 //! The aperture of a cell face is the fraction of it inside the solid. On a plane
 //! `z = z_k` it is the column's suffix sum of projected areas at that plane (what hands
 //! the volume down); on `x = x_i` and `y = y_j` it follows from the same theorem with a
-//! constant field ([`apertures`]).
+//! constant field ([`apertures`]), and their centroids ([`Extras::face_centroids`]) from
+//! the first moments of the same sums.
 //!
 //! # Identities (tested)
 //! For every cell, `Σ_faces ± aperture · face area · axis + boundary_vector = 0` (the
@@ -81,6 +99,7 @@ use super::{Grid, GridError, Region};
 use crate::accumulate::CompensatedSum;
 use crate::progress::Progress;
 use crate::{Point, Surface};
+use rayon::prelude::*;
 
 /// The cut-cell geometry of a grid; cell arrays in C order (see [`Grid`]).
 #[derive(Clone, Debug, PartialEq)]
@@ -104,6 +123,25 @@ pub struct CutCells {
     /// `(NX + 1, NY, NZ)`, `y = y_j` with `(NX, NY + 1, NZ)`, `z = z_k` with
     /// `(NX, NY, NZ + 1)`, C order (a region: its shape, plus one along the axis).
     pub aperture: [Vec<f64>; 3],
+    /// With [`Extras::second_moments`] (else empty): the inertia tensor of the solid in
+    /// each cell about its `centroid`, unit density, `I = tr(C)·𝟙 − C` for the covariance
+    /// `C = ∫ (x − c)(x − c)ᵀ dV` (the convention of [`MassProperties::inertia`](crate::MassProperties));
+    /// zero for an empty cell, the box's own for a full one. Signed like the volume.
+    pub inertia: Vec<[[f64; 3]; 3]>,
+    /// With [`Extras::face_centroids`] (else empty): the centroid (world) of the part of
+    /// each cell face inside the solid, shaped as `aperture`; NaN where the aperture is
+    /// within [`OCCUPANCY_TOLERANCE`](super::OCCUPANCY_TOLERANCE) of 0 (no wetted part),
+    /// the face's middle where it is within it of ±1.
+    pub aperture_centroid: [Vec<Point>; 3],
+}
+
+/// The cut-cell arrays computed beyond the default ones.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Extras {
+    /// [`CutCells::inertia`].
+    pub second_moments: bool,
+    /// [`CutCells::aperture_centroid`].
+    pub face_centroids: bool,
 }
 
 impl CutCells {
@@ -143,6 +181,19 @@ impl CutCells {
             boundary_centroid: block_of(&self.boundary_centroid, cells, shape, offset),
             aperture: [0, 1, 2]
                 .map(|a| block_of(&self.aperture[a], faces(a, cells), faces(a, shape), offset)),
+            inertia: if self.inertia.is_empty() {
+                Vec::new()
+            } else {
+                block_of(&self.inertia, cells, shape, offset)
+            },
+            aperture_centroid: [0, 1, 2].map(|a| {
+                let centroids = &self.aperture_centroid[a];
+                if centroids.is_empty() {
+                    Vec::new()
+                } else {
+                    block_of(centroids, faces(a, cells), faces(a, shape), offset)
+                }
+            }),
         }
     }
 
@@ -154,8 +205,27 @@ impl CutCells {
 
     /// Bytes of the arrays for `grid`: 14 f64 a cell (and one a face).
     pub fn bytes(grid: &Grid) -> u128 {
+        Self::bytes_with(grid, Extras::default())
+    }
+
+    /// Bytes of the arrays for `grid` with `extras`, and of the scratch they need while
+    /// computed (10 f64 a cell and 2 a z face): 9 more f64 a cell for the inertia, 3 more
+    /// a face for the face centroids.
+    pub fn bytes_with(grid: &Grid, extras: Extras) -> u128 {
         let [nx, ny, nz] = grid.counts.map(|n| n as u128);
-        (11 * nx * ny * nz + (nx + 1) * ny * nz + nx * (ny + 1) * nz + nx * ny * (nz + 1)) * 8
+        let (cells, faces) =
+            (nx * ny * nz, (nx + 1) * ny * nz + nx * (ny + 1) * nz + nx * ny * (nz + 1));
+        let mut f64s = 11 * cells + faces;
+        if extras.second_moments || extras.face_centroids {
+            f64s += 10 * cells + 2 * (cells + nx * ny);
+        }
+        if extras.second_moments {
+            f64s += 9 * cells;
+        }
+        if extras.face_centroids {
+            f64s += 3 * faces;
+        }
+        f64s * 8
     }
 }
 
@@ -172,7 +242,8 @@ pub fn cut_cells_with<S: Surface + ?Sized>(
     progress: &dyn Progress,
 ) -> Result<CutCells, GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
-    computed(surface, &grid, &Block::whole(grid.counts), progress)
+    let whole = Block::whole(grid.counts);
+    Ok(computed(surface, &grid, &whole, Extras::default(), progress, Carried::default())?.0)
 }
 
 /// The cut-cell geometry of the cells of `region` of `grid`: the same bits as those
@@ -187,54 +258,105 @@ pub fn cut_cells_region<S: Surface + ?Sized>(
     grid: &Grid,
     region: &Region,
 ) -> Result<CutCells, GridError> {
+    cut_cells_extras(surface, grid, region, Extras::default(), &())
+}
+
+/// The cut-cell geometry of the cells of `region` of `grid` with the arrays `extras`
+/// asks for beyond the default ones, telling `progress` its stages: the same bits as
+/// [`cut_cells`] (and [`cut_cells_region`]) for those, and for the extra arrays the same
+/// bits for any region and any number of threads.
+pub fn cut_cells_extras<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    region: &Region,
+    extras: Extras,
+    progress: &dyn Progress,
+) -> Result<CutCells, GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
     super::check_region(&grid, region)?;
     let [x, y, z] = region.clone();
     let [nx, ny, _] = grid.counts;
     let reach = Block { counts: grid.counts, region: [x.start..nx, y.start..ny, z] };
-    let cells = computed(surface, &grid, &reach, &())?;
+    let (cells, _) = computed(surface, &grid, &reach, extras, progress, Carried::default())?;
     Ok(if cells.region == *region { cells } else { cells.cropped(region) })
 }
 
-/// The cut cells of `block`, which reaches the grid's far x and y faces.
+/// What a part of a grid computed from the far x face down hands to the part below it:
+/// the x sums (apertures and, with face centroids, their moments) at its first plane.
+#[derive(Default)]
+struct Carried {
+    apertures: Option<Vec<CompensatedSum>>,
+    centroids: Option<Vec<[CompensatedSum; 2]>>,
+}
+
+/// The cut cells of `block`, which reaches the grid's far y face, and its far x face
+/// unless `carried` holds the sums of the cells beyond it; and what it hands down.
 fn computed<S: Surface + ?Sized>(
     surface: &S,
     grid: &Grid,
     block: &Block,
+    extras: Extras,
     progress: &dyn Progress,
-) -> Result<CutCells, GridError> {
-    let mut cells = kernel::cut_cells(surface, grid, block, progress)?;
+    carried: Carried,
+) -> Result<(CutCells, Carried), GridError> {
+    if extras == Extras::default() {
+        let (mut cells, mut none, _) =
+            kernel::cut_cells::<S, false>(surface, grid, block, progress)?;
+        progress.stage("summing apertures");
+        let (_, apertures) = apertures::fill(surface, &mut cells, &mut none, carried.apertures);
+        return Ok((cells, Carried { apertures: Some(apertures), centroids: None }));
+    }
+    let (mut cells, mut sums, planes) =
+        kernel::cut_cells::<S, true>(surface, grid, block, progress)?;
     progress.stage("summing apertures");
-    apertures::fill(surface, &mut cells, None);
-    Ok(cells)
+    let (beyond, apertures) = apertures::fill(surface, &mut cells, &mut sums, carried.apertures);
+    let mut centroids = None;
+    if extras.face_centroids {
+        let (points, state) =
+            apertures::face_centroids(&cells, &sums, &planes, &beyond, carried.centroids);
+        cells.aperture_centroid = points;
+        centroids = Some(state);
+    }
+    drop(planes);
+    if extras.second_moments {
+        let tensor = |e: &kernel::Extra| {
+            let [xx, yy, zz, xy, yz, zx] = e.second;
+            [[yy + zz, -xy, -zx], [-xy, xx + zz, -yz], [-zx, -yz, xx + yy]]
+        };
+        cells.inertia = sums.par_iter().map(tensor).collect();
+    }
+    Ok((cells, Carried { apertures: Some(apertures), centroids }))
 }
 
 /// The cut cells of a grid as its *rows* (the blocks of every cell along y and z and
 /// `row` cells along x, the last one shorter), from the far x face down: each the same
-/// bits as those cells of [`cut_cells`], and each computed alone (the x apertures' sums
-/// of the rows beyond, a plane of them, are carried down), so that memory holds one row
-/// however large the grid. What [`cut_cells_rows`] returns.
+/// bits as those cells of [`cut_cells_extras`] over the whole grid, and each computed
+/// alone (the x sums of the rows beyond, a plane of them, are carried down), so that
+/// memory holds one row however large the grid. What [`cut_cells_rows`] returns.
 pub struct CutCellRows<'a, S: Surface + ?Sized> {
     surface: &'a S,
     grid: Grid,
     row: usize,
+    extras: Extras,
     /// Where the next row ends along x (0: done).
     end: usize,
-    /// The x apertures' running sums at plane `end` (none at the far face).
-    carried: Option<Vec<CompensatedSum>>,
+    /// The x sums at plane `end` (none at the far face).
+    carried: Carried,
 }
 
-/// The rows of `row` cells along x of the cut cells of `surface` on `grid`, from the far
-/// x face down ([`CutCellRows`]): row `r` holds cells `r·row..min((r+1)·row, NX)` and
-/// comes after the rows beyond it.
+/// The rows of `row` cells along x of the cut cells of `surface` on `grid`, with the
+/// arrays `extras` asks for, from the far x face down ([`CutCellRows`]): row `r` holds
+/// cells `r·row..min((r+1)·row, NX)` and comes after the rows beyond it.
 pub fn cut_cells_rows<'a, S: Surface + ?Sized>(
     surface: &'a S,
     grid: &Grid,
     row: usize,
+    extras: Extras,
 ) -> Result<CutCellRows<'a, S>, GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
     let row = row.clamp(1, grid.counts[0]);
-    Ok(CutCellRows { surface, grid, row, end: grid.counts[0], carried: None })
+    let end = grid.counts[0];
+    Ok(CutCellRows { surface, grid, row, extras, end, carried: Carried::default() })
 }
 
 impl<S: Surface + ?Sized> Iterator for CutCellRows<'_, S> {
@@ -249,15 +371,17 @@ impl<S: Surface + ?Sized> Iterator for CutCellRows<'_, S> {
         let start = (self.end - 1) / self.row * self.row;
         let block = Block { counts: self.grid.counts, region: [start..self.end, 0..ny, 0..nz] };
         self.end = start;
-        let mut cells = match kernel::cut_cells(self.surface, &self.grid, &block, &()) {
-            Ok(cells) => cells,
+        let carried = std::mem::take(&mut self.carried);
+        match computed(self.surface, &self.grid, &block, self.extras, &(), carried) {
+            Ok((cells, carried)) => {
+                self.carried = carried;
+                Some(Ok(cells))
+            }
             Err(e) => {
                 self.end = 0;
-                return Some(Err(e));
+                Some(Err(e))
             }
-        };
-        self.carried = Some(apertures::fill(self.surface, &mut cells, self.carried.take()));
-        Some(Ok(cells))
+        }
     }
 }
 
