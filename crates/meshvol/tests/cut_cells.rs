@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{mapped, XorShift};
+use common::{clip, mapped, overlap, XorShift};
 use meshvol::grid::{cell_volumes, cut_cells, cut_cells_extras, CutCells, Extras, Grid};
 use meshvol::section::{section, Plane};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
@@ -114,11 +114,6 @@ fn identities_hold_on_every_cell_and_in_sum() {
     }
 }
 
-/// The overlap of [a0, a1] and [b0, b1] (empty: lo ≥ hi).
-fn overlap(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
-    (a.0.max(b.0), a.1.min(b.1))
-}
-
 #[test]
 fn a_box_by_closed_forms() {
     let (lo, hi) = ([0.13, -0.27, 0.31], [1.71, 0.94, 1.05]);
@@ -186,30 +181,6 @@ fn a_box_by_closed_forms() {
         }
     }
     let _ = (nx, ny, nz);
-}
-
-/// Clips polygon `poly` to `lo ≤ p[d] ≤ hi` (Sutherland–Hodgman).
-fn clip(poly: Vec<P>, d: usize, lo: f64, hi: f64) -> Vec<P> {
-    let mut out = poly;
-    for (limit, keep_below) in [(hi, true), (lo, false)] {
-        let inside = |p: &P| if keep_below { p[d] <= limit } else { p[d] >= limit };
-        let input = std::mem::take(&mut out);
-        for (n, q) in input.iter().enumerate() {
-            let p = input[(n + input.len() - 1) % input.len()];
-            let (pi, qi) = (inside(&p), inside(q));
-            if pi != qi {
-                let t = (limit - p[d]) / (q[d] - p[d]);
-                out.push([0, 1, 2].map(|e| p[e] + t * (q[e] - p[e])));
-            }
-            if qi {
-                out.push(*q);
-            }
-        }
-        if out.len() < 3 {
-            return Vec::new();
-        }
-    }
-    out
 }
 
 /// Over a planar polygon (as a fan): its area vector, `∫ x_d n dA`... here, for axis

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::XorShift;
+use common::{clip, overlap, XorShift};
 use meshvol::grid::{cut_cells, cut_cells_extras, CutCells, Extras, Grid};
 use meshvol::section::{section, Plane};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
@@ -43,30 +43,6 @@ fn tilted_box() -> Mesh {
         let kp = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
         [0, 1, 2].map(|d| p[d] * c + kxp[d] * s + k[d] * kp * (1.0 - c) + 0.05)
     })
-}
-
-/// Clips polygon `poly` to `lo ≤ p[d] ≤ hi` (Sutherland–Hodgman), in any dimension.
-fn clip<const D: usize>(poly: Vec<[f64; D]>, d: usize, lo: f64, hi: f64) -> Vec<[f64; D]> {
-    let mut out = poly;
-    for (limit, keep_below) in [(hi, true), (lo, false)] {
-        let inside = |p: &[f64; D]| if keep_below { p[d] <= limit } else { p[d] >= limit };
-        let input = std::mem::take(&mut out);
-        for (n, q) in input.iter().enumerate() {
-            let p = input[(n + input.len() - 1) % input.len()];
-            let (pi, qi) = (inside(&p), inside(q));
-            if pi != qi {
-                let t = (limit - p[d]) / (q[d] - p[d]);
-                out.push(std::array::from_fn(|e| p[e] + t * (q[e] - p[e])));
-            }
-            if qi {
-                out.push(*q);
-            }
-        }
-        if out.len() < 3 {
-            return Vec::new();
-        }
-    }
-    out
 }
 
 /// Strang and Fix's 4-point rule, exact for cubics on a triangle: barycentric points and
@@ -287,11 +263,6 @@ fn face_centroids_are_those_of_the_sections_in_the_faces() {
         }
         assert!(wet > 20 && dry > 20, "{wet} wetted faces, {dry} dry");
     }
-}
-
-/// The overlap of [a0, a1] and [b0, b1] (empty: lo ≥ hi).
-fn overlap(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
-    (a.0.max(b.0), a.1.min(b.1))
 }
 
 #[test]

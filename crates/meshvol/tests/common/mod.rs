@@ -38,3 +38,32 @@ pub fn open_box(min: [f64; 3], max: [f64; 3]) -> Mesh {
     assert_eq!(faces.len(), closed.face_count() - 1);
     polygons(closed.positions(), &faces)
 }
+
+/// Clips polygon `poly` to `lo ≤ p[d] ≤ hi` (Sutherland–Hodgman), in any dimension.
+pub fn clip<const D: usize>(poly: Vec<[f64; D]>, d: usize, lo: f64, hi: f64) -> Vec<[f64; D]> {
+    let mut out = poly;
+    for (limit, keep_below) in [(hi, true), (lo, false)] {
+        let inside = |p: &[f64; D]| if keep_below { p[d] <= limit } else { p[d] >= limit };
+        let input = std::mem::take(&mut out);
+        for (n, q) in input.iter().enumerate() {
+            let p = input[(n + input.len() - 1) % input.len()];
+            let (pi, qi) = (inside(&p), inside(q));
+            if pi != qi {
+                let t = (limit - p[d]) / (q[d] - p[d]);
+                out.push(std::array::from_fn(|e| p[e] + t * (q[e] - p[e])));
+            }
+            if qi {
+                out.push(*q);
+            }
+        }
+        if out.len() < 3 {
+            return Vec::new();
+        }
+    }
+    out
+}
+
+/// The overlap of [a0, a1] and [b0, b1] (empty: lo ≥ hi).
+pub fn overlap(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    (a.0.max(b.0), a.1.min(b.1))
+}
