@@ -41,7 +41,10 @@ pub(super) struct Triangles<'a> {
 
 impl Triangles<'_> {
     pub fn points(&self, i: usize) -> [Point; 3] {
-        self.ids[i].map(|v| self.positions[v as usize])
+        // Not `ids.map(..)`: that built the array through the stack in pieces whose
+        // reads straddled two writes (a store-forwarding stall per point, measured).
+        let ([a, b, c], p) = (self.ids[i], self.positions);
+        [p[a as usize], p[b as usize], p[c as usize]]
     }
 }
 
