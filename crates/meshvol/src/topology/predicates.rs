@@ -16,7 +16,10 @@ pub(crate) fn orient(a: Point, b: Point, c: Point, d: Point) -> f64 {
 }
 
 /// [`orient`] where the floating-point filter cannot decide: nearly or exactly coplanar
-/// points, which touching faces make common.
+/// points, which touching faces make common. (Out of line: the filter's fast path is
+/// inlined into the pair search, and this rarer path would crowd it.)
+#[cold]
+#[inline(never)]
 fn orient_exactly([a, b, c]: [Point; 3], d: Point) -> f64 {
     // a, b, c in a plane x_k = h (faces of CAD parts often are): expanding the
     // determinant along column k leaves (−1)^k (h − d_k) times the 2D orientation of
@@ -117,7 +120,7 @@ impl Plane {
     }
 
     /// `orient(t[0], t[1], t[2], p)`, exactly.
-    #[inline]
+    #[inline(always)]
     fn orient(&self, p: Point) -> f64 {
         let u = sub(p, self.t[0]);
         // orient is the sign of det[a − p; b − p; c − p] = −(p − a)·((b − a) × (c − a)).
