@@ -35,6 +35,7 @@ pub mod exact;
 pub mod grid;
 pub mod hull;
 pub mod mesh;
+pub mod overlap;
 pub mod polygon;
 pub mod progress;
 pub mod properties;

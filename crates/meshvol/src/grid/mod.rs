@@ -34,7 +34,7 @@
 mod cells;
 mod clip;
 mod cut_cells;
-mod intersect;
+pub(crate) mod intersect;
 mod profile;
 mod union;
 

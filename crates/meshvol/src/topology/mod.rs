@@ -86,7 +86,7 @@ mod faces;
 mod holes;
 mod loops;
 mod nesting;
-mod predicates;
+pub(crate) mod predicates;
 mod sheets;
 mod shells;
 mod solid;

@@ -100,7 +100,7 @@ const GRID_BITS: i32 = 40;
 /// times a difference of two products, three times, on differences of input
 /// coordinates), so most tests are a dot product and a comparison, and the rest go to
 /// [`orient_exactly`].
-struct Plane {
+pub(crate) struct Plane {
     t: [Point; 3],
     /// (t₁ − t₀) × (t₂ − t₀), rounded.
     normal: Point,
@@ -113,7 +113,7 @@ const ORIENT3D_BOUND: f64 = (7.0 + 56.0 * HALF_ULP) * HALF_ULP;
 const HALF_ULP: f64 = f64::EPSILON / 2.0;
 
 impl Plane {
-    fn of(t: [Point; 3]) -> Plane {
+    pub(crate) fn of(t: [Point; 3]) -> Plane {
         let (v, w) = (sub(t[1], t[0]), sub(t[2], t[0]));
         let m = |i: usize, j: usize| (v[i] * w[j]).abs() + (v[j] * w[i]).abs();
         Plane { t, normal: cross(v, w), magnitude: [m(1, 2), m(2, 0), m(0, 1)] }
@@ -121,7 +121,7 @@ impl Plane {
 
     /// `orient(t[0], t[1], t[2], p)`, exactly.
     #[inline(always)]
-    fn orient(&self, p: Point) -> f64 {
+    pub(crate) fn orient(&self, p: Point) -> f64 {
         let u = sub(p, self.t[0]);
         // orient is the sign of det[a − p; b − p; c − p] = −(p − a)·((b − a) × (c − a)).
         let det = -dot(u, self.normal);
@@ -137,9 +137,35 @@ impl Plane {
     /// [`Plane::orient`]s already known), crosses this triangle properly: the
     /// segment's line strictly inside the triangle.
     fn crossed_inside(&self, p: Point, q: Point) -> bool {
+        self.crossing(p, q) == Some(true)
+    }
+
+    /// How segment pq, whose ends are strictly on opposite sides of the plane, meets
+    /// this triangle: `Some(true)` through its interior, `Some(false)` missing it,
+    /// `None` through its boundary (an edge or a corner).
+    pub(crate) fn crossing(&self, p: Point, q: Point) -> Option<bool> {
         let [a, b, c] = self.t;
-        let (s1, s2, s3) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
-        s1 != 0.0 && s1 == s2 && s2 == s3
+        let s = [orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a)];
+        if s[0] != 0.0 && s[0] == s[1] && s[1] == s[2] {
+            Some(true)
+        } else if s.contains(&1.0) && s.contains(&-1.0) {
+            Some(false)
+        } else {
+            None
+        }
+    }
+
+    /// (t₁ − t₀) × (t₂ − t₀), rounded.
+    pub(crate) fn normal(&self) -> Point {
+        self.normal
+    }
+
+    /// det[t₀ − p; t₁ − p; t₂ − p] (whose sign [`Plane::orient`] gives) in floating
+    /// point, and a bound on its error (Shewchuk's static bound for orient3d).
+    pub(crate) fn height(&self, p: Point) -> (f64, f64) {
+        let u = sub(p, self.t[0]);
+        let permanent = dot(u.map(f64::abs), self.magnitude);
+        (-dot(u, self.normal), ORIENT3D_BOUND * permanent)
     }
 }
 

@@ -1,0 +1,198 @@
+//! A body prepared once for many overlap queries: its triangles welded by exact
+//! equality of coordinates, its edges with the triangle that tests each, its vertex
+//! graph for the inside/outside walk, and a hierarchy of its triangles' boxes in its
+//! own frame, which every pose reuses.
+
+use crate::bvh::{Box32, Bvh};
+use crate::properties::Bounds;
+use crate::vector::orient2d;
+use crate::{Point, Surface};
+use rayon::prelude::*;
+
+/// A closed body ready for [`super::overlap`].
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// Distinct points, own frame.
+    pub(super) points: Vec<Point>,
+    /// Triangles as point ids, wound as the surface winds them, in the spatial order
+    /// of the hierarchy (triangle k is the hierarchy's item k).
+    pub(super) triangles: Vec<[u32; 3]>,
+    /// Triangles whose corners are exactly collinear: no area, no plane; only their
+    /// edges take part.
+    pub(super) flat: Vec<bool>,
+    /// Per triangle, its edges: edge i runs from corner i to corner i + 1.
+    pub(super) face_edges: Vec<[u32; 3]>,
+    /// Per edge, its ends, the lower id first.
+    pub(super) edges: Vec<[u32; 2]>,
+    /// Per edge, the triangle that tests it against the other body (the first one with
+    /// area that has it): each crossing of an edge is found once.
+    pub(super) owner: Vec<u32>,
+    /// The vertex graph: the edges at vertex v are `adjacent[start[v]..start[v + 1]]`,
+    /// as (neighbour, edge).
+    pub(super) start: Vec<u32>,
+    pub(super) adjacent: Vec<(u32, u32)>,
+    pub(super) bvh: Bvh,
+    /// Own frame; `None` without triangles.
+    pub(super) bounds: Option<Bounds>,
+    /// Why the body cannot take the boundary method (`None`: it can).
+    pub(super) unfit: Option<&'static str>,
+}
+
+impl Body {
+    /// Prepares `surface` (its fan triangles). The body is fit for the boundary method
+    /// when it is closed: every edge is used as often in one direction as in the other.
+    /// Whether it is free of self-crossings is the caller's to know (the check says).
+    pub fn new<S: Surface>(surface: &S) -> Body {
+        let mut corners: Vec<Point> = Vec::with_capacity(3 * surface.face_count());
+        for f in 0..surface.face_count() {
+            // `+ 0.0` turns −0 into +0: the same point, which welding compares by bits.
+            surface.fan(f, |a, b, c| corners.extend([a, b, c].map(|p| p.map(|x| x + 0.0))));
+        }
+        let (points, ids) = weld(&corners);
+        let raw: Vec<[u32; 3]> = ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let centres: Vec<Point> = raw
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| points[i as usize]);
+                [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
+            })
+            .collect();
+        let order = Bvh::spatial_order(&centres);
+        let triangles: Vec<[u32; 3]> = order.iter().map(|&i| raw[i as usize]).collect();
+        let flat: Vec<bool> =
+            triangles.iter().map(|t| collinear(t.map(|i| points[i as usize]))).collect();
+        let bvh = Bvh::new(triangles.len(), |k| {
+            Box32::around(&box_of(triangles[k].map(|i| points[i as usize])))
+        });
+        let mut bounds: Option<Bounds> = None;
+        for p in &points {
+            bounds.get_or_insert(Bounds { min: *p, max: *p }).include(*p);
+        }
+        let (edges, face_edges, owner, closed) = edge_table(&triangles, &flat);
+        let (start, adjacent) = vertex_graph(points.len(), &edges);
+        let unfit = if triangles.is_empty() {
+            Some("it has no triangle")
+        } else if !closed {
+            Some("it is not closed with exactly equal vertices")
+        } else {
+            None
+        };
+        Body {
+            points,
+            triangles,
+            flat,
+            face_edges,
+            edges,
+            owner,
+            start,
+            adjacent,
+            bvh,
+            bounds,
+            unfit,
+        }
+    }
+
+    /// The number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Why the boundary method cannot measure this body (`None`: it can).
+    pub fn unfit(&self) -> Option<&'static str> {
+        self.unfit
+    }
+}
+
+/// The box of a triangle.
+pub(super) fn box_of(t: [Point; 3]) -> Bounds {
+    let mut b = Bounds { min: t[0], max: t[0] };
+    b.include(t[1]);
+    b.include(t[2]);
+    b
+}
+
+/// Whether the three points lie on one line, exactly: every projection onto a
+/// coordinate plane has zero orientation.
+fn collinear([a, b, c]: [Point; 3]) -> bool {
+    [(0, 1), (1, 2), (2, 0)]
+        .iter()
+        .all(|&(i, j)| orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]]) == 0.0)
+}
+
+/// Distinct points (in the order of their coordinates' bits) and each corner's point
+/// id, points being equal when their coordinates' bits are.
+fn weld(corners: &[Point]) -> (Vec<Point>, Vec<u32>) {
+    let key = |i: u32| corners[i as usize].map(f64::to_bits);
+    let mut order: Vec<u32> = (0..corners.len() as u32).collect();
+    order.par_sort_unstable_by_key(|&i| (key(i), i));
+    let mut ids = vec![0u32; corners.len()];
+    let mut points: Vec<Point> = Vec::new();
+    for (k, &c) in order.iter().enumerate() {
+        if k == 0 || key(c) != key(order[k - 1]) {
+            points.push(corners[c as usize]);
+        }
+        ids[c as usize] = points.len() as u32 - 1;
+    }
+    (points, ids)
+}
+
+/// The edges (ends, lower id first), each triangle's edges, each edge's owner, and
+/// whether every edge is used as often in one direction as in the other.
+fn edge_table(
+    triangles: &[[u32; 3]],
+    flat: &[bool],
+) -> (Vec<[u32; 2]>, Vec<[u32; 3]>, Vec<u32>, bool) {
+    // (ends, corner index 3t + i, +1 along the ends' order, −1 against).
+    let mut uses: Vec<([u32; 2], u32, i8)> = Vec::with_capacity(3 * triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        for i in 0..3 {
+            let (u, v) = (tri[i], tri[(i + 1) % 3]);
+            let along = if u < v { 1 } else { -1 };
+            uses.push(([u.min(v), u.max(v)], 3 * t as u32 + i as u32, along));
+        }
+    }
+    uses.par_sort_unstable_by_key(|u| (u.0, u.1));
+    let mut edges = Vec::new();
+    let mut owner = Vec::new();
+    let mut face_edges = vec![[0u32; 3]; triangles.len()];
+    let mut closed = true;
+    let mut k = 0;
+    while k < uses.len() {
+        let mut end = k + 1;
+        while end < uses.len() && uses[end].0 == uses[k].0 {
+            end += 1;
+        }
+        let id = edges.len() as u32;
+        edges.push(uses[k].0);
+        let group = &uses[k..end];
+        closed &= group.iter().map(|u| i32::from(u.2)).sum::<i32>() == 0;
+        let with_area = group.iter().find(|u| !flat[(u.1 / 3) as usize]).unwrap_or(&group[0]);
+        owner.push(with_area.1 / 3);
+        for u in group {
+            face_edges[(u.1 / 3) as usize][(u.1 % 3) as usize] = id;
+        }
+        k = end;
+    }
+    (edges, face_edges, owner, closed)
+}
+
+/// The vertex graph as adjacency lists (neighbour, edge), by vertex.
+fn vertex_graph(points: usize, edges: &[[u32; 2]]) -> (Vec<u32>, Vec<(u32, u32)>) {
+    let mut start = vec![0u32; points + 1];
+    for e in edges {
+        start[e[0] as usize + 1] += 1;
+        start[e[1] as usize + 1] += 1;
+    }
+    for v in 0..points {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut adjacent = vec![(0u32, 0u32); 2 * edges.len()];
+    for (id, e) in edges.iter().enumerate() {
+        for (from, to) in [(e[0], e[1]), (e[1], e[0])] {
+            adjacent[fill[from as usize] as usize] = (to, id as u32);
+            fill[from as usize] += 1;
+        }
+    }
+    (start, adjacent)
+}

@@ -1,0 +1,276 @@
+//! Stage 1: where the two surfaces cross. Candidate pairs of triangles come from B's
+//! hierarchy (built once, in B's own frame) queried with A's triangles mapped into that
+//! frame; each pair is then decided exactly on the placed coordinates.
+//!
+//! For a pair of triangles (a, b) in general position, a ∩ b is empty or a segment
+//! whose two ends are each where an edge of one crosses the other's interior. Those
+//! edge crossings are decided by exact orientation tests; only their positions are
+//! rounded, each with a bound on its error. Any exact zero (a corner on the other's
+//! plane, an edge through the other's edge) is a position the method does not settle:
+//! the whole query reports [`Degenerate`] and the caller measures by the grid.
+
+use super::body::{box_of, Body};
+use crate::accumulate::UNIT_ROUNDOFF;
+use crate::assembly::Affine;
+use crate::properties::Bounds;
+use crate::topology::predicates::Plane;
+use crate::vector::{cross, dot, norm, sub};
+use crate::Point;
+use rayon::prelude::*;
+
+/// The surfaces touch or cross somewhere not in general position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Degenerate;
+
+/// A body placed by a pose.
+pub(super) struct Placed<'a> {
+    pub body: &'a Body,
+    /// The body's points, moved (the coordinates the grid method would see).
+    pub world: Vec<Point>,
+    /// The pose's inverse, for queries in the body's own frame (`None`: not moved).
+    to_own: Option<Affine>,
+    /// The world box.
+    pub bounds: Option<Bounds>,
+    /// The largest |coordinate| of the own-frame points and of the pose's translation.
+    reach: f64,
+}
+
+impl<'a> Placed<'a> {
+    pub fn new(body: &'a Body, pose: Option<Affine>) -> Placed<'a> {
+        let world: Vec<Point> = match &pose {
+            Some(m) => body.points.iter().map(|&p| m.apply(p)).collect(),
+            None => body.points.clone(),
+        };
+        let mut bounds: Option<Bounds> = None;
+        for p in &world {
+            bounds.get_or_insert(Bounds { min: *p, max: *p }).include(*p);
+        }
+        let largest = |b: Option<Bounds>| {
+            b.map_or(0.0, |b| b.min.iter().chain(&b.max).fold(0.0f64, |m, x| m.max(x.abs())))
+        };
+        let shift = pose.map_or(0.0, |m| (0..3).fold(0.0f64, |s, r| s.max(m.0[r][3].abs())));
+        Placed {
+            reach: largest(body.bounds).max(shift),
+            to_own: pose.map(|m| inverse(&m)),
+            world,
+            bounds,
+            body,
+        }
+    }
+
+    /// The corners of triangle `t`, placed.
+    #[inline]
+    pub fn corners(&self, t: usize) -> [Point; 3] {
+        self.body.triangles[t].map(|i| self.world[i as usize])
+    }
+}
+
+/// Where an edge crosses the other surface: its parameter from the edge's lower end,
+/// the point, and a bound on the point's distance from the exact crossing.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Cut {
+    pub edge: u32,
+    pub t: f64,
+    pub point: Point,
+    pub error: f64,
+}
+
+/// A piece of the crossing curve on a face, oriented so that the other body's inside
+/// lies to its left seen from the face's front (along n_face × n_other).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Seam {
+    pub face: u32,
+    pub from: Point,
+    pub to: Point,
+    pub error: [f64; 2],
+}
+
+/// What the crossing search found, per body (0: A, 1: B).
+#[derive(Default)]
+pub(super) struct Crossings {
+    /// Each edge's crossings with the other surface, sorted by edge and parameter.
+    pub cuts: [Vec<Cut>; 2],
+    /// The seams, sorted by face.
+    pub seams: [Vec<Seam>; 2],
+}
+
+/// Triangles of A per parallel task: fixed, so the output's order is the same at any
+/// thread count.
+const CHUNK: usize = 512;
+
+/// Every crossing of A's and B's surfaces, or [`Degenerate`].
+pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate> {
+    let (Some(ba), Some(bb)) = (a.bounds, b.bounds) else { return Ok(Crossings::default()) };
+    let common = Bounds {
+        min: [0, 1, 2].map(|k| ba.min[k].max(bb.min[k])),
+        max: [0, 1, 2].map(|k| ba.max[k].min(bb.max[k])),
+    };
+    if (0..3).any(|k| common.min[k] > common.max[k]) {
+        return Ok(Crossings::default());
+    }
+    let margin = 1e-9 * (a.reach.max(b.reach) + 1e-300);
+    let chunks: Vec<Result<Crossings, Degenerate>> = (0..a.body.triangles.len())
+        .into_par_iter()
+        .step_by(CHUNK)
+        .map(|begin| {
+            let mut found = Crossings::default();
+            for ia in begin..(begin + CHUNK).min(a.body.triangles.len()) {
+                let ta = a.corners(ia);
+                let box_a = box_of(ta);
+                if !meets(&box_a, &common) {
+                    continue;
+                }
+                let query = match &b.to_own {
+                    Some(m) => box_of(ta.map(|p| m.apply(p))),
+                    None => box_a,
+                };
+                let query = Bounds {
+                    min: query.min.map(|x| x - margin),
+                    max: query.max.map(|x| x + margin),
+                };
+                let mut result = Ok(());
+                b.body.bvh.overlapping(&query, |ib| {
+                    if result.is_ok() {
+                        let tb = b.corners(ib);
+                        if meets(&box_a, &box_of(tb)) {
+                            result = pair(a, ia, ta, b, ib, tb, &mut found);
+                        }
+                    }
+                });
+                result?;
+            }
+            Ok(found)
+        })
+        .collect();
+    let mut all = Crossings::default();
+    for chunk in chunks {
+        let chunk = chunk?;
+        for s in 0..2 {
+            all.cuts[s].extend_from_slice(&chunk.cuts[s]);
+            all.seams[s].extend_from_slice(&chunk.seams[s]);
+        }
+    }
+    for s in 0..2 {
+        all.cuts[s].par_sort_unstable_by(|p, q| p.edge.cmp(&q.edge).then(p.t.total_cmp(&q.t)));
+        all.seams[s].par_sort_by_key(|seam| seam.face);
+    }
+    Ok(all)
+}
+
+/// Whether closed boxes meet.
+fn meets(p: &Bounds, q: &Bounds) -> bool {
+    (0..3).all(|k| p.min[k] <= q.max[k] && q.min[k] <= p.max[k])
+}
+
+/// Decides the pair (A's triangle `ia`, B's `ib`): records the crossings of each one's
+/// edges (those it owns) through the other's interior, and the seam of the two.
+fn pair(
+    a: &Placed,
+    ia: usize,
+    ta: [Point; 3],
+    b: &Placed,
+    ib: usize,
+    tb: [Point; 3],
+    found: &mut Crossings,
+) -> Result<(), Degenerate> {
+    let (flat_a, flat_b) = (a.body.flat[ia], b.body.flat[ib]);
+    if flat_a && flat_b {
+        return Ok(());
+    }
+    let plane_a = (!flat_a).then(|| Plane::of(ta));
+    let plane_b = (!flat_b).then(|| Plane::of(tb));
+    let sides_a = plane_b.as_ref().map(|p| ta.map(|q| p.orient(q)));
+    let sides_b = plane_a.as_ref().map(|p| tb.map(|q| p.orient(q)));
+    if sides_a.is_some_and(one_side) || sides_b.is_some_and(one_side) {
+        return Ok(());
+    }
+    if sides_a.into_iter().chain(sides_b).any(|s| s.contains(&0.0)) {
+        return Err(Degenerate);
+    }
+    let mut ends: [(Point, f64); 2] = [([0.0; 3], 0.0); 2];
+    let mut count = 0;
+    for (side, this, t, other_plane, sides) in
+        [(0, a, ia, &plane_b, sides_a), (1, b, ib, &plane_a, sides_b)]
+    {
+        let (Some(plane), Some(sides)) = (other_plane, sides) else { continue };
+        for i in 0..3 {
+            if sides[i] == sides[(i + 1) % 3] {
+                continue;
+            }
+            let edge = this.body.face_edges[t][i];
+            let [lo, hi] = this.body.edges[edge as usize].map(|v| this.world[v as usize]);
+            match plane.crossing(lo, hi) {
+                None => return Err(Degenerate),
+                Some(false) => continue,
+                Some(true) => {}
+            }
+            let cut = crossing_point(plane, edge, lo, hi);
+            if this.body.owner[edge as usize] as usize == t {
+                found.cuts[side].push(cut);
+            }
+            if count == 2 {
+                return Err(Degenerate);
+            }
+            ends[count] = (cut.point, cut.error);
+            count += 1;
+        }
+    }
+    let (Some(pa), Some(pb)) = (&plane_a, &plane_b) else { return Ok(()) };
+    match count {
+        0 => Ok(()),
+        2 => {
+            // Along n_a × n_b, B's inside lies to the left on a, and A's inside to the
+            // left on b going the other way.
+            let along = cross(pa.normal(), pb.normal());
+            let [p, q] = if dot(sub(ends[1].0, ends[0].0), along) >= 0.0 {
+                ends
+            } else {
+                [ends[1], ends[0]]
+            };
+            found.seams[0].push(Seam { face: ia as u32, from: p.0, to: q.0, error: [p.1, q.1] });
+            found.seams[1].push(Seam { face: ib as u32, from: q.0, to: p.0, error: [q.1, p.1] });
+            Ok(())
+        }
+        _ => Err(Degenerate),
+    }
+}
+
+/// Whether orientations `s` are all strictly on one side.
+fn one_side(s: [f64; 3]) -> bool {
+    s[0] != 0.0 && s[0] == s[1] && s[1] == s[2]
+}
+
+/// Where edge `lo`–`hi` (ends strictly on opposite sides of `plane`) crosses it, with a
+/// bound on the error. From the ends' heights h above the plane (rounded, each within
+/// e of the exact one), t = h_lo / (h_lo − h_hi); since the exact heights have
+/// opposite signs, |h_lo − h_hi| is their sizes' sum, and t is off by at most about
+/// (e_lo + e_hi) / |h_lo − h_hi|, or anything in [0, 1] when that is not small.
+fn crossing_point(plane: &Plane, edge: u32, lo: Point, hi: Point) -> Cut {
+    let ((h0, e0), (h1, e1)) = (plane.height(lo), plane.height(hi));
+    let gap = (h0 - h1).abs();
+    let t = if gap > 0.0 { (h0 / (h0 - h1)).clamp(0.0, 1.0) } else { 0.5 };
+    let t_error =
+        if e0 + e1 < 0.25 * gap { 2.0 * (e0 + e1) / gap + 4.0 * UNIT_ROUNDOFF } else { 1.0 };
+    let d = sub(hi, lo);
+    let point = [0, 1, 2].map(|k| lo[k] + t * d[k]);
+    let error = t_error * norm(d) + 4.0 * UNIT_ROUNDOFF * (norm(lo) + norm(hi));
+    Cut { edge, t, point, error }
+}
+
+/// The inverse of a rigid motion (its 3×3 part inverted by the adjugate, not
+/// transposed: poses are taken as rigid within a tolerance).
+fn inverse(m: &Affine) -> Affine {
+    let r = |i: usize, j: usize| m.0[i][j];
+    let det = m.determinant();
+    let mut inv = [[0.0; 4]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let (i1, i2, j1, j2) = ((j + 1) % 3, (j + 2) % 3, (i + 1) % 3, (i + 2) % 3);
+            inv[i][j] = (r(i1, j1) * r(i2, j2) - r(i1, j2) * r(i2, j1)) / det;
+        }
+    }
+    for i in 0..3 {
+        inv[i][3] = -(0..3).map(|j| inv[i][j] * m.0[j][3]).sum::<f64>();
+    }
+    Affine(inv)
+}
