@@ -1,6 +1,8 @@
 //! The overlap of two 10k-triangle spheres over 1,000 random rigid poses (the simulation
-//! use of `meshvol::grid::intersection`): each pose reads B's faces moved
-//! (`meshvol::surface::Moved`) and gives the whole report (interval, moments, contact).
+//! use of `meshvol::grid::intersection_placed`): each body prepared once
+//! (`meshvol::overlap::Body`), each pose gives the whole result (interval, moments,
+//! contact), by the boundary method where it settles the pose and the grid method where
+//! not (the count of each is printed); then the grid method alone, for comparison.
 //!
 //! Before criterion's own measurement (one pose per iteration, cycling through the
 //! poses), the 1,000 poses are timed one by one and their median and quartiles printed:
@@ -11,7 +13,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use meshvol::assembly::Affine;
-use meshvol::grid::intersection;
+use meshvol::grid::{intersection, intersection_placed, Intersection, Method};
+use meshvol::overlap::Body;
 use meshvol::shapes::uv_sphere;
 use meshvol::surface::Moved;
 use meshvol::Mesh;
@@ -60,26 +63,22 @@ fn random_poses(count: usize) -> Vec<Affine> {
         .collect()
 }
 
-fn pose_loop(c: &mut Criterion) {
-    let a = sphere();
-    let poses = random_poses(1000);
-    let at = |pose: &Affine| {
-        let b = Moved::new(&a, Some(*pose));
-        black_box(intersection(&Moved::new(&a, None), &b, 1e-9).unwrap())
-    };
-    let mut seconds: Vec<f64> = poses
-        .iter()
-        .map(|pose| {
-            let start = Instant::now();
-            at(pose);
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
+/// Times `at` at each pose, prints the median and quartiles, and returns how many
+/// poses each method measured.
+fn timed(what: &str, poses: &[Affine], at: impl Fn(&Affine) -> Intersection) {
+    let (mut seconds, mut boundary) = (Vec::new(), 0);
+    for pose in poses {
+        let start = Instant::now();
+        let i = black_box(at(pose));
+        seconds.push(start.elapsed().as_secs_f64());
+        boundary += usize::from(i.method == Method::Boundary);
+    }
     seconds.sort_by(f64::total_cmp);
     let ms = |q: usize| seconds[q * (seconds.len() - 1) / 4] * 1e3;
     println!(
-        "intersect 10k-10k, {} random overlapping poses on {} threads: median {:.2} ms per \
-         pose (quartiles {:.2}, {:.2} ms; fastest {:.2} ms)",
+        "intersect 10k-10k, {what}, {} random overlapping poses on {} threads: median {:.3} \
+         ms per pose (quartiles {:.3}, {:.3} ms; fastest {:.3} ms); {boundary} poses by the \
+         boundary method",
         seconds.len(),
         rayon::current_num_threads(),
         ms(2),
@@ -87,13 +86,28 @@ fn pose_loop(c: &mut Criterion) {
         ms(3),
         ms(0)
     );
+}
+
+fn pose_loop(c: &mut Criterion) {
+    let a = sphere();
+    let body = Body::new(&a);
+    let poses = random_poses(1000);
+    let placed = |pose: &Affine| {
+        let bodies = [Some(&body), Some(&body)];
+        intersection_placed(&a, &a, bodies, [None, Some(*pose)], 1e-9, &()).unwrap()
+    };
+    let by_grid = |pose: &Affine| {
+        intersection(&Moved::new(&a, None), &Moved::new(&a, Some(*pose)), 1e-9).unwrap()
+    };
+    timed("prepared bodies", &poses, placed);
+    timed("grid method", &poses[..100], by_grid);
     let mut group = c.benchmark_group("intersect");
     group.sample_size(10);
     let mut next = 0;
     group.bench_function("10k-10k/random-pose", |bench| {
         bench.iter(|| {
             next = (next + 1) % poses.len();
-            at(&poses[next])
+            black_box(placed(&poses[next]))
         })
     });
     group.finish();

@@ -6,7 +6,8 @@
 use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
-use meshvol_report::intersect::{intersect_with, overlapping_pairs};
+use meshvol::overlap::Body;
+use meshvol_report::intersect::{intersect_prepared, intersect_with, overlapping_pairs, prepare};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -94,6 +95,16 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
         driver.fail(&names.join(", "), &error);
         return driver.finish();
     }
+    // Each body prepared for the boundary method once, and only if it is in a pair.
+    let mut bodies: Vec<Option<Option<Body>>> = vec![None; subjects.len()];
+    for &(i, j) in &pairs {
+        for k in [i, j] {
+            if bodies[k].is_none() {
+                bodies[k] = Some(prepare(&subjects[k]));
+            }
+        }
+    }
+    let body = |k: usize| bodies[k].as_ref().and_then(Option::as_ref);
     for (i, j) in pairs {
         if driver.closed() {
             break;
@@ -103,7 +114,7 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
         let result = {
             let hook = driver.progress.kernel(what);
             let files = [(a.source.name(), a.source.unit), (b.source.name(), b.source.unit)];
-            intersect_with(a, b, args.tolerance, &hook)
+            intersect_prepared(a, b, [body(i), body(j)], [None, None], args.tolerance, &hook)
                 .and_then(|r| r.in_units(&args.units.options(), &files))
         };
         match result {

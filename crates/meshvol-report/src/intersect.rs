@@ -8,9 +8,9 @@ use crate::union::{interval_text, Interval};
 use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::assembly::Affine;
-use meshvol::grid::{intersection_with as kernel, overlapping_boxes, Bounded};
+use meshvol::grid::{intersection_placed as kernel, overlapping_boxes, Bounded};
+use meshvol::overlap::Body;
 use meshvol::progress::Progress;
-use meshvol::surface::Moved;
 use meshvol::Surface;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -67,7 +67,12 @@ pub struct IntersectReport {
     /// How far the caps on the bodies' holes could put the volumes off; the intervals
     /// are widened by it (0 for closed bodies).
     pub volume_uncertainty: f64,
-    /// The base grid's cells (`[1, 1, 1]` when disjoint).
+    /// How the interval was found: `boxes` (the boxes are apart or only touch: 0),
+    /// `boundary` (from the parts of each body's faces inside the other, where the faces
+    /// cross in general position and both checks vouch for the bodies) or `grid` (the
+    /// grid method, which also settles touching and coplanar faces).
+    pub method: &'static str,
+    /// The base grid's cells (`[1, 1, 1]` when no grid was used).
     pub grid: [usize; 3],
     pub seconds: f64,
     /// The units the numbers are in (`--units`, or the unit the file declares); null:
@@ -158,6 +163,30 @@ pub fn intersect_posed<S: Surface + Sync>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<IntersectReport, String> {
+    let bodies = [prepare(a), prepare(b)];
+    intersect_prepared(a, b, [bodies[0].as_ref(), bodies[1].as_ref()], poses, tolerance, progress)
+}
+
+/// A subject's checked solid prepared for the boundary method ([`Body`]), when its
+/// check vouches for it: checked, with no self-intersection and no overlapping shells
+/// (the method takes insideness as the parity of crossings). `None` otherwise, and
+/// unchecked: the grid method measures those.
+pub fn prepare<S: Surface + Sync>(s: &Subject<'_, S>) -> Option<Body> {
+    let check = s.check?;
+    (check.self_intersections == Some(0) && check.overlapping_shells.is_empty())
+        .then(|| Body::new(&s.whole().surface))
+}
+
+/// [`intersect_posed`] with the bodies already prepared ([`prepare`]; `None`: measured
+/// by the grid method), so a loop over poses prepares nothing again.
+pub fn intersect_prepared<S: Surface + Sync>(
+    a: &Subject<'_, S>,
+    b: &Subject<'_, S>,
+    bodies: [Option<&Body>; 2],
+    poses: [Option<Affine>; 2],
+    tolerance: f64,
+    progress: &dyn Progress,
+) -> Result<IntersectReport, String> {
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(format!("tolerance must be a positive number; got {tolerance}"));
     }
@@ -167,11 +196,10 @@ pub fn intersect_posed<S: Surface + Sync>(
         .flat_map(|s| s.warnings().into_iter().map(|w| format!("{}: {w}", s.source.name())))
         .collect();
     let names: Vec<String> = subjects.iter().map(|s| s.source.name().to_string()).collect();
-    let [pose_a, pose_b] = poses;
-    let (body_a, body_b) =
-        (Moved::new(a.whole().surface, pose_a), Moved::new(b.whole().surface, pose_b));
+    let (surface_a, surface_b) = (a.whole().surface, b.whole().surface);
     let start = Instant::now();
-    let mut i = kernel(&body_a, &body_b, tolerance, progress).map_err(|e| e.to_string())?;
+    let mut i = kernel(&surface_a, &surface_b, bodies, poses, tolerance, progress)
+        .map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();
     // Caps on holes are guesses: the intervals must hold whatever the missing faces were.
     let (ua, ub) = (a.volume_uncertainty(), b.volume_uncertainty());
@@ -224,6 +252,7 @@ pub fn intersect_posed<S: Surface + Sync>(
         columns_unresolved: i.columns_unresolved,
         flipped: i.flipped,
         volume_uncertainty: uncertainty,
+        method: i.method.name(),
         grid: i.grid.counts,
         seconds,
         units: None,
@@ -241,7 +270,9 @@ pub fn intersect_poses<S: Surface + Sync>(
     poses: &[[Option<Affine>; 2]],
     tolerance: f64,
 ) -> Result<Vec<IntersectReport>, String> {
-    poses.par_iter().map(|&pair| intersect_posed(a, b, pair, tolerance, &())).collect()
+    let bodies = [prepare(a), prepare(b)];
+    let bodies = [bodies[0].as_ref(), bodies[1].as_ref()];
+    poses.par_iter().map(|&pair| intersect_prepared(a, b, bodies, pair, tolerance, &())).collect()
 }
 
 /// The pairs `(i, j)`, `i < j`, of `subjects` (each measured whole) whose boxes overlap:
@@ -292,6 +323,9 @@ impl Report for IntersectReport {
         let _ = writeln!(s, "  union            {}", num(self.union, 15));
         if self.disjoint {
             let _ = writeln!(s, "  boxes apart      no grid needed");
+        } else if self.method == "boundary" {
+            let _ =
+                writeln!(s, "  method           boundary (each face's part inside the other body)");
         } else {
             let _ = writeln!(
                 s,

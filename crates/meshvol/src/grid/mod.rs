@@ -43,7 +43,8 @@ pub use cut_cells::{
     CutCells, Extras,
 };
 pub use intersect::{
-    intersection, intersection_with, overlapping_boxes, Bounded, Contact, Intersection, Moments,
+    intersection, intersection_placed, intersection_with, overlapping_boxes, Bounded, Contact,
+    Intersection, Method, Moments,
 };
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
 pub use union::{

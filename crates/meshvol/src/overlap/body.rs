@@ -5,7 +5,7 @@
 
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
-use crate::vector::orient2d;
+use crate::vector::{cross, norm, orient2d, sub};
 use crate::{Point, Surface};
 use rayon::prelude::*;
 
@@ -34,6 +34,10 @@ pub struct Body {
     pub(super) bvh: Bvh,
     /// Own frame; `None` without triangles.
     pub(super) bounds: Option<Bounds>,
+    /// The sums of the triangles' areas and of their perimeters (for the bound on how
+    /// much volume a small move of the body sweeps).
+    pub(super) area: f64,
+    pub(super) perimeter: f64,
     /// Why the body cannot take the boundary method (`None`: it can).
     pub(super) unfit: Option<&'static str>,
 }
@@ -68,6 +72,12 @@ impl Body {
         for p in &points {
             bounds.get_or_insert(Bounds { min: *p, max: *p }).include(*p);
         }
+        let (mut area, mut perimeter) = (0.0, 0.0);
+        for t in &triangles {
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            area += 0.5 * norm(cross(sub(b, a), sub(c, a)));
+            perimeter += norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c));
+        }
         let (edges, face_edges, owner, closed) = edge_table(&triangles, &flat);
         let (start, adjacent) = vertex_graph(points.len(), &edges);
         let unfit = if triangles.is_empty() {
@@ -88,6 +98,8 @@ impl Body {
             adjacent,
             bvh,
             bounds,
+            area,
+            perimeter,
             unfit,
         }
     }

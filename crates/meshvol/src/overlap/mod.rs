@@ -24,8 +24,9 @@
 //! # What it does not settle
 //! A corner of one body on the other's plane where their faces meet, an edge through
 //! another's edge, coplanar overlapping faces: any exact zero among the tests gives
-//! [`Degenerate`], and the caller measures by the grid method
-//! ([`crate::grid::intersection`]), which resolves those. Bodies must be closed with
+//! [`Degenerate`]. Touching at points or along lines is settled by moving B off by a
+//! hair and bounding what the move changes ([`overlap`]); faces in one plane are left
+//! to the grid method ([`crate::grid::intersection`]), which resolves them. Bodies must be closed with
 //! exactly equal shared vertices ([`Body::unfit`]), wound outward, and free of
 //! self-crossings (insideness is the parity of crossings): the caller vouches for the
 //! last from the check.
@@ -37,12 +38,14 @@ mod regions;
 pub use body::Body;
 pub use pairs::Degenerate;
 
-use crate::accumulate::gamma;
+use crate::accumulate::{gamma, UNIT_ROUNDOFF};
 use crate::assembly::Affine;
 use crate::grid::intersect::moments::finish;
+use crate::vector::{norm, scale};
 use crate::Point;
 use pairs::{crossings, Placed};
 use regions::{inside_part, inside_points, Part};
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A∩B measured from the bodies' surfaces.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,16 +64,22 @@ pub struct Overlap {
     pub contact_vector_a: Point,
 }
 
-/// A∩B for `a` and `b` placed by their poses (`None`: where they are), or
-/// [`Degenerate`] where the surfaces meet in a way this method does not settle, or a
-/// body is [`Body::unfit`].
+/// A∩B for `a` and `b` placed by their poses (`None`: where they are), or why the
+/// boundary method does not settle it ([`Degenerate`]).
+///
+/// Where the surfaces only touch at points or along lines ([`Degenerate::Touching`]:
+/// say two copies of a sphere whose latitude rings lie in the same planes), B is moved
+/// off by a hair (2⁻⁴⁰ of the largest coordinate, in a direction no axis or diagonal
+/// lines up with) and measured again: A∩B changes by at most the volume B sweeps, which
+/// lies within the Minkowski sum of B's surface with a ball of the move's radius d, so
+/// the error grows by Σ over B's triangles of 2d·area + (π/2)d²·perimeter + (4π/3)d³.
 ///
 /// ```
 /// use meshvol::overlap::{overlap, Body};
 /// use meshvol::shapes::cuboid;
 /// // Two 2×2×2 boxes, one turned a little about z and moved by (1, 1, 1).
 /// let (a, b) = (Body::new(&cuboid([0.0; 3], [2.0; 3])), Body::new(&cuboid([0.0; 3], [2.0; 3])));
-/// let (s, c) = (0.1f64.sin(), 0.1f64.cos());
+/// let (s, c) = 0.1f64.sin_cos();
 /// let pose = meshvol::assembly::Affine([[c, -s, 0.0, 1.0], [s, c, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]]);
 /// let o = overlap(&a, None, &b, Some(pose)).unwrap();
 /// assert!(o.volume > 0.5 && o.volume < 1.0 && o.error < 1e-12);
@@ -82,30 +91,72 @@ pub fn overlap(
     pose_b: Option<Affine>,
 ) -> Result<Overlap, Degenerate> {
     if a.unfit().is_some() || b.unfit().is_some() {
-        return Err(Degenerate);
+        return Err(Degenerate::Unfit);
     }
-    let placed = [Placed::new(a, pose_a), Placed::new(b, pose_b)];
-    let found = crossings(&placed[0], &placed[1])?;
-    let origin = match (placed[0].bounds, placed[1].bounds) {
+    let placed_a = Placed::new(a, pose_a, [0.0; 3]);
+    let placed_b = Placed::new(b, pose_b, [0.0; 3]);
+    match measure(&placed_a, &placed_b) {
+        Err(Degenerate::Touching) => {}
+        settled => return settled,
+    }
+    let reach = placed_a.reach.max(placed_b.reach);
+    for direction in NUDGES {
+        let shift = scale(direction, HAIR * reach);
+        match measure(&placed_a, &Placed::new(b, pose_b, shift)) {
+            Ok(mut o) => {
+                // The move, and the rounding of the moved coordinates.
+                let d = norm(shift) + 8.0 * UNIT_ROUNDOFF * reach;
+                let swept = 2.0 * d * b.area
+                    + FRAC_PI_2 * d * d * b.perimeter
+                    + 4.0 * PI / 3.0 * d * d * d * b.triangle_count() as f64;
+                o.error += 1.01 * swept;
+                return Ok(o);
+            }
+            Err(Degenerate::Touching) => continue,
+            Err(other) => return Err(other),
+        }
+    }
+    Err(Degenerate::Touching)
+}
+
+/// The size of the move off a touching position, relative to the largest coordinate.
+const HAIR: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// The directions of the moves tried (unit vectors no axis, diagonal or simple ratio
+/// lines up with).
+const NUDGES: [Point; 2] = [
+    [0.8017837257372732, 0.5345224838248488, 0.2672612419124244],
+    [-0.3265986323710904, 0.7348469228349535, -0.5943889992637929],
+];
+
+/// The boundary method on placed bodies.
+fn measure(a: &Placed, b: &Placed) -> Result<Overlap, Degenerate> {
+    let found = crossings(a, b)?;
+    let origin = match (a.bounds, b.bounds) {
         (Some(p), Some(q)) => {
             [0, 1, 2].map(|k| 0.5 * (p.min[k].max(q.min[k]) + p.max[k].min(q.max[k])))
         }
         _ => [0.0; 3],
     };
     let mut parts = [Part::default(); 2];
-    for s in 0..2 {
-        let (this, other) = (&placed[s], &placed[1 - s]);
+    for (s, (this, other)) in [(a, b), (b, a)].into_iter().enumerate() {
         let inside = inside_points(this, other, &found.cuts[s])?;
         parts[s] = inside_part(this, &inside, &found.cuts[s], &found.seams[s], origin);
     }
     let mut sums = [0.0; 10];
-    for k in 0..10 {
+    for k in 1..10 {
         sums[k] = parts[0].sums[k] + parts[1].sums[k];
     }
-    // Recursive sums of n terms are within γ(n − 1) of the sum of their magnitudes.
+    let mut volume6 = parts[0].volume6;
+    volume6.merge(&parts[1].volume6);
+    let volume = volume6.value() / 6.0;
+    sums[0] = volume;
+    // A compensated sum of n terms is within u|Σ| + γ(n − 1)²·Σ|terms| (accumulate's
+    // docs); the division by 6 rounds once more.
     let magnitude = parts[0].magnitude + parts[1].magnitude;
-    let summing = gamma((parts[0].terms + parts[1].terms) as f64) * magnitude;
-    let volume = sums[0];
+    let n = (parts[0].terms + parts[1].terms) as f64;
+    let summing = (UNIT_ROUNDOFF * volume6.value().abs() + gamma(n).powi(2) * magnitude) / 6.0
+        + UNIT_ROUNDOFF * volume.abs();
     let error = 2.0 * (parts[0].error + parts[1].error + summing);
     let moments = finish(&sums, origin);
     Ok(Overlap {

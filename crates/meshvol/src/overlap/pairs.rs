@@ -6,21 +6,32 @@
 //! whose two ends are each where an edge of one crosses the other's interior. Those
 //! edge crossings are decided by exact orientation tests; only their positions are
 //! rounded, each with a bound on its error. Any exact zero (a corner on the other's
-//! plane, an edge through the other's edge) is a position the method does not settle:
-//! the whole query reports [`Degenerate`] and the caller measures by the grid.
+//! plane, an edge through the other's edge, faces in one plane) is a position the
+//! method does not settle: the whole query reports [`Degenerate`].
 
 use super::body::{box_of, Body};
 use crate::accumulate::UNIT_ROUNDOFF;
 use crate::assembly::Affine;
 use crate::properties::Bounds;
 use crate::topology::predicates::Plane;
-use crate::vector::{cross, dot, norm, sub};
+use crate::vector::{add, cross, dot, norm, sub};
 use crate::Point;
 use rayon::prelude::*;
 
-/// The surfaces touch or cross somewhere not in general position.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Degenerate;
+/// Why the boundary method does not settle a query.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Degenerate {
+    /// The surfaces touch at points or along lines (a corner on a face, an edge through
+    /// an edge): the volume, moments and interface change by no more than the move
+    /// itself when B is moved off by a hair ([`super::overlap`] does). Listed first:
+    /// the mildest.
+    Touching,
+    /// A body is not closed with exactly equal vertices ([`super::Body::unfit`]).
+    Unfit,
+    /// Faces of the two bodies lie in one plane: where they overlap, the interface
+    /// (glued or shared faces) depends on which way they would be moved apart.
+    Coplanar,
+}
 
 /// A body placed by a pose.
 pub(super) struct Placed<'a> {
@@ -31,15 +42,22 @@ pub(super) struct Placed<'a> {
     to_own: Option<Affine>,
     /// The world box.
     pub bounds: Option<Bounds>,
-    /// The largest |coordinate| of the own-frame points and of the pose's translation.
-    reach: f64,
+    /// The largest |coordinate| of the own-frame points and of the pose's translation,
+    /// plus the shift's length.
+    pub reach: f64,
 }
 
 impl<'a> Placed<'a> {
-    pub fn new(body: &'a Body, pose: Option<Affine>) -> Placed<'a> {
-        let world: Vec<Point> = match &pose {
-            Some(m) => body.points.iter().map(|&p| m.apply(p)).collect(),
-            None => body.points.clone(),
+    /// `body` moved by `pose`, then by `shift` (rounded to the nearest coordinates).
+    pub fn new(body: &'a Body, pose: Option<Affine>, shift: Point) -> Placed<'a> {
+        let moved = |p: Point| match &pose {
+            Some(m) => m.apply(p),
+            None => p,
+        };
+        let world: Vec<Point> = if shift == [0.0; 3] {
+            body.points.iter().map(|&p| moved(p)).collect()
+        } else {
+            body.points.iter().map(|&p| add(moved(p), shift)).collect()
         };
         let mut bounds: Option<Bounds> = None;
         for p in &world {
@@ -48,9 +66,9 @@ impl<'a> Placed<'a> {
         let largest = |b: Option<Bounds>| {
             b.map_or(0.0, |b| b.min.iter().chain(&b.max).fold(0.0f64, |m, x| m.max(x.abs())))
         };
-        let shift = pose.map_or(0.0, |m| (0..3).fold(0.0f64, |s, r| s.max(m.0[r][3].abs())));
+        let translation = pose.map_or(0.0, |m| (0..3).fold(0.0f64, |s, r| s.max(m.0[r][3].abs())));
         Placed {
-            reach: largest(body.bounds).max(shift),
+            reach: largest(body.bounds).max(translation) + norm(shift),
             to_own: pose.map(|m| inverse(&m)),
             world,
             bounds,
@@ -114,6 +132,7 @@ pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate>
         .step_by(CHUNK)
         .map(|begin| {
             let mut found = Crossings::default();
+            let mut touching = false;
             for ia in begin..(begin + CHUNK).min(a.body.triangles.len()) {
                 let ta = a.corners(ia);
                 let box_a = box_of(ta);
@@ -128,20 +147,33 @@ pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate>
                     min: query.min.map(|x| x - margin),
                     max: query.max.map(|x| x + margin),
                 };
-                let mut result = Ok(());
+                // After a touching pair, the search goes on for coplanar faces, which
+                // decide the answer (the caller moves B off a touch, not off a plane).
+                let mut verdict: Option<Degenerate> = None;
                 b.body.bvh.overlapping(&query, |ib| {
-                    if result.is_ok() {
+                    if verdict != Some(Degenerate::Coplanar) {
                         let tb = b.corners(ib);
                         if meets(&box_a, &box_of(tb)) {
-                            result = pair(a, ia, ta, b, ib, tb, &mut found);
+                            if let Err(e) = pair(a, ia, ta, b, ib, tb, &mut found) {
+                                verdict = verdict.max(Some(e));
+                            }
                         }
                     }
                 });
-                result?;
+                if verdict == Some(Degenerate::Coplanar) {
+                    return Err(Degenerate::Coplanar);
+                }
+                touching |= verdict.is_some();
+            }
+            if touching {
+                return Err(Degenerate::Touching);
             }
             Ok(found)
         })
         .collect();
+    if let Some(worst) = chunks.iter().filter_map(|c| c.as_ref().err()).max() {
+        return Err(*worst);
+    }
     let mut all = Crossings::default();
     for chunk in chunks {
         let chunk = chunk?;
@@ -184,8 +216,11 @@ fn pair(
     if sides_a.is_some_and(one_side) || sides_b.is_some_and(one_side) {
         return Ok(());
     }
+    if sides_a.into_iter().chain(sides_b).any(|s| s == [0.0; 3]) {
+        return Err(Degenerate::Coplanar);
+    }
     if sides_a.into_iter().chain(sides_b).any(|s| s.contains(&0.0)) {
-        return Err(Degenerate);
+        return Err(Degenerate::Touching);
     }
     let mut ends: [(Point, f64); 2] = [([0.0; 3], 0.0); 2];
     let mut count = 0;
@@ -200,7 +235,7 @@ fn pair(
             let edge = this.body.face_edges[t][i];
             let [lo, hi] = this.body.edges[edge as usize].map(|v| this.world[v as usize]);
             match plane.crossing(lo, hi) {
-                None => return Err(Degenerate),
+                None => return Err(Degenerate::Touching),
                 Some(false) => continue,
                 Some(true) => {}
             }
@@ -209,7 +244,7 @@ fn pair(
                 found.cuts[side].push(cut);
             }
             if count == 2 {
-                return Err(Degenerate);
+                return Err(Degenerate::Touching);
             }
             ends[count] = (cut.point, cut.error);
             count += 1;
@@ -231,7 +266,7 @@ fn pair(
             found.seams[1].push(Seam { face: ib as u32, from: q.0, to: p.0, error: [q.1, p.1] });
             Ok(())
         }
-        _ => Err(Degenerate),
+        _ => Err(Degenerate::Touching),
     }
 }
 

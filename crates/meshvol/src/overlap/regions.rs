@@ -7,8 +7,8 @@
 //! every point from one whose state is known: a point outside the other's box is
 //! outside; failing one, a ray from the first point is cast through all of the other's
 //! triangles (exact crossing tests, six axis directions tried in turn). An edge whose
-//! two ends disagree with its crossings means the other surface is not closed: the
-//! query is [`Degenerate`].
+//! two ends disagree with its crossings (which a closed surface without self-crossings
+//! cannot give) makes the query [`Degenerate`].
 //!
 //! **Faces.** The part of face F inside the other body is bounded by the seams on F
 //! and by the pieces of F's edges inside (an edge's pieces alternate at its
@@ -20,7 +20,7 @@
 //! area. A face with no crossing is inside or outside whole.
 
 use super::pairs::{Cut, Degenerate, Placed, Seam};
-use crate::accumulate::UNIT_ROUNDOFF;
+use crate::accumulate::{CompensatedSum, UNIT_ROUNDOFF};
 use crate::topology::predicates::{ray_crossing, RAY_FRAMES};
 use crate::vector::{add, cross, dot, norm, scale, sub};
 use crate::Point;
@@ -30,10 +30,12 @@ use rayon::prelude::*;
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Part {
     /// ∫ 1, x, y, z, x², y², z², xy, yz, zx over the solid these faces bound with the
-    /// other's part (each face's share, by the divergence theorem).
+    /// other's part (each face's share, by the divergence theorem); the first is summed
+    /// apart, six times over, compensated: `volume6`.
     pub sums: [f64; 10],
-    /// Σ |volume terms| (for the summation's rounding) and the bound on the terms'
-    /// errors from rounded points and products.
+    pub volume6: CompensatedSum,
+    /// Σ |terms of `volume6`| (for the summation's rounding) and the bound on the
+    /// volume terms' errors from rounded points and products.
     pub magnitude: f64,
     pub error: f64,
     /// The number of terms summed.
@@ -45,7 +47,8 @@ pub(super) struct Part {
 
 impl Part {
     fn merge(&mut self, o: &Part) {
-        for k in 0..10 {
+        self.volume6.merge(&o.volume6);
+        for k in 1..10 {
             self.sums[k] += o.sums[k];
         }
         self.magnitude += o.magnitude;
@@ -94,7 +97,7 @@ pub(super) fn inside_points(
                         state[w as usize] = s;
                         part.push(w);
                     }
-                    t if t != s => return Err(Degenerate),
+                    t if t != s => return Err(Degenerate::Touching),
                     _ => {}
                 }
             }
@@ -131,7 +134,7 @@ fn ray_parity(p: Point, other: &Placed) -> Result<bool, Degenerate> {
         }
         return Ok(odd);
     }
-    Err(Degenerate)
+    Err(Degenerate::Touching)
 }
 
 /// Faces per parallel task (fixed: the sums' order is the same at any thread count).
@@ -229,34 +232,41 @@ fn edge_pieces(
 /// Adds the region of a face bounded by `segments` (fanned from its corner `p`) to
 /// `part`: the tetrahedra (origin, p, s, e), the vector area, and the error bound.
 ///
-/// The bound: a segment's term is det(p, s, e)/6 in coordinates about the origin;
-/// moving s by δ changes it by at most δ|p||e|/6, so the points' errors (the crossing
-/// errors plus the rounding of the shift to the origin) and the product's own
-/// rounding (within 16u|p||s||e|) are added up.
+/// A segment's term is det(p, s, e)/6 about the origin, computed as
+/// p · ((s − p) × (e − p)) / 6: its rounding is then within 8u|p||s − p||e − p| (the
+/// triangle's size, not the origin's distance, squared), and moving p, s or e by δ
+/// changes it by at most δ times the matching product of two of |p|, |s − p|, |e − p|.
+/// The points' errors are the crossings' plus the rounding of the shift to the origin.
 fn add_face(p: Point, segments: &[([Point; 2], [f64; 2])], origin: Point, part: &mut Part) {
     let shift = |x: Point| sub(x, origin);
     let rp = shift(p);
-    let (np, dp) = (norm(rp), 2.0 * UNIT_ROUNDOFF * norm(rp));
+    let np = norm(rp);
+    let dp = 2.0 * UNIT_ROUNDOFF * np;
     let mut face_vector = [0.0; 3];
     for &([s, e], [es, ee]) in segments {
         let (rs, re) = (shift(s), shift(e));
-        let d = dot(rp, cross(rs, re));
+        let (v, w) = (sub(rs, rp), sub(re, rp));
+        let area2 = cross(v, w);
+        let d = dot(rp, area2);
         let terms = moment_terms(rp, rs, re);
-        part.sums[0] += d / 6.0;
+        part.volume6.add(d);
         for k in 0..3 {
             part.sums[1 + k] += d / 24.0 * terms[k];
         }
         for k in 3..9 {
             part.sums[1 + k] += d / 120.0 * terms[k];
         }
-        face_vector = add(face_vector, scale(cross(sub(rs, rp), sub(re, rp)), 0.5));
-        let (ns, ne) = (norm(rs), norm(re));
-        let (ds, de) = (es + 2.0 * UNIT_ROUNDOFF * ns, ee + 2.0 * UNIT_ROUNDOFF * ne);
-        part.magnitude += d.abs() / 6.0;
+        face_vector = add(face_vector, scale(area2, 0.5));
+        let (nv, nw) = (norm(v), norm(w));
+        let ds = es + 2.0 * UNIT_ROUNDOFF * norm(rs);
+        let de = ee + 2.0 * UNIT_ROUNDOFF * norm(re);
+        part.magnitude += d.abs();
         part.terms += 1;
-        part.error +=
-            (dp * ns * ne + ds * np * ne + de * np * ns + 16.0 * UNIT_ROUNDOFF * np * ns * ne)
-                / 6.0;
+        part.error += (dp * (nv * nw + np * nw + np * nv)
+            + ds * np * nw
+            + de * np * nv
+            + 8.0 * UNIT_ROUNDOFF * np * nv * nw)
+            / 6.0;
     }
     part.area += norm(face_vector);
     part.vector = add(part.vector, face_vector);

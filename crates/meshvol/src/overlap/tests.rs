@@ -108,7 +108,7 @@ fn bodies_apart_share_nothing() {
 fn coincident_faces_are_left_to_the_grid() {
     let a = Body::new(&cuboid([0.0; 3], [1.0; 3]));
     let b = Body::new(&cuboid([0.5, 0.0, 0.0], [1.5, 1.0, 1.0]));
-    assert_eq!(overlap(&a, None, &b, None), Err(Degenerate));
+    assert_eq!(overlap(&a, None, &b, None), Err(Degenerate::Coplanar));
 }
 
 #[test]
@@ -118,7 +118,7 @@ fn an_open_surface_is_unfit() {
     let m = Mesh::from_triangles(m.positions().to_vec(), t[1..].to_vec()).unwrap();
     let body = Body::new(&m);
     assert!(body.unfit().is_some());
-    assert_eq!(overlap(&body, None, &body, None), Err(Degenerate));
+    assert_eq!(overlap(&body, None, &body, None), Err(Degenerate::Unfit));
 }
 
 /// The grid method's interval and moments for the same placed bodies.

@@ -64,6 +64,7 @@ pub use contact::Contact;
 use super::union::{boundary_in_frame, combine, Rule, UnionError};
 use super::Grid;
 use crate::assembly::Affine;
+use crate::overlap::{overlap, Body, Overlap};
 use crate::progress::Progress;
 use crate::surface::Moved;
 use crate::vector::{cross, sub};
@@ -104,6 +105,8 @@ pub struct Intersection {
     /// `None` where the moments are not given, or a column of one of the three frames
     /// could not be resolved.
     pub contact: Option<Contact>,
+    /// How it was measured.
+    pub method: Method,
 }
 
 /// The volume, centroid and inertia (about the centroid, unit density) of A∩B.
@@ -201,36 +204,148 @@ pub fn intersection_with<S: Surface>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<Intersection, UnionError> {
-    let (pa, pb) = (mass_properties(a), mass_properties(b));
-    let disjoint = match (pa.bounds, pb.bounds) {
-        (Some(p), Some(q)) => (0..3).any(|k| p.max[k] <= q.min[k] || q.max[k] <= p.min[k]),
-        _ => true,
-    };
-    let flipped: Vec<usize> = [&pa, &pb]
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| p.signed_volume < 0.0)
-        .map(|(n, _)| n)
-        .collect();
-    if disjoint {
-        return Ok(Intersection {
+    let start = Start::of(a, b);
+    match start.disjoint_result() {
+        Some(i) => Ok(i),
+        None => by_grid(a, b, start, tolerance, progress),
+    }
+}
+
+/// How an intersection was measured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// The bodies' boxes are apart or only touch: nothing to measure.
+    Boxes,
+    /// From the faces' regions inside the other body ([`crate::overlap`]).
+    Boundary,
+    /// On a grid over the common box (this module's method).
+    Grid,
+}
+
+impl Method {
+    /// `boxes`, `boundary` or `grid`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Boxes => "boxes",
+            Method::Boundary => "boundary",
+            Method::Grid => "grid",
+        }
+    }
+}
+
+/// [`intersection_with`] for bodies placed by poses (`None`: where they are), where
+/// `bodies` are `a` and `b` prepared for the boundary method ([`Body::new`]) when the
+/// caller vouches that they are solids without self-crossings (the check found none).
+/// The boundary method measures them where it settles the pose (faces in general
+/// position, both wound outward); the grid method otherwise, and for unprepared bodies.
+/// Either way the interval holds the exact volume of the placed bodies' intersection.
+pub fn intersection_placed<S: Surface>(
+    a: &S,
+    b: &S,
+    bodies: [Option<&Body>; 2],
+    poses: [Option<Affine>; 2],
+    tolerance: f64,
+    progress: &dyn Progress,
+) -> Result<Intersection, UnionError> {
+    let (a, b) = (Moved::new(a, poses[0]), Moved::new(b, poses[1]));
+    let start = Start::of(&a, &b);
+    if let Some(i) = start.disjoint_result() {
+        return Ok(i);
+    }
+    if let ([Some(body_a), Some(body_b)], true) = (bodies, start.flipped.is_empty()) {
+        match overlap(body_a, poses[0], body_b, poses[1]) {
+            Ok(o) => return Ok(start.from_boundary(&o)),
+            Err(e) => eprintln!("DEBUG {e:?} {:?} {:?}", body_a.unfit(), body_b.unfit()),
+        }
+    }
+    by_grid(&a, &b, start, tolerance, progress)
+}
+
+/// What both methods need first: the bodies' mass properties, and whether their boxes
+/// are apart.
+struct Start {
+    pa: MassProperties,
+    pb: MassProperties,
+    disjoint: bool,
+    flipped: Vec<usize>,
+}
+
+impl Start {
+    fn of<S: Surface>(a: &S, b: &S) -> Start {
+        let (pa, pb) = (mass_properties(a), mass_properties(b));
+        let disjoint = match (pa.bounds, pb.bounds) {
+            (Some(p), Some(q)) => (0..3).any(|k| p.max[k] <= q.min[k] || q.max[k] <= p.min[k]),
+            _ => true,
+        };
+        let flipped: Vec<usize> = [&pa, &pb]
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.signed_volume < 0.0)
+            .map(|(n, _)| n)
+            .collect();
+        Start { pa, pb, disjoint, flipped }
+    }
+
+    /// An intersection with nothing measured yet: the bodies' volumes, no grid.
+    fn unmeasured(&self, method: Method) -> Intersection {
+        Intersection {
             lower: 0.0,
             upper: 0.0,
-            volume_a: pa.signed_volume.abs(),
-            volume_b: pb.signed_volume.abs(),
-            error_a: pa.volume_error_bound,
-            error_b: pb.volume_error_bound,
+            volume_a: self.pa.signed_volume.abs(),
+            volume_b: self.pb.signed_volume.abs(),
+            error_a: self.pa.volume_error_bound,
+            error_b: self.pb.volume_error_bound,
             cells_refined: 0,
             cells_resolved_exactly: 0,
             columns_unresolved: 0,
-            disjoint,
-            grid: Grid::new([0.0; 3], [1.0; 3], [1, 1, 1])?,
-            flipped,
+            disjoint: self.disjoint,
+            grid: Grid { origin: [0.0; 3], cell: [1.0; 3], counts: [1, 1, 1] },
+            flipped: self.flipped.clone(),
             bodies_not_solid: Vec::new(),
             moments: None,
-            contact: Some(Contact { area: 0.0, vector: [0.0; 3], vector_a: [0.0; 3] }),
-        });
+            contact: None,
+            method,
+        }
     }
+
+    /// Exactly 0 when the boxes are apart or only touch.
+    fn disjoint_result(&self) -> Option<Intersection> {
+        self.disjoint.then(|| Intersection {
+            contact: Some(Contact { area: 0.0, vector: [0.0; 3], vector_a: [0.0; 3] }),
+            ..self.unmeasured(Method::Boxes)
+        })
+    }
+
+    /// The boundary method's measure as an intersection.
+    fn from_boundary(&self, o: &Overlap) -> Intersection {
+        let moments = o.centroid.zip(o.inertia).map(|(centroid, inertia)| Moments {
+            volume: o.volume,
+            centroid,
+            inertia,
+        });
+        Intersection {
+            lower: (o.volume - o.error).max(0.0),
+            upper: o.volume + o.error,
+            moments,
+            contact: Some(Contact {
+                area: o.contact_area,
+                vector: o.contact_vector,
+                vector_a: o.contact_vector_a,
+            }),
+            ..self.unmeasured(Method::Boundary)
+        }
+    }
+}
+
+/// The grid method (module docs) on bodies whose boxes overlap.
+fn by_grid<S: Surface>(
+    a: &S,
+    b: &S,
+    start: Start,
+    tolerance: f64,
+    progress: &dyn Progress,
+) -> Result<Intersection, UnionError> {
+    let Start { pa, pb, disjoint, flipped } = start;
     let (u, sums) = combine(&[a, b], &[pa, pb], Rule::Intersection, tolerance, true, progress)?;
     let interface_z = sums.as_ref().map(|(_, total)| total.interface());
     let moments = sums
@@ -284,6 +399,7 @@ pub fn intersection_with<S: Surface>(
         bodies_not_solid: u.bodies_not_solid,
         moments,
         contact,
+        method: Method::Grid,
     })
 }
 
