@@ -6,7 +6,10 @@
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
 use crate::vector::{cross, norm, orient2d, sub};
-use crate::{Point, Surface};
+use crate::accumulate::UNIT_ROUNDOFF;
+use crate::assembly::Affine;
+use crate::{mass_properties, MassProperties, Point, Surface};
+use std::f64::consts::{FRAC_PI_2, PI};
 use rayon::prelude::*;
 
 /// A closed body ready for [`super::overlap`].
@@ -40,6 +43,8 @@ pub struct Body {
     pub(super) perimeter: f64,
     /// Why the body cannot take the boundary method (`None`: it can).
     pub(super) unfit: Option<&'static str>,
+    /// Its mass properties, own frame.
+    properties: MassProperties,
 }
 
 impl Body {
@@ -101,7 +106,56 @@ impl Body {
             area,
             perimeter,
             unfit,
+            properties: mass_properties(surface),
         }
+    }
+
+    /// The mass properties of the body moved by `pose` (`None`: where it is), with the
+    /// box `bounds` of its moved points, without measuring it again: the volume scaled
+    /// by the pose's determinant (a rigid pose may be off orthonormal by rounding), its
+    /// bound widened by what rounding the moved coordinates (by up to `8u·reach`, see
+    /// [`Body::swept`]) can change; centroid and inertia turned.
+    pub(super) fn placed_properties(
+        &self,
+        pose: Option<Affine>,
+        bounds: Option<Bounds>,
+        reach: f64,
+    ) -> MassProperties {
+        let p = &self.properties;
+        let Some(m) = pose else { return MassProperties { bounds, ..*p } };
+        let det = m.determinant();
+        let r = |i: usize, k: usize| m.0[i][k];
+        let inertia = [0, 1, 2].map(|i| {
+            [0, 1, 2].map(|j| {
+                let mut sum = 0.0;
+                for k in 0..3 {
+                    for l in 0..3 {
+                        sum += r(i, k) * p.inertia[k][l] * r(j, l);
+                    }
+                }
+                sum
+            })
+        });
+        MassProperties {
+            signed_volume: det * p.signed_volume,
+            volume_error_bound: det.abs() * p.volume_error_bound
+                + self.swept(8.0 * UNIT_ROUNDOFF * reach),
+            centroid: p.centroid.map(|c| m.apply(c)),
+            inertia,
+            bounds,
+            ..*p
+        }
+    }
+
+    /// A bound on the volume the surface sweeps when each of its points moves by at
+    /// most `d`: it stays within the Minkowski sum of each triangle with a ball of
+    /// radius d, whose volume is 2d·area + (π/2)d²·perimeter + (4π/3)d³ (Steiner), with
+    /// 1 % room for the rounding of the sums.
+    pub(super) fn swept(&self, d: f64) -> f64 {
+        let n = self.triangles.len() as f64;
+        1.01 * (2.0 * d * self.area
+            + FRAC_PI_2 * d * d * self.perimeter
+            + 4.0 * PI / 3.0 * d * d * d * n)
     }
 
     /// The number of triangles.

@@ -42,10 +42,9 @@ use crate::accumulate::{gamma, UNIT_ROUNDOFF};
 use crate::assembly::Affine;
 use crate::grid::intersect::moments::finish;
 use crate::vector::{norm, scale};
-use crate::Point;
+use crate::{Bounds, MassProperties, Point};
 use pairs::{crossings, Placed};
 use regions::{inside_part, inside_points, Part};
-use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A∩B measured from the bodies' surfaces.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,6 +61,9 @@ pub struct Overlap {
     /// ∫ n dA over ∂B inside A, and over ∂A inside B.
     pub contact_vector: Point,
     pub contact_vector_a: Point,
+    /// The mass properties of A and B as placed ([`Body`]'s own, moved, with the box
+    /// of the moved points).
+    pub properties: [MassProperties; 2],
 }
 
 /// A∩B for `a` and `b` placed by their poses (`None`: where they are), or why the
@@ -95,21 +97,33 @@ pub fn overlap(
     }
     let placed_a = Placed::new(a, pose_a, [0.0; 3]);
     let placed_b = Placed::new(b, pose_b, [0.0; 3]);
-    match measure(&placed_a, &placed_b) {
+    let properties = [
+        a.placed_properties(pose_a, placed_a.bounds, placed_a.query_reach),
+        b.placed_properties(pose_b, placed_b.bounds, placed_b.query_reach),
+    ];
+    if apart(placed_a.bounds, placed_b.bounds) {
+        return Ok(Overlap {
+            volume: 0.0,
+            error: 0.0,
+            centroid: None,
+            inertia: None,
+            contact_area: 0.0,
+            contact_vector: [0.0; 3],
+            contact_vector_a: [0.0; 3],
+            properties,
+        });
+    }
+    match measure(&placed_a, &placed_b, properties) {
         Err(Degenerate::Touching) => {}
         settled => return settled,
     }
     let reach = placed_a.reach.max(placed_b.reach);
     for direction in NUDGES {
         let shift = scale(direction, HAIR * reach);
-        match measure(&placed_a, &Placed::new(b, pose_b, shift)) {
+        match measure(&placed_a, &Placed::new(b, pose_b, shift), properties) {
             Ok(mut o) => {
                 // The move, and the rounding of the moved coordinates.
-                let d = norm(shift) + 8.0 * UNIT_ROUNDOFF * reach;
-                let swept = 2.0 * d * b.area
-                    + FRAC_PI_2 * d * d * b.perimeter
-                    + 4.0 * PI / 3.0 * d * d * d * b.triangle_count() as f64;
-                o.error += 1.01 * swept;
+                o.error += b.swept(norm(shift) + 8.0 * UNIT_ROUNDOFF * reach);
                 return Ok(o);
             }
             Err(Degenerate::Touching) => continue,
@@ -117,6 +131,14 @@ pub fn overlap(
         }
     }
     Err(Degenerate::Touching)
+}
+
+/// Whether closed boxes are apart or only touch (no common volume).
+fn apart(p: Option<Bounds>, q: Option<Bounds>) -> bool {
+    match (p, q) {
+        (Some(p), Some(q)) => (0..3).any(|k| p.max[k] <= q.min[k] || q.max[k] <= p.min[k]),
+        _ => true,
+    }
 }
 
 /// The size of the move off a touching position, relative to the largest coordinate.
@@ -130,7 +152,11 @@ const NUDGES: [Point; 2] = [
 ];
 
 /// The boundary method on placed bodies.
-fn measure(a: &Placed, b: &Placed) -> Result<Overlap, Degenerate> {
+fn measure(
+    a: &Placed,
+    b: &Placed,
+    properties: [MassProperties; 2],
+) -> Result<Overlap, Degenerate> {
     let found = crossings(a, b)?;
     let origin = match (a.bounds, b.bounds) {
         (Some(p), Some(q)) => {
@@ -167,6 +193,7 @@ fn measure(a: &Placed, b: &Placed) -> Result<Overlap, Degenerate> {
         contact_area: parts[0].area + parts[1].area,
         contact_vector: parts[1].vector,
         contact_vector_a: parts[0].vector,
+        properties,
     })
 }
 

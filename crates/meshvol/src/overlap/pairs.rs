@@ -42,9 +42,13 @@ pub(super) struct Placed<'a> {
     to_own: Option<Affine>,
     /// The world box.
     pub bounds: Option<Bounds>,
-    /// The largest |coordinate| of the own-frame points and of the pose's translation,
-    /// plus the shift's length.
+    /// The largest |coordinate| of the placed points (what the placed coordinates'
+    /// rounding scales with).
     pub reach: f64,
+    /// The largest |coordinate| of the own-frame points and of the pose's translation,
+    /// plus the shift's length (what the rounding of a query mapped into the own frame
+    /// scales with).
+    pub query_reach: f64,
 }
 
 impl<'a> Placed<'a> {
@@ -68,7 +72,8 @@ impl<'a> Placed<'a> {
         };
         let translation = pose.map_or(0.0, |m| (0..3).fold(0.0f64, |s, r| s.max(m.0[r][3].abs())));
         Placed {
-            reach: largest(body.bounds).max(translation) + norm(shift),
+            reach: largest(bounds),
+            query_reach: largest(body.bounds).max(translation) + norm(shift),
             to_own: pose.map(|m| inverse(&m)),
             world,
             bounds,
@@ -126,7 +131,7 @@ pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate>
     if (0..3).any(|k| common.min[k] > common.max[k]) {
         return Ok(Crossings::default());
     }
-    let margin = 1e-9 * (a.reach.max(b.reach) + 1e-300);
+    let margin = 1e-9 * (a.query_reach.max(b.query_reach) + 1e-300);
     let chunks: Vec<Result<Crossings, Degenerate>> = (0..a.body.triangles.len())
         .into_par_iter()
         .step_by(CHUNK)

@@ -247,18 +247,24 @@ pub fn intersection_placed<S: Surface>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<Intersection, UnionError> {
-    let (a, b) = (Moved::new(a, poses[0]), Moved::new(b, poses[1]));
-    let start = Start::of(&a, &b);
-    if let Some(i) = start.disjoint_result() {
-        return Ok(i);
-    }
-    if let ([Some(body_a), Some(body_b)], true) = (bodies, start.flipped.is_empty()) {
-        match overlap(body_a, poses[0], body_b, poses[1]) {
-            Ok(o) => return Ok(start.from_boundary(&o)),
-            Err(e) => eprintln!("DEBUG {e:?} {:?} {:?}", body_a.unfit(), body_b.unfit()),
+    if let [Some(body_a), Some(body_b)] = bodies {
+        if let Ok(o) = overlap(body_a, poses[0], body_b, poses[1]) {
+            let [pa, pb] = o.properties;
+            let start = Start::from(pa, pb);
+            if let Some(i) = start.disjoint_result() {
+                return Ok(i);
+            }
+            if start.flipped.is_empty() {
+                return Ok(start.from_boundary(&o));
+            }
         }
     }
-    by_grid(&a, &b, start, tolerance, progress)
+    let (a, b) = (Moved::new(a, poses[0]), Moved::new(b, poses[1]));
+    let start = Start::of(&a, &b);
+    match start.disjoint_result() {
+        Some(i) => Ok(i),
+        None => by_grid(&a, &b, start, tolerance, progress),
+    }
 }
 
 /// What both methods need first: the bodies' mass properties, and whether their boxes
@@ -272,7 +278,10 @@ struct Start {
 
 impl Start {
     fn of<S: Surface>(a: &S, b: &S) -> Start {
-        let (pa, pb) = (mass_properties(a), mass_properties(b));
+        Start::from(mass_properties(a), mass_properties(b))
+    }
+
+    fn from(pa: MassProperties, pb: MassProperties) -> Start {
         let disjoint = match (pa.bounds, pb.bounds) {
             (Some(p), Some(q)) => (0..3).any(|k| p.max[k] <= q.min[k] || q.max[k] <= p.min[k]),
             _ => true,
