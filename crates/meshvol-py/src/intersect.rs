@@ -5,7 +5,7 @@ use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::{mesh_of, PyMesh};
 use meshvol::assembly::Affine;
-use meshvol_report::intersect::{intersect_posed, intersect_poses, rigid_pose, IntersectReport};
+use meshvol_report::intersect::{intersect_poses, intersect_prepared, rigid_pose, IntersectReport};
 use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -166,8 +166,10 @@ pub fn intersection(
         (sa.check, sb.check) = (Some(ca), Some(cb));
     }
     crate::timings::stage(clock.as_ref(), "measuring");
-    let report =
-        py.detach(|| intersect_posed(&sa, &sb, poses, tolerance, &())).map_err(mesh_error)?;
+    let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
+    let report = py
+        .detach(|| intersect_prepared(&sa, &sb, bodies, poses, tolerance, &()))
+        .map_err(mesh_error)?;
     let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
     let report = report.in_units(&options, &files).map_err(mesh_error)?;
     a.get().warn(py, &report.warnings)?;
@@ -218,7 +220,9 @@ pub fn intersections(
     let pairs: Vec<[Option<Affine>; 2]> = (0..n).map(|k| [pick(&pa, k), pick(&pb, k)]).collect();
     let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
     let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
-    let reports = py.detach(|| intersect_poses(&sa, &sb, &pairs, tolerance)).map_err(mesh_error)?;
+    let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
+    let reports =
+        py.detach(|| intersect_poses(&sa, &sb, bodies, &pairs, tolerance)).map_err(mesh_error)?;
     let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
     let reports = reports
         .into_iter()

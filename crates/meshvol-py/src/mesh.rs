@@ -6,8 +6,10 @@ use crate::errors::{invalid, mesh_error, read_error};
 use crate::grid::{self, PyProfile};
 use crate::properties::{self, PyMassProperties};
 use meshvol::assembly::Assembly;
+use meshvol::overlap::Body;
 use meshvol::topology::{self, Check, CheckError, CheckOptions};
 use meshvol::{Faces, Mesh, MeshError};
+use meshvol_report::intersect::prepare;
 use meshvol_report::subject::{Source, Subject};
 use numpy::ndarray::ArrayView2;
 use numpy::{Element, PyArray1, PyArray2};
@@ -39,16 +41,39 @@ pub struct PyMesh {
     /// The check with default options, made on first use and kept: every measurement
     /// of the solid starts from it.
     checked: OnceLock<Check>,
+    /// Its checked solid prepared for intersections' boundary method, made on first use
+    /// and kept, so a loop over poses prepares nothing again (`None` inside: the check
+    /// does not vouch for the solid; the grid method measures it).
+    prepared: OnceLock<Option<Body>>,
 }
 
 impl From<Mesh> for PyMesh {
     fn from(mesh: Mesh) -> Self {
         let source = Source::arrays(mesh.vertex_count());
-        PyMesh { mesh, source, assembly: None, checked: OnceLock::new() }
+        PyMesh::of(mesh, source, None)
     }
 }
 
 impl PyMesh {
+    pub(crate) fn of(mesh: Mesh, source: Source, assembly: Option<Arc<Assembly>>) -> PyMesh {
+        PyMesh { mesh, source, assembly, checked: OnceLock::new(), prepared: OnceLock::new() }
+    }
+
+    /// The checked solid prepared for the boundary method of intersections
+    /// ([`meshvol_report::intersect::prepare`]), computed once; `None` with `check`
+    /// false (the surface as wound is measured by the grid method).
+    pub(crate) fn prepared(&self, py: Python<'_>, check: bool) -> PyResult<Option<&Body>> {
+        if !check {
+            return Ok(None);
+        }
+        if let Some(p) = self.prepared.get() {
+            return Ok(p.as_ref());
+        }
+        let subject = self.subject(py, true)?;
+        let p = py.detach(|| prepare(&subject));
+        Ok(self.prepared.get_or_init(|| p).as_ref())
+    }
+
     /// The check with default options (`meshvol check`'s), computed once.
     pub(crate) fn checked(&self, py: Python<'_>) -> PyResult<&Check> {
         if let Some(c) = self.checked.get() {
@@ -188,6 +213,7 @@ impl PyMesh {
                 source: other.get().source.clone(),
                 assembly: other.get().assembly.clone(),
                 checked: other.get().checked.clone(),
+                prepared: other.get().prepared.clone(),
             });
         }
         match convert::mesh_like(vertices)? {
@@ -692,5 +718,5 @@ pub fn load(py: Python<'_>, file: &Bound<'_, PyAny>, file_type: Option<&str>) ->
         };
         read_error(py, &error)
     })?;
-    Ok(PyMesh { mesh, source, assembly, checked: OnceLock::new() })
+    Ok(PyMesh::of(mesh, source, assembly))
 }

@@ -261,17 +261,16 @@ pub fn intersect_prepared<S: Surface + Sync>(
     })
 }
 
-/// [`intersect_posed`] for many pairs of poses, in parallel over the pairs: each report
+/// [`intersect_prepared`] for many pairs of poses, in parallel over the pairs: each report
 /// is the one [`intersect_posed`] gives for its pair alone, bit for bit, at any thread
 /// count (the kernel's reductions are in a fixed order), in the order of `poses`.
 pub fn intersect_poses<S: Surface + Sync>(
     a: &Subject<'_, S>,
     b: &Subject<'_, S>,
+    bodies: [Option<&Body>; 2],
     poses: &[[Option<Affine>; 2]],
     tolerance: f64,
 ) -> Result<Vec<IntersectReport>, String> {
-    let bodies = [prepare(a), prepare(b)];
-    let bodies = [bodies[0].as_ref(), bodies[1].as_ref()];
     poses.par_iter().map(|&pair| intersect_prepared(a, b, bodies, pair, tolerance, &())).collect()
 }
 
@@ -424,7 +423,9 @@ mod tests {
         let poses: Vec<[Option<Affine>; 2]> = (0..6)
             .map(|k| [None, Some(rigid_pose(&translation([0.5 * k as f64, 0.25, 0.0])).unwrap())])
             .collect();
-        let many = intersect_poses(&sa, &sb, &poses, 1e-9).unwrap();
+        let bodies = [prepare(&sa), prepare(&sb)];
+        let bodies = [bodies[0].as_ref(), bodies[1].as_ref()];
+        let many = intersect_poses(&sa, &sb, bodies, &poses, 1e-9).unwrap();
         for (k, (report, pair)) in many.iter().zip(&poses).enumerate() {
             let alone = intersect_posed(&sa, &sb, *pair, 1e-9, &()).unwrap();
             assert_eq!((report.lower, report.upper), (alone.lower, alone.upper), "pose {k}");

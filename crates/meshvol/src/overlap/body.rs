@@ -3,14 +3,14 @@
 //! graph for the inside/outside walk, and a hierarchy of its triangles' boxes in its
 //! own frame, which every pose reuses.
 
+use crate::accumulate::UNIT_ROUNDOFF;
+use crate::assembly::Affine;
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
 use crate::vector::{cross, norm, orient2d, sub};
-use crate::accumulate::UNIT_ROUNDOFF;
-use crate::assembly::Affine;
 use crate::{mass_properties, MassProperties, Point, Surface};
-use std::f64::consts::{FRAC_PI_2, PI};
 use rayon::prelude::*;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A closed body ready for [`super::overlap`].
 #[derive(Clone, Debug)]

@@ -71,7 +71,7 @@ pub struct Overlap {
 ///
 /// Where the surfaces only touch at points or along lines ([`Degenerate::Touching`]:
 /// say two copies of a sphere whose latitude rings lie in the same planes), B is moved
-/// off by a hair (2⁻⁴⁰ of the largest coordinate, in a direction no axis or diagonal
+/// off by a hair (2⁻⁴⁶ of the largest coordinate, in a direction no axis or diagonal
 /// lines up with) and measured again: A∩B changes by at most the volume B sweeps, which
 /// lies within the Minkowski sum of B's surface with a ball of the move's radius d, so
 /// the error grows by Σ over B's triangles of 2d·area + (π/2)d²·perimeter + (4π/3)d³.
@@ -142,7 +142,7 @@ fn apart(p: Option<Bounds>, q: Option<Bounds>) -> bool {
 }
 
 /// The size of the move off a touching position, relative to the largest coordinate.
-const HAIR: f64 = 1.0 / (1u64 << 40) as f64;
+const HAIR: f64 = 1.0 / (1u64 << 46) as f64;
 
 /// The directions of the moves tried (unit vectors no axis, diagonal or simple ratio
 /// lines up with).
@@ -152,11 +152,7 @@ const NUDGES: [Point; 2] = [
 ];
 
 /// The boundary method on placed bodies.
-fn measure(
-    a: &Placed,
-    b: &Placed,
-    properties: [MassProperties; 2],
-) -> Result<Overlap, Degenerate> {
+fn measure(a: &Placed, b: &Placed, properties: [MassProperties; 2]) -> Result<Overlap, Degenerate> {
     let found = crossings(a, b)?;
     let origin = match (a.bounds, b.bounds) {
         (Some(p), Some(q)) => {
