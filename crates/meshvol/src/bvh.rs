@@ -28,7 +28,7 @@ use crate::buckets::Buckets;
 use crate::properties::Bounds;
 use crate::Point;
 use rayon::prelude::*;
-use std::ops::ControlFlow;
+use std::ops::{ControlFlow, Range};
 use wide::f32x8;
 
 /// Interleaves the low 21 bits of x, y and z: x in bits 0, 3, 6, …
@@ -377,6 +377,57 @@ impl Bvh {
         }
     }
 
+    /// Each node's box (rounded outward to f32 when built) mapped by `place` into
+    /// another frame, for [`Bvh::leaf_pairs_between`].
+    pub(crate) fn placed_node_boxes(&self, place: impl Fn(&Bounds) -> Bounds) -> Vec<Bounds> {
+        self.nodes
+            .iter()
+            .map(|n| {
+                let lo = [0, 1, 2].map(|k| f64::from(n.bounds.min[k]));
+                let hi = [0, 1, 2].map(|k| f64::from(n.bounds.max[k]));
+                place(&Bounds { min: lo, max: hi })
+            })
+            .collect()
+    }
+
+    /// The pairs of leaves, one of this tree and one of `other`, whose boxes as placed
+    /// (`boxes`, `other_boxes`: [`Bvh::placed_node_boxes`], both in one frame) overlap,
+    /// each leaf given by the range of its items; in the order of a depth-first walk, so
+    /// the same every time. A dual-tree walk: node pairs whose boxes miss are dropped
+    /// whole, the larger node of the others split, so two bodies that meet along a
+    /// curve cost about the leaves near the curve, not a query per item.
+    pub(crate) fn leaf_pairs_between(
+        &self,
+        other: &Bvh,
+        boxes: &[Bounds],
+        other_boxes: &[Bounds],
+    ) -> Vec<(Range<usize>, Range<usize>)> {
+        let mut pairs = Vec::new();
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return pairs;
+        }
+        let meets =
+            |p: &Bounds, q: &Bounds| (0..3).all(|k| p.min[k] <= q.max[k] && q.min[k] <= p.max[k]);
+        let mut stack: Vec<(u32, u32)> = vec![(0, 0)];
+        while let Some((m, n)) = stack.pop() {
+            if !meets(&boxes[m as usize], &other_boxes[n as usize]) {
+                continue;
+            }
+            let (p, q) = (&self.nodes[m as usize], &other.nodes[n as usize]);
+            let (p_leaf, q_leaf) = (p.count > 0, q.count > 0);
+            if p_leaf && q_leaf {
+                pairs.push((p.begin as usize..p.end as usize, q.begin as usize..q.end as usize));
+            } else if q_leaf || (!p_leaf && p.end - p.begin >= q.end - q.begin) {
+                stack.push((p.start + 1, n));
+                stack.push((p.start, n));
+            } else {
+                stack.push((m, q.start + 1));
+                stack.push((m, q.start));
+            }
+        }
+        pairs
+    }
+
     /// Per node, the tags (up to three per item, [`NO_TAG`] for none) that every item
     /// under it has, for [`Bvh::overlapping_where`]'s `enter`.
     pub(crate) fn node_tags(&self, tags: &[[u32; 3]]) -> Vec<[u32; 3]> {
@@ -709,6 +760,46 @@ mod tests {
             let brute: Vec<usize> = (0..boxes.len()).filter(|&i| overlap(&boxes[i], &q)).collect();
             assert_eq!(found, brute);
         }
+    }
+
+    #[test]
+    fn leaf_pairs_of_two_trees_hold_every_overlapping_pair_of_items() {
+        // Two sets of random boxes, the second moved by a shift applied to its node
+        // boxes (as a pose is): every pair of items whose boxes overlap, once moved,
+        // lies in exactly one leaf pair found.
+        let mut rng = crate::test_rng::XorShift::new(17);
+        let mut make = |count: usize, size: f64| -> Vec<Bounds> {
+            (0..count)
+                .map(|_| {
+                    let min = [0; 3].map(|_| rng.unit() as f32 as f64);
+                    let max = min.map(|x| (x + size * rng.unit()) as f32 as f64);
+                    Bounds { min, max }
+                })
+                .collect()
+        };
+        let (first, second) = (make(1500, 0.1), make(999, 0.2));
+        let shift = 0.25;
+        let moved =
+            |b: &Bounds| Bounds { min: b.min.map(|x| x + shift), max: b.max.map(|x| x + shift) };
+        let tree = |boxes: &[Bounds]| Bvh::new(boxes.len(), |i| Box32::around(&boxes[i]));
+        let (p, q) = (tree(&first), tree(&second));
+        let leaves =
+            p.leaf_pairs_between(&q, &p.placed_node_boxes(|b| *b), &q.placed_node_boxes(moved));
+        let mut found: Vec<(usize, usize)> = leaves
+            .iter()
+            .flat_map(|(a, b)| a.clone().flat_map(move |i| b.clone().map(move |j| (i, j))))
+            .filter(|&(i, j)| overlap(&first[i], &moved(&second[j])))
+            .collect();
+        let count = found.len();
+        found.sort_unstable();
+        found.dedup();
+        assert_eq!(found.len(), count, "a pair of leaves found twice");
+        let brute: Vec<(usize, usize)> = (0..first.len())
+            .flat_map(|i| (0..second.len()).map(move |j| (i, j)))
+            .filter(|&(i, j)| overlap(&first[i], &moved(&second[j])))
+            .collect();
+        assert!(brute.len() > 1000, "{}", brute.len());
+        assert_eq!(found, brute);
     }
 
     #[test]

@@ -7,9 +7,9 @@ use crate::accumulate::UNIT_ROUNDOFF;
 use crate::assembly::Affine;
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
+use crate::topology::weld;
 use crate::vector::{cross, norm, orient2d, sub};
 use crate::{mass_properties, MassProperties, Point, Surface};
-use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A closed body ready for [`super::overlap`].
@@ -57,8 +57,11 @@ impl Body {
             // `+ 0.0` turns −0 into +0: the same point, which welding compares by bits.
             surface.fan(f, |a, b, c| corners.extend([a, b, c].map(|p| p.map(|x| x + 0.0))));
         }
-        let (points, ids) = weld(&corners);
-        let raw: Vec<[u32; 3]> = ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let welded = weld::exact(&corners);
+        drop(corners);
+        let points = welded.positions;
+        let raw: Vec<[u32; 3]> =
+            welded.corner_vertex.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
         let centres: Vec<Point> = raw
             .iter()
             .map(|t| {
@@ -185,59 +188,66 @@ fn collinear([a, b, c]: [Point; 3]) -> bool {
         .all(|&(i, j)| orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]]) == 0.0)
 }
 
-/// Distinct points (in the order of their coordinates' bits) and each corner's point
-/// id, points being equal when their coordinates' bits are.
-fn weld(corners: &[Point]) -> (Vec<Point>, Vec<u32>) {
-    let key = |i: u32| corners[i as usize].map(f64::to_bits);
-    let mut order: Vec<u32> = (0..corners.len() as u32).collect();
-    order.par_sort_unstable_by_key(|&i| (key(i), i));
-    let mut ids = vec![0u32; corners.len()];
-    let mut points: Vec<Point> = Vec::new();
-    for (k, &c) in order.iter().enumerate() {
-        if k == 0 || key(c) != key(order[k - 1]) {
-            points.push(corners[c as usize]);
-        }
-        ids[c as usize] = points.len() as u32 - 1;
-    }
-    (points, ids)
-}
-
 /// The edges (ends, lower id first), each triangle's edges, each edge's owner, and
 /// whether every edge is used as often in one direction as in the other.
+///
+/// Each corner's edge is filed under its lower end (a counting sort by vertex), and the
+/// few edges at a vertex grouped by their other end: linear time, no sort of all
+/// corners. Edges are numbered by lower end, then upper end.
 fn edge_table(
     triangles: &[[u32; 3]],
     flat: &[bool],
 ) -> (Vec<[u32; 2]>, Vec<[u32; 3]>, Vec<u32>, bool) {
-    // (ends, corner index 3t + i, +1 along the ends' order, −1 against).
-    let mut uses: Vec<([u32; 2], u32, i8)> = Vec::with_capacity(3 * triangles.len());
+    let vertices = triangles.iter().flatten().map(|&v| v as usize + 1).max().unwrap_or(0);
+    let mut start = vec![0u32; vertices + 1];
+    for t in triangles {
+        for i in 0..3 {
+            start[t[i].min(t[(i + 1) % 3]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..vertices {
+        start[v + 1] += start[v];
+    }
+    // (upper end, corner 3t + i); the corner's direction is read back from the triangle.
+    let mut filed = vec![(0u32, 0u32); 3 * triangles.len()];
+    let mut fill = start.clone();
     for (t, tri) in triangles.iter().enumerate() {
         for i in 0..3 {
             let (u, v) = (tri[i], tri[(i + 1) % 3]);
-            let along = if u < v { 1 } else { -1 };
-            uses.push(([u.min(v), u.max(v)], 3 * t as u32 + i as u32, along));
+            let slot = &mut fill[u.min(v) as usize];
+            filed[*slot as usize] = (u.max(v), 3 * t as u32 + i as u32);
+            *slot += 1;
         }
     }
-    uses.par_sort_unstable_by_key(|u| (u.0, u.1));
     let mut edges = Vec::new();
     let mut owner = Vec::new();
     let mut face_edges = vec![[0u32; 3]; triangles.len()];
     let mut closed = true;
-    let mut k = 0;
-    while k < uses.len() {
-        let mut end = k + 1;
-        while end < uses.len() && uses[end].0 == uses[k].0 {
-            end += 1;
+    for low in 0..vertices {
+        let group = &mut filed[start[low] as usize..start[low + 1] as usize];
+        group.sort_unstable();
+        let mut k = 0;
+        while k < group.len() {
+            let mut end = k + 1;
+            while end < group.len() && group[end].0 == group[k].0 {
+                end += 1;
+            }
+            let id = edges.len() as u32;
+            edges.push([low as u32, group[k].0]);
+            let mut balance = 0i32;
+            let mut with_area = None;
+            for &(_, corner) in &group[k..end] {
+                let (t, i) = ((corner / 3) as usize, (corner % 3) as usize);
+                balance += if triangles[t][i] as usize == low { 1 } else { -1 };
+                if with_area.is_none() && !flat[t] {
+                    with_area = Some(t as u32);
+                }
+                face_edges[t][i] = id;
+            }
+            closed &= balance == 0;
+            owner.push(with_area.unwrap_or(group[k].1 / 3));
+            k = end;
         }
-        let id = edges.len() as u32;
-        edges.push(uses[k].0);
-        let group = &uses[k..end];
-        closed &= group.iter().map(|u| i32::from(u.2)).sum::<i32>() == 0;
-        let with_area = group.iter().find(|u| !flat[(u.1 / 3) as usize]).unwrap_or(&group[0]);
-        owner.push(with_area.1 / 3);
-        for u in group {
-            face_edges[(u.1 / 3) as usize][(u.1 % 3) as usize] = id;
-        }
-        k = end;
     }
     (edges, face_edges, owner, closed)
 }

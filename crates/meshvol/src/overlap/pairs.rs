@@ -38,8 +38,9 @@ pub(super) struct Placed<'a> {
     pub body: &'a Body,
     /// The body's points, moved (the coordinates the grid method would see).
     pub world: Vec<Point>,
-    /// The pose's inverse, for queries in the body's own frame (`None`: not moved).
-    to_own: Option<Affine>,
+    /// The pose and the shift after it.
+    pose: Option<Affine>,
+    shift: Point,
     /// The world box.
     pub bounds: Option<Bounds>,
     /// The largest |coordinate| of the placed points (what the placed coordinates'
@@ -74,7 +75,8 @@ impl<'a> Placed<'a> {
         Placed {
             reach: largest(bounds),
             query_reach: largest(body.bounds).max(translation) + norm(shift),
-            to_own: pose.map(|m| inverse(&m)),
+            pose,
+            shift,
             world,
             bounds,
             body,
@@ -117,58 +119,55 @@ pub(super) struct Crossings {
     pub seams: [Vec<Seam>; 2],
 }
 
-/// Triangles of A per parallel task: fixed, so the output's order is the same at any
+/// Pairs of leaves per parallel task: fixed, so the output's order is the same at any
 /// thread count.
-const CHUNK: usize = 512;
+const CHUNK: usize = 16;
 
-/// Every crossing of A's and B's surfaces, or [`Degenerate`].
+/// Every crossing of A's and B's surfaces, or [`Degenerate`] (the worst found: coplanar
+/// faces before touching ones).
 pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate> {
     let (Some(ba), Some(bb)) = (a.bounds, b.bounds) else { return Ok(Crossings::default()) };
-    let common = Bounds {
-        min: [0, 1, 2].map(|k| ba.min[k].max(bb.min[k])),
-        max: [0, 1, 2].map(|k| ba.max[k].min(bb.max[k])),
-    };
-    if (0..3).any(|k| common.min[k] > common.max[k]) {
+    if !meets(&ba, &bb) {
         return Ok(Crossings::default());
     }
+    // Node boxes placed as the points are, with room for the placement's rounding.
     let margin = 1e-9 * (a.query_reach.max(b.query_reach) + 1e-300);
-    let chunks: Vec<Result<Crossings, Degenerate>> = (0..a.body.triangles.len())
-        .into_par_iter()
-        .step_by(CHUNK)
-        .map(|begin| {
+    let placed_boxes = |p: &Placed| {
+        p.body.bvh.placed_node_boxes(|own| {
+            let moved = p.pose.map_or(*own, |m| m.bounds(own));
+            Bounds {
+                min: [0, 1, 2].map(|k| moved.min[k] + p.shift[k] - margin),
+                max: [0, 1, 2].map(|k| moved.max[k] + p.shift[k] + margin),
+            }
+        })
+    };
+    let leaves = a.body.bvh.leaf_pairs_between(&b.body.bvh, &placed_boxes(a), &placed_boxes(b));
+    let chunks: Vec<Result<Crossings, Degenerate>> = leaves
+        .par_chunks(CHUNK)
+        .map(|chunk| {
             let mut found = Crossings::default();
             let mut touching = false;
-            for ia in begin..(begin + CHUNK).min(a.body.triangles.len()) {
-                let ta = a.corners(ia);
-                let box_a = box_of(ta);
-                if !meets(&box_a, &common) {
-                    continue;
-                }
-                let query = match &b.to_own {
-                    Some(m) => box_of(ta.map(|p| m.apply(p))),
-                    None => box_a,
-                };
-                let query = Bounds {
-                    min: query.min.map(|x| x - margin),
-                    max: query.max.map(|x| x + margin),
-                };
-                // After a touching pair, the search goes on for coplanar faces, which
-                // decide the answer (the caller moves B off a touch, not off a plane).
-                let mut verdict: Option<Degenerate> = None;
-                b.body.bvh.overlapping(&query, |ib| {
-                    if verdict != Some(Degenerate::Coplanar) {
-                        let tb = b.corners(ib);
-                        if meets(&box_a, &box_of(tb)) {
-                            if let Err(e) = pair(a, ia, ta, b, ib, tb, &mut found) {
-                                verdict = verdict.max(Some(e));
-                            }
+            let mut boxes_b: Vec<Bounds> = Vec::new();
+            for (items_a, items_b) in chunk {
+                boxes_b.clear();
+                boxes_b.extend(items_b.clone().map(|ib| box_of(b.corners(ib))));
+                for ia in items_a.clone() {
+                    let ta = a.corners(ia);
+                    let box_a = box_of(ta);
+                    for (ib, box_b) in items_b.clone().zip(&boxes_b) {
+                        if !meets(&box_a, box_b) {
+                            continue;
+                        }
+                        match pair(a, ia, ta, b, ib, b.corners(ib), &mut found) {
+                            Ok(()) => {}
+                            // Coplanar faces decide the answer (the caller moves B off a
+                            // touch, not off a plane); after a touch the search goes on
+                            // for them.
+                            Err(Degenerate::Coplanar) => return Err(Degenerate::Coplanar),
+                            Err(_) => touching = true,
                         }
                     }
-                });
-                if verdict == Some(Degenerate::Coplanar) {
-                    return Err(Degenerate::Coplanar);
                 }
-                touching |= verdict.is_some();
             }
             if touching {
                 return Err(Degenerate::Touching);
@@ -180,8 +179,7 @@ pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate>
         return Err(*worst);
     }
     let mut all = Crossings::default();
-    for chunk in chunks {
-        let chunk = chunk?;
+    for chunk in chunks.into_iter().flatten() {
         for s in 0..2 {
             all.cuts[s].extend_from_slice(&chunk.cuts[s]);
             all.seams[s].extend_from_slice(&chunk.seams[s]);
@@ -295,22 +293,4 @@ fn crossing_point(plane: &Plane, edge: u32, lo: Point, hi: Point) -> Cut {
     let point = [0, 1, 2].map(|k| lo[k] + t * d[k]);
     let error = t_error * norm(d) + 4.0 * UNIT_ROUNDOFF * (norm(lo) + norm(hi));
     Cut { edge, t, point, error }
-}
-
-/// The inverse of a rigid motion (its 3×3 part inverted by the adjugate, not
-/// transposed: poses are taken as rigid within a tolerance).
-fn inverse(m: &Affine) -> Affine {
-    let r = |i: usize, j: usize| m.0[i][j];
-    let det = m.determinant();
-    let mut inv = [[0.0; 4]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            let (i1, i2, j1, j2) = ((j + 1) % 3, (j + 2) % 3, (i + 1) % 3, (i + 2) % 3);
-            inv[i][j] = (r(i1, j1) * r(i2, j2) - r(i1, j2) * r(i2, j1)) / det;
-        }
-    }
-    for i in 0..3 {
-        inv[i][3] = -(0..3).map(|j| inv[i][j] * m.0[j][3]).sum::<f64>();
-    }
-    Affine(inv)
 }

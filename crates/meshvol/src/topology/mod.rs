@@ -91,7 +91,7 @@ mod sheets;
 mod shells;
 mod solid;
 mod verdict;
-mod weld;
+pub(crate) mod weld;
 
 pub use assembled::check_assembled;
 pub use solid::{Measured, Solid, SolidView};
