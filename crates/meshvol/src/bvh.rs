@@ -377,22 +377,50 @@ impl Bvh {
         }
     }
 
-    /// Each node's box (rounded outward to f32 when built) mapped by `place` into
-    /// another frame, for [`Bvh::leaf_pairs_between`].
-    pub(crate) fn placed_node_boxes(&self, place: impl Fn(&Bounds) -> Bounds) -> Vec<Bounds> {
-        self.nodes
-            .iter()
+    /// The items under node `node`.
+    pub(crate) fn items(&self, node: u32) -> Range<usize> {
+        let n = &self.nodes[node as usize];
+        n.begin as usize..n.end as usize
+    }
+
+    /// Each node's box recomputed from its items' boxes `item_box(i)` (the items moved,
+    /// say, as a body placed by a pose): leaves from their items, inner nodes from their
+    /// children. Tight, in whatever frame the item boxes are; for
+    /// [`Bvh::leaf_pairs_between`].
+    pub(crate) fn refit(&self, item_box: impl Fn(usize) -> Bounds + Sync) -> Vec<Bounds> {
+        let mut boxes: Vec<Bounds> = self
+            .nodes
+            .par_iter()
             .map(|n| {
-                let lo = [0, 1, 2].map(|k| f64::from(n.bounds.min[k]));
-                let hi = [0, 1, 2].map(|k| f64::from(n.bounds.max[k]));
-                place(&Bounds { min: lo, max: hi })
+                let mut b = Bounds::EMPTY;
+                if n.count > 0 {
+                    for i in n.begin as usize..n.end as usize {
+                        let c = item_box(i);
+                        b.include(c.min);
+                        b.include(c.max);
+                    }
+                }
+                b
             })
-            .collect()
+            .collect();
+        // Children come after their parent.
+        for n in (0..self.nodes.len()).rev() {
+            let node = &self.nodes[n];
+            if node.count == 0 {
+                let (l, r) = (boxes[node.start as usize], boxes[node.start as usize + 1]);
+                let b = &mut boxes[n];
+                b.include(l.min);
+                b.include(l.max);
+                b.include(r.min);
+                b.include(r.max);
+            }
+        }
+        boxes
     }
 
     /// The pairs of leaves, one of this tree and one of `other`, whose boxes as placed
-    /// (`boxes`, `other_boxes`: [`Bvh::placed_node_boxes`], both in one frame) overlap,
-    /// each leaf given by the range of its items; in the order of a depth-first walk, so
+    /// (`boxes`, `other_boxes`: [`Bvh::refit`], both in one frame) overlap,
+    /// as node numbers ([`Bvh::items`] gives their items); in the order of a depth-first walk, so
     /// the same every time. A dual-tree walk: node pairs whose boxes miss are dropped
     /// whole, the larger node of the others split, so two bodies that meet along a
     /// curve cost about the leaves near the curve, not a query per item.
@@ -401,7 +429,7 @@ impl Bvh {
         other: &Bvh,
         boxes: &[Bounds],
         other_boxes: &[Bounds],
-    ) -> Vec<(Range<usize>, Range<usize>)> {
+    ) -> Vec<(u32, u32)> {
         let mut pairs = Vec::new();
         if self.nodes.is_empty() || other.nodes.is_empty() {
             return pairs;
@@ -416,7 +444,7 @@ impl Bvh {
             let (p, q) = (&self.nodes[m as usize], &other.nodes[n as usize]);
             let (p_leaf, q_leaf) = (p.count > 0, q.count > 0);
             if p_leaf && q_leaf {
-                pairs.push((p.begin as usize..p.end as usize, q.begin as usize..q.end as usize));
+                pairs.push((m, n));
             } else if q_leaf || (!p_leaf && p.end - p.begin >= q.end - q.begin) {
                 stack.push((p.start + 1, n));
                 stack.push((p.start, n));
@@ -787,7 +815,7 @@ mod tests {
             p.leaf_pairs_between(&q, &p.placed_node_boxes(|b| *b), &q.placed_node_boxes(moved));
         let mut found: Vec<(usize, usize)> = leaves
             .iter()
-            .flat_map(|(a, b)| a.clone().flat_map(move |i| b.clone().map(move |j| (i, j))))
+            .flat_map(|&(m, n)| p.items(m).flat_map(|i| q.items(n).map(move |j| (i, j))))
             .filter(|&(i, j)| overlap(&first[i], &moved(&second[j])))
             .collect();
         let count = found.len();

@@ -404,6 +404,8 @@ class Intersection:
     flipped: list[int]
     volume_uncertainty: float
     """The caps on holes' uncertainty, included in [lower, upper]."""
+    method: str
+    """'boxes' (apart: 0), 'boundary' (each face's part inside the other body) or 'grid'."""
     warnings: list[str]
     file: str
     """The meshes' names (their files, or 'mesh'), joined by ', '."""

@@ -98,8 +98,8 @@ pub fn overlap(
     let placed_a = Placed::new(a, pose_a, [0.0; 3]);
     let placed_b = Placed::new(b, pose_b, [0.0; 3]);
     let properties = [
-        a.placed_properties(pose_a, placed_a.bounds, placed_a.query_reach),
-        b.placed_properties(pose_b, placed_b.bounds, placed_b.query_reach),
+        a.placed_properties(pose_a, placed_a.bounds, placed_a.own_reach),
+        b.placed_properties(pose_b, placed_b.bounds, placed_b.own_reach),
     ];
     if apart(placed_a.bounds, placed_b.bounds) {
         return Ok(Overlap {

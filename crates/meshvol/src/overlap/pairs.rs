@@ -38,18 +38,14 @@ pub(super) struct Placed<'a> {
     pub body: &'a Body,
     /// The body's points, moved (the coordinates the grid method would see).
     pub world: Vec<Point>,
-    /// The pose and the shift after it.
-    pose: Option<Affine>,
-    shift: Point,
     /// The world box.
     pub bounds: Option<Bounds>,
     /// The largest |coordinate| of the placed points (what the placed coordinates'
     /// rounding scales with).
     pub reach: f64,
     /// The largest |coordinate| of the own-frame points and of the pose's translation,
-    /// plus the shift's length (what the rounding of a query mapped into the own frame
-    /// scales with).
-    pub query_reach: f64,
+    /// plus the shift's length: what the rounding of the moved coordinates scales with.
+    pub own_reach: f64,
 }
 
 impl<'a> Placed<'a> {
@@ -74,9 +70,7 @@ impl<'a> Placed<'a> {
         let translation = pose.map_or(0.0, |m| (0..3).fold(0.0f64, |s, r| s.max(m.0[r][3].abs())));
         Placed {
             reach: largest(bounds),
-            query_reach: largest(body.bounds).max(translation) + norm(shift),
-            pose,
-            shift,
+            own_reach: largest(body.bounds).max(translation) + norm(shift),
             world,
             bounds,
             body,
@@ -130,32 +124,38 @@ pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate>
     if !meets(&ba, &bb) {
         return Ok(Crossings::default());
     }
-    // Node boxes placed as the points are, with room for the placement's rounding.
-    let margin = 1e-9 * (a.query_reach.max(b.query_reach) + 1e-300);
-    let placed_boxes = |p: &Placed| {
-        p.body.bvh.placed_node_boxes(|own| {
-            let moved = p.pose.map_or(*own, |m| m.bounds(own));
-            Bounds {
-                min: [0, 1, 2].map(|k| moved.min[k] + p.shift[k] - margin),
-                max: [0, 1, 2].map(|k| moved.max[k] + p.shift[k] + margin),
-            }
-        })
+    // The triangles' placed boxes, and the trees' boxes refitted to them: tight, in
+    // the placed frame.
+    let item_boxes = |p: &Placed| -> Vec<Bounds> {
+        (0..p.body.triangles.len()).into_par_iter().map(|t| box_of(p.corners(t))).collect()
     };
-    let leaves = a.body.bvh.leaf_pairs_between(&b.body.bvh, &placed_boxes(a), &placed_boxes(b));
+    let (items_a, items_b) = (item_boxes(a), item_boxes(b));
+    let (tree_a, tree_b) = (&a.body.bvh, &b.body.bvh);
+    let (nodes_a, nodes_b) = (tree_a.refit(|t| items_a[t]), tree_b.refit(|t| items_b[t]));
+    let leaves = tree_a.leaf_pairs_between(tree_b, &nodes_a, &nodes_b);
     let chunks: Vec<Result<Crossings, Degenerate>> = leaves
         .par_chunks(CHUNK)
         .map(|chunk| {
             let mut found = Crossings::default();
             let mut touching = false;
-            let mut boxes_b: Vec<Bounds> = Vec::new();
-            for (items_a, items_b) in chunk {
-                boxes_b.clear();
-                boxes_b.extend(items_b.clone().map(|ib| box_of(b.corners(ib))));
-                for ia in items_a.clone() {
+            let mut near_b: Vec<usize> = Vec::new();
+            for &(m, n) in chunk {
+                // Only the items of each leaf that meet the other leaf's box.
+                near_b.clear();
+                near_b.extend(
+                    tree_b.items(n).filter(|&ib| meets(&items_b[ib], &nodes_a[m as usize])),
+                );
+                for ia in tree_a.items(m) {
+                    if near_b.is_empty() {
+                        break;
+                    }
+                    let box_a = &items_a[ia];
+                    if !meets(box_a, &nodes_b[n as usize]) {
+                        continue;
+                    }
                     let ta = a.corners(ia);
-                    let box_a = box_of(ta);
-                    for (ib, box_b) in items_b.clone().zip(&boxes_b) {
-                        if !meets(&box_a, box_b) {
+                    for &ib in &near_b {
+                        if !meets(box_a, &items_b[ib]) {
                             continue;
                         }
                         match pair(a, ia, ta, b, ib, b.corners(ib), &mut found) {
