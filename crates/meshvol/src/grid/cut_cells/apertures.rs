@@ -182,7 +182,7 @@ pub(super) fn fill<S: Surface + ?Sized>(
     slabs.enumerate().for_each(|(i, (out, centroids))| {
         let cells_i = &vectors[i * plane..(i + 1) * plane];
         let slab = &areas[i * plane..(i + 1) * plane];
-        finish_boundary_centroids(&grid, [i0 + i, j0, k0], [1, by, bz], centroids, slab);
+        finish_boundary_centroids(&grid, [i0 + i, j0, k0], bz, centroids, slab);
         let first = (i0 + i) * nz + k0;
         let mut state: Vec<CompensatedSum> =
             beyond_y[first..first + bz].iter().map(|b| start(b[0])).collect();

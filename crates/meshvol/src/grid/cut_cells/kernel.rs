@@ -240,20 +240,26 @@ pub(super) fn polygon_normal<S: Surface + ?Sized>(
     (triangles > 1 && length > 0.0).then(|| total.map(|x| x / length))
 }
 
-/// Turns the area-weighted local surface centroids of the cells of `first` (a slab of a
-/// region, `plane` cells of `[_, ny, nz]` each) into world centroids (the middle of a cell
-/// without surface), once every part has been added.
+/// Turns the area-weighted local surface centroids of the cells of a slab `x = first[0]`
+/// of a region (rows of `nz` cells along z, from `first`) into world centroids (the
+/// middle of a cell without surface), once every part has been added.
 pub(super) fn finish_boundary_centroids(
     grid: &Grid,
     first: [usize; 3],
-    [_, ny, nz]: [usize; 3],
+    nz: usize,
     centroids: &mut [Point],
     areas: &[f64],
 ) {
-    for (n, (c, &w)) in centroids.iter_mut().zip(areas).enumerate() {
-        let at = [first[0] + n / (ny * nz), first[1] + n / nz % ny, first[2] + n % nz];
-        *c = [0, 1, 2]
-            .map(|d| grid.origin[d] + (at[d] as f64 + within(c[d], w, w == 0.0)) * grid.cell[d]);
+    // Row by row: a cell's index from its position without a division per cell (three
+    // integer divisions a cell were most of this pass).
+    let rows = centroids.chunks_mut(nz.max(1)).zip(areas.chunks(nz.max(1)));
+    for (j, (row, weights)) in rows.enumerate() {
+        let at = [first[0] as f64, (first[1] + j) as f64];
+        for (k, (c, &w)) in row.iter_mut().zip(weights).enumerate() {
+            let at = [at[0], at[1], (first[2] + k) as f64];
+            *c = [0, 1, 2]
+                .map(|d| grid.origin[d] + (at[d] + within(c[d], w, w == 0.0)) * grid.cell[d]);
+        }
     }
 }
 
