@@ -304,11 +304,18 @@ fn finish_column<const X: bool>(
     let cell_at = |d: usize, local: f64, k: usize| {
         grid.origin[d] + ([i, j, k][d] as f64 + local) * grid.cell[d]
     };
+    // The centroid of an empty or full cell, across the column.
+    let middle = [cell_at(0, 0.5, 0), cell_at(1, 0.5, 0)];
     for k in (0..handed.len() - 1).rev() {
         let above = handed[k + 1];
-        area.add(above[0]);
-        area_x.add(above[1]);
-        area_y.add(above[2]);
+        // A layer without surface in the column hands down zeros, and adding a zero
+        // leaves a compensated sum's bits as they are (its two parts start at +0, and
+        // round-to-nearest never makes them −0): most layers are skipped so.
+        if above[0] != 0.0 || above[1] != 0.0 || above[2] != 0.0 {
+            area.add(above[0]);
+            area_x.add(above[1]);
+            area_y.add(above[2]);
+        }
         if X {
             for (s, t) in squares.iter_mut().zip(second[k + 1]) {
                 s.add(t);
@@ -325,7 +332,11 @@ fn finish_column<const X: bool>(
             let trivial =
                 magnitude <= OCCUPANCY_TOLERANCE || (magnitude - 1.0).abs() <= OCCUPANCY_TOLERANCE;
             let local = moment.map(|m| within(m, v, trivial));
-            cells.cells.centroid[n] = [0, 1, 2].map(|d| cell_at(d, local[d], layer));
+            cells.cells.centroid[n] = if trivial {
+                [middle[0], middle[1], cell_at(2, 0.5, layer)]
+            } else {
+                [0, 1, 2].map(|d| cell_at(d, local[d], layer))
+            };
             // The plane at the bottom of layer `first + k + 1`: everything above it (on
             // the grid's top face, but the parts lying on it).
             let top = k + 2 == handed.len();
