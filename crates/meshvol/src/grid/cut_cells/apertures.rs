@@ -130,6 +130,9 @@ fn normal_component<const N: usize>(part: &Polygon<N>, axis: usize) -> f64 {
     0.5 * twice
 }
 
+/// Tubes `(j, k)` a task sums along x in [`fill`] (32 KiB of each plane's apertures).
+const TUBES: usize = 4096;
+
 /// The sums beyond the grid's far x and y faces ([`beyond`]), per tube.
 pub(super) type Beyond = [Vec<[f64; 3]>; 2];
 
@@ -157,24 +160,36 @@ pub(super) fn fill<S: Surface + ?Sized>(
     let centroids = &mut cells.boundary_centroid;
     let [aperture_x, aperture_y, _] = &mut cells.aperture;
 
-    // x: plane by plane from the far face down, every tube (j, k) in parallel.
+    // x: every tube (j, k) from the far face down; runs of tubes in parallel, each in one
+    // task (a task per plane waited at every plane for both workers: on a busy machine,
+    // for a descheduled one). Each tube's sum is the same whatever the runs.
     let plane = by * bz;
     let tube = |t: usize| (j0 + t / bz) * nz + k0 + t % bz;
     let start = |b: f64| CompensatedSum::from_parts(b, 0.0);
     let mut state =
         carried.unwrap_or_else(|| (0..plane).map(|t| start(beyond_x[tube(t)][0])).collect());
-    aperture_x[bx * plane..].par_iter_mut().zip(&state).for_each(|(a, s)| *a = s.value());
-    for i in (0..bx).rev() {
-        let cells_i = &vectors[i * plane..(i + 1) * plane];
-        aperture_x[i * plane..(i + 1) * plane]
-            .par_iter_mut()
-            .zip(state.par_iter_mut())
-            .zip(cells_i.par_iter())
-            .for_each(|((a, s), v)| {
-                s.add(v[0] / face[0]);
-                *a = s.value();
-            });
+    let mut runs: Vec<Vec<&mut [f64]>> =
+        (0..plane.div_ceil(TUBES)).map(|_| Vec::with_capacity(bx + 1)).collect();
+    for planes in aperture_x.chunks_mut(plane) {
+        for (run, part) in runs.iter_mut().zip(planes.chunks_mut(TUBES)) {
+            run.push(part);
+        }
     }
+    runs.into_par_iter().zip(state.par_chunks_mut(TUBES)).enumerate().for_each(
+        |(r, (mut planes, state))| {
+            for (a, s) in planes[bx].iter_mut().zip(state.iter()) {
+                *a = s.value();
+            }
+            for i in (0..bx).rev() {
+                let first = i * plane + r * TUBES;
+                let cells = &vectors[first..first + state.len()];
+                for ((a, s), v) in planes[i].iter_mut().zip(state.iter_mut()).zip(cells) {
+                    s.add(v[0] / face[0]);
+                    *a = s.value();
+                }
+            }
+        },
+    );
 
     // y: within each slab x = i, from the far face down; and the slab's surface
     // centroids, now that every part is in (one pass over the slab for both).
@@ -182,7 +197,7 @@ pub(super) fn fill<S: Surface + ?Sized>(
     slabs.enumerate().for_each(|(i, (out, centroids))| {
         let cells_i = &vectors[i * plane..(i + 1) * plane];
         let slab = &areas[i * plane..(i + 1) * plane];
-        finish_boundary_centroids(&grid, [i0 + i, j0, k0], [1, by, bz], centroids, slab);
+        finish_boundary_centroids(&grid, [i0 + i, j0, k0], bz, centroids, slab);
         let first = (i0 + i) * nz + k0;
         let mut state: Vec<CompensatedSum> =
             beyond_y[first..first + bz].iter().map(|b| start(b[0])).collect();

@@ -240,20 +240,26 @@ pub(super) fn polygon_normal<S: Surface + ?Sized>(
     (triangles > 1 && length > 0.0).then(|| total.map(|x| x / length))
 }
 
-/// Turns the area-weighted local surface centroids of the cells of `first` (a slab of a
-/// region, `plane` cells of `[_, ny, nz]` each) into world centroids (the middle of a cell
-/// without surface), once every part has been added.
+/// Turns the area-weighted local surface centroids of the cells of a slab `x = first[0]`
+/// of a region (rows of `nz` cells along z, from `first`) into world centroids (the
+/// middle of a cell without surface), once every part has been added.
 pub(super) fn finish_boundary_centroids(
     grid: &Grid,
     first: [usize; 3],
-    [_, ny, nz]: [usize; 3],
+    nz: usize,
     centroids: &mut [Point],
     areas: &[f64],
 ) {
-    for (n, (c, &w)) in centroids.iter_mut().zip(areas).enumerate() {
-        let at = [first[0] + n / (ny * nz), first[1] + n / nz % ny, first[2] + n % nz];
-        *c = [0, 1, 2]
-            .map(|d| grid.origin[d] + (at[d] as f64 + within(c[d], w, w == 0.0)) * grid.cell[d]);
+    // Row by row: a cell's index from its position without a division per cell (three
+    // integer divisions a cell were most of this pass).
+    let rows = centroids.chunks_mut(nz.max(1)).zip(areas.chunks(nz.max(1)));
+    for (j, (row, weights)) in rows.enumerate() {
+        let at = [first[0] as f64, (first[1] + j) as f64];
+        for (k, (c, &w)) in row.iter_mut().zip(weights).enumerate() {
+            let at = [at[0], at[1], (first[2] + k) as f64];
+            *c = [0, 1, 2]
+                .map(|d| grid.origin[d] + (at[d] + within(c[d], w, w == 0.0)) * grid.cell[d]);
+        }
     }
 }
 
@@ -298,11 +304,18 @@ fn finish_column<const X: bool>(
     let cell_at = |d: usize, local: f64, k: usize| {
         grid.origin[d] + ([i, j, k][d] as f64 + local) * grid.cell[d]
     };
+    // The centroid of an empty or full cell, across the column.
+    let middle = [cell_at(0, 0.5, 0), cell_at(1, 0.5, 0)];
     for k in (0..handed.len() - 1).rev() {
         let above = handed[k + 1];
-        area.add(above[0]);
-        area_x.add(above[1]);
-        area_y.add(above[2]);
+        // A layer without surface in the column hands down zeros, and adding a zero
+        // leaves a compensated sum's bits as they are (its two parts start at +0, and
+        // round-to-nearest never makes them −0): most layers are skipped so.
+        if above[0] != 0.0 || above[1] != 0.0 || above[2] != 0.0 {
+            area.add(above[0]);
+            area_x.add(above[1]);
+            area_y.add(above[2]);
+        }
         if X {
             for (s, t) in squares.iter_mut().zip(second[k + 1]) {
                 s.add(t);
@@ -319,7 +332,11 @@ fn finish_column<const X: bool>(
             let trivial =
                 magnitude <= OCCUPANCY_TOLERANCE || (magnitude - 1.0).abs() <= OCCUPANCY_TOLERANCE;
             let local = moment.map(|m| within(m, v, trivial));
-            cells.cells.centroid[n] = [0, 1, 2].map(|d| cell_at(d, local[d], layer));
+            cells.cells.centroid[n] = if trivial {
+                [middle[0], middle[1], cell_at(2, 0.5, layer)]
+            } else {
+                [0, 1, 2].map(|d| cell_at(d, local[d], layer))
+            };
             // The plane at the bottom of layer `first + k + 1`: everything above it (on
             // the grid's top face, but the parts lying on it).
             let top = k + 2 == handed.len();
