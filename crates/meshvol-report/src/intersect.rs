@@ -168,13 +168,19 @@ pub fn intersect_posed<S: Surface + Sync>(
 }
 
 /// A subject's checked solid prepared for the boundary method ([`Body`]), when its
-/// check vouches for it: checked, with no self-intersection and no overlapping shells
-/// (the method takes insideness as the parity of crossings). `None` otherwise, and
-/// unchecked: the grid method measures those.
+/// check vouches for it: checked, manifold, with no self-intersection, no double walls
+/// and no overlapping shells. The method takes insideness as the parity of crossings,
+/// which is the solid's (winding number above 0) only where the surface never lies
+/// over itself; a non-manifold edge is where it can fold onto itself without crossing
+/// (a tetrahedron sharing a cube's corners, its faces on the cube's). `None` otherwise,
+/// and unchecked: the grid method measures those.
 pub fn prepare<S: Surface + Sync>(s: &Subject<'_, S>) -> Option<Body> {
     let check = s.check?;
-    (check.self_intersections == Some(0) && check.overlapping_shells.is_empty())
-        .then(|| Body::new(&s.whole().surface))
+    let simple = check.self_intersections == Some(0)
+        && check.overlapping_shells.is_empty()
+        && check.non_manifold_edges == 0
+        && check.double_wall_faces == 0;
+    simple.then(|| Body::new(&s.whole().surface))
 }
 
 /// [`intersect_posed`] with the bodies already prepared ([`prepare`]; `None`: measured
