@@ -167,7 +167,7 @@ const BLOCK_FACES: usize = 64;
 /// The sums the signed volume and its bound are made of: what [`mass_properties`] and
 /// [`crate::volume`] share, summed in the same order by both, so that both give the same
 /// bits.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct VolumeSums {
     pub(crate) six_volume: CompensatedSum,
     /// Σ over faces of twice the vector area (each face's fan summed plainly), for the
