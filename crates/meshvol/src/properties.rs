@@ -423,7 +423,7 @@ fn triangles_partial_in<L: crate::volume::Lanes>(
     let mut block = [zero; 10];
     let (mut sum, mut compensation) = ([zero; 10], [zero; 10]);
     // The bounds lane by lane; see below for their signed zeros.
-    let rl = r.map(L::splat);
+    let rl = [L::splat(r[0]), L::splat(r[1]), L::splat(r[2])];
     let (mut low, mut high) = (rl, rl);
     let mut groups = tris.chunks_exact(4);
     let mut face = first;
@@ -437,7 +437,7 @@ fn triangles_partial_in<L: crate::volume::Lanes>(
                 }
             }
         }
-        let corners = p.map(|corner| corner.map(L::from_array));
+        let corners = crate::volume::corners::<L>(&p);
         let [[ax, ay, az], [bx, by, bz], [cx, cy, cz]] = corners;
         for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate() {
             low[k] = low[k].min(x).min(y).min(z);
@@ -644,7 +644,8 @@ fn moment_terms<T: Copy + Add<Output = T> + Mul<Output = T>>(
     b: [T; 3],
     c: [T; 3],
 ) -> [T; 9] {
-    let s = [0, 1, 2].map(|k| a[k] + (b[k] + c[k]));
+    // Written out, not through `array::map` (see `volume::corners`).
+    let s = [a[0] + (b[0] + c[0]), a[1] + (b[1] + c[1]), a[2] + (b[2] + c[2])];
     let pair = |i: usize, j: usize| a[i] * a[j] + (b[i] * b[j] + c[i] * c[j]) + s[i] * s[j];
     [s[0], s[1], s[2], pair(0, 0), pair(1, 1), pair(2, 2), pair(0, 1), pair(1, 2), pair(2, 0)]
 }
