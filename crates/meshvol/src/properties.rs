@@ -167,7 +167,7 @@ const BLOCK_FACES: usize = 64;
 /// The sums the signed volume and its bound are made of: what [`mass_properties`] and
 /// [`crate::volume`] share, summed in the same order by both, so that both give the same
 /// bits.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct VolumeSums {
     pub(crate) six_volume: CompensatedSum,
     /// Σ over faces of twice the vector area (each face's fan summed plainly), for the
@@ -231,7 +231,7 @@ impl VolumeSums {
 /// term by term; the moments and area (no published bound) are summed plainly within
 /// blocks of [`BLOCK_FACES`] faces and compensated across blocks, which keeps them
 /// accurate to about γ(64) of their terms at a fraction of the cost.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Partial {
     volume: VolumeSums,
     first: [CompensatedSum; 3],
@@ -384,19 +384,46 @@ fn triangles_partial(
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2.
+        return unsafe { triangles_partial_avx2(positions, triangles, range, r) };
+    }
+    triangles_partial_in::<wide::f64x4>(positions, triangles, range, r)
+}
+
+/// [`triangles_partial`] compiled for AVX2, its lanes one register (see
+/// [`crate::volume`]'s docs): the same operations, so the same bits.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn triangles_partial_avx2(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    range: std::ops::Range<usize>,
+    r: Point,
+) -> Partial {
+    triangles_partial_in::<crate::volume::Avx>(positions, triangles, range, r)
+}
+
+#[inline(always)]
+fn triangles_partial_in<L: crate::volume::Lanes>(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    range: std::ops::Range<usize>,
+    r: Point,
+) -> Partial {
     use crate::volume::{add_compensated, VolumeLanes};
-    use wide::f64x4;
-    let zero = f64x4::ZERO;
+    let zero = L::ZERO;
     let first = range.start;
     let tris = &triangles[range];
     let mut bounds = Bounds::of(r);
     // The volume's sums in `VolumeLanes`; the block's ten plain sums (first and second
     // moments, double area) and their compensated sums, one triangle a lane likewise.
-    let mut lanes = VolumeLanes::new(r);
+    let mut lanes = VolumeLanes::<L>::new(r);
     let mut block = [zero; 10];
     let (mut sum, mut compensation) = ([zero; 10], [zero; 10]);
     // The bounds lane by lane; see below for their signed zeros.
-    let rl = r.map(f64x4::splat);
+    let rl = [L::splat(r[0]), L::splat(r[1]), L::splat(r[2])];
     let (mut low, mut high) = (rl, rl);
     let mut groups = tris.chunks_exact(4);
     let mut face = first;
@@ -410,7 +437,7 @@ fn triangles_partial(
                 }
             }
         }
-        let corners = p.map(|corner| corner.map(f64x4::new));
+        let corners = crate::volume::corners::<L>(&p);
         let [[ax, ay, az], [bx, by, bz], [cx, cy, cz]] = corners;
         for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate() {
             low[k] = low[k].min(x).min(y).min(z);
@@ -449,7 +476,7 @@ fn triangles_partial(
         }
     });
     for k in 0..3 {
-        let pick = |lanes: f64x4, better: fn(f64, f64) -> bool| {
+        let pick = |lanes: L, better: fn(f64, f64) -> bool| {
             lanes.to_array().into_iter().fold(r[k], |m, x| if better(x, m) { x } else { m })
         };
         bounds.min[k] = pick(low[k], |x, m| x < m);
@@ -617,7 +644,39 @@ fn moment_terms<T: Copy + Add<Output = T> + Mul<Output = T>>(
     b: [T; 3],
     c: [T; 3],
 ) -> [T; 9] {
-    let s = [0, 1, 2].map(|k| a[k] + (b[k] + c[k]));
+    // Written out, not through `array::map` (see `volume::corners`).
+    let s = [a[0] + (b[0] + c[0]), a[1] + (b[1] + c[1]), a[2] + (b[2] + c[2])];
     let pair = |i: usize, j: usize| a[i] * a[j] + (b[i] * b[j] + c[i] * c[j]) + s[i] * s[j];
     [s[0], s[1], s[2], pair(0, 0), pair(1, 1), pair(2, 2), pair(0, 1), pair(1, 2), pair(2, 0)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::XorShift;
+
+    /// The baseline lanes (`wide`, what a CPU without AVX2 runs) give the bits of the
+    /// lanes this CPU runs, blocks, bounds' signed zeros and remainders included.
+    #[test]
+    fn baseline_and_dispatched_lanes_agree() {
+        let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
+        // Some coordinates exactly ±0, for the bounds' zeros.
+        let positions: Vec<Point> = (0..300)
+            .map(|_| {
+                [0; 3].map(|_| match rng.below(5) {
+                    0 => 0.0,
+                    1 => -0.0,
+                    _ => (rng.unit() - 0.5) * 2f64.powi(rng.below(30) as i32 - 15),
+                })
+            })
+            .collect();
+        for n in [1, 5, 8, 67, BLOCK_FACES + 3, 3 * BLOCK_FACES + 9] {
+            let triangles: Vec<[u32; 3]> =
+                (0..n).map(|_| [0; 3].map(|_| rng.below(300) as u32)).collect();
+            let r = positions[triangles[0][0] as usize];
+            let baseline = triangles_partial_in::<wide::f64x4>(&positions, &triangles, 0..n, r);
+            let dispatched = triangles_partial(&positions, &triangles, 0..n, r);
+            assert_eq!(format!("{baseline:?}"), format!("{dispatched:?}"), "{n} triangles");
+        }
+    }
 }

@@ -119,21 +119,24 @@ pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, Ve
     };
     // Per vertex: the edge uses whose smaller vertex it is, and the fans of corners
     // around it, two corners being in one fan when their faces share an edge there. A
-    // vertex in more than one fan (a bowtie) is non-manifold.
-    let fans_and_uses = |(ends, fans): &mut (Vec<(u32, u32)>, UnionFind), v: usize| {
+    // vertex in more than one fan (a bowtie) is non-manifold. Each end (w, i), the other
+    // vertex w of corner i's edge, is one u64, w above i: sorted as numbers, in the
+    // order of the pairs, at one comparison each (the pairs' sort was 5% of a check).
+    let fans_and_uses = |(ends, fans): &mut (Vec<u64>, UnionFind), v: usize| {
         let corners = around.get(v);
-        let low = |w: u32| (w as usize > v) as u32;
+        let end = |w: u32, i: usize| (u64::from(w) << 32) | i as u64;
+        let other = |end: u64| (end >> 32) as usize;
         ends.clear();
         for (i, k) in corners.iter().enumerate() {
             let (previous, next) = sides(k);
-            ends.extend([(previous, i as u32), (next, i as u32)]);
+            ends.extend([end(previous, i), end(next, i)]);
         }
-        let uses = ends.iter().map(|&(w, _)| low(w)).sum::<u32>();
+        let uses = ends.iter().map(|&e| u32::from(other(e) > v)).sum::<u32>();
         ends.sort_unstable();
         fans.reset(corners.len());
         let mut count = corners.len() as u32;
         for w in ends.windows(2) {
-            if w[0].0 == w[1].0 && fans.join(w[0].1, w[1].1) {
+            if other(w[0]) == other(w[1]) && fans.join(w[0] as u32, w[1] as u32) {
                 count -= 1;
             }
         }
