@@ -7,7 +7,7 @@ use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol::overlap::Body;
-use meshvol_report::intersect::{intersect_prepared, intersect_with, overlapping_pairs, prepare};
+use meshvol_report::intersect::{intersect_prepared, overlapping_pairs, prepare};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -62,10 +62,14 @@ pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
             inputs.push(solid::read(path, args.solid.check(), progress)?);
             progress.done(path);
         }
-        let hook = progress.kernel("measuring the intersection".to_string());
         let subjects = solid::subjects(&inputs);
+        progress.stage_all("preparing the bodies");
+        let bodies = [prepare(&subjects[0]), prepare(&subjects[1])];
+        progress.stage_all("measuring");
+        let hook = progress.kernel("measuring the intersection".to_string());
         let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
-        intersect_with(&subjects[0], &subjects[1], args.tolerance, &hook)?
+        let bodies = [bodies[0].as_ref(), bodies[1].as_ref()];
+        intersect_prepared(&subjects[0], &subjects[1], bodies, [None, None], args.tolerance, &hook)?
             .in_units(&args.units.options(), &files)
     })
 }
@@ -96,6 +100,7 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
         return driver.finish();
     }
     // Each body prepared for the boundary method once, and only if it is in a pair.
+    driver.progress.stage_all("preparing the bodies");
     let mut bodies: Vec<Option<Option<Body>>> = vec![None; subjects.len()];
     for &(i, j) in &pairs {
         for k in [i, j] {
@@ -105,6 +110,7 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
         }
     }
     let body = |k: usize| bodies[k].as_ref().and_then(Option::as_ref);
+    driver.progress.stage_all("measuring");
     for (i, j) in pairs {
         if driver.closed() {
             break;

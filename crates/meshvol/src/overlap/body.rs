@@ -10,6 +10,7 @@ use crate::properties::Bounds;
 use crate::topology::weld;
 use crate::vector::{cross, norm, orient2d, sub};
 use crate::{mass_properties, MassProperties, Point, Surface};
+use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A closed body ready for [`super::overlap`].
@@ -61,31 +62,39 @@ impl Body {
         drop(corners);
         let points = welded.positions;
         let raw: Vec<[u32; 3]> =
-            welded.corner_vertex.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+            welded.corner_vertex.par_chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let corners_of = |t: &[u32; 3]| t.map(|i| points[i as usize]);
         let centres: Vec<Point> = raw
-            .iter()
+            .par_iter()
             .map(|t| {
-                let [a, b, c] = t.map(|i| points[i as usize]);
+                let [a, b, c] = corners_of(t);
                 [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
             })
             .collect();
         let order = Bvh::spatial_order(&centres);
-        let triangles: Vec<[u32; 3]> = order.iter().map(|&i| raw[i as usize]).collect();
-        let flat: Vec<bool> =
-            triangles.iter().map(|t| collinear(t.map(|i| points[i as usize]))).collect();
-        let bvh = Bvh::new(triangles.len(), |k| {
-            Box32::around(&box_of(triangles[k].map(|i| points[i as usize])))
-        });
+        drop(centres);
+        let triangles: Vec<[u32; 3]> = order.par_iter().map(|&i| raw[i as usize]).collect();
+        drop(raw);
+        let flat: Vec<bool> = triangles.par_iter().map(|t| collinear(corners_of(t))).collect();
+        let bvh = Bvh::new(triangles.len(), |k| Box32::around(&box_of(corners_of(&triangles[k]))));
         let mut bounds: Option<Bounds> = None;
         for p in &points {
             bounds.get_or_insert(Bounds { min: *p, max: *p }).include(*p);
         }
-        let (mut area, mut perimeter) = (0.0, 0.0);
-        for t in &triangles {
-            let [a, b, c] = t.map(|i| points[i as usize]);
-            area += 0.5 * norm(cross(sub(b, a), sub(c, a)));
-            perimeter += norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c));
-        }
+        // Fixed chunks summed in order: the same bits at any thread count.
+        let sums: Vec<(f64, f64)> = triangles
+            .par_chunks(4096)
+            .map(|chunk| {
+                let (mut area, mut perimeter) = (0.0, 0.0);
+                for t in chunk {
+                    let [a, b, c] = corners_of(t);
+                    area += 0.5 * norm(cross(sub(b, a), sub(c, a)));
+                    perimeter += norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c));
+                }
+                (area, perimeter)
+            })
+            .collect();
+        let (area, perimeter) = sums.iter().fold((0.0, 0.0), |s, x| (s.0 + x.0, s.1 + x.1));
         let (edges, face_edges, owner, closed) = edge_table(&triangles, &flat);
         let (start, adjacent) = vertex_graph(points.len(), &edges);
         let unfit = if triangles.is_empty() {
