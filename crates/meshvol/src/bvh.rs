@@ -812,10 +812,13 @@ mod tests {
         let tree = |boxes: &[Bounds]| Bvh::new(boxes.len(), |i| Box32::around(&boxes[i]));
         let (p, q) = (tree(&first), tree(&second));
         let leaves =
-            p.leaf_pairs_between(&q, &p.placed_node_boxes(|b| *b), &q.placed_node_boxes(moved));
+            p.leaf_pairs_between(&q, &p.refit(|i| first[i]), &q.refit(|i| moved(&second[i])));
         let mut found: Vec<(usize, usize)> = leaves
             .iter()
-            .flat_map(|&(m, n)| p.items(m).flat_map(|i| q.items(n).map(move |j| (i, j))))
+            .flat_map(|&(m, n)| {
+                let items_b = q.items(n);
+                p.items(m).flat_map(move |i| items_b.clone().map(move |j| (i, j)))
+            })
             .filter(|&(i, j)| overlap(&first[i], &moved(&second[j])))
             .collect();
         let count = found.len();

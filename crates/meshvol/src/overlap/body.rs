@@ -95,7 +95,7 @@ impl Body {
             })
             .collect();
         let (area, perimeter) = sums.iter().fold((0.0, 0.0), |s, x| (s.0 + x.0, s.1 + x.1));
-        let (edges, face_edges, owner, closed) = edge_table(&triangles, &flat);
+        let EdgeTable { edges, face_edges, owner, closed } = edge_table(&triangles, &flat);
         let (start, adjacent) = vertex_graph(points.len(), &edges);
         let unfit = if triangles.is_empty() {
             Some("it has no triangle")
@@ -203,10 +203,7 @@ fn collinear([a, b, c]: [Point; 3]) -> bool {
 /// Each corner's edge is filed under its lower end (a counting sort by vertex), and the
 /// few edges at a vertex grouped by their other end: linear time, no sort of all
 /// corners. Edges are numbered by lower end, then upper end.
-fn edge_table(
-    triangles: &[[u32; 3]],
-    flat: &[bool],
-) -> (Vec<[u32; 2]>, Vec<[u32; 3]>, Vec<u32>, bool) {
+fn edge_table(triangles: &[[u32; 3]], flat: &[bool]) -> EdgeTable {
     let vertices = triangles.iter().flatten().map(|&v| v as usize + 1).max().unwrap_or(0);
     let mut start = vec![0u32; vertices + 1];
     for t in triangles {
@@ -258,7 +255,15 @@ fn edge_table(
             k = end;
         }
     }
-    (edges, face_edges, owner, closed)
+    EdgeTable { edges, face_edges, owner, closed }
+}
+
+/// What [`edge_table`] finds.
+struct EdgeTable {
+    edges: Vec<[u32; 2]>,
+    face_edges: Vec<[u32; 3]>,
+    owner: Vec<u32>,
+    closed: bool,
 }
 
 /// The vertex graph as adjacency lists (neighbour, edge), by vertex.

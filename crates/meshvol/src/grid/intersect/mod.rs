@@ -255,7 +255,7 @@ pub fn intersection_placed<S: Surface>(
                 return Ok(i);
             }
             if start.flipped.is_empty() {
-                return Ok(start.from_boundary(&o));
+                return Ok(start.measured_by_boundary(&o));
             }
         }
     }
@@ -326,7 +326,7 @@ impl Start {
     }
 
     /// The boundary method's measure as an intersection.
-    fn from_boundary(&self, o: &Overlap) -> Intersection {
+    fn measured_by_boundary(&self, o: &Overlap) -> Intersection {
         let moments = o.centroid.zip(o.inertia).map(|(centroid, inertia)| Moments {
             volume: o.volume,
             centroid,
