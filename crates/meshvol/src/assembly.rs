@@ -54,6 +54,22 @@ impl Affine {
             + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
     }
 
+    /// A tensor (an inertia) turned by the linear part R: `R T Rᵀ`.
+    pub fn turn_tensor(&self, t: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+        let r = |i: usize, k: usize| self.0[i][k];
+        [0, 1, 2].map(|i| {
+            [0, 1, 2].map(|j| {
+                let mut sum = 0.0;
+                for k in 0..3 {
+                    for l in 0..3 {
+                        sum += r(i, k) * t[k][l] * r(j, l);
+                    }
+                }
+                sum
+            })
+        })
+    }
+
     pub fn is_finite(&self) -> bool {
         self.0.iter().flatten().all(|x| x.is_finite())
     }

@@ -136,24 +136,12 @@ impl Body {
         let p = &self.properties;
         let Some(m) = pose else { return MassProperties { bounds, ..*p } };
         let det = m.determinant();
-        let r = |i: usize, k: usize| m.0[i][k];
-        let inertia = [0, 1, 2].map(|i| {
-            [0, 1, 2].map(|j| {
-                let mut sum = 0.0;
-                for k in 0..3 {
-                    for l in 0..3 {
-                        sum += r(i, k) * p.inertia[k][l] * r(j, l);
-                    }
-                }
-                sum
-            })
-        });
         MassProperties {
             signed_volume: det * p.signed_volume,
             volume_error_bound: det.abs() * p.volume_error_bound
                 + self.swept(8.0 * UNIT_ROUNDOFF * reach),
             centroid: p.centroid.map(|c| m.apply(c)),
-            inertia,
+            inertia: m.turn_tensor(&p.inertia),
             bounds,
             ..*p
         }

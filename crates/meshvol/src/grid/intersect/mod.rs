@@ -417,22 +417,10 @@ fn by_grid<S: Surface>(
 /// measuring the turned body again.
 fn turned_properties(p: &MassProperties, frame: Frame) -> MassProperties {
     let turn = frame.turn().unwrap_or(Affine::IDENTITY);
-    let r = |i: usize, k: usize| turn.0[i][k];
-    let inertia = [0, 1, 2].map(|i| {
-        [0, 1, 2].map(|j| {
-            let mut sum = 0.0;
-            for k in 0..3 {
-                for l in 0..3 {
-                    sum += r(i, k) * p.inertia[k][l] * r(j, l);
-                }
-            }
-            sum
-        })
-    });
     MassProperties {
         bounds: p.bounds.map(|b| Bounds { min: turn.apply(b.min), max: turn.apply(b.max) }),
         centroid: p.centroid.map(|c| turn.apply(c)),
-        inertia,
+        inertia: turn.turn_tensor(&p.inertia),
         ..*p
     }
 }
