@@ -395,9 +395,7 @@ impl Bvh {
                 let mut b = Bounds::EMPTY;
                 if n.count > 0 {
                     for i in n.begin as usize..n.end as usize {
-                        let c = item_box(i);
-                        b.include(c.min);
-                        b.include(c.max);
+                        b.merge(&item_box(i));
                     }
                 }
                 b
@@ -408,11 +406,8 @@ impl Bvh {
             let node = &self.nodes[n];
             if node.count == 0 {
                 let (l, r) = (boxes[node.start as usize], boxes[node.start as usize + 1]);
-                let b = &mut boxes[n];
-                b.include(l.min);
-                b.include(l.max);
-                b.include(r.min);
-                b.include(r.max);
+                boxes[n].merge(&l);
+                boxes[n].merge(&r);
             }
         }
         boxes

@@ -1,7 +1,7 @@
 //! A body prepared once for many overlap queries: its triangles welded by exact
 //! equality of coordinates, its edges with the triangle that tests each, its vertex
-//! graph for the inside/outside walk, and a hierarchy of its triangles' boxes in its
-//! own frame, which every pose reuses.
+//! graph for the inside/outside walk, and a hierarchy of its triangles, whose shape
+//! every pose reuses (its boxes refitted to the placed triangles).
 
 use crate::accumulate::UNIT_ROUNDOFF;
 use crate::assembly::Affine;
@@ -77,10 +77,7 @@ impl Body {
         drop(raw);
         let flat: Vec<bool> = triangles.par_iter().map(|t| collinear(corners_of(t))).collect();
         let bvh = Bvh::new(triangles.len(), |k| Box32::around(&box_of(corners_of(&triangles[k]))));
-        let mut bounds: Option<Bounds> = None;
-        for p in &points {
-            bounds.get_or_insert(Bounds { min: *p, max: *p }).include(*p);
-        }
+        let bounds = bounds_of(&points);
         // Fixed chunks summed in order: the same bits at any thread count.
         let sums: Vec<(f64, f64)> = triangles
             .par_chunks(4096)
@@ -171,10 +168,18 @@ impl Body {
 
 /// The box of a triangle.
 pub(super) fn box_of(t: [Point; 3]) -> Bounds {
-    let mut b = Bounds { min: t[0], max: t[0] };
+    let mut b = Bounds::of(t[0]);
     b.include(t[1]);
     b.include(t[2]);
     b
+}
+
+/// The box of `points`; `None` for none.
+pub(super) fn bounds_of(points: &[Point]) -> Option<Bounds> {
+    let (first, rest) = points.split_first()?;
+    let mut b = Bounds::of(*first);
+    rest.iter().for_each(|p| b.include(*p));
+    Some(b)
 }
 
 /// Whether the three points lie on one line, exactly: every projection onto a

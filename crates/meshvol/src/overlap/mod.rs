@@ -41,6 +41,7 @@ pub use pairs::Degenerate;
 use crate::accumulate::{gamma, UNIT_ROUNDOFF};
 use crate::assembly::Affine;
 use crate::grid::intersect::moments::finish;
+use crate::topology::predicates::OBLIQUE;
 use crate::vector::{norm, scale};
 use crate::{Bounds, MassProperties, Point};
 use pairs::{crossings, Placed};
@@ -147,10 +148,8 @@ const HAIR: f64 = 1.0 / (1u64 << 46) as f64;
 
 /// The directions of the moves tried (unit vectors no axis, diagonal or simple ratio
 /// lines up with).
-const NUDGES: [Point; 2] = [
-    [0.8017837257372732, 0.5345224838248488, 0.2672612419124244],
-    [-0.3265986323710904, 0.7348469228349535, -0.5943889992637929],
-];
+const NUDGES: [Point; 2] =
+    [OBLIQUE, [-0.3265986323710904, 0.7348469228349535, -0.5943889992637929]];
 
 /// The boundary method on placed bodies.
 fn measure(a: &Placed, b: &Placed, properties: [MassProperties; 2]) -> Result<Overlap, Degenerate> {

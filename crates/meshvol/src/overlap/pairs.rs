@@ -1,6 +1,7 @@
-//! Stage 1: where the two surfaces cross. Candidate pairs of triangles come from B's
-//! hierarchy (built once, in B's own frame) queried with A's triangles mapped into that
-//! frame; each pair is then decided exactly on the placed coordinates.
+//! Stage 1: where the two surfaces cross. Both bodies' hierarchies (built once) are
+//! refitted to the placed triangles and walked together, so candidate pairs of
+//! triangles come from the pairs of leaves near the crossing curve only; each pair is
+//! then decided exactly on the placed coordinates.
 //!
 //! For a pair of triangles (a, b) in general position, a ∩ b is empty or a segment
 //! whose two ends are each where an edge of one crosses the other's interior. Those
@@ -9,7 +10,7 @@
 //! plane, an edge through the other's edge, faces in one plane) is a position the
 //! method does not settle: the whole query reports [`Degenerate`].
 
-use super::body::{box_of, Body};
+use super::body::{bounds_of, box_of, Body};
 use crate::accumulate::UNIT_ROUNDOFF;
 use crate::assembly::Affine;
 use crate::properties::Bounds;
@@ -60,10 +61,7 @@ impl<'a> Placed<'a> {
         } else {
             body.points.iter().map(|&p| add(moved(p), shift)).collect()
         };
-        let mut bounds: Option<Bounds> = None;
-        for p in &world {
-            bounds.get_or_insert(Bounds { min: *p, max: *p }).include(*p);
-        }
+        let bounds = bounds_of(&world);
         let largest = |b: Option<Bounds>| {
             b.map_or(0.0, |b| b.min.iter().chain(&b.max).fold(0.0f64, |m, x| m.max(x.abs())))
         };
