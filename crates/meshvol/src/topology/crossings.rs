@@ -20,7 +20,7 @@
 use super::loops::Loops;
 use super::predicates;
 use super::weld::Welded;
-use crate::buckets::{for_each_range_mut, starts};
+use crate::buckets::{filled, for_each_range_mut, par_starts};
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
 use crate::Point;
@@ -94,8 +94,8 @@ pub(super) fn triangles_in_space<'a>(
     // for a large face, its number in the face's halving (plus the face's start + 1).
     let faces = kept.len();
     let triangles_of = |f: usize| if kept[f] { loops.face(f).len() - 2 } else { 0 };
-    let first = starts((0..faces).map(triangles_of));
-    let mut fans = vec![(0u32, 0u32); first[faces]];
+    let first = par_starts(faces, triangles_of);
+    let mut fans = filled(first[faces], (0u32, 0u32));
     for_each_range_mut(&mut fans, faces, &|f| first[f]..first[f + 1], &|f, out| {
         let r = loops.face(f);
         for (t, c) in out.iter_mut().zip(r.start + 1..r.end - 1) {

@@ -15,7 +15,7 @@
 
 use super::loops::Loops;
 use super::weld::Welded;
-use crate::buckets::{for_each_range_mut, starts, Buckets, SharedItems};
+use crate::buckets::{filled, for_each_range_mut, par_starts, Buckets, SharedItems};
 use crate::union_find::UnionFind;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
@@ -147,15 +147,15 @@ pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, Ve
         .map_init(|| (Vec::new(), UnionFind::new(0)), fans_and_uses)
         .collect();
     let vertices = VertexCounts {
-        used: per_vertex.iter().filter(|p| p.1 > 0).count(),
-        non_manifold: per_vertex.iter().filter(|p| p.1 > 1).count(),
+        used: per_vertex.par_iter().filter(|p| p.1 > 0).count(),
+        non_manifold: per_vertex.par_iter().filter(|p| p.1 > 1).count(),
     };
     // Edge uses grouped by smaller vertex, then sorted by (larger vertex, corner):
     // corners number faces in order, so the uses of an edge come in face order.
-    let use_start = starts(per_vertex.iter().map(|&(uses, _)| uses as usize));
+    let use_start = par_starts(vertex_count, |v| per_vertex[v].0 as usize);
     drop(per_vertex);
     let unused = EdgeUse::new(0, 0, 0, false);
-    let mut uses = vec![unused; use_start[vertex_count]];
+    let mut uses = filled(use_start[vertex_count], unused);
     let vertex_uses = |v: usize| use_start[v]..use_start[v + 1];
     for_each_range_mut(&mut uses, vertex_count, &vertex_uses, &|v, out| {
         let mut next = 0;
@@ -184,9 +184,9 @@ pub(super) fn edges(loops: &Loops, welded: &Welded, kept: &[bool]) -> (Edges, Ve
     };
     let runs: Vec<u32> =
         (0..vertex_count).into_par_iter().map(|v| run_starts(v).count() as u32).collect();
-    let first_edge = starts(runs.iter().map(|&r| r as usize));
+    let first_edge = par_starts(vertex_count, |v| runs[v] as usize);
     drop(runs);
-    let mut start = vec![0u32; first_edge[vertex_count] + 1];
+    let mut start = filled(first_edge[vertex_count] + 1, 0u32);
     let vertex_edges = |v: usize| first_edge[v]..first_edge[v + 1];
     let (start_of_edges, end) = start.split_at_mut(first_edge[vertex_count]);
     end[0] = uses.len() as u32;
@@ -270,7 +270,7 @@ impl Neighbour {
 /// in the face (so laid out like the corners, and found without sorting);
 /// [`Neighbour::NONE`] elsewhere.
 pub(super) fn neighbours(edges: &Edges, corners: usize) -> Vec<Neighbour> {
-    let mut neighbour = vec![Neighbour::NONE; corners];
+    let mut neighbour = filled(corners, Neighbour::NONE);
     let shared = SharedItems::new(&mut neighbour);
     edges.par_iter().filter(|g| g.len() >= 2).for_each(|g| {
         for pair in g.chunks_exact(2) {

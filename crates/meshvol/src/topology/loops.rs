@@ -10,7 +10,7 @@
 //! check.
 
 use super::CheckError;
-use crate::buckets::{for_each_range_mut, starts};
+use crate::buckets::{filled, for_each_range_mut, par_starts};
 use crate::{Point, Surface};
 use rayon::prelude::*;
 
@@ -42,16 +42,16 @@ impl Loops {
                 }
             })
             .collect();
-        let corners: usize = sizes.iter().map(|&k| k as usize).sum();
-        if u32::try_from(corners).is_err() {
-            return Err(CheckError::TooLarge { corners });
+        let corners = par_starts(faces, |f| sizes[f] as usize);
+        if u32::try_from(corners[faces]).is_err() {
+            return Err(CheckError::TooLarge { corners: corners[faces] });
         }
-        Ok(Loops { start: starts(sizes.into_iter()) })
+        Ok(Loops { start: corners.par_iter().map(|&c| c as u32).collect() })
     }
 
     /// The corners' positions, each face's fan written into its place in parallel.
     pub fn corners<S: Surface + ?Sized>(&self, surface: &S) -> Vec<Point> {
-        let mut corners = vec![[0.0; 3]; self.corner_count()];
+        let mut corners = filled(self.corner_count(), [0.0; 3]);
         for_each_range_mut(&mut corners, self.face_count(), &|f| self.face(f), &|f, corners| {
             let mut next = 0;
             surface.fan(f, |a, b, c| {

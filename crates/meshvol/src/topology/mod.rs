@@ -440,8 +440,9 @@ fn analyse<S: Surface + ?Sized>(
     // 0.54–0.57 s this way against 0.47–0.49 s.)
     let connected = connect(surface, loops, welded, kept, stage);
     let space = options.intersections.then(|| {
-        stage.stage("finding crossings");
+        stage.stage("ordering triangles in space");
         let (triangles, bvh) = crossings::triangles_in_space(loops, &classes.spatial, welded);
+        stage.stage("finding crossings");
         let crossing = crossings::crossing_pairs(&triangles, &bvh);
         (triangles, bvh, crossing)
     });
@@ -493,6 +494,7 @@ fn analyse<S: Surface + ?Sized>(
         Some(Orientation::Mixed)
     };
 
+    stage.stage("building the solid");
     let (flip, flip_shell, shell_of_face) = (&shells.flip, &roles.flip_shell, &shells.of_face);
     let face_flip: Vec<bool> = (0..faces)
         .into_par_iter()
@@ -500,7 +502,7 @@ fn analyse<S: Surface + ?Sized>(
         .collect();
     let cap_flip: Vec<bool> = caps.shell.iter().map(|&s| flip_shell[s as usize]).collect();
     let mut solid_vertices = Vec::with_capacity(welded.positions.len() + caps.centres.len());
-    solid_vertices.extend_from_slice(&welded.positions);
+    solid_vertices.par_extend(welded.positions.par_iter().copied());
     solid_vertices.extend(caps.centres);
     let solid = Solid::new(
         solid::Faces {

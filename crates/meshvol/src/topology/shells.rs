@@ -18,7 +18,7 @@
 
 use super::edges::{neighbours, Edges, Neighbour};
 use super::loops::Loops;
-use crate::buckets::{starts, SharedItems};
+use crate::buckets::{filled, starts, SharedItems};
 use rayon::prelude::*;
 use std::sync::atomic::{
     AtomicU32,
@@ -68,7 +68,7 @@ pub(super) fn shells(loops: &Loops, kept: &[bool], edges: &Edges) -> Shells {
         .collect();
     let before = starts(firsts.into_iter());
     let shell_count = before[blocks] as usize;
-    let mut shell_of_face = vec![u32::MAX; faces];
+    let mut shell_of_face = filled(faces, u32::MAX);
     shell_of_face.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
         let mut next = before[b];
         for (f, s) in block_range(b).zip(out) {

@@ -14,7 +14,7 @@
 //! one vertex). Candidates come from a hashed grid of cells of size 2t: the points
 //! within t of a point lie in the 2 × 2 × 2 cells its box of half-width t touches.
 
-use crate::buckets::{prefetch, Buckets, SharedItems};
+use crate::buckets::{filled, prefetch, Buckets, SharedItems};
 use crate::union_find::UnionFind;
 use crate::Point;
 use hashbrown::HashTable;
@@ -85,7 +85,7 @@ fn exact_representatives(corners: &[Point]) -> Vec<u32> {
     let count = corners.len().div_ceil(SLICE_CORNERS).next_power_of_two().clamp(SLICES, 1 << 16);
     let slice = |c: usize| ((hash[c] >> 32) as usize % count) as u32;
     let slices = Buckets::new(count, corners.len(), |range| range.map(|c| (slice(c), c as u32)));
-    let mut representative = vec![0u32; corners.len()];
+    let mut representative = filled(corners.len(), 0u32);
     let out = SharedItems::new(&mut representative);
     (0..count).into_par_iter().for_each(|k| {
         let items = slices.get(k);
@@ -125,7 +125,7 @@ fn number(representative: &[u32], position: impl Fn(usize) -> Point + Sync) -> W
         (*count, total) = (total, total + *count);
     }
     // The vertex number of each representative, then of every corner through it.
-    let mut corner_vertex = vec![0u32; corners];
+    let mut corner_vertex = filled(corners, 0u32);
     corner_vertex.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
         let mut next = before[b];
         for (c, v) in block_range(b).zip(out) {
