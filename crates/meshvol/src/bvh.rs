@@ -292,13 +292,13 @@ impl Bvh {
         };
         let mut nodes = Vec::with_capacity(2 * items.div_ceil(LEAF_SIZE));
         nodes.push(node(0, items));
-        let (mut next, mut leaf_count) = (0, 0);
+        let (mut next, mut leaf_nodes) = (0, Vec::with_capacity(items.div_ceil(LEAF_SIZE)));
         while next < nodes.len() {
             let (start, end) = (nodes[next].begin as usize, nodes[next].end as usize);
             if end - start <= LEAF_SIZE {
-                nodes[next].start = leaf_count;
+                nodes[next].start = leaf_nodes.len() as u32;
                 nodes[next].count = (end - start) as u32;
-                leaf_count += 1;
+                leaf_nodes.push(next as u32);
             } else {
                 let mid = start + (end - start).div_ceil(LEAF_SIZE).div_ceil(2) * LEAF_SIZE;
                 nodes[next].start = nodes.len() as u32;
@@ -307,19 +307,24 @@ impl Bvh {
             }
             next += 1;
         }
-        // Leaves' boxes (most of the reading) in parallel, then inner nodes bottom-up.
-        let leaves = nodes
-            .par_iter_mut()
-            .filter(|node| node.count > 0)
-            .map(|node| {
+        // Leaves' boxes (most of the reading) in parallel, written in place (a filtered
+        // collect would append them on one thread), then inner nodes bottom-up.
+        let (mut leaves, mut leaf_bounds) = (Vec::new(), Vec::new());
+        leaf_nodes
+            .par_iter()
+            .map(|&n| {
+                let (node, mut bounds) = (&nodes[n as usize], Box32::EMPTY);
                 let mut boxes = [Box32::EMPTY; LEAF_SIZE];
                 for (b, i) in boxes.iter_mut().zip(node.begin as usize..node.end as usize) {
                     *b = box_of(i);
-                    node.bounds.merge(b);
+                    bounds.merge(b);
                 }
-                LeafBoxes::of(&boxes[..node.count as usize])
+                (LeafBoxes::of(&boxes[..node.count as usize]), bounds)
             })
-            .collect();
+            .unzip_into_vecs(&mut leaves, &mut leaf_bounds);
+        for (&n, bounds) in leaf_nodes.iter().zip(leaf_bounds) {
+            nodes[n as usize].bounds = bounds;
+        }
         for n in (0..nodes.len()).rev() {
             let node = &nodes[n];
             if node.count == 0 {

@@ -110,33 +110,29 @@ pub(super) fn shell_volumes<S: Surface + ?Sized>(
     shells: &Shells,
     caps: &Caps,
 ) -> Vec<f64> {
-    let faces = kept.len();
-    let (flip, shell_of_face) = (&shells.flip, &shells.of_face);
+    let flip = &shells.flip;
     // Per-shell signed volume (propagated orientation, holes capped), about a local point.
     let reference = welded.positions.first().copied().unwrap_or([0.0; 3]);
     let six_volume = |a: Point, b: Point, c: Point| {
         let (a, b, c) = (sub(a, reference), sub(b, reference), sub(c, reference));
         dot(a, cross(b, c))
     };
-    let face_six: Vec<f64> = (0..faces)
-        .into_par_iter()
-        .map(|f| {
-            if !kept[f] {
-                return 0.0;
-            }
-            let mut s = 0.0;
-            surface.fan(f, |a, b, c| s += six_volume(a, b, c));
-            if flip[f] {
-                -s
-            } else {
-                s
-            }
-        })
-        .collect();
-    let mut shell_six = vec![CompensatedSum::default(); shells.count];
-    for f in (0..faces).filter(|&f| kept[f]) {
-        shell_six[shell_of_face[f] as usize].add(face_six[f]);
-    }
+    let face_six = |f: usize| {
+        let mut s = 0.0;
+        surface.fan(f, |a, b, c| s += six_volume(a, b, c));
+        if flip[f] {
+            -s
+        } else {
+            s
+        }
+    };
+    // In fixed chunks of faces, merged in order: the same bits at any thread count (a
+    // serial sum over every face did not scale).
+    let mut shell_six = shells.fold_faces(
+        kept,
+        |sum: &mut CompensatedSum, f| sum.add(face_six(f)),
+        CompensatedSum::merge,
+    );
     for (cap, &s) in caps.points.iter().zip(&caps.shell) {
         shell_six[s as usize].add(six_volume(cap[0], cap[1], cap[2]));
     }

@@ -2,6 +2,7 @@
 //! kept or dropped, each possibly reversed, plus cap triangles over holes), or as a
 //! welded [`Mesh`] to write out.
 
+use crate::buckets::par_compact;
 use crate::assembly::Placement;
 use crate::{Mesh, Point, Surface};
 use rayon::prelude::*;
@@ -58,8 +59,7 @@ pub struct Solid {
 impl Solid {
     pub(crate) fn new(faces: Faces, vertices: Vec<Point>, caps: Caps) -> Solid {
         let Faces { kept, flip, shell, corners, start } = faces;
-        let kept_faces: Vec<(usize, bool)> =
-            (0..kept.len()).into_par_iter().filter(|&f| kept[f]).map(|f| (f, flip[f])).collect();
+        let kept_faces = par_compact(kept.len(), |f| kept[f], |f| (f, flip[f]));
         let mut shell_of: Vec<u32> = Vec::with_capacity(kept_faces.len() + caps.shell.len());
         shell_of.par_extend(kept_faces.par_iter().map(|&(f, _)| shell[f]));
         shell_of.extend_from_slice(caps.shell);

@@ -14,7 +14,7 @@
 //! one vertex). Candidates come from a hashed grid of cells of size 2t: the points
 //! within t of a point lie in the 2 × 2 × 2 cells its box of half-width t touches.
 
-use crate::buckets::{filled, prefetch, Buckets, SharedItems};
+use crate::buckets::{filled, par_compact, prefetch, Buckets, SharedItems};
 use crate::union_find::UnionFind;
 use crate::Point;
 use hashbrown::HashTable;
@@ -145,8 +145,7 @@ fn number(representative: &[u32], position: impl Fn(usize) -> Point + Sync) -> W
         }
     });
     // Representatives in corner order are the vertices in number order.
-    let first_corner: Vec<u32> =
-        (0..corners as u32).into_par_iter().filter(|&c| representative[c as usize] == c).collect();
+    let first_corner = par_compact(corners, |c| representative[c] as usize == c, |c| c as u32);
     let positions = first_corner.par_iter().map(|&c| position(c as usize)).collect();
     Welded { corner_vertex, positions, first_corner }
 }
