@@ -43,7 +43,7 @@ pub(super) fn classify(loops: &Loops, welded: &Welded) -> FaceClasses {
     // interior, so they stay out of the spatial triangles.
     // Each face's welded vertices sorted: a repeat is two equal neighbours (O(k log k)
     // for a k-gon; comparing every pair cost 35 s for a 3·10⁵-gon).
-    let mut sorted_ids: Vec<u32> = welded.corner_vertex.clone();
+    let mut sorted_ids: Vec<u32> = welded.corner_vertex.par_iter().copied().collect();
     for_each_range_mut(&mut sorted_ids, faces, &|f| loops.face(f), &|_, ids| ids.sort_unstable());
     let ids_of = |f: u32| &sorted_ids[loops.face(f as usize)];
     let (collapsed, flat): (Vec<bool>, Vec<bool>) = (0..faces)

@@ -2,8 +2,8 @@
 //! kept or dropped, each possibly reversed, plus cap triangles over holes), or as a
 //! welded [`Mesh`] to write out.
 
-use crate::buckets::par_compact;
 use crate::assembly::Placement;
+use crate::buckets::par_compact;
 use crate::{Mesh, Point, Surface};
 use rayon::prelude::*;
 
