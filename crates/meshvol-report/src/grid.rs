@@ -412,7 +412,7 @@ mod tests {
     fn the_total_is_within_the_compensated_bound_of_the_exact_sum_and_the_same_bits_at_any_split() {
         // Planes of 150·130 cells: more than one block each, the last one short.
         let grid = Grid::from_bounds([0.0; 3], [1.0; 3], [7, 150, 130]).unwrap();
-        assert!(150 * 130 > TALLY_BLOCK);
+        const { assert!(150 * 130 > TALLY_BLOCK) };
         let (volumes, exact) = cells(7 * 150 * 130, 0x9e37_79b9_7f4a_7c15);
         let whole = tally(&grid, &volumes, 7);
         let exact = exact as f64 * 2f64.powi(-60);
