@@ -258,12 +258,10 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         warnings,
     };
     let out_kind = args.out.as_deref().and_then(extension);
-    if args.moments {
-        if !matches!(out_kind.as_deref(), Some("npz" | "vti" | "zarr")) {
-            return Err("--moments writes several arrays: give --out cells.npz, cells.vti or \
-                        cells.zarr"
-                .into());
-        }
+    if args.moments && !matches!(out_kind.as_deref(), Some("npz" | "vti" | "zarr")) {
+        return Err("--moments writes several arrays: give --out cells.npz, cells.vti or \
+                    cells.zarr"
+            .into());
     }
     let extras =
         Extras { second_moments: args.second_moments, face_centroids: args.face_centroids };
