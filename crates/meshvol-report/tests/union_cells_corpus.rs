@@ -3,13 +3,15 @@
 //! of itself: the divergence theorem holds in every cell, the cells' volumes are the
 //! union's cell volumes resolved on the measuring grid itself (`union_cell_volumes`, a
 //! second resolution on other columns), and their sum lies in `union`'s certified
-//! interval.
+//! interval. Every file whose check vouches for a solid is measured; the others (shells
+//! overlapping, faces crossing) may be refused, never given wrong.
 
 use meshvol::assembly::Affine;
 use meshvol::grid::{cut_cells, union, union_boundary, union_cell_volumes, Grid};
 use meshvol::surface::Moved;
 use meshvol::topology::{check, CheckOptions};
 use meshvol::Surface;
+use meshvol_report::intersect::prepare;
 use meshvol_report::subject::{Source, Subject};
 use std::path::Path;
 
@@ -41,11 +43,11 @@ fn on_every_real_file_the_unions_cut_cells_hold_the_identities() {
     let mut files: Vec<_> =
         std::fs::read_dir(&corpus).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
-    let (mut measured, mut refused) = (0, Vec::new());
+    let (mut measured, mut vouched_measured, mut refused) = (0, 0, Vec::new());
     for file in files {
         let Ok(loaded) = meshvol_io::read(&file) else { continue };
         let Ok(mesh) = loaded.surface.into_mesh() else { continue };
-        if mesh.face_count() > 20_000 {
+        if mesh.face_count() > 8_000 {
             continue;
         }
         let Ok(checked) = check(&mesh, &CheckOptions::default()) else { continue };
@@ -62,13 +64,19 @@ fn on_every_real_file_the_unions_cut_cells_hold_the_identities() {
         let moved = pose(0.4, centre, size.map(|s| 0.2 * s));
         let bodies = [Moved::new(&solid, None), Moved::new(&solid, Some(moved))];
         let name = file.file_name().unwrap().to_string_lossy().to_string();
+        // The per-cell bounds resolution checks itself against hold for solids: a body
+        // whose shells overlap or whose faces cross may be refused, one the check vouches
+        // for (as the boundary method of `intersect` needs) may not.
+        let vouched = prepare(&subject).is_some();
         let boundary = match union_boundary(&bodies) {
             Ok(b) => b,
             Err(e) => {
+                assert!(!vouched, "{name}: {e}");
                 refused.push(format!("{name}: {e}"));
                 continue;
             }
         };
+        vouched_measured += usize::from(vouched);
         measured += 1;
         // A grid over both with a margin, planes off the bodies' own.
         let (mut lo, mut hi) = (b.min, b.max);
@@ -121,6 +129,6 @@ fn on_every_real_file_the_unions_cut_cells_hold_the_identities() {
         let slack = 1e-9 * u.upper;
         assert!(u.lower - slack <= total && total <= u.upper + slack, "{name}: {total} {u:?}");
     }
-    eprintln!("{measured} files measured; refused: {refused:#?}");
-    assert!(measured >= 60, "{measured} measured, refused: {refused:#?}");
+    eprintln!("{measured} files measured ({vouched_measured} vouched for); refused: {refused:#?}");
+    assert!(vouched_measured >= 50, "{vouched_measured} of {measured}, refused: {refused:#?}");
 }

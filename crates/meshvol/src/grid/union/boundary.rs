@@ -32,12 +32,12 @@
 //! cell's certified bounds) has no boundary to give, so then the whole is refused
 //! ([`UnionError::Unresolved`]): never a boundary with a hole in it.
 
-use super::{counted_columns, setup, Bodies, Rule, UnionError};
+use super::{counted_columns, setup, Bodies, Grid, GridError, Rule, UnionError};
 use crate::grid::intersect::contact::Frame;
 use crate::grid::intersect::turned_properties;
 use crate::grid::union::KeptPieces;
 use crate::progress::{Counter, Progress};
-use crate::surface::Moved;
+use crate::surface::{Moved, Oriented};
 use crate::{mass_properties, MassProperties, Point, Surface};
 use rayon::prelude::*;
 
@@ -152,11 +152,49 @@ fn kept_in_frame<S: Surface>(
             None => return Ok(()),
         },
     };
-    let model = Bodies::new(setup.oriented, Rule::Union, grid, progress)?;
-    let columns = grid.counts[0] * grid.counts[1];
+    let flips: Vec<bool> = properties.iter().map(|p| p.signed_volume < 0.0).collect();
+    let oriented = || bodies.iter().zip(&flips).map(|(b, &f)| Oriented::new(b, f)).collect();
+    let model = Bodies::new(oriented(), Rule::Union, grid, progress)?;
     progress.stage("resolving the union's boundary");
+    let per_column = resolve_columns(&model, frame, progress);
+    // Many columns failing is not a piece with too many sides but bodies that are not
+    // solids (shells overlapping, faces crossing: the cells' bounds do not hold), which
+    // finer columns cannot mend: refused at once.
+    let failing = per_column.iter().filter(|k| k.is_none()).count();
+    if failing > FINER_AT_MOST {
+        return Err(UnionError::Unresolved { columns: failing });
+    }
+    let mut unresolved = 0;
+    for (c, kept) in per_column.into_iter().enumerate() {
+        match kept {
+            Some(kept) => boundary.append(kept),
+            None => match finer(&oriented, &grid, c, frame)? {
+                Some(pieces) => pieces.into_iter().for_each(|kept| boundary.append(kept)),
+                None => unresolved += 1,
+            },
+        }
+    }
+    if unresolved > 0 {
+        return Err(UnionError::Unresolved { columns: unresolved });
+    }
+    Ok(())
+}
+
+/// Columns that fail to resolve are resolved again on finer grids ([`finer`]) when
+/// there are at most this many in a pass.
+const FINER_AT_MOST: usize = 64;
+
+/// Every column of `model`'s grid resolved, with its kept pieces of the triangles counted
+/// in `frame` (`None` where it cannot be resolved), in column order.
+fn resolve_columns<S: Surface>(
+    model: &Bodies<'_, S>,
+    frame: Frame,
+    progress: &dyn Progress,
+) -> Vec<Option<Kept>> {
+    let grid = model.grid;
+    let columns = grid.counts[0] * grid.counts[1];
     let done = Counter::new(progress, columns);
-    let per_column: Vec<Option<Kept>> = (0..columns)
+    (0..columns)
         .into_par_iter()
         .map(|c| {
             let mut kept =
@@ -165,13 +203,36 @@ fn kept_in_frame<S: Surface>(
             done.add(1);
             resolved.map(|_| kept)
         })
-        .collect();
-    let columns = per_column.iter().filter(|k| k.is_none()).count();
-    if columns > 0 {
-        return Err(UnionError::Unresolved { columns });
+        .collect()
+}
+
+/// Column `c` of `grid` resolved again on finer grids over it (its cells cut into r³,
+/// r = 2, 4, 8): smaller pieces are cut by fewer of the other bodies' triangles, so a
+/// piece that needed more than 32 sides in the coarse column fits in the fine ones. The
+/// fine columns' kept pieces, in column order; `None` when even the finest fails.
+fn finer<'a, S: Surface + 'a>(
+    oriented: &impl Fn() -> Vec<Oriented<'a, S>>,
+    grid: &Grid,
+    c: usize,
+    frame: Frame,
+) -> Result<Option<Vec<Kept>>, GridError> {
+    let [_, ny, nz] = grid.counts;
+    let (i, j) = (c / ny, c % ny);
+    let origin = [
+        grid.origin[0] + i as f64 * grid.cell[0],
+        grid.origin[1] + j as f64 * grid.cell[1],
+        grid.origin[2],
+    ];
+    for r in [2, 4, 8] {
+        let cell = grid.cell.map(|h| h / r as f64);
+        let fine = Grid::new(origin, cell, [r, r, nz * r])?;
+        let model = Bodies::new(oriented(), Rule::Union, fine, &())?;
+        let kept: Option<Vec<Kept>> = resolve_columns(&model, frame, &()).into_iter().collect();
+        if kept.is_some() {
+            return Ok(kept);
+        }
     }
-    per_column.into_iter().flatten().for_each(|kept| boundary.append(kept));
-    Ok(())
+    Ok(None)
 }
 
 /// One column's kept pieces of the triangles counted in `frame`, in world coordinates
