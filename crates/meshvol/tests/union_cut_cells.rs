@@ -412,3 +412,45 @@ fn the_same_bits_at_any_thread_count() {
     assert_eq!(one, bits(&at(2)));
     assert_eq!(one, bits(&at(5)));
 }
+
+/// A right prism over a regular `n`-gon of circumradius `r` centred at `(x, y)`, from
+/// `z0` to `z1`.
+fn prism(n: usize, r: f64, [x, y]: [f64; 2], (z0, z1): (f64, f64)) -> Mesh {
+    let angle = |k: usize| 2.0 * std::f64::consts::PI * k as f64 / n as f64;
+    let mut p: Vec<P> =
+        (0..n).map(|k| [x + r * angle(k).cos(), y + r * angle(k).sin(), z0]).collect();
+    p.extend((0..n).map(|k| [x + r * angle(k).cos(), y + r * angle(k).sin(), z1]));
+    let n32 = n as u32;
+    let mut faces: Vec<Vec<u32>> =
+        (0..n32).map(|k| vec![k, (k + 1) % n32, (k + 1) % n32 + n32, k + n32]).collect();
+    faces.push((0..n32).rev().collect());
+    faces.push((n32..2 * n32).collect());
+    polygons(&p, &faces)
+}
+
+#[test]
+fn a_prism_of_many_sides_through_a_face_is_resolved_on_finer_columns() {
+    // The prism's 96 walls cut the box's top face along a 96-gon inside one column of
+    // the boundary's grid: a sub-piece of more sides than resolution holds, so the
+    // column is resolved again on finer ones.
+    let (n, r) = (96, 0.04);
+    let bodies = [cuboid([0.0; 3], [4.0, 4.0, 2.0]), prism(n, r, [2.03, 1.97], (1.0, 3.0))];
+    let boundary = union_boundary(&bodies).unwrap();
+    let turn = 2.0 * std::f64::consts::PI / n as f64;
+    let (plan, perimeter) =
+        (0.5 * n as f64 * r * r * turn.sin(), 2.0 * n as f64 * r * (0.5 * turn).sin());
+    // The box and the prism's part above it; the box's surface less the prism's plan on
+    // its top, the prism's walls above the box and its top.
+    let mp = mass_properties(&boundary);
+    assert!((mp.signed_volume - (32.0 + plan)).abs() < 1e-12, "{}", mp.signed_volume);
+    assert!((mp.area - (64.0 + perimeter)).abs() < 1e-12, "{}", mp.area);
+    let grid = Grid::from_bounds([-0.1, -0.2, -0.15], [4.2, 4.1, 3.3], [7, 9, 8]).unwrap();
+    let c = cut_cells(&boundary, &grid).unwrap();
+    assert!((c.volume.iter().sum::<f64>() - (32.0 + plan)).abs() < 1e-12);
+    assert!((c.boundary_area.iter().sum::<f64>() - (64.0 + perimeter)).abs() < 1e-12);
+    let face = grid.cell[0] * grid.cell[1];
+    for at in cells(&grid) {
+        let d = divergence(&c, at);
+        assert!(d.iter().all(|x| x.abs() < 1e-12 * face), "{at:?}: {d:?}");
+    }
+}
