@@ -28,9 +28,11 @@
 //! # Exactness
 //! Which pieces are kept is decided by exact predicates (a symbolic perturbation for a
 //! ray through an edge); only the cut points are rounded. A column that resolution
-//! cannot settle (a piece cut into more than 32 sides, or resolved volumes outside a
-//! cell's certified bounds) has no boundary to give, so then the whole is refused
-//! ([`UnionError::Unresolved`]): never a boundary with a hole in it.
+//! cannot settle is resolved again on finer columns over it ([`finer`]: a piece cut into
+//! more than 32 sides in the coarse column is smaller, and cut by fewer lines, in the
+//! fine ones). One that still cannot be (or resolved volumes outside a cell's certified
+//! bounds: bodies that are not solids) has no boundary to give, so then the whole is
+//! refused ([`UnionError::Unresolved`]): never a boundary with a hole in it.
 
 use super::{counted_columns, setup, Bodies, Grid, GridError, Rule, UnionError};
 use crate::grid::intersect::contact::Frame;

@@ -141,7 +141,7 @@ pub enum UnionError {
     #[error(transparent)]
     Grid(#[from] GridError),
     /// Exact resolution could not settle some columns ([`union_boundary`]).
-    #[error("the union's boundary could not be resolved in {columns} columns of its grid (a piece cut into more than 32 sides, or volumes outside a cell's bounds), so its cut cells cannot be given")]
+    #[error("the union's boundary could not be resolved in {columns} columns of its grid (volumes outside a cell's bounds, as bodies that are not solids give, or pieces cut into more than 32 sides even on finer columns), so its cut cells cannot be given")]
     Unresolved { columns: usize },
 }
 
