@@ -517,6 +517,17 @@ fn grid_union_moments_write_the_cut_cells_of_the_union() {
     for (x, y) in arrays["volume"].1.iter().zip(&volumes) {
         assert!((x - y).abs() < 1e-12);
     }
+    // A body that is not a solid (two shells overlapping in one file: the cells' bounds
+    // do not hold) has no exact boundary to give: refused, naming why; the volumes alone
+    // are still given.
+    let two = dir.path().join("two.obj");
+    std::fs::write(&two, box_obj(a_lo, a_hi, 1) + &box_obj([1.0; 3], [3.0; 3], 9)).unwrap();
+    let args = ["grid", p(&two), p(&b), "--union", "--cells", "6,6,6"];
+    let out = meshvol(&[&args[..], &["--moments", "--out", p(&npz)]].concat());
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("the union's boundary could not be resolved in"), "{err}");
+    assert!(meshvol(&[&args[..], &["--out", p(&npy)]].concat()).status.success());
     // .vti too (.zarr: `grid_zarr.rs`).
     let vti = dir.path().join("u.vti");
     run(&vti, &["--moments"]);
