@@ -6,10 +6,11 @@ use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol::grid::{
-    cell_volumes_with, cut_cells_extras, union_cell_volumes_with, CutCells, Extras,
+    cell_volumes_with, cut_cells_extras, union_boundary_with, union_cell_volumes_with, CutCells,
+    Extras, Grid, UnionBoundary,
 };
 use meshvol::surface::Joined;
-use meshvol::{mass_properties, Point};
+use meshvol::{mass_properties, Point, Surface};
 use meshvol_io::grid_out::{self, Slice};
 use meshvol_report::grid::{
     check_memory, choose, layer_holding, summary, GridReport, GridRun, Spacing,
@@ -257,29 +258,32 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         warnings,
     };
     let out_kind = args.out.as_deref().and_then(extension);
-    if args.moments {
-        if args.union {
-            return Err("--moments with --union is not available yet: the cut-cell geometry \
-                        is of one surface (the files' solids together)"
-                .into());
-        }
-        if !matches!(out_kind.as_deref(), Some("npz" | "vti" | "zarr")) {
-            return Err("--moments writes several arrays: give --out cells.npz, cells.vti or \
-                        cells.zarr"
-                .into());
-        }
+    if args.moments && !matches!(out_kind.as_deref(), Some("npz" | "vti" | "zarr")) {
+        return Err("--moments writes several arrays: give --out cells.npz, cells.vti or \
+                    cells.zarr"
+            .into());
     }
     let extras =
         Extras { second_moments: args.second_moments, face_centroids: args.face_centroids };
     let zarr = args.out.as_deref().filter(|out| extension(out).as_deref() == Some("zarr"));
     if let Some(out) = zarr {
-        if args.union || args.png.is_some() {
-            return Err("--union and --png need the whole grid in memory: write .npy, .vti or \
-                        .csv with them, not .zarr"
+        if (args.union && !args.moments) || args.png.is_some() {
+            return Err("--union (without --moments) and --png need the whole grid in memory: \
+                        write .npy, .vti or .csv with them, not .zarr"
                 .into());
         }
         let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
-        let report = if args.moments {
+        let report = if args.union {
+            // The union's boundary is measured as the solids' surface is, row by row;
+            // the seconds computing include finding it.
+            let start = Instant::now();
+            let boundary = boundary_of(&bodies, progress)?;
+            let finding = start.elapsed().as_secs_f64();
+            let mut report =
+                zarr::write_cut_cells(&boundary, &grid, out, args.chunks, extras, run, progress)?;
+            report.run.seconds += finding;
+            report
+        } else if args.moments {
             zarr::write_cut_cells(&together, &grid, out, args.chunks, extras, run, progress)?
         } else {
             zarr::write(&together, &grid, out, args.chunks, run, progress)?
@@ -301,14 +305,17 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     progress.stage_all("computing cell volumes");
     let start = Instant::now();
     let mut cut = None;
-    let (volumes, columns_unresolved) = if args.union {
+    let (volumes, columns_unresolved) = if args.union && args.moments {
+        // The cut cells of the union: those of its boundary, the pieces of the solids'
+        // surfaces outside the other solids.
+        let boundary = boundary_of(&bodies, progress)?;
+        cut = Some(cut_cells_of(&boundary, &grid, extras, progress)?);
+        (Vec::new(), 0)
+    } else if args.union {
         let hook = progress.kernel("computing the union's cell volumes".to_string());
         union_cell_volumes_with(&bodies, &grid, &hook).map_err(|e| e.to_string())?
     } else if args.moments {
-        let hook = progress.kernel("computing the cut cells".to_string());
-        let whole = grid.counts.map(|n| 0..n);
-        let cells = cut_cells_extras(&together, &grid, &whole, extras, &hook);
-        cut = Some(cells.map_err(|e| e.to_string())?);
+        cut = Some(cut_cells_of(&together, &grid, extras, progress)?);
         (Vec::new(), 0)
     } else {
         let hook = progress.kernel("computing cell volumes".to_string());
@@ -341,6 +348,25 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     }
     let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
     summary(&grid, volumes, run).in_units(&args.units.options(), &files)
+}
+
+/// The cut cells of `surface` on the whole of `grid`.
+fn cut_cells_of<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    extras: Extras,
+    progress: &Progress,
+) -> Result<CutCells, String> {
+    let hook = progress.kernel("computing the cut cells".to_string());
+    let whole = grid.counts.map(|n| 0..n);
+    cut_cells_extras(surface, grid, &whole, extras, &hook).map_err(|e| e.to_string())
+}
+
+/// The boundary of the union of `bodies` (`union_boundary`): what `--union --moments`
+/// measures.
+fn boundary_of<S: Surface>(bodies: &[S], progress: &Progress) -> Result<UnionBoundary, String> {
+    let hook = progress.kernel("resolving the union's boundary".to_string());
+    union_boundary_with(bodies, &hook).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]

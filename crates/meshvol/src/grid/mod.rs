@@ -48,8 +48,8 @@ pub use intersect::{
 };
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
 pub use union::{
-    union, union_cell_volumes, union_cell_volumes_with, union_with, UnionError, UnionVolume,
-    COPLANAR_TOLERANCE, MAX_DEPTH, STALL,
+    union, union_boundary, union_boundary_with, union_cell_volumes, union_cell_volumes_with,
+    union_with, UnionBoundary, UnionError, UnionVolume, COPLANAR_TOLERANCE, MAX_DEPTH, STALL,
 };
 
 use crate::Point;

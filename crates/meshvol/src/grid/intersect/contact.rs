@@ -35,6 +35,7 @@ use crate::vector::{cross, dot, sub};
 use crate::Point;
 
 use super::moments::{add_piece, Sums};
+use crate::grid::union::KeptPieces;
 
 /// A frame of the boundary pass: the bodies' coordinates turned cyclically so that
 /// one axis of the bodies' own frame is the pass's z.
@@ -68,8 +69,8 @@ impl Frame {
         counted_in(self.back(cross(sub(q, p), sub(r, p)))) == self
     }
 
-    /// A vector of this frame in the bodies' own frame.
-    fn back(self, [a, b, c]: [f64; 3]) -> [f64; 3] {
+    /// A vector (or point) of this frame in the bodies' own frame.
+    pub(crate) fn back(self, [a, b, c]: [f64; 3]) -> [f64; 3] {
         match self {
             Frame::Identity => [a, b, c],
             Frame::XUp => [c, a, b],
@@ -108,11 +109,13 @@ impl BoundarySums {
     pub(crate) fn new(frame: Frame) -> Self {
         BoundarySums { frame, moments: [0.0; 10], area: [0.0; 2], vector: [[0.0; 3]; 2] }
     }
+}
 
+impl KeptPieces for BoundarySums {
     /// Adds a kept piece (`vertices` in grid units; `cell` the grid's cell size) of
     /// `body`'s `triangle` (this frame's coordinates, as oriented); `interface`: it was
     /// kept for lying inside the other body, not on a face the two share.
-    pub(crate) fn add(
+    fn add(
         &mut self,
         body: usize,
         triangle: &[Point; 3],

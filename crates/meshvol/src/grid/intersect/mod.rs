@@ -415,7 +415,7 @@ fn by_grid<S: Surface>(
 /// The mass properties of a body turned into `frame` (a permutation of the axes, so
 /// its box, centroid and inertia are `p`'s with their axes permuted, exactly), without
 /// measuring the turned body again.
-fn turned_properties(p: &MassProperties, frame: Frame) -> MassProperties {
+pub(crate) fn turned_properties(p: &MassProperties, frame: Frame) -> MassProperties {
     let turn = frame.turn().unwrap_or(Affine::IDENTITY);
     MassProperties {
         bounds: p.bounds.map(|b| Bounds { min: turn.apply(b.min), max: turn.apply(b.max) }),

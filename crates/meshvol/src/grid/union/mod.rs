@@ -90,6 +90,7 @@
 //! | refinement of open cells | `refine.rs` |
 //! | bins in plan over a column, for rays and cuts | `plan.rs` |
 //! | exact resolution of open columns | `resolve.rs` |
+//! | the union's boundary: every column's kept pieces, in three frames ([`union_boundary`]) | `boundary.rs` |
 //! | the driver: base grid, levels, the interval, progress; [`union_cell_volumes`] | `mod.rs` |
 //!
 //! # Honesty
@@ -98,6 +99,7 @@
 //! rounding: a column sum carries about `u · (terms)`, and this allowance is some 10⁵
 //! times the largest such error seen in the tests.
 
+mod boundary;
 mod bounds;
 mod column;
 mod plan;
@@ -105,6 +107,8 @@ mod policy;
 mod refine;
 mod resolve;
 
+pub use boundary::{union_boundary, union_boundary_with, UnionBoundary};
+pub(crate) use resolve::KeptPieces;
 pub use resolve::COPLANAR_TOLERANCE;
 
 use super::{Grid, GridError};
@@ -136,6 +140,9 @@ pub enum UnionError {
     NoBodies,
     #[error(transparent)]
     Grid(#[from] GridError),
+    /// Exact resolution could not settle some columns ([`union_boundary`]).
+    #[error("the union's boundary could not be resolved in {columns} columns of its grid (volumes outside a cell's bounds, as bodies that are not solids give, or pieces cut into more than 32 sides even on finer columns), so its cut cells cannot be given")]
+    Unresolved { columns: usize },
 }
 
 /// The union's volume: the certified interval `[lower, upper]`, and how it was found.

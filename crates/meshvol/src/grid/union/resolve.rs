@@ -13,7 +13,6 @@ use crate::grid::cells::{
     cover, finish_column, for_each_piece, sweep_layers, Block, LayerSink, Piece,
 };
 use crate::grid::clip::Polygon;
-use crate::grid::intersect::contact::BoundarySums;
 use crate::vector::{cross, dot, orient2d, orient3d, sub};
 use crate::{Point, Surface};
 
@@ -28,12 +27,12 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         self.exact_column_with(c, None)
     }
 
-    /// [`Self::exact_column`], adding the kept pieces (the boundary of the union or
+    /// [`Self::exact_column`], handing the kept pieces (the boundary of the union or
     /// intersection in the column) to `boundary` where given.
     pub(crate) fn exact_column_with(
         &self,
         c: usize,
-        mut boundary: Option<&mut BoundarySums>,
+        mut boundary: Option<&mut dyn KeptPieces>,
     ) -> Option<(Vec<f64>, usize)> {
         let [_, ny, nz] = self.grid.counts;
         let whole = Block::whole(self.grid.counts);
@@ -138,7 +137,9 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
                             direct: &mut direct,
                             area: &mut area,
                             failed: &mut failed,
-                            boundary: boundary.as_deref_mut(),
+                            // Reborrowed for this piece (an object's lifetime shortens
+                            // only at a coercion, not inside an Option).
+                            boundary: boundary.as_mut().map(|b| &mut **b as &mut dyn KeptPieces),
                         };
                         sweep_layers(piece, piece.range(2), nz, &mut sink);
                     });
@@ -159,6 +160,25 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
         });
         consistent.then_some((direct, resolved))
     }
+}
+
+/// Receives the pieces a column's resolution keeps: what the boundary passes add up
+/// (the intersection's moments and interface,
+/// [`BoundarySums`](crate::grid::intersect::contact::BoundarySums)) or keep (the
+/// union's boundary, [`super::boundary`]).
+pub(crate) trait KeptPieces {
+    /// A kept piece (`vertices` in grid units, in its triangle's winding; `cell` the
+    /// grid's cell size) of `body`'s `triangle` (the column's coordinates, as oriented);
+    /// `interface`: it was kept off every other body's faces, not on a face it shares
+    /// with one.
+    fn add(
+        &mut self,
+        body: usize,
+        triangle: &[Point; 3],
+        vertices: &[Point],
+        cell: [f64; 3],
+        interface: bool,
+    );
 }
 
 /// A triangle of a touching body that meets an open cell.
@@ -334,7 +354,7 @@ struct KeptSink<'s, 'a, S: ?Sized> {
     direct: &'s mut [f64],
     area: &'s mut [f64],
     failed: &'s mut bool,
-    boundary: Option<&'s mut BoundarySums>,
+    boundary: Option<&'s mut dyn KeptPieces>,
 }
 
 impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
