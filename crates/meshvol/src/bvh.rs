@@ -46,22 +46,7 @@ fn morton(x: u64, y: u64, z: u64) -> u64 {
 
 /// The Morton code of each point, on a 2²¹ grid per axis over their box.
 fn morton_codes(points: &[Point]) -> Vec<u64> {
-    let frame = points
-        .par_iter()
-        .fold(
-            || Bounds::EMPTY,
-            |mut b, &c| {
-                b.include(c);
-                b
-            },
-        )
-        .reduce(
-            || Bounds::EMPTY,
-            |mut a, b| {
-                a.merge(&b);
-                a
-            },
-        );
+    let frame = Bounds::of_points(points).unwrap_or(Bounds::EMPTY);
     let size = frame.size();
     points
         .par_iter()

@@ -56,6 +56,7 @@
 use crate::accumulate::{gamma, ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
 use crate::vector::{add, cross, dot, norm, scale, sub};
 use crate::{Point, Surface};
+use rayon::prelude::*;
 use std::ops::{Add, Mul};
 
 /// Faces per chunk of the deterministic parallel reduction.
@@ -90,6 +91,21 @@ impl Bounds {
     pub(crate) fn merge(&mut self, other: &Bounds) {
         self.include(other.min);
         self.include(other.max);
+    }
+
+    /// The box of `points` (`None` for none), reduced in parallel: minima and maxima do
+    /// not depend on the order.
+    pub(crate) fn of_points(points: &[Point]) -> Option<Bounds> {
+        let merged = |mut a: Bounds, b: Bounds| {
+            a.merge(&b);
+            a
+        };
+        let include = |mut b: Bounds, p: &Point| {
+            b.include(*p);
+            b
+        };
+        let b = points.par_iter().fold(|| Bounds::EMPTY, include).reduce(|| Bounds::EMPTY, merged);
+        (!points.is_empty()).then_some(b)
     }
 
     pub fn size(&self) -> Point {

@@ -387,11 +387,7 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     // The corners' positions are needed for welding only (see `loops.rs`); the vertices
     // are at the same positions.
     let exact = weld::exact(&loops.corners(surface));
-    let diagonal = exact.positions.split_first().map_or(0.0, |(&first, rest)| {
-        let mut bounds = Bounds::of(first);
-        rest.iter().for_each(|&p| bounds.include(p));
-        norm(bounds.size())
-    });
+    let diagonal = Bounds::of_points(&exact.positions).map_or(0.0, |b| norm(b.size()));
     Ok(match options.weld {
         Weld::Exact => analyse(surface, &loops, &exact, None, options, stage),
         Weld::Tolerance(t) => {
