@@ -24,7 +24,7 @@
 //! Written here because the general crates (parry's Qbvh, `bvh`) bring their own
 //! vector types and far more than these two queries need.
 
-use crate::buckets::Buckets;
+use crate::buckets::{filled, for_each_range_mut, par_compact, par_starts, Buckets};
 use crate::properties::Bounds;
 use crate::Point;
 use rayon::prelude::*;
@@ -186,7 +186,7 @@ fn bits(mut mask: u32) -> impl Iterator<Item = u32> {
     })
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: Box32,
     /// Leaf: `count` items, whose boxes are `leaves[start]`; inner: `count == 0` and
@@ -230,6 +230,8 @@ impl<F> Walk<'_, F> {
 pub struct Bvh {
     nodes: Vec<Node>,
     leaves: Vec<LeafBoxes>,
+    /// The nodes at depth k are `levels[k]..levels[k + 1]` (breadth-first order).
+    levels: Vec<u32>,
 }
 
 impl Bvh {
@@ -277,24 +279,48 @@ impl Bvh {
         };
         let mut nodes = Vec::with_capacity(2 * items.div_ceil(LEAF_SIZE));
         nodes.push(node(0, items));
-        let (mut next, mut leaf_nodes) = (0, Vec::with_capacity(items.div_ceil(LEAF_SIZE)));
-        while next < nodes.len() {
-            let (start, end) = (nodes[next].begin as usize, nodes[next].end as usize);
-            if end - start <= LEAF_SIZE {
-                nodes[next].start = leaf_nodes.len() as u32;
-                nodes[next].count = (end - start) as u32;
-                leaf_nodes.push(next as u32);
-            } else {
-                let mid = start + (end - start).div_ceil(LEAF_SIZE).div_ceil(2) * LEAF_SIZE;
-                nodes[next].start = nodes.len() as u32;
-                nodes.push(node(start, mid));
-                nodes.push(node(mid, end));
-            }
-            next += 1;
+        // Level by level, each in parallel (a node's children and leaf number from
+        // prefix sums over its level): the same numbering as a breadth-first queue.
+        let splits = |n: &Node| (n.end - n.begin) as usize > LEAF_SIZE;
+        let (mut levels, mut leaf_nodes) = (vec![0u32], Vec::new());
+        while (levels[levels.len() - 1] as usize) < nodes.len() {
+            let (begin, end) = (levels[levels.len() - 1] as usize, nodes.len());
+            levels.push(end as u32);
+            let (children, leaf_rank, next) = {
+                let level = &nodes[begin..end];
+                let children = par_starts(level.len(), |i| 2 * usize::from(splits(&level[i])));
+                let leaf_rank = par_starts(level.len(), |i| usize::from(!splits(&level[i])));
+                let mut next = filled(children[level.len()], node(0, 0));
+                let range = |i: usize| children[i]..children[i + 1];
+                for_each_range_mut(&mut next, level.len(), &range, &|i, out| {
+                    if let [left, right] = out {
+                        let (start, end) = (level[i].begin as usize, level[i].end as usize);
+                        let mid = start + (end - start).div_ceil(LEAF_SIZE).div_ceil(2) * LEAF_SIZE;
+                        (*left, *right) = (node(start, mid), node(mid, end));
+                    }
+                });
+                leaf_nodes.extend(par_compact(
+                    level.len(),
+                    |i| !splits(&level[i]),
+                    |i| (begin + i) as u32,
+                ));
+                (children, leaf_rank, next)
+            };
+            let first_leaf = leaf_nodes.len() - leaf_rank[leaf_rank.len() - 1];
+            nodes[begin..end].par_iter_mut().enumerate().for_each(|(i, n)| {
+                if splits(n) {
+                    n.start = (end + children[i]) as u32;
+                } else {
+                    n.start = (first_leaf + leaf_rank[i]) as u32;
+                    n.count = n.end - n.begin;
+                }
+            });
+            nodes.par_extend(next.par_iter().copied());
         }
         // Leaves' boxes (most of the reading) in parallel, written in place (a filtered
         // collect would append them on one thread), then inner nodes bottom-up.
-        let (mut leaves, mut leaf_bounds) = (Vec::new(), Vec::new());
+        let (mut leaves, mut bounds) = (Vec::new(), filled(nodes.len(), Box32::EMPTY));
+        let mut leaf_bounds = Vec::new();
         leaf_nodes
             .par_iter()
             .map(|&n| {
@@ -307,18 +333,46 @@ impl Bvh {
                 (LeafBoxes::of(&boxes[..node.count as usize]), bounds)
             })
             .unzip_into_vecs(&mut leaves, &mut leaf_bounds);
-        for (&n, bounds) in leaf_nodes.iter().zip(leaf_bounds) {
-            nodes[n as usize].bounds = bounds;
+        for (&n, b) in leaf_nodes.iter().zip(leaf_bounds) {
+            bounds[n as usize] = b;
         }
-        for n in (0..nodes.len()).rev() {
-            let node = &nodes[n];
-            if node.count == 0 {
-                let mut bounds = nodes[node.start as usize].bounds;
-                bounds.merge(&nodes[node.start as usize + 1].bounds);
-                nodes[n].bounds = bounds;
+        let mut bvh = Bvh { nodes, leaves, levels };
+        bvh.bottom_up(&mut bounds, |l, r| {
+            let mut b = *l;
+            b.merge(r);
+            b
+        });
+        bvh.nodes.par_iter_mut().zip(bounds).for_each(|(n, b)| n.bounds = b);
+        bvh
+    }
+
+    /// Sets `values[n] = combine(values[left], values[right])` for every inner node n,
+    /// children before parents: a level at a time, from the deepest, each level in
+    /// parallel when it is large (the same operations in any order: no node reads its
+    /// own level).
+    fn bottom_up<T: Copy + Send + Sync>(
+        &self,
+        values: &mut [T],
+        combine: impl Fn(&T, &T) -> T + Sync,
+    ) {
+        const PARALLEL_LEVEL: usize = 1 << 12;
+        for k in (0..self.levels.len().saturating_sub(1)).rev() {
+            let (begin, end) = (self.levels[k] as usize, self.levels[k + 1] as usize);
+            let (upper, lower) = values.split_at_mut(end);
+            let set = |(i, value): (usize, &mut T)| {
+                let node = &self.nodes[begin + i];
+                if node.count == 0 {
+                    let left = node.start as usize - end;
+                    *value = combine(&lower[left], &lower[left + 1]);
+                }
+            };
+            let level = &mut upper[begin..];
+            if level.len() >= PARALLEL_LEVEL {
+                level.par_iter_mut().enumerate().for_each(set);
+            } else {
+                level.iter_mut().enumerate().for_each(set);
             }
         }
-        Bvh { nodes, leaves }
     }
 
     /// Calls `visit(item)` for every item whose box overlaps `query` (closed boxes:
@@ -391,15 +445,11 @@ impl Bvh {
                 b
             })
             .collect();
-        // Children come after their parent.
-        for n in (0..self.nodes.len()).rev() {
-            let node = &self.nodes[n];
-            if node.count == 0 {
-                let (l, r) = (boxes[node.start as usize], boxes[node.start as usize + 1]);
-                boxes[n].merge(&l);
-                boxes[n].merge(&r);
-            }
-        }
+        self.bottom_up(&mut boxes, |l, r| {
+            let mut b = *l;
+            b.merge(r);
+            b
+        });
         boxes
     }
 
@@ -489,13 +539,7 @@ impl Bvh {
                 }
             })
             .collect();
-        for i in (0..self.nodes.len()).rev() {
-            let n = &self.nodes[i];
-            if n.count == 0 {
-                let (l, r) = (n.start as usize, n.start as usize + 1);
-                shared[i] = common(shared[l], &shared[r]);
-            }
-        }
+        self.bottom_up(&mut shared, |l, r| common(*l, r));
         shared
     }
 
@@ -664,6 +708,54 @@ impl Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The tree as a breadth-first queue builds it, one node at a time: the reference
+    /// for the level-by-level build. (begin, end, start, count) per node and the
+    /// leaves' node numbers in order.
+    fn queue_built(items: usize) -> (Vec<[u32; 4]>, Vec<usize>) {
+        let (mut nodes, mut leaves, mut next) = (vec![[0, items as u32, 0, 0]], Vec::new(), 0);
+        while next < nodes.len() {
+            let [begin, end, ..] = nodes[next].map(|x| x as usize);
+            if end - begin <= LEAF_SIZE {
+                nodes[next][2] = leaves.len() as u32;
+                nodes[next][3] = (end - begin) as u32;
+                leaves.push(next);
+            } else {
+                let mid = begin + (end - begin).div_ceil(LEAF_SIZE).div_ceil(2) * LEAF_SIZE;
+                nodes[next][2] = nodes.len() as u32;
+                nodes.push([begin as u32, mid as u32, 0, 0]);
+                nodes.push([mid as u32, end as u32, 0, 0]);
+            }
+            next += 1;
+        }
+        (nodes, leaves)
+    }
+
+    #[test]
+    fn the_level_by_level_build_numbers_nodes_as_a_queue_and_bounds_hold_their_items() {
+        let item = |i: usize| {
+            let c = [(i * 37 % 101) as f64, (i * 11 % 53) as f64 * 0.5, (i % 7) as f64];
+            Bounds { min: c, max: [c[0] + 1.5, c[1] + 0.25, c[2] + (i % 3) as f64] }
+        };
+        for items in [1, 15, 16, 17, 33, 1000, 70_001] {
+            let (queue, leaves) = queue_built(items);
+            for threads in [1, 2, 5] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let bvh = pool.install(|| Bvh::new(items, |i| Box32::around(&item(i))));
+                let got: Vec<[u32; 4]> =
+                    bvh.nodes.iter().map(|n| [n.begin, n.end, n.start, n.count]).collect();
+                assert_eq!(got, queue, "{items} items, {threads} threads");
+                assert_eq!(bvh.leaves.len(), leaves.len());
+                let boxes = pool.install(|| bvh.refit(item));
+                for (n, node) in bvh.nodes.iter().enumerate() {
+                    let mut union = Bounds::EMPTY;
+                    (node.begin as usize..node.end as usize).for_each(|i| union.merge(&item(i)));
+                    assert_eq!(boxes[n], union, "{items} items: node {n}'s refitted box");
+                    assert_eq!(node.bounds, Box32::around(&union), "{items} items: node {n}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn morton_interleaves_bits() {
