@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{clip, mapped, overlap, XorShift};
+use common::{cells, clip, divergence, mapped, overlap, XorShift};
 use meshvol::grid::{cell_volumes, cut_cells, cut_cells_extras, CutCells, Extras, Grid};
 use meshvol::section::{section, Plane};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
@@ -57,27 +57,6 @@ fn solids() -> Vec<(&'static str, Mesh)> {
         ("torus", turned(&torus(1.0, 0.35, 24, 12), rotation(&mut rng), [0.0; 3])),
         ("two boxes", boxes),
     ]
-}
-
-/// `Σ_faces ± aperture · face area · axis + boundary_vector` for cell `(i, j, k)`.
-fn divergence(c: &CutCells, [i, j, k]: [usize; 3]) -> P {
-    let [nx, ny, nz] = c.grid.counts;
-    let [dx, dy, dz] = c.grid.cell;
-    let ax = |i: usize, j: usize, k: usize| c.aperture[0][(i * ny + j) * nz + k];
-    let ay = |i: usize, j: usize, k: usize| c.aperture[1][(i * (ny + 1) + j) * nz + k];
-    let az = |i: usize, j: usize, k: usize| c.aperture[2][(i * ny + j) * (nz + 1) + k];
-    let _ = nx;
-    let v = c.boundary_vector[c.grid.index([i, j, k])];
-    [
-        (ax(i + 1, j, k) - ax(i, j, k)) * dy * dz + v[0],
-        (ay(i, j + 1, k) - ay(i, j, k)) * dx * dz + v[1],
-        (az(i, j, k + 1) - az(i, j, k)) * dx * dy + v[2],
-    ]
-}
-
-fn cells(grid: &Grid) -> impl Iterator<Item = [usize; 3]> {
-    let [nx, ny, nz] = grid.counts;
-    (0..nx).flat_map(move |i| (0..ny).flat_map(move |j| (0..nz).map(move |k| [i, j, k])))
 }
 
 #[test]

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{mapped, moved, polygons, XorShift};
+use common::{cells, divergence, mapped, moved, polygons, XorShift};
 use meshvol::grid::{
     cut_cells, cut_cells_extras, union, union_boundary, union_cell_volumes, CutCells, Extras, Grid,
 };
@@ -15,26 +15,6 @@ use meshvol::shapes::{cuboid, uv_sphere};
 use meshvol::{mass_properties, Mesh, Surface};
 
 type P = [f64; 3];
-
-/// `Σ_faces ± aperture · face area · axis + boundary_vector` for cell `(i, j, k)`.
-fn divergence(c: &CutCells, [i, j, k]: [usize; 3]) -> P {
-    let [_, ny, nz] = c.grid.counts;
-    let [dx, dy, dz] = c.grid.cell;
-    let ax = |i: usize, j: usize, k: usize| c.aperture[0][(i * ny + j) * nz + k];
-    let ay = |i: usize, j: usize, k: usize| c.aperture[1][(i * (ny + 1) + j) * nz + k];
-    let az = |i: usize, j: usize, k: usize| c.aperture[2][(i * ny + j) * (nz + 1) + k];
-    let v = c.boundary_vector[c.grid.index([i, j, k])];
-    [
-        (ax(i + 1, j, k) - ax(i, j, k)) * dy * dz + v[0],
-        (ay(i, j + 1, k) - ay(i, j, k)) * dx * dz + v[1],
-        (az(i, j, k + 1) - az(i, j, k)) * dx * dy + v[2],
-    ]
-}
-
-fn cells(grid: &Grid) -> impl Iterator<Item = [usize; 3]> {
-    let [nx, ny, nz] = grid.counts;
-    (0..nx).flat_map(move |i| (0..ny).flat_map(move |j| (0..nz).map(move |k| [i, j, k])))
-}
 
 /// The union's cut cells on `grid`, with both extras.
 fn union_cells<S: Surface>(bodies: &[S], grid: &Grid) -> CutCells {

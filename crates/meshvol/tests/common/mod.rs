@@ -6,6 +6,7 @@
 #[path = "../../src/test_rng.rs"]
 mod test_rng;
 
+use meshvol::grid::{CutCells, Grid};
 use meshvol::shapes::cuboid;
 use meshvol::Mesh;
 pub(crate) use test_rng::XorShift;
@@ -66,4 +67,26 @@ pub fn clip<const D: usize>(poly: Vec<[f64; D]>, d: usize, lo: f64, hi: f64) -> 
 /// The overlap of [a0, a1] and [b0, b1] (empty: lo ≥ hi).
 pub fn overlap(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
     (a.0.max(b.0), a.1.min(b.1))
+}
+
+/// `Σ_faces ± aperture · face area · axis + boundary_vector` for cell `(i, j, k)` of cut
+/// cells: zero (to rounding) by the divergence theorem on the cut cell.
+pub fn divergence(c: &CutCells, [i, j, k]: [usize; 3]) -> [f64; 3] {
+    let [_, ny, nz] = c.grid.counts;
+    let [dx, dy, dz] = c.grid.cell;
+    let ax = |i: usize, j: usize, k: usize| c.aperture[0][(i * ny + j) * nz + k];
+    let ay = |i: usize, j: usize, k: usize| c.aperture[1][(i * (ny + 1) + j) * nz + k];
+    let az = |i: usize, j: usize, k: usize| c.aperture[2][(i * ny + j) * (nz + 1) + k];
+    let v = c.boundary_vector[c.grid.index([i, j, k])];
+    [
+        (ax(i + 1, j, k) - ax(i, j, k)) * dy * dz + v[0],
+        (ay(i, j + 1, k) - ay(i, j, k)) * dx * dz + v[1],
+        (az(i, j, k + 1) - az(i, j, k)) * dx * dy + v[2],
+    ]
+}
+
+/// Every cell `[i, j, k]` of `grid`, in C order.
+pub fn cells(grid: &Grid) -> impl Iterator<Item = [usize; 3]> {
+    let [nx, ny, nz] = grid.counts;
+    (0..nx).flat_map(move |i| (0..ny).flat_map(move |j| (0..nz).map(move |k| [i, j, k])))
 }
