@@ -180,7 +180,8 @@ pub fn prepare<S: Surface + Sync>(s: &Subject<'_, S>) -> Option<Body> {
         && check.overlapping_shells.is_empty()
         && check.non_manifold_edges == 0
         && check.double_wall_faces == 0;
-    simple.then(|| Body::new(&s.whole().surface))
+    // The check's solid (as `whole()` measures it), from the check's own weld.
+    simple.then(|| Body::of_solid(check, s.surface))
 }
 
 /// [`intersect_posed`] with the bodies already prepared ([`prepare`]; `None`: measured
