@@ -163,8 +163,18 @@ pub fn intersect_posed<S: Surface + Sync>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<IntersectReport, String> {
-    let bodies = [prepare(a), prepare(b)];
+    let bodies = prepare_pair(a, b);
     intersect_prepared(a, b, [bodies[0].as_ref(), bodies[1].as_ref()], poses, tolerance, progress)
+}
+
+/// [`prepare`] of two subjects side by side (each body the same whichever thread
+/// prepares it).
+pub fn prepare_pair<S: Surface + Sync>(
+    a: &Subject<'_, S>,
+    b: &Subject<'_, S>,
+) -> [Option<Body>; 2] {
+    let (a, b) = rayon::join(|| prepare(a), || prepare(b));
+    [a, b]
 }
 
 /// A subject's checked solid prepared for the boundary method ([`Body`]), when its

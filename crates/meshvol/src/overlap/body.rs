@@ -3,12 +3,12 @@
 //! graph for the inside/outside walk, and a hierarchy of its triangles, whose shape
 //! every pose reuses (its boxes refitted to the placed triangles).
 
+use super::edges::{edge_table, vertex_graph, EdgeTable};
 use crate::accumulate::UNIT_ROUNDOFF;
 use crate::assembly::Affine;
 use crate::bvh::{Box32, Bvh};
 use crate::properties::Bounds;
 use crate::topology::{weld, Check};
-use super::edges::{edge_table, vertex_graph, EdgeTable};
 use crate::vector::{cross, norm, orient2d, sub};
 use crate::{mass_properties, MassProperties, Point, Surface};
 use rayon::prelude::*;
@@ -89,11 +89,7 @@ impl Body {
     /// The body of welded triangles (`points` numbered in order of first use, at +0
     /// rather than −0), whose faces are those triangles in order; `properties`, when
     /// given, are those of the faces (otherwise measured here from the triangles).
-    fn welded(
-        points: Vec<Point>,
-        raw: Vec<[u32; 3]>,
-        properties: Option<MassProperties>,
-    ) -> Body {
+    fn welded(points: Vec<Point>, raw: Vec<[u32; 3]>, properties: Option<MassProperties>) -> Body {
         let properties = properties
             .unwrap_or_else(|| mass_properties(&Triangles { points: &points, triangles: &raw }));
         let corners_of = |t: &[u32; 3]| t.map(|i| points[i as usize]);

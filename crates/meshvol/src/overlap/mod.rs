@@ -195,4 +195,6 @@ fn measure(a: &Placed, b: &Placed, properties: [MassProperties; 2]) -> Result<Ov
 }
 
 #[cfg(test)]
+mod body_tests;
+#[cfg(test)]
 mod tests;
