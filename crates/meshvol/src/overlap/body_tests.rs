@@ -30,9 +30,10 @@ fn soup(mesh: &Mesh) -> Mesh {
     Mesh::from_triangles(positions, ids).unwrap()
 }
 
-/// Meshes whose checked solid is exactly welded triangles (the check's weld is taken)
-/// and, last, some whose is not (the body is welded from scratch).
-fn meshes() -> (Vec<(&'static str, Mesh)>, Vec<(&'static str, Mesh, Weld)>) {
+/// Meshes whose checked solid is exactly welded triangles (the check's weld is taken:
+/// `true`) and, last, some whose is not (the body is welded from scratch), with the
+/// weld to check them with.
+fn cases() -> Vec<(&'static str, Mesh, Weld, bool)> {
     let sphere = uv_sphere(1.0, 24, 12).triangulated();
     // A soup with some zeros written as −0: one point to the weld either way.
     let mut signed = soup(&cuboid([-1.0, 0.0, -1.0], [1.0, 2.0, 0.0]));
@@ -56,39 +57,34 @@ fn meshes() -> (Vec<(&'static str, Mesh)>, Vec<(&'static str, Mesh, Weld)>) {
     let with_copy = Mesh::from_triangles(sphere.positions().to_vec(), doubled).unwrap();
     let inner = uv_sphere(0.5, 16, 8).triangulated();
     let hollow = Mesh::concatenate(&[inner, sphere.clone()]);
-    let exact = vec![
-        ("sphere", sphere.clone()),
-        ("soup with -0", signed),
-        ("mixed winding", mixed),
-        ("a copy of a face", with_copy),
-        ("hollow", hollow),
-        ("sphere soup", soup(&sphere)),
-    ];
-    // Quads; a hole (a cap); welded within a tolerance.
     let crate::Faces::Triangles(t) = sphere.faces() else { unreachable!() };
     let open = Mesh::from_triangles(sphere.positions().to_vec(), t[1..].to_vec()).unwrap();
-    let other = vec![
-        ("quads", uv_sphere(1.0, 24, 12), Weld::Auto),
-        ("open", open, Weld::Auto),
-        ("tolerance", sphere, Weld::Tolerance(1e-12)),
-    ];
-    (exact, other)
+    vec![
+        ("sphere", sphere.clone(), Weld::Auto, true),
+        ("soup with -0", signed, Weld::Auto, true),
+        ("mixed winding", mixed, Weld::Auto, true),
+        ("a copy of a face", with_copy, Weld::Auto, true),
+        ("hollow", hollow, Weld::Auto, true),
+        ("sphere soup", soup(&sphere), Weld::Auto, true),
+        // Quads; a hole (a cap); welded within a tolerance.
+        ("quads", uv_sphere(1.0, 24, 12), Weld::Auto, false),
+        ("open", open, Weld::Auto, false),
+        ("tolerance", sphere, Weld::Tolerance(1e-12), false),
+    ]
 }
 
 #[test]
 fn a_body_from_the_check_is_the_body_welded_from_its_solid_bit_for_bit() {
-    let (exact, other) = meshes();
-    let cases = exact.iter().map(|(n, m)| (n, m, Weld::Auto, true));
-    for (name, mesh, weld, taken) in cases.chain(other.iter().map(|(n, m, w)| (n, m, *w, false))) {
+    for (name, mesh, weld, taken) in cases() {
         let options = CheckOptions { weld, ..CheckOptions::default() };
-        let checked = check(mesh, &options).unwrap();
+        let checked = check(&mesh, &options).unwrap();
         assert_eq!(checked.solid_triangles().is_some(), taken, "{name}");
-        let scratch = bits(&Body::new(&checked.solid(mesh)));
+        let scratch = bits(&Body::new(&checked.solid(&mesh)));
         for threads in [1, 2, 5] {
-            let from_check = on_threads(threads, || Body::of_solid(&checked, mesh));
+            let from_check = on_threads(threads, || Body::of_solid(&checked, &mesh));
             assert_eq!(bits(&from_check), scratch, "{name}, {threads} threads");
         }
-        assert_eq!(bits(&on_threads(1, || Body::new(&checked.solid(mesh)))), scratch, "{name}");
+        assert_eq!(bits(&on_threads(1, || Body::new(&checked.solid(&mesh)))), scratch, "{name}");
     }
 }
 

@@ -54,8 +54,8 @@ pub(super) fn edge_table(triangles: &[[u32; 3]], flat: &[bool], vertices: usize)
         .with_min_len(1024)
         .map(|low| {
             let mut unbalanced = 0;
-            let mut id = first_edge[low] as usize;
-            for run in by_low.get(low).chunk_by(|p, q| p.0 == q.0) {
+            let runs = by_low.get(low).chunk_by(|p, q| p.0 == q.0);
+            for (id, run) in (first_edge[low] as usize..).zip(runs) {
                 let mut balance = 0i32;
                 let mut with_area = None;
                 for &(_, corner) in run {
@@ -73,7 +73,6 @@ pub(super) fn edge_table(triangles: &[[u32; 3]], flat: &[bool], vertices: usize)
                     owner_out.write(id, with_area.unwrap_or(run[0].1 / 3));
                 }
                 unbalanced += usize::from(balance != 0);
-                id += 1;
             }
             unbalanced
         })
