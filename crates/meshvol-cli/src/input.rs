@@ -76,9 +76,6 @@ pub struct Progress {
     quiet: bool,
     /// With `--timings`: the stages of the current input.
     clock: Option<Mutex<Clock>>,
-    /// Whether stages are not timed one by one (inputs worked on side by side:
-    /// [`Progress::side_by_side`]).
-    untimed: AtomicBool,
 }
 
 /// The stages of one input as they pass: every stage a command or kernel names ends
@@ -125,7 +122,7 @@ impl Progress {
         let clock = TIMINGS
             .load(Ordering::Relaxed)
             .then(|| Mutex::new(Clock { done: Vec::new(), current: None }));
-        Progress { bar, finished, quiet, clock, untimed: AtomicBool::new(false) }
+        Progress { bar, finished, quiet, clock }
     }
 
     /// Says what is being done to which file.
@@ -144,21 +141,8 @@ impl Progress {
         }
     }
 
-    /// Runs `f`, which works on several inputs at once (on several threads), timed as
-    /// one stage `what`: their stages, interleaved, would each end another's.
-    pub fn side_by_side<T>(&self, what: &str, f: impl FnOnce() -> T) -> T {
-        self.stage_all(what);
-        self.untimed.store(true, Ordering::Relaxed);
-        let result = f();
-        self.untimed.store(false, Ordering::Relaxed);
-        result
-    }
-
     /// With `--timings`, ends the current stage and starts `stage`.
     fn time(&self, stage: &str) {
-        if self.untimed.load(Ordering::Relaxed) {
-            return;
-        }
         if let Some(clock) = &self.clock {
             clock.lock().unwrap_or_else(|e| e.into_inner()).start(stage);
         }

@@ -58,16 +58,11 @@ pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
         return ExitCode::from(2);
     }
     driver::once(&files, output, |progress| {
-        // Both files read and checked side by side: each check is the same on any thread.
-        let read = |path: &PathBuf| {
-            let input = solid::read(path, args.solid.check(), progress);
+        let mut inputs = Vec::new();
+        for path in &files.files {
+            inputs.push(solid::read(path, args.solid.check(), progress)?);
             progress.done(path);
-            input
-        };
-        let (a, b) = progress.side_by_side("reading and checking", || {
-            rayon::join(|| read(&files.files[0]), || read(&files.files[1]))
-        });
-        let inputs = [a?, b?];
+        }
         let subjects = solid::subjects(&inputs);
         progress.stage_all("preparing the bodies");
         let bodies = prepare_pair(&subjects[0], &subjects[1]);
