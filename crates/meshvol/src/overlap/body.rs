@@ -2,6 +2,15 @@
 //! equality of coordinates, its edges with the triangle that tests each, its vertex
 //! graph for the inside/outside walk, and a hierarchy of its triangles, whose shape
 //! every pose reuses (its boxes refitted to the placed triangles).
+//!
+//! A checked solid that is exactly welded triangles (no tolerance, no caps, every face
+//! a triangle) already holds the weld: [`Body::of_solid`] renumbers the check's vertices
+//! in order of first use, which is the numbering welding the corners again would give,
+//! so the body is the same bit for bit without a second weld. Its mass properties are
+//! summed over the welded triangles through the indexed path, four triangles a SIMD
+//! step, the same bits as the scalar loop over those triangles. (On two 1M-triangle spheres,
+//! the weld, the serial edge table and the scalar mass properties were each about a
+//! third of the preparation.)
 
 use super::edges::{edge_table, vertex_graph, EdgeTable};
 use crate::accumulate::UNIT_ROUNDOFF;
