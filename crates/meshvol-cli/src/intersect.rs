@@ -7,7 +7,8 @@ use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol::overlap::Body;
-use meshvol_report::intersect::{intersect_prepared, overlapping_pairs, prepare};
+use meshvol_report::intersect::{intersect_prepared, overlapping_pairs, prepare, prepare_pair};
+use rayon::prelude::*;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -64,7 +65,7 @@ pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
         }
         let subjects = solid::subjects(&inputs);
         progress.stage_all("preparing the bodies");
-        let bodies = [prepare(&subjects[0]), prepare(&subjects[1])];
+        let bodies = prepare_pair(&subjects[0], &subjects[1]);
         progress.stage_all("measuring");
         let hook = progress.kernel("measuring the intersection".to_string());
         let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
@@ -99,17 +100,17 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
         driver.fail(&names.join(", "), &error);
         return driver.finish();
     }
-    // Each body prepared for the boundary method once, and only if it is in a pair.
+    // Each body prepared for the boundary method once, and only if it is in a pair, in
+    // parallel (each body the same whichever thread prepares it).
     driver.progress.stage_all("preparing the bodies");
-    let mut bodies: Vec<Option<Option<Body>>> = vec![None; subjects.len()];
-    for &(i, j) in &pairs {
-        for k in [i, j] {
-            if bodies[k].is_none() {
-                bodies[k] = Some(prepare(&subjects[k]));
-            }
-        }
-    }
-    let body = |k: usize| bodies[k].as_ref().and_then(Option::as_ref);
+    let mut in_pair = vec![false; subjects.len()];
+    pairs.iter().for_each(|&(i, j)| (in_pair[i], in_pair[j]) = (true, true));
+    let bodies: Vec<Option<Body>> = subjects
+        .par_iter()
+        .zip(&in_pair)
+        .map(|(s, &needed)| if needed { prepare(s) } else { None })
+        .collect();
+    let body = |k: usize| bodies[k].as_ref();
     driver.progress.stage_all("measuring");
     for (i, j) in pairs {
         if driver.closed() {

@@ -163,8 +163,18 @@ pub fn intersect_posed<S: Surface + Sync>(
     tolerance: f64,
     progress: &dyn Progress,
 ) -> Result<IntersectReport, String> {
-    let bodies = [prepare(a), prepare(b)];
+    let bodies = prepare_pair(a, b);
     intersect_prepared(a, b, [bodies[0].as_ref(), bodies[1].as_ref()], poses, tolerance, progress)
+}
+
+/// [`prepare`] of two subjects side by side (each body the same whichever thread
+/// prepares it).
+pub fn prepare_pair<S: Surface + Sync>(
+    a: &Subject<'_, S>,
+    b: &Subject<'_, S>,
+) -> [Option<Body>; 2] {
+    let (a, b) = rayon::join(|| prepare(a), || prepare(b));
+    [a, b]
 }
 
 /// A subject's checked solid prepared for the boundary method ([`Body`]), when its
@@ -180,7 +190,8 @@ pub fn prepare<S: Surface + Sync>(s: &Subject<'_, S>) -> Option<Body> {
         && check.overlapping_shells.is_empty()
         && check.non_manifold_edges == 0
         && check.double_wall_faces == 0;
-    simple.then(|| Body::new(&s.whole().surface))
+    // The check's solid (as `whole()` measures it), from the check's own weld.
+    simple.then(|| Body::of_solid(check, s.surface))
 }
 
 /// [`intersect_posed`] with the bodies already prepared ([`prepare`]; `None`: measured

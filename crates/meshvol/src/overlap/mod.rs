@@ -11,7 +11,7 @@
 //!
 //! | stage | file | what |
 //! |---|---|---|
-//! | prepare (once per body) | [`body`] | weld by exact coordinates, edges, vertex graph, box hierarchy in the body's own frame |
+//! | prepare (once per body) | [`body`], [`edges`] | weld by exact coordinates (or take the check's weld), edges, vertex graph, box hierarchy in the body's own frame |
 //! | 1. crossings | [`pairs`] | pairs of faces whose boxes meet; exact tests of which edges cross which faces; the seams (pieces of the crossing curve), oriented |
 //! | 2. inside points | [`regions`] | insideness carried along edges, flipping at crossings |
 //! | 3. faces | [`regions`] | each face's region inside the other, from its seams and the inside pieces of its edges, integrated as a signed fan |
@@ -32,6 +32,7 @@
 //! last from the check.
 
 mod body;
+mod edges;
 mod pairs;
 mod regions;
 
@@ -193,5 +194,7 @@ fn measure(a: &Placed, b: &Placed, properties: [MassProperties; 2]) -> Result<Ov
     })
 }
 
+#[cfg(test)]
+mod body_tests;
 #[cfg(test)]
 mod tests;

@@ -273,6 +273,12 @@ impl Check {
         self.solid.view(surface)
     }
 
+    /// The solid as welded triangles when it is exactly that (see [`Solid::triangles`]):
+    /// the vertices, and each face of [`Check::solid`] as its corners' vertex ids.
+    pub(crate) fn solid_triangles(&self) -> Option<(&[crate::Point], Vec<[u32; 3]>)> {
+        self.solid.triangles()
+    }
+
     /// The solid as a welded mesh, ready to write: shells turned outward (cavities
     /// inward), collapsed and duplicate faces dropped, and, with `with_caps`, holes
     /// capped.
@@ -510,6 +516,7 @@ fn analyse<S: Surface + ?Sized>(
         },
         solid_vertices,
         solid::Caps { points: caps.points, ids: caps.ids, flip: &cap_flip, shell: &caps.shell },
+        tolerance.is_none(),
     );
 
     let count = |flags: &[bool]| flags.par_iter().filter(|&&f| f).count();

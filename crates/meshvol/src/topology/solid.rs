@@ -54,10 +54,16 @@ pub struct Solid {
     corners: Vec<u32>,
     start: Vec<usize>,
     cap_ids: Vec<[u32; 3]>,
+    /// Whether `vertices` are the checked surface's corners welded exactly: one vertex
+    /// per distinct position, at each of its corners' positions (up to the sign of
+    /// zero). Not so when welded within a tolerance, or put together from an
+    /// assembly's parts (a transform may round two of a part's vertices to one point).
+    exact: bool,
 }
 
 impl Solid {
-    pub(crate) fn new(faces: Faces, vertices: Vec<Point>, caps: Caps) -> Solid {
+    /// `exact`: `vertices` weld the corners exactly (see [`Solid::triangles`]).
+    pub(crate) fn new(faces: Faces, vertices: Vec<Point>, caps: Caps, exact: bool) -> Solid {
         let Faces { kept, flip, shell, corners, start } = faces;
         let kept_faces = par_compact(kept.len(), |f| kept[f], |f| (f, flip[f]));
         let mut shell_of: Vec<u32> = Vec::with_capacity(kept_faces.len() + caps.shell.len());
@@ -73,7 +79,31 @@ impl Solid {
             corners,
             start,
             cap_ids: caps.ids.into_iter().zip(caps.flip).map(|(c, &f)| turn(c, f)).collect(),
+            exact,
         }
+    }
+
+    /// The solid as welded triangles, when it is exactly that: the vertices, and each
+    /// face as the ids of its corners, in the order and winding of [`SolidView`]'s
+    /// triangles (a reversed face (a, b, c) as (a, c, b)). `None` unless the weld was
+    /// exact, every kept face a triangle and no hole capped (a cap's centre is a new
+    /// point, which could fall on a vertex).
+    pub(crate) fn triangles(&self) -> Option<(&[Point], Vec<[u32; 3]>)> {
+        let start = &self.start;
+        let fit = self.exact
+            && self.caps.is_empty()
+            && self.faces.par_iter().all(|&(f, _)| start[f + 1] - start[f] == 3);
+        fit.then(|| {
+            let triangles = self
+                .faces
+                .par_iter()
+                .map(|&(f, reversed)| {
+                    let c = &self.corners[start[f]..start[f] + 3];
+                    turn([c[0], c[1], c[2]], reversed)
+                })
+                .collect();
+            (&self.vertices[..], triangles)
+        })
     }
 
     /// The solid as a welded mesh (unused vertices left out), with or without the caps.
