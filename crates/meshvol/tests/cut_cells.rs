@@ -5,24 +5,13 @@
 
 mod common;
 
-use common::{cells, clip, divergence, mapped, overlap, XorShift};
+use common::{cells, clip, divergence, mapped, overlap, rotation, XorShift};
 use meshvol::grid::{cell_volumes, cut_cells, cut_cells_extras, CutCells, Extras, Grid};
 use meshvol::section::{section, Plane};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
 use meshvol::{mass_properties, Mesh};
 
 type P = [f64; 3];
-
-fn rotation(rng: &mut XorShift) -> [[f64; 3]; 3] {
-    let q = [0; 4].map(|_| rng.unit() - 0.5);
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / n);
-    [
-        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
-    ]
-}
 
 fn turned(mesh: &Mesh, r: [[f64; 3]; 3], shift: P) -> Mesh {
     mapped(mesh, |p| [0, 1, 2].map(|i| (0..3).map(|j| r[i][j] * p[j]).sum::<f64>() + shift[i]))

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{cells, divergence, mapped, moved, polygons, XorShift};
+use common::{cells, divergence, mapped, moved, polygons, rotation, XorShift};
 use meshvol::grid::{
     cut_cells, cut_cells_extras, union, union_boundary, union_cell_volumes, CutCells, Extras, Grid,
 };
@@ -317,17 +317,6 @@ fn a_cube_and_its_moved_copy_against_their_union_written_by_hand() {
             }
         }
     }
-}
-
-fn rotation(rng: &mut XorShift) -> [[f64; 3]; 3] {
-    let q = [0; 4].map(|_| rng.unit() - 0.5);
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / n);
-    [
-        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
-    ]
 }
 
 #[test]

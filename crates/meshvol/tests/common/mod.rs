@@ -90,3 +90,15 @@ pub fn cells(grid: &Grid) -> impl Iterator<Item = [usize; 3]> {
     let [nx, ny, nz] = grid.counts;
     (0..nx).flat_map(move |i| (0..ny).flat_map(move |j| (0..nz).map(move |k| [i, j, k])))
 }
+
+/// A random rotation: the matrix of a uniformly drawn unit quaternion's direction.
+pub fn rotation(rng: &mut XorShift) -> [[f64; 3]; 3] {
+    let q = [0; 4].map(|_| rng.unit() - 0.5);
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let [w, x, y, z] = q.map(|c| c / n);
+    [
+        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+    ]
+}
