@@ -114,14 +114,6 @@ impl Assembly {
     }
 }
 
-/// The bounds of a part's vertices (used or not); `None` for a part without vertices.
-pub(crate) fn part_bounds(part: &Mesh) -> Option<Bounds> {
-    let (first, rest) = part.positions().split_first()?;
-    let mut b = Bounds::of(*first);
-    rest.iter().for_each(|&p| b.include(p));
-    Some(b)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -115,7 +115,7 @@ impl Body {
         drop(raw);
         let flat: Vec<bool> = triangles.par_iter().map(|t| collinear(corners_of(t))).collect();
         let bvh = Bvh::new(triangles.len(), |k| Box32::around(&box_of(corners_of(&triangles[k]))));
-        let bounds = bounds_of(&points);
+        let bounds = Bounds::of_points(&points);
         // Fixed chunks summed in order: the same bits at any thread count.
         let sums: Vec<(f64, f64)> = triangles
             .par_chunks(4096)
@@ -211,14 +211,6 @@ pub(super) fn box_of(t: [Point; 3]) -> Bounds {
     b.include(t[1]);
     b.include(t[2]);
     b
-}
-
-/// The box of `points`; `None` for none.
-pub(super) fn bounds_of(points: &[Point]) -> Option<Bounds> {
-    let (first, rest) = points.split_first()?;
-    let mut b = Bounds::of(*first);
-    rest.iter().for_each(|p| b.include(*p));
-    Some(b)
 }
 
 /// Whether the three points lie on one line, exactly: every projection onto a

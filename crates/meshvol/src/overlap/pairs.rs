@@ -10,7 +10,7 @@
 //! plane, an edge through the other's edge, faces in one plane) is a position the
 //! method does not settle: the whole query reports [`Degenerate`].
 
-use super::body::{bounds_of, box_of, Body};
+use super::body::{box_of, Body};
 use crate::accumulate::UNIT_ROUNDOFF;
 use crate::assembly::Affine;
 use crate::properties::Bounds;
@@ -61,7 +61,7 @@ impl<'a> Placed<'a> {
         } else {
             body.points.iter().map(|&p| add(moved(p), shift)).collect()
         };
-        let bounds = bounds_of(&world);
+        let bounds = Bounds::of_points(&world);
         let largest = |b: Option<Bounds>| {
             b.map_or(0.0, |b| b.min.iter().chain(&b.max).fold(0.0f64, |m, x| m.max(x.abs())))
         };

@@ -18,7 +18,7 @@ use super::{
     check, check_in_stages, solid::Solid, Check, CheckError, CheckOptions, Orientation,
     StageReport, Weld,
 };
-use crate::assembly::{part_bounds, Assembly};
+use crate::assembly::Assembly;
 use crate::bvh::Bvh;
 use crate::{Bounds, Surface};
 use rayon::prelude::*;
@@ -72,7 +72,8 @@ fn from_parts(
 
 /// Whether no two copies' boxes meet (touching counts as meeting).
 fn copies_apart(assembly: &Assembly) -> bool {
-    let part_boxes: Vec<Option<Bounds>> = assembly.parts.iter().map(part_bounds).collect();
+    let part_boxes: Vec<Option<Bounds>> =
+        assembly.parts.iter().map(|p| Bounds::of_points(p.positions())).collect();
     let boxes: Vec<Bounds> = assembly
         .placements
         .iter()
