@@ -4,13 +4,14 @@
 //! (an open box the check caps, a box with a T-junction, touching copies), their
 //! intervals must meet and their moments and interface agree.
 
+mod common;
+
 use meshvol::assembly::Affine;
 use meshvol::shapes::{cuboid, uv_sphere};
 use meshvol::topology::{check, CheckOptions};
 use meshvol::{Faces, Mesh};
 use meshvol_report::intersect::{intersect_prepared, prepare, IntersectReport};
 use meshvol_report::subject::{Source, Subject};
-use std::path::Path;
 
 /// Both methods on `mesh` against itself moved by `pose`: (boundary, grid).
 fn both(mesh: &Mesh, pose: Affine) -> Option<(IntersectReport, IntersectReport)> {
@@ -123,15 +124,7 @@ fn dirty_constructions_give_meeting_intervals() {
 
 #[test]
 fn on_every_real_file_the_two_methods_meet() {
-    let corpus =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/trimesh-models");
-    if !corpus.exists() {
-        eprintln!("corpus not found at {}, skipping", corpus.display());
-        return;
-    }
-    let mut files: Vec<_> =
-        std::fs::read_dir(&corpus).unwrap().map(|e| e.unwrap().path()).collect();
-    files.sort();
+    let Some(files) = common::corpus_files() else { return };
     let (mut measured, mut by_boundary) = (0, 0);
     for file in files {
         let Ok(loaded) = meshvol_io::read(&file) else { continue };

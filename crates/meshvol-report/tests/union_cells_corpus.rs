@@ -6,6 +6,8 @@
 //! interval. Every file whose check vouches for a solid is measured; the others (shells
 //! overlapping, faces crossing) may be refused, never given wrong.
 
+mod common;
+
 use meshvol::assembly::Affine;
 use meshvol::grid::{cut_cells, union, union_boundary, union_cell_volumes, Grid};
 use meshvol::surface::Moved;
@@ -35,15 +37,7 @@ fn pose(angle: f64, centre: [f64; 3], shift: [f64; 3]) -> Affine {
 
 #[test]
 fn on_every_real_file_the_unions_cut_cells_hold_the_identities() {
-    let corpus =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/trimesh-models");
-    if !corpus.exists() {
-        eprintln!("corpus not found at {}, skipping", corpus.display());
-        return;
-    }
-    let mut files: Vec<_> =
-        std::fs::read_dir(&corpus).unwrap().map(|e| e.unwrap().path()).collect();
-    files.sort();
+    let Some(files) = common::corpus_files() else { return };
     // Files in parallel (the kernels' own parallelism is little on files this small): a
     // file's outcome is None (not measured), Some(Err(why)) (refused) or Some(Ok(vouched)).
     let outcomes: Vec<Option<Result<bool, String>>> =
