@@ -251,6 +251,20 @@ impl Surface for LoadedSurface {
             LoadedSurface::Mesh(m) => m.fan(face, triangle),
         }
     }
+
+    fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
+        match self {
+            LoadedSurface::StlSoup(_) => None,
+            LoadedSurface::Mesh(m) => m.indexed_triangles(),
+        }
+    }
+
+    fn faces_are_triangles(&self) -> bool {
+        match self {
+            LoadedSurface::StlSoup(s) => s.faces_are_triangles(),
+            LoadedSurface::Mesh(m) => m.faces_are_triangles(),
+        }
+    }
 }
 
 /// A file read: its format, its surface, its objects and unit, and what was read but

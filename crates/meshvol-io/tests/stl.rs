@@ -290,3 +290,28 @@ fn binary_and_ascii_agree() {
     assert_eq!(triangles(&a.surface), triangles(&b.surface));
     assert_eq!(a.surface.face_count(), b.surface.face_count());
 }
+
+#[test]
+fn binary_soup_measures_as_its_mesh_bit_for_bit() {
+    // A soup says its faces are triangles, so the mass properties read it four faces a
+    // SIMD step; its mesh (three vertices a triangle) takes the indexed arrays' lanes.
+    // 4k + 3 triangles (a remainder), a corner at −0.0, off the origin.
+    let mut tris = Vec::new();
+    for k in 0..7 {
+        let o = [k as f64 * 2.5 - 4.0, 1.25 * k as f64, -0.5];
+        tris.extend(box_triangles(o, [1.0, 2.0, 0.5]));
+    }
+    tris.push([[-0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    tris.push([[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+    tris.push([[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]);
+    assert_eq!(tris.len() % 4, 3);
+    let loaded = read_as("boxes.stl", binary_stl("", &tris)).unwrap();
+    let LoadedSurface::StlSoup(soup) = &loaded.surface else { panic!("not a soup") };
+    assert!(soup.faces_are_triangles() && loaded.surface.faces_are_triangles());
+    let mesh = soup.to_mesh().unwrap();
+    let expected = format!("{:?}", meshvol::mass_properties(&mesh));
+    assert_eq!(format!("{:?}", meshvol::mass_properties(soup)), expected);
+    assert_eq!(format!("{:?}", meshvol::mass_properties(&loaded.surface)), expected);
+    // Seven boxes of 1; the three open triangles meet the origin, adding no volume.
+    assert_close(meshvol::mass_properties(soup).signed_volume, 7.0, 1e-12);
+}

@@ -267,6 +267,21 @@ pub trait Surface: Sync {
     fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
         None
     }
+
+    /// Whether every face is exactly one triangle, so that `fan(face, ..)` calls back
+    /// once (a binary STL read in place): kernels with a faster path for triangles then
+    /// read four faces at a time. `false` (the default) when not known to be so.
+    fn faces_are_triangles(&self) -> bool {
+        false
+    }
+}
+
+/// Face `face`'s one triangle, of a surface whose [`Surface::faces_are_triangles`].
+#[inline(always)]
+pub(crate) fn only_triangle<S: Surface + ?Sized>(surface: &S, face: usize) -> [Point; 3] {
+    let mut corners = [[0.0; 3]; 3];
+    surface.fan(face, |a, b, c| corners = [a, b, c]);
+    corners
 }
 
 /// The first corner of the first face that has a triangle: the point a kernel takes its
@@ -297,6 +312,10 @@ impl<S: Surface + ?Sized> Surface for &S {
 
     fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
         (**self).indexed_triangles()
+    }
+
+    fn faces_are_triangles(&self) -> bool {
+        (**self).faces_are_triangles()
     }
 }
 

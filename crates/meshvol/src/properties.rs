@@ -54,6 +54,7 @@
 //!   its rounding, u·|V|. Only if that sum is out of range does the wide bound stay.
 
 use crate::accumulate::{gamma, ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
+use crate::mesh::only_triangle;
 use crate::vector::{add, cross, dot, norm, scale, sub};
 use crate::{Point, Surface};
 use rayon::prelude::*;
@@ -342,7 +343,14 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
         CHUNK_FACES,
         |range| {
             if let Some((positions, triangles)) = surface.indexed_triangles() {
-                return triangles_partial(positions, triangles, range, r);
+                return triangles_partial(
+                    &|f: usize| triangles[f].map(|i| positions[i as usize]),
+                    range,
+                    r,
+                );
+            }
+            if surface.faces_are_triangles() {
+                return triangles_partial(&|f: usize| only_triangle(surface, f), range, r);
             }
             // The chunk's k-th triangle and k-th face to sum k mod 4 (`volume::LaneSums`).
             let mut lanes = [Partial::default(); 4];
@@ -393,50 +401,48 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
     properties
 }
 
-/// One chunk of [`mass_properties`] over an indexed triangle mesh (a validated
-/// [`crate::Mesh`]), four triangles a SIMD step: every per-triangle quantity of the
-/// scalar loop (the same IEEE operations, lane by lane), and every sum too, lane j
-/// holding the chunk's j-th interleaved sum (`volume::LaneSums`): the same bits as the
-/// scalar loop, which the tests compare (`tests/volume.rs`). The bounds are lane-wise
-/// minima and maxima, their zeros (whose sign depends on the order) redone in order.
-fn triangles_partial(
-    positions: &[Point],
-    triangles: &[[u32; 3]],
+/// One chunk of [`mass_properties`] over a surface whose every face is one triangle,
+/// `corners(f)` giving face f's (an indexed triangle mesh, a validated [`crate::Mesh`];
+/// a binary STL read in place), four triangles a SIMD step: every per-triangle
+/// quantity of the scalar loop (the same IEEE operations, lane by lane), and every sum
+/// too, lane j holding the chunk's j-th interleaved sum (`volume::LaneSums`): the same
+/// bits as the scalar loop, which the tests compare (`tests/volume.rs`). The bounds are
+/// lane-wise minima and maxima, their zeros (whose sign depends on the order) redone
+/// in order.
+fn triangles_partial<F: Fn(usize) -> [Point; 3]>(
+    corners: &F,
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2.
-        return unsafe { triangles_partial_avx2(positions, triangles, range, r) };
+        return unsafe { triangles_partial_avx2(corners, range, r) };
     }
-    triangles_partial_in::<wide::f64x4>(positions, triangles, range, r)
+    triangles_partial_in::<wide::f64x4, F>(corners, range, r)
 }
 
 /// [`triangles_partial`] compiled for AVX2, its lanes one register (see
 /// [`crate::volume`]'s docs): the same operations, so the same bits.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn triangles_partial_avx2(
-    positions: &[Point],
-    triangles: &[[u32; 3]],
+fn triangles_partial_avx2<F: Fn(usize) -> [Point; 3]>(
+    corners: &F,
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
-    triangles_partial_in::<crate::volume::Avx>(positions, triangles, range, r)
+    triangles_partial_in::<crate::volume::Avx, F>(corners, range, r)
 }
 
 #[inline(always)]
-fn triangles_partial_in<L: crate::volume::Lanes>(
-    positions: &[Point],
-    triangles: &[[u32; 3]],
+fn triangles_partial_in<L: crate::volume::Lanes, F: Fn(usize) -> [Point; 3]>(
+    triangle: &F,
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
     use crate::volume::{add_compensated, VolumeLanes};
     let zero = L::ZERO;
     let first = range.start;
-    let tris = &triangles[range];
     let mut bounds = Bounds::of(r);
     // The volume's sums in `VolumeLanes`; the block's ten plain sums (first and second
     // moments, double area) and their compensated sums, one triangle a lane likewise.
@@ -446,13 +452,12 @@ fn triangles_partial_in<L: crate::volume::Lanes>(
     // The bounds lane by lane; see below for their signed zeros.
     let rl = [L::splat(r[0]), L::splat(r[1]), L::splat(r[2])];
     let (mut low, mut high) = (rl, rl);
-    let mut groups = tris.chunks_exact(4);
+    let groups = range.len() / 4;
     let mut face = first;
-    for group in &mut groups {
+    for _ in 0..groups {
         let mut p = [[[0.0; 4]; 3]; 3];
-        for (lane, t) in group.iter().enumerate() {
-            for (corner, &i) in t.iter().enumerate() {
-                let q = positions[i as usize];
+        for lane in 0..4 {
+            for (corner, q) in triangle(face + lane).into_iter().enumerate() {
                 for k in 0..3 {
                     p[corner][k][lane] = q[k];
                 }
@@ -505,8 +510,8 @@ fn triangles_partial_in<L: crate::volume::Lanes>(
     }
     // The last few triangles as the scalar loop reads them; the remainder starts at a
     // multiple of 4 from the chunk's start, so at lane 0.
-    for (lane, t) in groups.remainder().iter().enumerate() {
-        let [a, b, c] = t.map(|i| positions[i as usize]);
+    for lane in 0..range.len() % 4 {
+        let [a, b, c] = triangle(face);
         let (u, v) = (sub(b, a), sub(c, a));
         let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
         let minus = [u[2] * v[1], u[0] * v[2], u[1] * v[0]];
@@ -543,8 +548,7 @@ fn triangles_partial_in<L: crate::volume::Lanes>(
         }
         if unsure(bounds.min[k]) || unsure(bounds.max[k]) {
             let (mut low, mut high) = (r[k], r[k]);
-            for &i in tris.iter().flatten() {
-                let x = positions[i as usize][k];
+            for x in range.clone().flat_map(|f| triangle(f).map(|p| p[k])) {
                 low = if x < low { x } else { low };
                 high = if x > high { x } else { high };
             }
@@ -695,8 +699,9 @@ mod tests {
             let triangles: Vec<[u32; 3]> =
                 (0..n).map(|_| [0; 3].map(|_| rng.below(300) as u32)).collect();
             let r = positions[triangles[0][0] as usize];
-            let baseline = triangles_partial_in::<wide::f64x4>(&positions, &triangles, 0..n, r);
-            let dispatched = triangles_partial(&positions, &triangles, 0..n, r);
+            let corners = |f: usize| triangles[f].map(|i: u32| positions[i as usize]);
+            let baseline = triangles_partial_in::<wide::f64x4, _>(&corners, 0..n, r);
+            let dispatched = triangles_partial(&corners, 0..n, r);
             assert_eq!(format!("{baseline:?}"), format!("{dispatched:?}"), "{n} triangles");
         }
     }

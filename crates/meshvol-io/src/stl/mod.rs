@@ -230,6 +230,10 @@ impl Surface for StlSoup {
         let [a, b, c] = StlSoup::triangle(self, face);
         triangle(a, b, c);
     }
+
+    fn faces_are_triangles(&self) -> bool {
+        true
+    }
 }
 
 /// Records per parallel work item when checking coordinates.
