@@ -76,14 +76,16 @@ const PREFETCH_AHEAD: usize = 16;
 
 /// For each corner, the first corner at exactly its position.
 fn exact_representatives(corners: &[Point]) -> Vec<u32> {
-    let hash: Vec<u64> = corners.par_iter().map(|&p| position_hash(bits(p))).collect();
+    let hash = |c: usize| position_hash(bits(corners[c]));
     // Middle bits pick the slice: hashbrown uses the top bits as tags and the low bits
     // for positions, which must still vary within a slice.
     // A power of two: the slice is a bit field of the hash. Which slice a position falls
     // in changes nothing but the work's split: a corner's representative is the first
-    // corner at its position, whatever the slices.
+    // corner at its position, whatever the slices. The hash is computed again wherever
+    // it is needed (a dozen instructions) rather than kept, 8 bytes a corner that the
+    // slices' scattered reads would also have to fetch.
     let count = corners.len().div_ceil(SLICE_CORNERS).next_power_of_two().clamp(SLICES, 1 << 16);
-    let slice = |c: usize| ((hash[c] >> 32) as usize % count) as u32;
+    let slice = |c: usize| ((hash(c) >> 32) as usize % count) as u32;
     let slices = Buckets::new(count, corners.len(), |range| range.map(|c| (slice(c), c as u32)));
     let mut representative = filled(corners.len(), 0u32);
     let out = SharedItems::new(&mut representative);
@@ -95,10 +97,9 @@ fn exact_representatives(corners: &[Point]) -> Vec<u32> {
             // A slice's corners are scattered over the arrays: load ahead.
             if let Some(&ahead) = items.get(n + PREFETCH_AHEAD) {
                 prefetch(&corners[ahead as usize]);
-                prefetch(&hash[ahead as usize]);
             }
             let key = bits(corners[c as usize]);
-            let entry = table.entry(hash[c as usize], |e| e.0 == key, |e| position_hash(e.0));
+            let entry = table.entry(position_hash(key), |e| e.0 == key, |e| position_hash(e.0));
             // SAFETY: every corner is in exactly one slice, so each is written once.
             unsafe { out.write(c as usize, entry.or_insert((key, c)).get().1) };
         }
