@@ -265,6 +265,14 @@ impl Surface for LoadedSurface {
             LoadedSurface::Mesh(m) => m.faces_are_triangles(),
         }
     }
+
+    #[inline]
+    fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
+        match self {
+            LoadedSurface::StlSoup(s) => s.triangle_f32(face),
+            LoadedSurface::Mesh(m) => m.triangle_f32(face),
+        }
+    }
 }
 
 /// A file read: its format, its surface, its objects and unit, and what was read but

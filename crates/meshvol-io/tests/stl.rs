@@ -315,3 +315,40 @@ fn binary_soup_measures_as_its_mesh_bit_for_bit() {
     // Seven boxes of 1; the three open triangles meet the origin, adding no volume.
     assert_close(meshvol::mass_properties(soup).signed_volume, 7.0, 1e-12);
 }
+
+#[test]
+fn binary_soup_checks_as_its_mesh() {
+    // A soup gives its corners as the file's f32 values, and the check welds those;
+    // its mesh (three f64 vertices a triangle) is welded in f64: the same facts, bit
+    // for bit. Two boxes sharing a corner written as −0.0 and 0.0, a third one f32
+    // step off (not welded: a crack), and a face repeated.
+    let mut tris = box_triangles([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
+    tris.extend(box_triangles([-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]));
+    for t in &mut tris[12..] {
+        for p in t.iter_mut() {
+            *p = p.map(|x| if x == 0.0 { -0.0 } else { x });
+        }
+    }
+    let step = f64::from(f32::from_bits(2.0f32.to_bits() + 1));
+    let mut third = box_triangles([2.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
+    third[0][0][0] = if third[0][0][0] == 2.0 { step } else { third[0][0][0] };
+    tris.extend(third);
+    tris.push(tris[3]);
+    let loaded = read_as("boxes.stl", binary_stl("", &tris)).unwrap();
+    let LoadedSurface::StlSoup(soup) = &loaded.surface else { panic!("not a soup") };
+    assert!(soup.triangle_f32(0).is_some());
+    let mesh = soup.to_mesh().unwrap();
+    assert!(mesh.triangle_f32(0).is_none());
+    let options = meshvol::topology::CheckOptions {
+        weld: meshvol::topology::Weld::Exact,
+        ..Default::default()
+    };
+    let of_soup = meshvol::topology::check(soup, &options).unwrap();
+    let of_mesh = meshvol::topology::check(&mesh, &options).unwrap();
+    assert_eq!(format!("{of_soup:?}"), format!("{of_mesh:?}"));
+    // Independently: 3 boxes of 8 corners, the first two sharing one (23), and the
+    // third box's corner moved in one triangle, a 24th vertex that opens it (the
+    // crack); one face is a duplicate.
+    assert_eq!((of_soup.vertices, of_soup.duplicate_faces), (24, 1));
+    assert!(of_soup.boundary_edges > 0);
+}

@@ -274,6 +274,14 @@ pub trait Surface: Sync {
     fn faces_are_triangles(&self) -> bool {
         false
     }
+
+    /// When every face is one triangle whose coordinates are f32 values (a binary STL
+    /// read in place): face `face`'s corners as those f32 values, which `fan` gives
+    /// widened to f64. Kernels that copy the corners then keep them at half the size.
+    /// `None` (the default) otherwise.
+    fn triangle_f32(&self, _face: usize) -> Option<[[f32; 3]; 3]> {
+        None
+    }
 }
 
 /// Face `face`'s one triangle, of a surface whose [`Surface::faces_are_triangles`].
@@ -316,6 +324,10 @@ impl<S: Surface + ?Sized> Surface for &S {
 
     fn faces_are_triangles(&self) -> bool {
         (**self).faces_are_triangles()
+    }
+
+    fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
+        (**self).triangle_f32(face)
     }
 }
 

@@ -234,6 +234,15 @@ impl Surface for StlSoup {
     fn faces_are_triangles(&self) -> bool {
         true
     }
+
+    #[inline]
+    fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
+        let start = DATA + RECORD * face;
+        let record: &[u8; RECORD] = self.bytes.get(start..start + RECORD)?.try_into().ok()?;
+        let at =
+            |k: usize| f32::from_le_bytes([record[k], record[k + 1], record[k + 2], record[k + 3]]);
+        Some([12, 24, 36].map(|v| [at(v), at(v + 4), at(v + 8)]))
+    }
 }
 
 /// Records per parallel work item when checking coordinates.

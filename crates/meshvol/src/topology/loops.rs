@@ -7,7 +7,10 @@
 //! welded vertex of a corner and that vertex's position, which is the corner's own
 //! position bit for bit under exact welding. So the positions (24 bytes a corner, the
 //! largest array of a check) are dropped once welded rather than kept through the
-//! check.
+//! check. A binary STL's are gathered as the f32 it stores ([`Loops::corners_f32`]):
+//! 12 bytes a corner, welded to the same vertices. (On a 1M-triangle STL, 2 cores:
+//! welding 0.109–0.115 CPU s in f64, 0.093–0.100 s in f32; 36 MB less at the weld's
+//! peak.)
 
 use super::CheckError;
 use crate::buckets::{filled, for_each_range_mut, par_starts};
@@ -65,6 +68,22 @@ impl Loops {
             });
         });
         corners
+    }
+
+    /// [`Loops::corners`] as the f32 values the surface stores, when it says it has
+    /// them ([`Surface::triangle_f32`]: triangles only): half the bytes. `None` when it
+    /// does not, for any face.
+    pub fn corners_f32<S: Surface + ?Sized>(&self, surface: &S) -> Option<Vec<[f32; 3]>> {
+        let faces = self.face_count();
+        if !surface.faces_are_triangles() || self.corner_count() != 3 * faces {
+            return None;
+        }
+        let mut corners = filled(3 * faces, [0.0f32; 3]);
+        corners.par_chunks_mut(3).enumerate().try_for_each(|(f, out)| {
+            out.copy_from_slice(&surface.triangle_f32(f)?);
+            Some(())
+        })?;
+        Some(corners)
     }
 
     pub fn face_count(&self) -> usize {

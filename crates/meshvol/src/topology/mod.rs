@@ -391,8 +391,12 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     let loops = Loops::of(surface)?;
     stage.stage("welding");
     // The corners' positions are needed for welding only (see `loops.rs`); the vertices
-    // are at the same positions.
-    let exact = weld::exact(&loops.corners(surface));
+    // are at the same positions. Read as the f32 a file stored them in where the surface
+    // has them (a binary STL): half the bytes, the same weld.
+    let exact = match loops.corners_f32(surface) {
+        Some(corners) => weld::exact(&corners),
+        None => weld::exact(&loops.corners(surface)),
+    };
     let diagonal = Bounds::of_points(&exact.positions).map_or(0.0, |b| norm(b.size()));
     Ok(match options.weld {
         Weld::Exact => analyse(surface, &loops, &exact, None, options, stage),

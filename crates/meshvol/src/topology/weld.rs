@@ -38,6 +38,49 @@ fn bits(p: Point) -> [u64; 3] {
     p.map(|x| (x + 0.0).to_bits())
 }
 
+/// A corner's position as welding reads it: in f64, or in the f32 a file stored it in
+/// (half the bytes to gather and to compare). Two f32 positions are equal exactly when
+/// their widenings to f64 are (widening is exact), so both weld alike, bit for bit.
+pub(crate) trait Corner: Copy + Send + Sync {
+    /// Its bits, with −0.0 and +0.0 the same.
+    type Key: Copy + Eq + Send + Sync;
+    fn key(self) -> Self::Key;
+    fn hash(key: Self::Key) -> u64;
+    fn point(self) -> Point;
+}
+
+impl Corner for Point {
+    type Key = [u64; 3];
+    #[inline(always)]
+    fn key(self) -> [u64; 3] {
+        bits(self)
+    }
+    #[inline(always)]
+    fn hash(key: [u64; 3]) -> u64 {
+        position_hash(key)
+    }
+    #[inline(always)]
+    fn point(self) -> Point {
+        self
+    }
+}
+
+impl Corner for [f32; 3] {
+    type Key = [u32; 3];
+    #[inline(always)]
+    fn key(self) -> [u32; 3] {
+        self.map(|x| (x + 0.0).to_bits())
+    }
+    #[inline(always)]
+    fn hash(key: [u32; 3]) -> u64 {
+        position_hash(key.map(u64::from))
+    }
+    #[inline(always)]
+    fn point(self) -> Point {
+        self.map(f64::from)
+    }
+}
+
 /// The hash of a position's bits: foldhash's folded multiply (the two halves of a
 /// 128-bit product, xored) over the three words, with the digits of π as constants.
 /// (`foldhash`'s `hash_one` of the key, a slice to its hasher, took 78 instructions a
@@ -75,8 +118,8 @@ const SLICE_CORNERS: usize = 16384;
 const PREFETCH_AHEAD: usize = 16;
 
 /// For each corner, the first corner at exactly its position.
-fn exact_representatives(corners: &[Point]) -> Vec<u32> {
-    let hash = |c: usize| position_hash(bits(corners[c]));
+fn exact_representatives<C: Corner>(corners: &[C]) -> Vec<u32> {
+    let hash = |c: usize| C::hash(corners[c].key());
     // Middle bits pick the slice: hashbrown uses the top bits as tags and the low bits
     // for positions, which must still vary within a slice.
     // A power of two: the slice is a bit field of the hash. Which slice a position falls
@@ -92,14 +135,14 @@ fn exact_representatives(corners: &[Point]) -> Vec<u32> {
     (0..count).into_par_iter().for_each(|k| {
         let items = slices.get(k);
         // Keys inline: comparing them reads the table only (small enough for the cache).
-        let mut table: HashTable<([u64; 3], u32)> = HashTable::with_capacity(items.len());
+        let mut table: HashTable<(C::Key, u32)> = HashTable::with_capacity(items.len());
         for (n, &c) in items.iter().enumerate() {
             // A slice's corners are scattered over the arrays: load ahead.
             if let Some(&ahead) = items.get(n + PREFETCH_AHEAD) {
                 prefetch(&corners[ahead as usize]);
             }
-            let key = bits(corners[c as usize]);
-            let entry = table.entry(position_hash(key), |e| e.0 == key, |e| position_hash(e.0));
+            let key = corners[c as usize].key();
+            let entry = table.entry(C::hash(key), |e| e.0 == key, |e| C::hash(e.0));
             // SAFETY: every corner is in exactly one slice, so each is written once.
             unsafe { out.write(c as usize, entry.or_insert((key, c)).get().1) };
         }
@@ -152,8 +195,8 @@ fn number(representative: &[u32], position: impl Fn(usize) -> Point + Sync) -> W
 }
 
 /// Welds corners at exactly equal positions.
-pub(crate) fn exact(corners: &[Point]) -> Welded {
-    number(&exact_representatives(corners), |c| corners[c])
+pub(crate) fn exact<C: Corner>(corners: &[C]) -> Welded {
+    number(&exact_representatives(corners), |c| corners[c].point())
 }
 
 impl Welded {
@@ -287,6 +330,46 @@ mod tests {
                 assert_eq!(bits(w.positions[v as usize]), bits(corners[c]));
                 assert!(w.first_corner[v as usize] as usize <= c);
                 assert_eq!(w.corner_vertex[w.first_corner[v as usize] as usize], v);
+            }
+        }
+    }
+
+    #[test]
+    fn f32_corners_weld_as_their_widenings() {
+        // f32 positions with −0.0 for some zeros, and neighbours one f32 step apart:
+        // welded as f32 keys, the same vertices, numbers and positions (bit for bit) as
+        // the f64 weld of the same corners widened.
+        let mut rng = crate::test_rng::XorShift::new(0x5851_f42d_4c95_7f2d);
+        let pool: Vec<[f32; 3]> = (0..3000)
+            .map(|i| {
+                let x = (i % 13) as f32 * 0.1;
+                let y = if i % 7 == 0 { 0.0 } else { (i / 13) as f32 * 0.37 };
+                let z = if i % 5 == 0 { f32::from_bits(x.to_bits() + 1) } else { 1.5 };
+                [x, y, z]
+            })
+            .collect();
+        let corners: Vec<[f32; 3]> = (0..120_000)
+            .map(|_| {
+                let p = pool[(rng.next_u64() % 3000) as usize];
+                if rng.next_u64().is_multiple_of(2) {
+                    p.map(|x| if x == 0.0 { -0.0 } else { x })
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let widened: Vec<Point> = corners.iter().map(|p| p.map(f64::from)).collect();
+        for threads in [1, 2, 5] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let (narrow, wide) = pool.install(|| (exact(&corners), exact(&widened)));
+            assert_eq!(narrow.corner_vertex, wide.corner_vertex);
+            assert_eq!(narrow.first_corner, wide.first_corner);
+            let bits = |w: &Welded| w.positions.iter().map(|&p| super::bits(p)).collect::<Vec<_>>();
+            assert_eq!(bits(&narrow), bits(&wide));
+            // Signs of zero as the first corner had them.
+            for (v, &c) in narrow.first_corner.iter().enumerate() {
+                let p = narrow.positions[v];
+                assert!((0..3).all(|k| p[k].to_bits() == widened[c as usize][k].to_bits()));
             }
         }
     }
