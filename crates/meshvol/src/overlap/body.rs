@@ -102,15 +102,11 @@ impl Body {
         let properties = properties
             .unwrap_or_else(|| mass_properties(&Triangles { points: &points, triangles: &raw }));
         let corners_of = |t: &[u32; 3]| t.map(|i| points[i as usize]);
-        let centres: Vec<Point> = raw
-            .par_iter()
-            .map(|t| {
-                let [a, b, c] = corners_of(t);
-                [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
-            })
-            .collect();
-        let order = Bvh::spatial_order(&centres);
-        drop(centres);
+        let centre = |i: usize| {
+            let [a, b, c] = corners_of(&raw[i]);
+            [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
+        };
+        let order = Bvh::spatial_order_of(raw.len(), centre);
         let triangles: Vec<[u32; 3]> = order.par_iter().map(|&i| raw[i as usize]).collect();
         drop(raw);
         let flat: Vec<bool> = triangles.par_iter().map(|t| collinear(corners_of(t))).collect();
@@ -231,7 +227,8 @@ fn numbered_by_first_use(
     triangles: &[[u32; 3]],
 ) -> (Vec<Point>, Vec<[u32; 3]>) {
     let mut new_id = vec![u32::MAX; vertices.len()];
-    let mut points = Vec::new();
+    // At most every vertex: one allocation, not a growing list copied as it grows.
+    let mut points = Vec::with_capacity(vertices.len());
     for &v in triangles.as_flattened() {
         let id = &mut new_id[v as usize];
         if *id == u32::MAX {
