@@ -61,10 +61,12 @@ impl<'a> Placed<'a> {
         let (world, bounds) = if pose.is_none() && shift == [0.0; 3] {
             (Cow::Borrowed(body.points.as_slice()), body.bounds)
         } else {
+            // On the caller's thread below 2¹⁴ points, as a pose loop's small bodies.
+            let points = body.points.par_iter().with_min_len(1 << 14);
             let world: Vec<Point> = if shift == [0.0; 3] {
-                body.points.par_iter().map(|&p| moved(p)).collect()
+                points.map(|&p| moved(p)).collect()
             } else {
-                body.points.par_iter().map(|&p| add(moved(p), shift)).collect()
+                points.map(|&p| add(moved(p), shift)).collect()
             };
             let bounds = Bounds::of_points(&world);
             (Cow::Owned(world), bounds)
