@@ -44,13 +44,29 @@ fn morton(x: u64, y: u64, z: u64) -> u64 {
     spread(x) | spread(y) << 1 | spread(z) << 2
 }
 
-/// The Morton code of each point, on a 2²¹ grid per axis over their box.
-fn morton_codes(points: &[Point]) -> Vec<u64> {
-    let frame = Bounds::of_points(points).unwrap_or(Bounds::EMPTY);
+/// The Morton code of each point `point(i)`, `i < n`, on a 2²¹ grid per axis over their
+/// box (read twice, never stored: a caller's points may be its items' centres, found
+/// afresh from their corners each time).
+fn morton_codes(n: usize, point: impl Fn(usize) -> Point + Sync) -> Vec<u64> {
+    let include = |mut b: Bounds, i: usize| {
+        b.include(point(i));
+        b
+    };
+    let merged = |mut a: Bounds, b: Bounds| {
+        a.merge(&b);
+        a
+    };
+    // Minima and maxima do not depend on the order: the same box as Bounds::of_points.
+    let frame = (0..n)
+        .into_par_iter()
+        .with_min_len(1 << 14)
+        .fold(|| Bounds::EMPTY, include)
+        .reduce(|| Bounds::EMPTY, merged);
     let size = frame.size();
-    points
-        .par_iter()
-        .map(|c| {
+    (0..n)
+        .into_par_iter()
+        .map(|i| {
+            let c = point(i);
             let cell = |k: usize| {
                 let t = if size[k] > 0.0 { (c[k] - frame.min[k]) / size[k] } else { 0.0 };
                 (t * 2097151.0) as u64 // 21 bits per axis
@@ -239,11 +255,17 @@ impl Bvh {
     /// by the Morton code of their centres. Items given to [`Bvh::new`] in this order
     /// make a tight tree (and data stored in this order is read nearly sequentially).
     pub fn spatial_order(centres: &[Point]) -> Vec<u32> {
-        let codes = morton_codes(centres);
+        Bvh::spatial_order_of(centres.len(), |i| centres[i])
+    }
+
+    /// [`Bvh::spatial_order`] of the centres `centre(i)`, `i < n`, without a list of
+    /// them (24 bytes an item, written once and read twice).
+    pub(crate) fn spatial_order_of(n: usize, centre: impl Fn(usize) -> Point + Sync) -> Vec<u32> {
+        let codes = morton_codes(n, centre);
         // A counting sort by the codes' top bits (about one group per item), then each
         // group sorted by its full codes: no comparison sort over all items.
-        let top = centres.len().max(2).ilog2().min(18);
-        let mut order = Buckets::new(1 << top, centres.len(), |range| {
+        let top = n.max(2).ilog2().min(18);
+        let mut order = Buckets::new(1 << top, n, |range| {
             range.map(|i| ((codes[i] >> (63 - top)) as u32, i as u32))
         });
         order.for_each_mut(|group| group.sort_unstable_by_key(|&i| (codes[i as usize], i)));
@@ -799,7 +821,7 @@ mod tests {
                 [next() * spread, next() * spread, (next() * 8.0).floor()]
             })
             .collect();
-        let codes = morton_codes(&points);
+        let codes = morton_codes(points.len(), |i| points[i]);
         let mut expected: Vec<u32> = (0..points.len() as u32).collect();
         expected.sort_by_key(|&i| (codes[i as usize], i));
         for threads in [1, 3] {

@@ -22,6 +22,7 @@ use crate::vector::{cross, norm, orient2d, sub};
 use crate::{mass_properties, MassProperties, Point, Surface};
 use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
+use std::sync::OnceLock;
 
 /// A closed body ready for [`super::overlap`].
 #[derive(Clone, Debug)]
@@ -49,9 +50,10 @@ pub struct Body {
     /// Own frame; `None` without triangles.
     pub(super) bounds: Option<Bounds>,
     /// The sums of the triangles' areas and of their perimeters (for the bound on how
-    /// much volume a small move of the body sweeps).
-    pub(super) area: f64,
-    pub(super) perimeter: f64,
+    /// much volume a small move of the body sweeps), found the first time a bound needs
+    /// them: bodies measured where they are, off any touch, never do (four square
+    /// roots a triangle, a tenth of the preparation).
+    sizes: OnceLock<(f64, f64)>,
     /// Why the body cannot take the boundary method (`None`: it can).
     pub(super) unfit: Option<&'static str>,
     /// Its mass properties, own frame.
@@ -102,34 +104,16 @@ impl Body {
         let properties = properties
             .unwrap_or_else(|| mass_properties(&Triangles { points: &points, triangles: &raw }));
         let corners_of = |t: &[u32; 3]| t.map(|i| points[i as usize]);
-        let centres: Vec<Point> = raw
-            .par_iter()
-            .map(|t| {
-                let [a, b, c] = corners_of(t);
-                [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
-            })
-            .collect();
-        let order = Bvh::spatial_order(&centres);
-        drop(centres);
+        let centre = |i: usize| {
+            let [a, b, c] = corners_of(&raw[i]);
+            [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
+        };
+        let order = Bvh::spatial_order_of(raw.len(), centre);
         let triangles: Vec<[u32; 3]> = order.par_iter().map(|&i| raw[i as usize]).collect();
         drop(raw);
         let flat: Vec<bool> = triangles.par_iter().map(|t| collinear(corners_of(t))).collect();
         let bvh = Bvh::new(triangles.len(), |k| Box32::around(&box_of(corners_of(&triangles[k]))));
         let bounds = Bounds::of_points(&points);
-        // Fixed chunks summed in order: the same bits at any thread count.
-        let sums: Vec<(f64, f64)> = triangles
-            .par_chunks(4096)
-            .map(|chunk| {
-                let (mut area, mut perimeter) = (0.0, 0.0);
-                for t in chunk {
-                    let [a, b, c] = corners_of(t);
-                    area += 0.5 * norm(cross(sub(b, a), sub(c, a)));
-                    perimeter += norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c));
-                }
-                (area, perimeter)
-            })
-            .collect();
-        let (area, perimeter) = sums.iter().fold((0.0, 0.0), |s, x| (s.0 + x.0, s.1 + x.1));
         let EdgeTable { edges, face_edges, owner, first_edge, closed } =
             edge_table(&triangles, &flat, points.len());
         let (start, adjacent) = vertex_graph(&edges, &first_edge);
@@ -151,8 +135,7 @@ impl Body {
             adjacent,
             bvh,
             bounds,
-            area,
-            perimeter,
+            sizes: OnceLock::new(),
             unfit,
             properties,
         }
@@ -189,9 +172,28 @@ impl Body {
     /// 1 % room for the rounding of the sums.
     pub(super) fn swept(&self, d: f64) -> f64 {
         let n = self.triangles.len() as f64;
-        1.01 * (2.0 * d * self.area
-            + FRAC_PI_2 * d * d * self.perimeter
-            + 4.0 * PI / 3.0 * d * d * d * n)
+        let (area, perimeter) = *self.sizes.get_or_init(|| self.sizes());
+        1.01 * (2.0 * d * area + FRAC_PI_2 * d * d * perimeter + 4.0 * PI / 3.0 * d * d * d * n)
+    }
+
+    /// The sums of the triangles' areas and perimeters, in fixed chunks summed in
+    /// order: the same bits at any thread count.
+    fn sizes(&self) -> (f64, f64) {
+        let corners_of = |t: &[u32; 3]| t.map(|i| self.points[i as usize]);
+        let sums: Vec<(f64, f64)> = self
+            .triangles
+            .par_chunks(4096)
+            .map(|chunk| {
+                let (mut area, mut perimeter) = (0.0, 0.0);
+                for t in chunk {
+                    let [a, b, c] = corners_of(t);
+                    area += 0.5 * norm(cross(sub(b, a), sub(c, a)));
+                    perimeter += norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c));
+                }
+                (area, perimeter)
+            })
+            .collect();
+        sums.iter().fold((0.0, 0.0), |s, x| (s.0 + x.0, s.1 + x.1))
     }
 
     /// The number of triangles.
@@ -231,7 +233,8 @@ fn numbered_by_first_use(
     triangles: &[[u32; 3]],
 ) -> (Vec<Point>, Vec<[u32; 3]>) {
     let mut new_id = vec![u32::MAX; vertices.len()];
-    let mut points = Vec::new();
+    // At most every vertex: one allocation, not a growing list copied as it grows.
+    let mut points = Vec::with_capacity(vertices.len());
     for &v in triangles.as_flattened() {
         let id = &mut new_id[v as usize];
         if *id == u32::MAX {

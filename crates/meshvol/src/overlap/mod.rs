@@ -161,11 +161,13 @@ fn measure(a: &Placed, b: &Placed, properties: [MassProperties; 2]) -> Result<Ov
         }
         _ => [0.0; 3],
     };
-    let mut parts = [Part::default(); 2];
-    for (s, (this, other)) in [(a, b), (b, a)].into_iter().enumerate() {
+    // Each body's part on its own thread: neither reads the other's.
+    let part = |s: usize, this: &Placed, other: &Placed| -> Result<Part, Degenerate> {
         let inside = inside_points(this, other, &found.cuts[s])?;
-        parts[s] = inside_part(this, &inside, &found.cuts[s], &found.seams[s], origin);
-    }
+        Ok(inside_part(this, &inside, &found.cuts[s], &found.seams[s], origin))
+    };
+    let (part_a, part_b) = rayon::join(|| part(0, a, b), || part(1, b, a));
+    let parts = [part_a?, part_b?];
     let mut sums = [0.0; 10];
     for k in 1..10 {
         sums[k] = parts[0].sums[k] + parts[1].sums[k];

@@ -18,6 +18,7 @@ use crate::topology::predicates::Plane;
 use crate::vector::{add, cross, dot, norm, sub};
 use crate::Point;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// Why the boundary method does not settle a query.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -37,8 +38,9 @@ pub enum Degenerate {
 /// A body placed by a pose.
 pub(super) struct Placed<'a> {
     pub body: &'a Body,
-    /// The body's points, moved (the coordinates the grid method would see).
-    pub world: Vec<Point>,
+    /// The body's points, moved (the coordinates the grid method would see): the
+    /// body's own when nothing moves them (no copy of a million points).
+    pub world: Cow<'a, [Point]>,
     /// The world box.
     pub bounds: Option<Bounds>,
     /// The largest |coordinate| of the placed points (what the placed coordinates'
@@ -56,12 +58,19 @@ impl<'a> Placed<'a> {
             Some(m) => m.apply(p),
             None => p,
         };
-        let world: Vec<Point> = if shift == [0.0; 3] {
-            body.points.iter().map(|&p| moved(p)).collect()
+        let (world, bounds) = if pose.is_none() && shift == [0.0; 3] {
+            (Cow::Borrowed(body.points.as_slice()), body.bounds)
         } else {
-            body.points.iter().map(|&p| add(moved(p), shift)).collect()
+            // On the caller's thread below 2¹⁴ points, as a pose loop's small bodies.
+            let points = body.points.par_iter().with_min_len(1 << 14);
+            let world: Vec<Point> = if shift == [0.0; 3] {
+                points.map(|&p| moved(p)).collect()
+            } else {
+                points.map(|&p| add(moved(p), shift)).collect()
+            };
+            let bounds = Bounds::of_points(&world);
+            (Cow::Owned(world), bounds)
         };
-        let bounds = Bounds::of_points(&world);
         let largest = |b: Option<Bounds>| {
             b.map_or(0.0, |b| b.min.iter().chain(&b.max).fold(0.0f64, |m, x| m.max(x.abs())))
         };
@@ -122,41 +131,44 @@ pub(super) fn crossings(a: &Placed, b: &Placed) -> Result<Crossings, Degenerate>
     if !meets(&ba, &bb) {
         return Ok(Crossings::default());
     }
-    // The triangles' placed boxes, and the trees' boxes refitted to them: tight, in
-    // the placed frame.
-    let item_boxes = |p: &Placed| -> Vec<Bounds> {
-        (0..p.body.triangles.len()).into_par_iter().map(|t| box_of(p.corners(t))).collect()
-    };
-    let (items_a, items_b) = (item_boxes(a), item_boxes(b));
+    // The trees' boxes refitted to the placed triangles: tight, in the placed frame.
+    // A triangle's box is found again where it is needed (near the crossing curve
+    // only) rather than kept for every triangle: the arrays of them, fresh each query,
+    // cost more in page faults than the boxes do to compute.
     let (tree_a, tree_b) = (&a.body.bvh, &b.body.bvh);
-    let (nodes_a, nodes_b) = (tree_a.refit(|t| items_a[t]), tree_b.refit(|t| items_b[t]));
+    let (nodes_a, nodes_b) = rayon::join(
+        || tree_a.refit(|t| box_of(a.corners(t))),
+        || tree_b.refit(|t| box_of(b.corners(t))),
+    );
     let leaves = tree_a.leaf_pairs_between(tree_b, &nodes_a, &nodes_b);
     let chunks: Vec<Result<Crossings, Degenerate>> = leaves
         .par_chunks(CHUNK)
         .map(|chunk| {
             let mut found = Crossings::default();
             let mut touching = false;
-            let mut near_b: Vec<usize> = Vec::new();
+            let mut near_b: Vec<(usize, [Point; 3], Bounds)> = Vec::new();
             for &(m, n) in chunk {
                 // Only the items of each leaf that meet the other leaf's box.
                 near_b.clear();
-                near_b.extend(
-                    tree_b.items(n).filter(|&ib| meets(&items_b[ib], &nodes_a[m as usize])),
-                );
+                near_b.extend(tree_b.items(n).filter_map(|ib| {
+                    let tb = b.corners(ib);
+                    let box_b = box_of(tb);
+                    meets(&box_b, &nodes_a[m as usize]).then_some((ib, tb, box_b))
+                }));
                 for ia in tree_a.items(m) {
                     if near_b.is_empty() {
                         break;
                     }
-                    let box_a = &items_a[ia];
-                    if !meets(box_a, &nodes_b[n as usize]) {
+                    let ta = a.corners(ia);
+                    let box_a = box_of(ta);
+                    if !meets(&box_a, &nodes_b[n as usize]) {
                         continue;
                     }
-                    let ta = a.corners(ia);
-                    for &ib in &near_b {
-                        if !meets(box_a, &items_b[ib]) {
+                    for &(ib, tb, box_b) in &near_b {
+                        if !meets(&box_a, &box_b) {
                             continue;
                         }
-                        match pair(a, ia, ta, b, ib, b.corners(ib), &mut found) {
+                        match pair(a, ia, ta, b, ib, tb, &mut found) {
                             Ok(()) => {}
                             // Coplanar faces decide the answer (the caller moves B off a
                             // touch, not off a plane); after a touch the search goes on

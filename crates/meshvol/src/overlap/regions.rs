@@ -151,8 +151,15 @@ pub(super) fn inside_part(
     origin: Point,
 ) -> Part {
     let body = this.body;
-    let cut_start = offsets(body.edges.len(), cuts.iter().map(|c| c.edge));
-    let seam_start = offsets(body.triangles.len(), seams.iter().map(|s| s.face));
+    // The few faces near the crossing curve are marked (a face with a seam; the ends of
+    // each cut edge) and look their seams and cuts up by binary search: no table of
+    // offsets over every edge and face, which cost more to fill than the marks.
+    let mut seam_face = vec![false; body.triangles.len()];
+    seams.iter().for_each(|s| seam_face[s.face as usize] = true);
+    let mut cut_end = vec![false; body.points.len()];
+    for c in cuts {
+        body.edges[c.edge as usize].iter().for_each(|&v| cut_end[v as usize] = true);
+    }
     let parts: Vec<Part> = (0..body.triangles.len())
         .into_par_iter()
         .step_by(CHUNK)
@@ -165,9 +172,14 @@ pub(super) fn inside_part(
                 }
                 let ids = body.triangles[f];
                 let corners = ids.map(|v| this.world[v as usize]);
-                let own_seams = &seams[seam_start[f] as usize..seam_start[f + 1] as usize];
-                let edge_cuts = body.face_edges[f].map(|e| {
-                    &cuts[cut_start[e as usize] as usize..cut_start[e as usize + 1] as usize]
+                let own_seams = if seam_face[f] { run(seams, |s| s.face, f as u32) } else { &[] };
+                // Edge i runs from corner i to corner i + 1.
+                let edge_cuts: [&[Cut]; 3] = [0, 1, 2].map(|i| {
+                    if cut_end[ids[i] as usize] && cut_end[ids[(i + 1) % 3] as usize] {
+                        run(cuts, |c| c.edge, body.face_edges[f][i])
+                    } else {
+                        &[]
+                    }
                 });
                 segments.clear();
                 if own_seams.is_empty() && edge_cuts.iter().all(|c| c.is_empty()) {
@@ -281,15 +293,9 @@ fn moment_terms(a: Point, b: Point, c: Point) -> [f64; 9] {
     [s[0], s[1], s[2], pair(0, 0), pair(1, 1), pair(2, 2), pair(0, 1), pair(1, 2), pair(2, 0)]
 }
 
-/// Offsets of runs of equal keys (sorted, each below `n`): key k's items are
-/// `start[k]..start[k + 1]`.
-fn offsets(n: usize, keys: impl Iterator<Item = u32>) -> Vec<u32> {
-    let mut start = vec![0u32; n + 1];
-    for k in keys {
-        start[k as usize + 1] += 1;
-    }
-    for k in 0..n {
-        start[k + 1] += start[k];
-    }
-    start
+/// The run of `items` (sorted by `key`) whose key is `k`.
+fn run<T>(items: &[T], key: impl Fn(&T) -> u32, k: u32) -> &[T] {
+    let first = items.partition_point(|x| key(x) < k);
+    let count = items[first..].partition_point(|x| key(x) == k);
+    &items[first..first + count]
 }
