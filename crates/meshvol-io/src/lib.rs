@@ -254,7 +254,7 @@ impl Surface for LoadedSurface {
 
     fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
         match self {
-            LoadedSurface::StlSoup(_) => None,
+            LoadedSurface::StlSoup(s) => s.indexed_triangles(),
             LoadedSurface::Mesh(m) => m.indexed_triangles(),
         }
     }
@@ -269,7 +269,7 @@ impl Surface for LoadedSurface {
     #[inline]
     fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
         match self {
-            LoadedSurface::StlSoup(s) => s.triangle_f32(face),
+            LoadedSurface::StlSoup(s) => Surface::triangle_f32(s, face),
             LoadedSurface::Mesh(m) => m.triangle_f32(face),
         }
     }

@@ -336,7 +336,7 @@ fn binary_soup_checks_as_its_mesh() {
     tris.push(tris[3]);
     let loaded = read_as("boxes.stl", binary_stl("", &tris)).unwrap();
     let LoadedSurface::StlSoup(soup) = &loaded.surface else { panic!("not a soup") };
-    assert!(soup.triangle_f32(0).is_some());
+    assert!(Surface::triangle_f32(soup, 0).is_some());
     let mesh = soup.to_mesh().unwrap();
     assert!(mesh.triangle_f32(0).is_none());
     let options = meshvol::topology::CheckOptions {

@@ -183,6 +183,15 @@ impl StlSoup {
     /// If `i >= self.triangle_count()`.
     #[inline]
     pub fn triangle(&self, i: usize) -> [Point; 3] {
+        self.triangle_f32(i).map(|p| p.map(f64::from))
+    }
+
+    /// The three vertices of triangle `i` as the file stores them.
+    ///
+    /// # Panics
+    /// If `i >= self.triangle_count()`.
+    #[inline]
+    pub fn triangle_f32(&self, i: usize) -> [[f32; 3]; 3] {
         assert!(i < self.triangles, "triangle {i} of {}", self.triangles);
         let start = DATA + RECORD * i;
         let record: &[u8; RECORD] = self.bytes[start..start + RECORD]
@@ -211,13 +220,13 @@ impl StlSoup {
 }
 
 #[inline]
-fn vertex(record: &[u8; RECORD], at: usize) -> Point {
+fn vertex(record: &[u8; RECORD], at: usize) -> [f32; 3] {
     [f32_at(record, at), f32_at(record, at + 4), f32_at(record, at + 8)]
 }
 
 #[inline]
-fn f32_at(record: &[u8; RECORD], at: usize) -> f64 {
-    f64::from(f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]]))
+fn f32_at(record: &[u8; RECORD], at: usize) -> f32 {
+    f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]])
 }
 
 impl Surface for StlSoup {
@@ -237,11 +246,7 @@ impl Surface for StlSoup {
 
     #[inline]
     fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
-        let start = DATA + RECORD * face;
-        let record: &[u8; RECORD] = self.bytes.get(start..start + RECORD)?.try_into().ok()?;
-        let at =
-            |k: usize| f32::from_le_bytes([record[k], record[k + 1], record[k + 2], record[k + 3]]);
-        Some([12, 24, 36].map(|v| [at(v), at(v + 4), at(v + 8)]))
+        Some(StlSoup::triangle_f32(self, face))
     }
 }
 
