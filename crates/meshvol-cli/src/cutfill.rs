@@ -114,6 +114,7 @@ fn measure(args: &CutFillArgs, progress: &Progress) -> Result<CutFillReport, Str
     if let (Some(cells), Some(info)) = (cells, report.grid) {
         let [nx, ny] = info.counts;
         if let Some(out) = &args.out {
+            progress.stage("writing", out);
             let file = std::fs::File::create(out)
                 .map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
             let mut w = BufWriter::new(file);
@@ -123,6 +124,7 @@ fn measure(args: &CutFillArgs, progress: &Progress) -> Result<CutFillReport, Str
                 .map_err(|e| format!("{}: {e}", out.display()))?;
         }
         if let Some(png) = &args.png {
+            progress.stage("drawing", png);
             // The net depth: the net volume of a cell over its area.
             let area = info.cell[0] * info.cell[1];
             let depth: Vec<f64> =

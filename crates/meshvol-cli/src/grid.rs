@@ -327,6 +327,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     let volumes: &[f64] = cut.as_ref().map_or(&volumes, |c| &c.volume);
 
     if let Some(out) = &args.out {
+        progress.stage("writing", out);
         let file = std::fs::File::create(out)
             .map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
         let mut w = BufWriter::new(file);
@@ -341,6 +342,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         written.and_then(|()| w.flush()).map_err(|e| format!("{}: {e}", out.display()))?;
     }
     if let (Some(png), Some(at)) = (&args.png, args.slice) {
+        progress.stage("drawing", png);
         let slice = slice_of(at, &grid)?;
         let mut bytes = Vec::new();
         grid_out::png(&mut bytes, &grid, volumes, slice).map_err(|e| e.to_string())?;

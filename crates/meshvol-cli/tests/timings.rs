@@ -66,3 +66,21 @@ fn no_check_runs_have_no_check_stages() {
     let names: Vec<&str> = stages.iter().map(|s| s["stage"].as_str().unwrap()).collect();
     assert_eq!(names, ["reading", "measuring"]);
 }
+
+#[test]
+fn writing_the_cells_is_a_stage_of_its_own() {
+    // The arrays' allocation and the file's writing are not counted in the kernel's
+    // last stage (at 256³ with --moments, each took longer than the sweeps).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cells.npz");
+    let out = out.to_str().unwrap();
+    let args = ["grid", SAMPLE, "--cells", "4,4,4", "--moments", "--out", out];
+    let (stages, _) = timings(&[&args[..], &["--json", "--timings", "-q"]].concat());
+    let names: Vec<&str> = stages.iter().map(|s| s["stage"].as_str().unwrap()).collect();
+    let at = |name: &str| names.iter().position(|n| *n == name);
+    let (allocating, cutting, writing) =
+        (at("allocating the cells' arrays"), at("cutting faces into cells"), at("writing"));
+    assert!(allocating.is_some() && allocating < cutting && cutting < writing, "{names:?}");
+    assert_eq!(writing, Some(names.len() - 1), "{names:?}");
+    assert!(std::fs::metadata(out).unwrap().len() > 0);
+}

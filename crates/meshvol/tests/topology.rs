@@ -576,3 +576,45 @@ fn messy_surfaces_check_the_same_at_any_thread_count() {
         assert!(one == many && one_solid == many_solid, "{threads} threads differ");
     }
 }
+
+#[test]
+fn a_lone_shell_counts_as_it_does_beside_another() {
+    // A check counts a lone shell from the whole surface's totals, and shells among
+    // others one by one: the same counts either way. Each surface alone, then with a
+    // tetrahedron far away (a second shell) after it.
+    let tetra = Mesh::from_triangles(
+        vec![[90.0, 0.0, 0.0], [91.0, 0.0, 0.0], [90.0, 1.0, 0.0], [90.0, 0.0, 1.0]],
+        vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    )
+    .unwrap();
+    let cube = cuboid([0.0; 3], [1.0; 3]).triangulated();
+    let mut faces: Vec<Vec<u32>> = (0..cube.face_count()).map(|f| cube.face(f).to_vec()).collect();
+    faces.push(faces[3].clone()); // a duplicate face, dropped
+    let mut p = cube.positions().to_vec();
+    p.push([5.0, 5.0, 5.0]); // a vertex no face uses
+    let surfaces = [
+        ("sphere", uv_sphere(1.0, 24, 12)),
+        ("torus", torus(3.0, 1.0, 24, 12)),
+        ("open box", without_face(&cuboid([0.0; 3], [1.0; 3]), 2)),
+        ("Möbius strip", mobius(12, 0.0)),
+        (
+            "cube, duplicate face, unused vertex",
+            Mesh::from_polygons(p, faces.iter().map(|f| &f[..])).unwrap(),
+        ),
+    ];
+    for (name, mesh) in surfaces {
+        let alone = checked(&mesh);
+        assert_eq!(alone.shells.len(), 1, "{name}");
+        let beside = checked(&Mesh::concatenate(&[mesh, tetra.clone()]));
+        assert_eq!(beside.shells.len(), 2, "{name}");
+        let (a, b) = (&alone.shells[0], &beside.shells[0]);
+        assert_eq!(
+            (a.faces, a.euler_characteristic, a.genus, a.closed, a.orientable),
+            (b.faces, b.euler_characteristic, b.genus, b.closed, b.orientable),
+            "{name}"
+        );
+        // The tetrahedron's own: χ = 4 − 6 + 4.
+        assert_eq!((beside.shells[1].faces, beside.shells[1].euler_characteristic), (4, 2));
+        assert_eq!(alone.euler_characteristic, a.euler_characteristic, "{name}");
+    }
+}

@@ -20,15 +20,24 @@ pub(super) struct ShellCounts {
     pub euler_characteristic: i64,
 }
 
-/// The counts of each of `shells`, from the `kept` faces of `loops` and the `edges`
-/// (each its uses).
+/// The counts of each of `shells`, from the `kept` faces of `loops`, the `edges`
+/// (each its uses) and the number of vertices kept faces use.
 pub(super) fn per_shell(
     loops: &Loops,
     welded: &Welded,
     kept: &[bool],
     shells: &Shells,
     edges: &Edges,
+    used_vertices: usize,
 ) -> Vec<ShellCounts> {
+    if shells.count == 1 {
+        // A lone shell has every kept face, every edge (each has a kept face's use)
+        // and every used vertex: the whole surface's counts, without walking corners
+        // and sheets (4% of a check of a 1M-triangle sphere).
+        let faces = kept.par_iter().filter(|&&k| k).count();
+        let euler_characteristic = used_vertices as i64 - edges.len() as i64 + faces as i64;
+        return vec![ShellCounts { faces, euler_characteristic }];
+    }
     let shell_of_face = &shells.of_face;
     let faces: Vec<usize> = shells.fold_faces(kept, |n, _| *n += 1, |n, m| *n += m);
     // An edge counts once in each shell that has a sheet there (a non-manifold edge

@@ -592,7 +592,7 @@ fn connect<S: Surface + ?Sized>(
     let shell_signed = holes::shell_volumes(surface, welded, kept, &shells, &caps);
     stage.stage("counting shells");
     let candidates = nesting::candidates(loops, welded, kept, &shells);
-    let counts = euler::per_shell(loops, welded, kept, &shells, &edges);
+    let counts = euler::per_shell(loops, welded, kept, &shells, &edges, vertices.used);
     Connected {
         vertices,
         edges: edges.len(),

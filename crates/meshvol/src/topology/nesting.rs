@@ -38,6 +38,8 @@ const NESTING_SAMPLES: usize = 32;
 /// Each shell's box, and the closed orientable shells whose boxes overlap it (its
 /// candidates for nesting and overlap), sorted.
 pub(super) struct Candidates {
+    /// `None` for a shell without kept faces, and for a lone shell (which has no
+    /// candidate, so nothing reads its box).
     pub bounds: Vec<Option<Bounds>>,
     pub of_shell: Vec<Vec<usize>>,
 }
@@ -57,6 +59,12 @@ pub(super) fn candidates(
     shells: &Shells,
 ) -> Candidates {
     let shell_count = shells.count;
+    if shell_count < 2 {
+        return Candidates {
+            bounds: vec![None; shell_count],
+            of_shell: vec![Vec::new(); shell_count],
+        };
+    }
     let vid = |c: usize| welded.corner_vertex[c];
     // Nesting and overlap concern closed, orientable shells.
     let solid_shell: Vec<bool> =

@@ -410,6 +410,9 @@ pub(super) fn cut_cells<S: Surface + ?Sized, const X: bool>(
 ) -> Result<Swept, GridError> {
     let [bx, by, depth] = block.shape();
     let len = bx * by * depth;
+    // Its own stage: at 256³ the arrays are 1.9 GB, and their first touch (the system
+    // zeroing fresh pages) can take longer than the sweeps.
+    progress.stage("allocating the cells' arrays");
     let mut out = CutCells {
         grid: *grid,
         region: block.region.clone(),
