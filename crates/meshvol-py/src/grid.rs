@@ -127,8 +127,6 @@ pub fn cut_cells<'py, S: Surface>(
         .detach(|| grid::cut_cells_extras(mesh, &grid, &region, extras, &()))
         .map_err(mesh_error)?;
     let [nx, ny, nz] = c.shape();
-    let (origin, cell) = (grid.origin, grid.cell);
-    let start = c.region.clone().map(|r| r.start);
     // The arrays are scaled where they are, in parallel, and moved into NumPy without a
     // copy: they are the only copy (at 256³, 1.9 GB; a scaled copy of each, made on one
     // thread, doubled the memory and took longer than the kernel).
@@ -165,8 +163,9 @@ pub fn cut_cells<'py, S: Surface>(
         }
     }
     let class = py.import("meshvol._grid")?.getattr("CutCells")?;
-    let origin: [f64; 3] = [0, 1, 2].map(|a| origin[a] + start[a] as f64 * cell[a]);
-    class.call1((dict, scale.point(origin), cell.map(|h| scale.length(h))))
+    let origin: [f64; 3] =
+        [0, 1, 2].map(|a| grid.origin[a] + c.region[a].start as f64 * grid.cell[a]);
+    class.call1((dict, scale.point(origin), grid.cell.map(|h| scale.length(h))))
 }
 
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the

@@ -288,12 +288,6 @@ struct Walk<'a, F> {
     test: &'a F,
 }
 
-impl<F> Walk<'_, F> {
-    fn share_a_tag(&self, a: usize, b: usize) -> bool {
-        self.tags.is_some_and(|t| t.share_a_tag(a, b))
-    }
-}
-
 /// A bounding-volume hierarchy over items identified by their index.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
@@ -642,7 +636,7 @@ impl Bvh {
         found: &mut Vec<T>,
     ) {
         let (na, nb) = (&self.nodes[a], &self.nodes[b]);
-        if !overlaps(&na.bounds, &nb.bounds) || test.share_a_tag(a, b) {
+        if !overlaps(&na.bounds, &nb.bounds) || test.tags.is_some_and(|t| t.share_a_tag(a, b)) {
             return;
         }
         if (na.end - na.begin).max(nb.end - nb.begin) <= PARALLEL_ITEMS {
