@@ -39,10 +39,16 @@
 //! - Every sum is compensated (TwoSum) and the chunks combine in a fixed order: the same
 //!   bits for any thread count. Within a chunk the triangles go to four interleaved sums
 //!   (the k-th to sum k mod 4; `volume::LaneSums`), merged in order: one SIMD lane each.
+//! - D is evaluated as D = a·((b − a)×(c − a)) (a, b, c relative to r), equal to
+//!   a·(b×c) because a·(a×w) = 0: the cross product is the one the vector area S
+//!   and the area take anyway, so a triangle costs one cross product, not two, and the
+//!   rounding bound is the smaller (P below is |a|·|edge|², not |a||b||c|).
 //! - `volume_error_bound` bounds |computed − exact| for the polyhedron the f64
-//!   coordinates describe: each D carries at most 8 roundings (3 subtractions of r,
-//!   the cross and dot products), so |D̂ − D| ≤ γ(8)·P with P = Σ|aᵢ||bⱼ||cₖ| over the
-//!   determinant's six terms; the compensated sum adds u·|ΣD| + γ(n)²·Σ|D|; the final
+//!   coordinates describe: each D carries at most 8 roundings along any of its six
+//!   terms (a − r, b − a and c − a, the cross product's products and difference, the
+//!   dot product's product and two additions), so |D̂ − D| ≤ γ(8)·P with
+//!   P = Σ|aᵢ|(|uⱼvₖ| + |uₖvⱼ|) = |a|·M, u = b − a, v = c − a and M the magnitudes of the
+//!   cross product's products; the compensated sum adds u·|ΣD| + γ(n)²·Σ|D|; the final
 //!   division by 6 adds u·|V|. (γ(n) = n·u/(1 − n·u), u = 2⁻⁵³.) The bound is evaluated
 //!   with a little headroom for its own rounding.
 //! - The move to the origin adds |r|-weighted bounds on S (each cross product component
@@ -55,7 +61,8 @@
 
 use crate::accumulate::{gamma, ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
 use crate::mesh::only_triangle;
-use crate::vector::{add, cross, dot, norm, scale, sub};
+use crate::vector::{add, dot, norm, scale, sub};
+use crate::volume::{Corners, Lanes};
 use crate::{Point, Surface};
 use rayon::prelude::*;
 use std::ops::{Add, Mul};
@@ -195,10 +202,11 @@ pub(crate) struct VolumeSums {
     /// Σ over faces of twice the vector area (each face's fan summed plainly), for the
     /// move from the reference point to the origin.
     pub(crate) vector_area: [CompensatedSum; 3],
-    /// Per component, Σ of the magnitudes of the two products in each fan triangle's
-    /// cross product, and the same weighted by the face's triangles + 4: for the bound.
+    /// Per component, Σ of the magnitudes M of the two products in each fan triangle's
+    /// cross product, and Σ (m − 1)·M over faces of m > 1 fan triangles (none in a
+    /// triangle mesh): the bound weighs each face's M by m + 4, 5·ΣM plus this.
     pub(crate) vector_area_magnitude: [f64; 3],
-    pub(crate) vector_area_weighted: [f64; 3],
+    pub(crate) vector_area_fan_excess: [f64; 3],
     /// Σ P, for the error bound.
     pub(crate) determinant_magnitude: f64,
     /// Σ |D|, for the error bound.
@@ -212,29 +220,42 @@ impl VolumeSums {
         for k in 0..3 {
             self.vector_area[k].merge(&o.vector_area[k]);
             self.vector_area_magnitude[k] += o.vector_area_magnitude[k];
-            self.vector_area_weighted[k] += o.vector_area_weighted[k];
+            self.vector_area_fan_excess[k] += o.vector_area_fan_excess[k];
         }
         self.determinant_magnitude += o.determinant_magnitude;
         self.abs_six_volume += o.abs_six_volume;
         self.triangles += o.triangles;
     }
 
-    /// Adds triangle (a, b, c), given relative to the reference point r: D and its
-    /// magnitude P.
+    /// Adds triangle (a, b, c) by its first corner relative to the reference point r,
+    /// `a_r` = a − r, and its cross product (b − a)×(c − a) as [`cross_products`] gives
+    /// it (`cross` = plus − minus, `magnitude` = |plus| + |minus|): D = a_r·cross and
+    /// its magnitude P = |a_r|·magnitude (see the module docs).
     #[inline(always)]
-    pub(crate) fn add_determinant(&mut self, a: Point, b: Point, c: Point) -> f64 {
-        let bc = cross(b, c);
-        let d = dot(a, bc);
-        let abs = |p: Point| [p[0].abs(), p[1].abs(), p[2].abs()];
-        let (aa, ba, ca) = (abs(a), abs(b), abs(c));
-        let permanent = aa[0] * (ba[1] * ca[2] + ba[2] * ca[1])
-            + aa[1] * (ba[2] * ca[0] + ba[0] * ca[2])
-            + aa[2] * (ba[0] * ca[1] + ba[1] * ca[0]);
+    pub(crate) fn add_determinant(&mut self, a_r: Point, cross: Point, magnitude: Point) -> f64 {
+        let d = dot(a_r, cross);
+        let permanent =
+            a_r[0].abs() * magnitude[0] + a_r[1].abs() * magnitude[1] + a_r[2].abs() * magnitude[2];
         self.six_volume.add(d);
         self.abs_six_volume += d.abs();
         self.determinant_magnitude += permanent;
         self.triangles += 1;
         d
+    }
+
+    /// Adds fan triangle (a, b, c) of a face: D (see [`Self::add_determinant`]); returns
+    /// its cross product and magnitudes for the face's vector area.
+    #[inline(always)]
+    pub(crate) fn add_fan_triangle(
+        &mut self,
+        r: Point,
+        a: Point,
+        b: Point,
+        c: Point,
+    ) -> (Point, Point) {
+        let (cross, magnitude) = cross_products(a, b, c);
+        self.add_determinant(sub(a, r), cross, magnitude);
+        (cross, magnitude)
     }
 
     /// Adds a face's vector area (its fan's cross products summed plainly), their
@@ -244,9 +265,29 @@ impl VolumeSums {
         for k in 0..3 {
             self.vector_area[k].add(vector_area[k]);
             self.vector_area_magnitude[k] += magnitude[k];
-            self.vector_area_weighted[k] += (fan + 4) as f64 * magnitude[k];
+            if fan > 1 {
+                self.vector_area_fan_excess[k] += (fan - 1) as f64 * magnitude[k];
+            }
         }
     }
+}
+
+/// The cross product (b − a)×(c − a) as plus − minus of its components' two products,
+/// and the products' magnitudes |plus| + |minus|: the same operations as the SIMD lanes
+/// (`volume::VolumeLanes::add`).
+#[inline(always)]
+pub(crate) fn cross_products(a: Point, b: Point, c: Point) -> (Point, Point) {
+    let (u, v) = (sub(b, a), sub(c, a));
+    let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
+    let minus = [u[2] * v[1], u[0] * v[2], u[1] * v[0]];
+    (
+        [plus[0] - minus[0], plus[1] - minus[1], plus[2] - minus[2]],
+        [
+            plus[0].abs() + minus[0].abs(),
+            plus[1].abs() + minus[1].abs(),
+            plus[2].abs() + minus[2].abs(),
+        ],
+    )
 }
 
 /// Per-chunk running sums. The volume, whose error bound is reported, is compensated
@@ -303,13 +344,18 @@ impl Partial {
         total
     }
 
+    /// Adds fan triangle (a, b, c): its D and its moments' terms about r; returns its
+    /// cross product and magnitudes for the face's vector area.
     #[inline(always)]
-    fn add_triangle(&mut self, a: Point, b: Point, c: Point) {
-        let d = self.volume.add_determinant(a, b, c);
+    fn add_triangle(&mut self, r: Point, a: Point, b: Point, c: Point) -> (Point, Point) {
+        let (cross, magnitude) = cross_products(a, b, c);
+        let (a, b, c) = (sub(a, r), sub(b, r), sub(c, r));
+        let d = self.volume.add_determinant(a, cross, magnitude);
         let terms = moment_terms(a, b, c);
         for (sum, t) in self.block.iter_mut().zip(terms) {
             *sum += d * t;
         }
+        (cross, magnitude)
     }
 }
 
@@ -343,14 +389,11 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
         CHUNK_FACES,
         |range| {
             if let Some((positions, triangles)) = surface.indexed_triangles() {
-                return triangles_partial(
-                    &|f: usize| triangles[f].map(|i| positions[i as usize]),
-                    range,
-                    r,
-                );
+                return triangles_partial(&Indexed { positions, triangles }, range, r);
             }
             if surface.faces_are_triangles() {
-                return triangles_partial(&|f: usize| only_triangle(surface, f), range, r);
+                let each = EachTriangle(|f: usize| only_triangle(surface, f));
+                return triangles_partial(&each, range, r);
             }
             // The chunk's k-th triangle and k-th face to sum k mod 4 (`volume::LaneSums`).
             let mut lanes = [Partial::default(); 4];
@@ -361,19 +404,15 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
                 let mut magnitude = [0.0; 3];
                 let mut fan = 0usize;
                 surface.fan(face, |a, b, c| {
-                    // cross(b − a, c − a), keeping its products for the error bound.
-                    let (u, v) = (sub(b, a), sub(c, a));
-                    let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
-                    let minus = [u[2] * v[1], u[0] * v[2], u[1] * v[0]];
+                    let (cross, m) = lanes[triangle % 4].add_triangle(r, a, b, c);
                     for k in 0..3 {
-                        vector_area[k] += plus[k] - minus[k];
-                        magnitude[k] += plus[k].abs() + minus[k].abs();
+                        vector_area[k] += cross[k];
+                        magnitude[k] += m[k];
                     }
                     fan += 1;
                     bounds.include(a);
                     bounds.include(b);
                     bounds.include(c);
-                    lanes[triangle % 4].add_triangle(sub(a, r), sub(b, r), sub(c, r));
                     triangle += 1;
                 });
                 let lane = &mut lanes[k % 4];
@@ -401,42 +440,123 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
     properties
 }
 
-/// One chunk of [`mass_properties`] over a surface whose every face is one triangle,
-/// `corners(f)` giving face f's (an indexed triangle mesh, a validated [`crate::Mesh`];
-/// a binary STL read in place), four triangles a SIMD step: every per-triangle
+/// Where [`triangles_partial`] reads a surface whose every face is one triangle.
+trait Triangles {
+    /// Every coordinate is a number (not NaN): the bounds' minima and maxima can skip
+    /// their NaN tests.
+    const NUMBERS: bool;
+
+    /// Face `face`'s corners.
+    fn corners(&self, face: usize) -> [Point; 3];
+
+    /// Faces `face..face + 4`'s corners as lanes, lane j face `face + j`'s.
+    #[inline(always)]
+    fn four<L: Lanes>(&self, face: usize) -> Corners<L> {
+        let mut p = [[[0.0; 4]; 3]; 3];
+        for lane in 0..4 {
+            for (corner, q) in self.corners(face + lane).into_iter().enumerate() {
+                for k in 0..3 {
+                    p[corner][k][lane] = q[k];
+                }
+            }
+        }
+        crate::volume::corners::<L>(&p)
+    }
+}
+
+/// An indexed triangle mesh (a validated [`crate::Mesh`]): four triangles' corners are
+/// gathered into lanes from the positions ([`Lanes::gather`]).
+struct Indexed<'a> {
+    positions: &'a [Point],
+    triangles: &'a [[u32; 3]],
+}
+
+impl Triangles for Indexed<'_> {
+    // A validated mesh's coordinates are finite.
+    const NUMBERS: bool = true;
+
+    #[inline(always)]
+    fn corners(&self, face: usize) -> [Point; 3] {
+        self.triangles[face].map(|i| self.positions[i as usize])
+    }
+
+    #[inline(always)]
+    fn four<L: Lanes>(&self, face: usize) -> Corners<L> {
+        let t = &self.triangles[face..face + 4];
+        let at = |i: u32| &self.positions[i as usize];
+        [
+            L::gather([at(t[0][0]), at(t[1][0]), at(t[2][0]), at(t[3][0])]),
+            L::gather([at(t[0][1]), at(t[1][1]), at(t[2][1]), at(t[3][1])]),
+            L::gather([at(t[0][2]), at(t[1][2]), at(t[2][2]), at(t[3][2])]),
+        ]
+    }
+}
+
+/// Any other surface of triangles (a binary STL read in place), face by face.
+struct EachTriangle<F>(F);
+
+impl<F: Fn(usize) -> [Point; 3]> Triangles for EachTriangle<F> {
+    const NUMBERS: bool = false;
+
+    #[inline(always)]
+    fn corners(&self, face: usize) -> [Point; 3] {
+        (self.0)(face)
+    }
+}
+
+/// One chunk of [`mass_properties`] over a surface whose every face is one triangle
+/// (an indexed triangle mesh, a validated [`crate::Mesh`]; a binary STL read in
+/// place), four triangles a SIMD step: every per-triangle
 /// quantity of the scalar loop (the same IEEE operations, lane by lane), and every sum
 /// too, lane j holding the chunk's j-th interleaved sum (`volume::LaneSums`): the same
 /// bits as the scalar loop, which the tests compare (`tests/volume.rs`). The bounds are
 /// lane-wise minima and maxima, their zeros (whose sign depends on the order) redone
 /// in order.
-fn triangles_partial<F: Fn(usize) -> [Point; 3]>(
-    corners: &F,
+fn triangles_partial<T: Triangles>(
+    corners: &T,
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx512vl") {
+        // SAFETY: the CPU has AVX-512VL.
+        return unsafe { triangles_partial_avx512(corners, range, r) };
+    }
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2.
         return unsafe { triangles_partial_avx2(corners, range, r) };
     }
-    triangles_partial_in::<wide::f64x4, F>(corners, range, r)
+    triangles_partial_in::<wide::f64x4, T>(corners, range, r)
 }
 
 /// [`triangles_partial`] compiled for AVX2, its lanes one register (see
 /// [`crate::volume`]'s docs): the same operations, so the same bits.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn triangles_partial_avx2<F: Fn(usize) -> [Point; 3]>(
-    corners: &F,
+fn triangles_partial_avx2<T: Triangles>(
+    corners: &T,
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
-    triangles_partial_in::<crate::volume::Avx, F>(corners, range, r)
+    triangles_partial_in::<crate::volume::Avx, T>(corners, range, r)
+}
+
+/// [`triangles_partial`] compiled for AVX-512VL: the same 256-bit operations, with its
+/// 32 registers.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512vl")]
+fn triangles_partial_avx512<T: Triangles>(
+    corners: &T,
+    range: std::ops::Range<usize>,
+    r: Point,
+) -> Partial {
+    triangles_partial_in::<crate::volume::Avx, T>(corners, range, r)
 }
 
 #[inline(always)]
-fn triangles_partial_in<L: crate::volume::Lanes, F: Fn(usize) -> [Point; 3]>(
-    triangle: &F,
+fn triangles_partial_in<L: Lanes, T: Triangles>(
+    triangles: &T,
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
@@ -452,37 +572,45 @@ fn triangles_partial_in<L: crate::volume::Lanes, F: Fn(usize) -> [Point; 3]>(
     // The bounds lane by lane; see below for their signed zeros.
     let rl = [L::splat(r[0]), L::splat(r[1]), L::splat(r[2])];
     let (mut low, mut high) = (rl, rl);
-    let groups = range.len() / 4;
+    let groups_end = first + range.len() / 4 * 4;
     let mut face = first;
-    for _ in 0..groups {
-        let mut p = [[[0.0; 4]; 3]; 3];
-        for lane in 0..4 {
-            for (corner, q) in triangle(face + lane).into_iter().enumerate() {
-                for k in 0..3 {
-                    p[corner][k][lane] = q[k];
+    // Block by block: the inner loop holds the running sums in registers, the outer one
+    // the compensated sums, which it touches once a block.
+    let ends_block = |next: usize| (next - 1) % BLOCK_FACES == BLOCK_FACES - 1;
+    while face < groups_end {
+        loop {
+            let corners = triangles.four::<L>(face);
+            let [[ax, ay, az], [bx, by, bz], [cx, cy, cz]] = corners;
+            for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate()
+            {
+                if T::NUMBERS {
+                    low[k] = low[k].min_of_numbers(x).min_of_numbers(y).min_of_numbers(z);
+                    high[k] = high[k].max_of_numbers(x).max_of_numbers(y).max_of_numbers(z);
+                } else {
+                    low[k] = low[k].min(x).min(y).min(z);
+                    high[k] = high[k].max(x).max(y).max(z);
                 }
             }
+            let (area, d, a) = lanes.add(corners);
+            let (b, c) =
+                ([bx - rl[0], by - rl[1], bz - rl[2]], [cx - rl[0], cy - rl[1], cz - rl[2]]);
+            // The moments' terms and the double area, as `Partial::add_triangle`.
+            for (sum, t) in block.iter_mut().zip(moment_terms(a, b, c)) {
+                *sum += d * t;
+            }
+            block[9] += (area[0] * area[0] + area[1] * area[1] + area[2] * area[2]).sqrt();
+            face += 4;
+            if face == groups_end || ends_block(face) {
+                break;
+            }
         }
-        let corners = crate::volume::corners::<L>(&p);
-        let [[ax, ay, az], [bx, by, bz], [cx, cy, cz]] = corners;
-        for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate() {
-            low[k] = low[k].min(x).min(y).min(z);
-            high[k] = high[k].max(x).max(y).max(z);
-        }
-        let (area, d, [a, b, c]) = lanes.add(corners);
-        // The moments' terms and the double area, as `Partial::add_triangle`.
-        for (sum, t) in block.iter_mut().zip(moment_terms(a, b, c)) {
-            *sum += d * t;
-        }
-        block[9] += (area[0] * area[0] + area[1] * area[1] + area[2] * area[2]).sqrt();
-        // The group's last face ends a block: `Partial::flush_block`, lane by lane.
-        if (face + 3) % BLOCK_FACES == BLOCK_FACES - 1 {
+        // The group's last face ended a block: `Partial::flush_block`, lane by lane.
+        if ends_block(face) {
             for k in 0..10 {
                 add_compensated(&mut sum[k], &mut compensation[k], block[k]);
             }
             block = [zero; 10];
         }
-        face += 4;
     }
     let volume = lanes.lanes();
     let (sum, compensation, block) = (
@@ -511,21 +639,14 @@ fn triangles_partial_in<L: crate::volume::Lanes, F: Fn(usize) -> [Point; 3]>(
     // The last few triangles as the scalar loop reads them; the remainder starts at a
     // multiple of 4 from the chunk's start, so at lane 0.
     for lane in 0..range.len() % 4 {
-        let [a, b, c] = triangle(face);
-        let (u, v) = (sub(b, a), sub(c, a));
-        let plus = [u[1] * v[2], u[2] * v[0], u[0] * v[1]];
-        let minus = [u[2] * v[1], u[0] * v[2], u[1] * v[0]];
-        let mut vector_area = [0.0; 3];
-        let mut magnitude = [0.0; 3];
-        for k in 0..3 {
-            vector_area[k] += plus[k] - minus[k];
-            magnitude[k] += plus[k].abs() + minus[k].abs();
-        }
+        let [a, b, c] = triangles.corners(face);
         bounds.include(a);
         bounds.include(b);
         bounds.include(c);
         let part = &mut parts[lane];
-        part.add_triangle(sub(a, r), sub(b, r), sub(c, r));
+        let (cross, magnitude) = part.add_triangle(r, a, b, c);
+        // A face's fan sum starts at 0.0 (`0.0 + x` turns −0 into +0).
+        let vector_area = cross.map(|x| 0.0 + x);
         part.block[9] += norm(vector_area);
         part.volume.add_vector_area(vector_area, magnitude, 1);
         if face % BLOCK_FACES == BLOCK_FACES - 1 {
@@ -548,7 +669,7 @@ fn triangles_partial_in<L: crate::volume::Lanes, F: Fn(usize) -> [Point; 3]>(
         }
         if unsure(bounds.min[k]) || unsure(bounds.max[k]) {
             let (mut low, mut high) = (r[k], r[k]);
-            for x in range.clone().flat_map(|f| triangle(f).map(|p| p[k])) {
+            for x in range.clone().flat_map(|f| triangles.corners(f).map(|p| p[k])) {
                 low = if x < low { x } else { low };
                 high = if x > high { x } else { high };
             }
@@ -601,7 +722,8 @@ impl VolumeSums {
         let faces_f = faces as f64;
         let mut correction_bound = 0.0;
         for k in 0..3 {
-            let s_bound = 2.0 * UNIT_ROUNDOFF * sums.vector_area_weighted[k]
+            let weighted = 5.0 * sums.vector_area_magnitude[k] + sums.vector_area_fan_excess[k];
+            let s_bound = 2.0 * UNIT_ROUNDOFF * weighted
                 + UNIT_ROUNDOFF * s[k].abs()
                 + 2.0 * gamma(faces_f).powi(2) * sums.vector_area_magnitude[k];
             // The dot product and division by 6 round by γ(4) of Σ|r_k S_k|.
@@ -681,7 +803,8 @@ mod tests {
     use crate::test_rng::XorShift;
 
     /// The baseline lanes (`wide`, what a CPU without AVX2 runs) give the bits of the
-    /// lanes this CPU runs, blocks, bounds' signed zeros and remainders included.
+    /// AVX2 and AVX-512 copies (those this CPU has) and of the dispatched one, blocks,
+    /// bounds' signed zeros and remainders included.
     #[test]
     fn baseline_and_dispatched_lanes_agree() {
         let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
@@ -699,10 +822,30 @@ mod tests {
             let triangles: Vec<[u32; 3]> =
                 (0..n).map(|_| [0; 3].map(|_| rng.below(300) as u32)).collect();
             let r = positions[triangles[0][0] as usize];
-            let corners = |f: usize| triangles[f].map(|i: u32| positions[i as usize]);
+            let corners = EachTriangle(|f: usize| triangles[f].map(|i: u32| positions[i as usize]));
+            let indexed = Indexed { positions: &positions, triangles: &triangles };
             let baseline = triangles_partial_in::<wide::f64x4, _>(&corners, 0..n, r);
-            let dispatched = triangles_partial(&corners, 0..n, r);
-            assert_eq!(format!("{baseline:?}"), format!("{dispatched:?}"), "{n} triangles");
+            let mut copies = vec![
+                triangles_partial(&corners, 0..n, r),
+                triangles_partial(&indexed, 0..n, r),
+                triangles_partial_in::<wide::f64x4, _>(&indexed, 0..n, r),
+            ];
+            #[cfg(target_arch = "x86_64")]
+            {
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    // SAFETY: the CPU has AVX2.
+                    copies.push(unsafe { triangles_partial_avx2(&corners, 0..n, r) });
+                    copies.push(unsafe { triangles_partial_avx2(&indexed, 0..n, r) });
+                }
+                if std::arch::is_x86_feature_detected!("avx512vl") {
+                    // SAFETY: the CPU has AVX-512VL.
+                    copies.push(unsafe { triangles_partial_avx512(&corners, 0..n, r) });
+                    copies.push(unsafe { triangles_partial_avx512(&indexed, 0..n, r) });
+                }
+            }
+            for copy in copies {
+                assert_eq!(format!("{baseline:?}"), format!("{copy:?}"), "{n} triangles");
+            }
         }
     }
 }

@@ -235,6 +235,14 @@ fn bad_indices_and_coordinates_are_errors() {
         triangles_signed_volume(&p, &t),
         Err(MeshError::IndexOutOfRange { face: 8, index: 4, vertices: 4 })
     );
+    // Bad faces in later chunks of a parallel pass: the first in face order is named.
+    let mut many = vec![[0i32, 2, 1]; 3 * PARALLEL_TRIANGLES];
+    many[2 * PARALLEL_TRIANGLES + 5] = [0, 9, 1];
+    many[PARALLEL_TRIANGLES + 3] = [0, 1, -2];
+    assert_eq!(
+        triangles_signed_volume(&p, &many),
+        Err(MeshError::NegativeIndex { face: PARALLEL_TRIANGLES + 3, index: -2 })
+    );
     let q = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, f64::NAN, 0.0], [0.0, 0.0, 1.0]];
     assert_eq!(
         triangles_signed_volume(&q, &[[0u32, 1, 3], [0, 2, 1]]).map_err(|e| e.to_string()),
