@@ -464,15 +464,17 @@ trait Triangles {
     }
 }
 
-/// An indexed triangle mesh (a validated [`crate::Mesh`]): four triangles' corners are
-/// gathered into lanes from the positions ([`Lanes::gather`]).
+/// An indexed triangle mesh (a surface's [`Surface::indexed_triangles`], such as a
+/// [`crate::Mesh`] of triangles): four triangles' corners are gathered into lanes from
+/// the positions ([`Lanes::gather`]).
 struct Indexed<'a> {
     positions: &'a [Point],
     triangles: &'a [[u32; 3]],
 }
 
 impl Triangles for Indexed<'_> {
-    // A validated mesh's coordinates are finite.
+    // Arrays behind a `Surface` hold finite coordinates (its contract; a `Mesh`
+    // validates them when built).
     const NUMBERS: bool = true;
 
     #[inline(always)]
