@@ -139,7 +139,13 @@ pub fn volume<S: Surface>(
         return Err(format!("{name}: {NO_FACES}"));
     }
     let exact = options.exact;
-    let as_wound = measure(subject.surface, exact).map_err(|e| format!("{name}: {e}"))?;
+    // Checked, as wound with what the check proved: a closed, consistently oriented,
+    // exactly welded surface skips the move to the origin (its vector area is zero).
+    let as_wound = match subject.check {
+        Some(checked) => measure(&checked.as_wound(subject.surface), exact),
+        None => measure(subject.surface, exact),
+    }
+    .map_err(|e| format!("{name}: {e}"))?;
     let mut warnings = subject.warnings();
     let unit_options = UnitOptions { units: options.units, density: Some(options.density) };
     let (scale, unit_warning) =

@@ -282,6 +282,18 @@ pub trait Surface: Sync {
     fn triangle_f32(&self, _face: usize) -> Option<[[f32; 3]; 3]> {
         None
     }
+
+    /// Whether the surface's vector area, Σ (b − a)×(c − a) over its fan triangles, is
+    /// known to be exactly zero: every directed edge between two corners is matched by
+    /// its reverse, the corners exactly equal (a closed, consistently oriented surface,
+    /// welded exactly: what [`crate::topology::Check::vector_area_is_zero`] proves of the
+    /// solid it finds). Its volume about any point is then its volume about the origin,
+    /// and [`crate::mass_properties`] takes the sum about its first vertex as it is,
+    /// with that sum's bound alone: no move to the origin, whose bound grows with the
+    /// distance from it. `false` (the default) when not known.
+    fn vector_area_is_zero(&self) -> bool {
+        false
+    }
 }
 
 /// Face `face`'s one triangle, of a surface whose [`Surface::faces_are_triangles`].
@@ -328,6 +340,10 @@ impl<S: Surface + ?Sized> Surface for &S {
 
     fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
         (**self).triangle_f32(face)
+    }
+
+    fn vector_area_is_zero(&self) -> bool {
+        (**self).vector_area_is_zero()
     }
 }
 

@@ -25,6 +25,11 @@
 //! (zero for a closed surface). S is summed (compensated) in the same pass and the
 //! correction applied once at the end, only when it is distinguishable from its own
 //! rounding: a closed surface keeps the value about r, bit for bit.
+//! A surface whose vector area is known to be exactly zero
+//! ([`Surface::vector_area_is_zero`]: the solid of a check that found it closed,
+//! consistently oriented and exactly welded, every directed edge matched by its reverse)
+//! skips the move: its volume about r is its volume about the origin, and its bound that
+//! of the sum about r, whatever its distance from the origin.
 //! The centroid and inertia stay those about r: for an open surface they describe the
 //! solid of the cones from r (the first vertex of the first face) to the faces, i.e.
 //! the surface closed by joining its rim to r; for a closed one, the solid itself.
@@ -427,7 +432,7 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
         Partial::merge,
     )
     .unwrap_or_default();
-    let (mut properties, loose) = finish(faces, r, &sums);
+    let (mut properties, loose) = finish(faces, r, &sums, surface.vector_area_is_zero());
     if loose {
         // Far from the origin, the move from r to the origin would widen the bound
         // beyond what the sum about r achieves: take the exact sum instead (correctly
@@ -702,7 +707,10 @@ pub(crate) struct VolumeFinish {
 }
 
 impl VolumeSums {
-    pub(crate) fn finish(&self, faces: usize, r: Point) -> VolumeFinish {
+    /// `zero_vector_area`: the surface's vector area is known to be exactly zero
+    /// ([`Surface::vector_area_is_zero`]), so the volume about r is the volume about the
+    /// origin and its bound the whole bound.
+    pub(crate) fn finish(&self, faces: usize, r: Point, zero_vector_area: bool) -> VolumeFinish {
         let sums = self;
         let n = sums.triangles as f64;
         let six_volume = sums.six_volume.value();
@@ -714,6 +722,16 @@ impl VolumeSums {
         // (1 + γ(n + 8)) covers the rounding of the bound's own sums.
         let headroom = 1.0 + gamma(n + 8.0);
         let bound_about_r = six_bound * headroom / 6.0 + UNIT_ROUNDOFF * about_r.abs();
+        if zero_vector_area {
+            let (signed_volume, volume_error_bound) = (about_r, bound_about_r);
+            return VolumeFinish {
+                signed_volume,
+                volume_error_bound,
+                about_r,
+                bound_about_r,
+                loose: false,
+            };
+        }
 
         // To the origin: V_O = V_r + r·S/6, S = Σ (b − a) × (c − a) over the fan triangles.
         // Each cross product component is off by at most γ(4) of its two products'
@@ -749,9 +767,14 @@ impl VolumeSums {
 
 /// The properties from the sums, and whether the volume's bound is loose (see
 /// [`LOOSE_BOUND`]).
-fn finish(faces: usize, r: Point, sums: &Partial) -> (MassProperties, bool) {
+fn finish(
+    faces: usize,
+    r: Point,
+    sums: &Partial,
+    zero_vector_area: bool,
+) -> (MassProperties, bool) {
     let VolumeFinish { signed_volume, volume_error_bound, about_r, bound_about_r, loose } =
-        sums.volume.finish(faces, r);
+        sums.volume.finish(faces, r, zero_vector_area);
     let six_volume = sums.volume.six_volume.value();
 
     let mut centroid = None;

@@ -32,6 +32,9 @@
 //!   |r_k|·(2u·Σ(m + 4)·M + u·|S_k| + 2γ(F)²·ΣM + γ(4)·|S_k|), M the magnitudes of a
 //!   face's cross products' products and m its fan's length; when r·S/6 is within that bound of 0 (a closed
 //!   surface, where S = 0), it is not added and the bound covers it;
+//! - a surface whose vector area is known to be exactly zero
+//!   ([`Surface::vector_area_is_zero`], a checked closed solid) takes no move: its bound
+//!   is the bound about r;
 //! - when that move would make the bound looser than both the bound about r and 2⁻⁴²
 //!   of the volume (a surface far from the origin compared with its size), the exact
 //!   sum ([`crate::exact_signed_volume`]) is taken instead and the bound is u·|V|.
@@ -140,7 +143,7 @@ vertex_index!(u32, i32, i64, u64, usize);
 pub fn signed_volume<S: Surface + ?Sized>(surface: &S) -> Volume {
     if let Some((positions, triangles)) = surface.indexed_triangles() {
         // A validated mesh: every index is in range and every coordinate finite.
-        if let Ok(v) = triangles_signed_volume(positions, triangles) {
+        if let Ok(v) = triangles_volume(positions, triangles, surface.vector_area_is_zero()) {
             return v;
         }
     }
@@ -200,6 +203,16 @@ pub fn triangles_signed_volume<I: VertexIndex>(
     positions: &[Point],
     triangles: &[[I; 3]],
 ) -> Result<Volume, MeshError> {
+    triangles_volume(positions, triangles, false)
+}
+
+/// [`triangles_signed_volume`], knowing whether the triangles' vector area is exactly
+/// zero ([`Surface::vector_area_is_zero`]).
+fn triangles_volume<I: VertexIndex>(
+    positions: &[Point],
+    triangles: &[[I; 3]],
+    zero_vector_area: bool,
+) -> Result<Volume, MeshError> {
     let faces = triangles.len();
     let Some(first) = triangles.first() else {
         return Ok(Volume { signed_volume: 0.0, volume_error_bound: 0.0, faces, triangles: 0 });
@@ -231,13 +244,13 @@ pub fn triangles_signed_volume<I: VertexIndex>(
             return Err(e);
         }
     }
-    let view = Borrowed { positions, triangles };
+    let view = Borrowed { positions, triangles, zero_vector_area };
     Ok(finish(&view, faces, r, &sums))
 }
 
 /// The volume from the sums; the exact sum where the bound would be loose.
 fn finish<S: Surface + ?Sized>(surface: &S, faces: usize, r: Point, sums: &VolumeSums) -> Volume {
-    let done = sums.finish(faces, r);
+    let done = sums.finish(faces, r, surface.vector_area_is_zero());
     let (mut signed_volume, mut volume_error_bound) = (done.signed_volume, done.volume_error_bound);
     if done.loose {
         // As in mass_properties: far from the origin, the exact sum, correctly rounded.
@@ -273,11 +286,16 @@ fn non_finite_vertex<I: VertexIndex>(
 struct Borrowed<'a, I> {
     positions: &'a [Point],
     triangles: &'a [[I; 3]],
+    zero_vector_area: bool,
 }
 
 impl<I: VertexIndex> Surface for Borrowed<'_, I> {
     fn face_count(&self) -> usize {
         self.triangles.len()
+    }
+
+    fn vector_area_is_zero(&self) -> bool {
+        self.zero_vector_area
     }
 
     fn fan(&self, face: usize, mut triangle: impl FnMut(Point, Point, Point)) {

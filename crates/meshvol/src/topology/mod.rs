@@ -94,7 +94,7 @@ mod verdict;
 pub(crate) mod weld;
 
 pub use assembled::check_assembled;
-pub use solid::{Measured, Solid, SolidView};
+pub use solid::{AsWoundView, Measured, Solid, SolidView};
 pub use verdict::volume_warnings;
 
 use crate::bvh::Bvh;
@@ -271,6 +271,31 @@ impl Check {
     /// capped.
     pub fn solid<'a, S: Surface + ?Sized>(&'a self, surface: &'a S) -> solid::SolidView<'a, S> {
         self.solid.view(surface)
+    }
+
+    /// The checked surface as its faces are wound, with what the check proved of it:
+    /// measuring it ([`crate::mass_properties`]) gives the surface's own numbers, and
+    /// skips the move to the origin where its vector area is exactly zero. That is so
+    /// when [`Check::vector_area_is_zero`] and no face was dropped as a duplicate: the
+    /// solid then differs from the surface only by whole shells turned (a closed shell
+    /// turned stays balanced) and collapsed faces left out (their cross products are
+    /// exactly zero).
+    pub fn as_wound<'a, S: Surface + ?Sized>(
+        &'a self,
+        surface: &'a S,
+    ) -> solid::AsWoundView<'a, S> {
+        let balanced = self.vector_area_is_zero() && self.duplicate_faces == 0;
+        solid::AsWoundView::new(surface, balanced)
+    }
+
+    /// Whether the solid's vector area is exactly zero, so that its volume about any
+    /// point is its volume about the origin: the weld exact, the kept faces closed and
+    /// consistently oriented, no hole capped. [`Check::solid`] says so to
+    /// [`crate::mass_properties`] ([`Surface::vector_area_is_zero`]), which then keeps
+    /// the sum about the first vertex and its bound, without the move to the origin
+    /// (whose bound grows with the distance from it).
+    pub fn vector_area_is_zero(&self) -> bool {
+        self.solid.balanced()
     }
 
     /// The solid as welded triangles when it is exactly that (see [`Solid::triangles`]):
@@ -510,7 +535,7 @@ fn analyse<S: Surface + ?Sized>(
     let mut solid_vertices = Vec::with_capacity(welded.positions.len() + caps.centres.len());
     solid_vertices.par_extend(welded.positions.par_iter().copied());
     solid_vertices.extend(caps.centres);
-    let solid = Solid::new(
+    let mut solid = Solid::new(
         solid::Faces {
             kept,
             flip: &face_flip,
@@ -525,12 +550,14 @@ fn analyse<S: Surface + ?Sized>(
 
     let count = |flags: &[bool]| flags.par_iter().filter(|&&f| f).count();
     let kept_faces = count(kept);
+    let closed = kept_faces > 0 && edge_counts.boundary == 0 && edge_counts.non_manifold == 0;
+    solid.mark_balanced(closed && edge_counts.consistently_oriented);
     Check {
         weld_tolerance: tolerance,
         vertices: vertices.used,
         edges,
         faces,
-        closed: kept_faces > 0 && edge_counts.boundary == 0 && edge_counts.non_manifold == 0,
+        closed,
         boundary_edges: edge_counts.boundary,
         boundary_loops: caps.per_shell.iter().sum(),
         non_manifold_edges: edge_counts.non_manifold,

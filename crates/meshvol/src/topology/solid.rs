@@ -59,6 +59,9 @@ pub struct Solid {
     /// zero). Not so when welded within a tolerance, or put together from an
     /// assembly's parts (a transform may round two of a part's vertices to one point).
     exact: bool,
+    /// Every directed edge of the solid's faces is matched by its reverse, the corners
+    /// exactly equal: its vector area is exactly zero (see [`Solid::mark_balanced`]).
+    balanced: bool,
 }
 
 impl Solid {
@@ -80,7 +83,23 @@ impl Solid {
             start,
             cap_ids: caps.ids.into_iter().zip(caps.flip).map(|(c, &f)| turn(c, f)).collect(),
             exact,
+            balanced: false,
         }
+    }
+
+    /// Records that the kept faces are closed (every edge used by two of them) and
+    /// consistently oriented (the two traverse it in opposite directions): with an exact
+    /// weld and no caps, every directed edge of the solid is then matched by its
+    /// reverse with exactly equal corners (a shell turned to its role is turned whole,
+    /// and a face dropped for collapsing has no area), so its vector area is exactly
+    /// zero.
+    pub(crate) fn mark_balanced(&mut self, closed_and_consistently_oriented: bool) {
+        self.balanced = self.exact && self.caps.is_empty() && closed_and_consistently_oriented;
+    }
+
+    /// See [`Solid::mark_balanced`].
+    pub(crate) fn balanced(&self) -> bool {
+        self.balanced
     }
 
     /// The solid as welded triangles, when it is exactly that: the vertices, and each
@@ -248,6 +267,10 @@ impl<S: Surface + ?Sized> Surface for SolidView<'_, S> {
         self.solid.faces.len() + self.solid.caps.len()
     }
 
+    fn vector_area_is_zero(&self) -> bool {
+        self.solid.balanced
+    }
+
     #[inline]
     fn fan(&self, face: usize, mut triangle: impl FnMut(Point, Point, Point)) {
         match self.solid.faces.get(face) {
@@ -291,5 +314,56 @@ impl<S: Surface + ?Sized> Surface for Measured<'_, S> {
             Measured::Solid(s) => s.fan(face, triangle),
             Measured::AsWound(s) => s.fan(face, triangle),
         }
+    }
+
+    fn vector_area_is_zero(&self) -> bool {
+        match self {
+            Measured::Solid(s) => s.vector_area_is_zero(),
+            Measured::AsWound(s) => s.vector_area_is_zero(),
+        }
+    }
+}
+
+/// A checked surface as its faces are wound ([`crate::topology::Check::as_wound`]):
+/// the surface itself, every fast path included, and what the check proved of its
+/// vector area.
+#[derive(Debug)]
+pub struct AsWoundView<'a, S: ?Sized> {
+    surface: &'a S,
+    balanced: bool,
+}
+
+impl<'a, S: ?Sized> AsWoundView<'a, S> {
+    /// `balanced`: every directed edge of the surface's faces is matched by its reverse
+    /// with exactly equal corners.
+    pub(crate) fn new(surface: &'a S, balanced: bool) -> Self {
+        AsWoundView { surface, balanced }
+    }
+}
+
+impl<S: Surface + ?Sized> Surface for AsWoundView<'_, S> {
+    fn face_count(&self) -> usize {
+        self.surface.face_count()
+    }
+
+    #[inline]
+    fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
+        self.surface.fan(face, triangle)
+    }
+
+    fn indexed_triangles(&self) -> Option<(&[Point], &[[u32; 3]])> {
+        self.surface.indexed_triangles()
+    }
+
+    fn faces_are_triangles(&self) -> bool {
+        self.surface.faces_are_triangles()
+    }
+
+    fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
+        self.surface.triangle_f32(face)
+    }
+
+    fn vector_area_is_zero(&self) -> bool {
+        self.balanced
     }
 }
