@@ -460,19 +460,23 @@ impl Bins {
     }
 }
 
-/// An array of `len` zero entries, or the error naming the memory it needed.
+/// An array of `len` default (zero) entries, or the error naming the memory it needed.
 ///
-/// Zeroed by the allocator (`calloc`): fresh memory from the system is zero already, so
-/// nothing writes it here, and its first touch (the system's faults and zeroing of its
-/// pages, most of the cost of a large array on a VM) happens where the workers first
-/// write each part, in parallel. Writing the zeros here instead (on all workers) cost
-/// a pass over the arrays: `grid --moments` at 256³ (1.9 GB of arrays) took 0.64 s
-/// (median of 5, 2 cores) against 0.59 s.
-pub(crate) fn zeroed<T: bytemuck::Zeroable>(len: usize) -> Result<Vec<T>, GridError> {
+/// Written by all the workers, a part each: the first touch of fresh memory (the
+/// system's faults and zeroing of its pages) is most of the cost of a large array, and
+/// `vec!` was serial (the allocator writes the zeros itself, on one thread: in a profile
+/// of `grid --moments` at 256³, 1.9 GB of arrays, the system's page zeroing under that
+/// one thread was 44% of the run's samples, the workers idle). Nor is `calloc` better
+/// though it skips the zeros' pass: the sweeps then add into the cells, so each fresh
+/// page is first read (the system maps its shared zero page) and then written (a second
+/// fault, copying it): with 4 KiB pages (the system allocator, as in Python) the cut
+/// cells at 256³ took 4.1 s against 0.90 s this way (two cores, 9 µs a fault on a VM).
+pub(crate) fn zeroed<T: Copy + Default + Send + Sync>(len: usize) -> Result<Vec<T>, GridError> {
+    let mut out: Vec<T> = Vec::new();
     let bytes = len as u128 * std::mem::size_of::<T>() as u128;
-    let boxed = bytemuck::allocation::try_zeroed_slice_box(len)
-        .map_err(|_| GridError::OutOfMemory { bytes })?;
-    Ok(boxed.into_vec())
+    out.try_reserve_exact(len).map_err(|_| GridError::OutOfMemory { bytes })?;
+    out.par_extend(rayon::iter::repeat_n(T::default(), len));
+    Ok(out)
 }
 
 /// Adds the column pieces of `faces` that fall in `columns` (a run of `block`'s
