@@ -454,6 +454,18 @@ trait Triangles {
     /// Face `face`'s corners.
     fn corners(&self, face: usize) -> [Point; 3];
 
+    /// Whether faces `range` name their corners scattered through memory, so that the
+    /// loop should prefetch them ([`crate::volume::scattered`]).
+    #[inline(always)]
+    fn scattered(&self, _range: std::ops::Range<usize>) -> bool {
+        false
+    }
+
+    /// Asks the processor to start loading the corners of faces `ahead..ahead + 4`
+    /// (those that exist; a hint).
+    #[inline(always)]
+    fn prefetch(&self, _ahead: usize) {}
+
     /// Faces `face..face + 4`'s corners as lanes, lane j face `face + j`'s.
     #[inline(always)]
     fn four<L: Lanes>(&self, face: usize) -> Corners<L> {
@@ -485,6 +497,17 @@ impl Triangles for Indexed<'_> {
     #[inline(always)]
     fn corners(&self, face: usize) -> [Point; 3] {
         self.triangles[face].map(|i| self.positions[i as usize])
+    }
+
+    #[inline(always)]
+    fn scattered(&self, range: std::ops::Range<usize>) -> bool {
+        crate::volume::scattered(&self.triangles[range])
+    }
+
+    #[inline(always)]
+    fn prefetch(&self, ahead: usize) {
+        let at = |i: u32| &self.positions[i as usize];
+        crate::volume::prefetch_corners(self.triangles.get(ahead..ahead + 4), at);
     }
 
     #[inline(always)]
@@ -584,8 +607,12 @@ fn triangles_partial_in<L: Lanes, T: Triangles>(
     // Block by block: the inner loop holds the running sums in registers, the outer one
     // the compensated sums, which it touches once a block.
     let ends_block = |next: usize| (next - 1) % BLOCK_FACES == BLOCK_FACES - 1;
+    let prefetch = triangles.scattered(range.clone());
     while face < groups_end {
         loop {
+            if prefetch {
+                triangles.prefetch(face + crate::volume::PREFETCH_TRIANGLES);
+            }
             let corners = triangles.four::<L>(face);
             let [[ax, ay, az], [bx, by, bz], [cx, cy, cz]] = corners;
             for (k, [x, y, z]) in [[ax, bx, cx], [ay, by, cy], [az, bz, cz]].into_iter().enumerate()
@@ -834,7 +861,7 @@ mod tests {
     fn baseline_and_dispatched_lanes_agree() {
         let mut rng = XorShift::new(0x9e37_79b9_7f4a_7c15);
         // Some coordinates exactly ±0, for the bounds' zeros.
-        let positions: Vec<Point> = (0..300)
+        let positions: Vec<Point> = (0..20_000)
             .map(|_| {
                 [0; 3].map(|_| match rng.below(5) {
                     0 => 0.0,
@@ -843,12 +870,18 @@ mod tests {
                 })
             })
             .collect();
-        for n in [1, 5, 8, 67, BLOCK_FACES + 3, 3 * BLOCK_FACES + 9] {
+        // Ids among the first 300 vertices, and last among all 20,000: scattered, so
+        // that the indexed loop prefetches.
+        let sizes = [1, 5, 8, 67, BLOCK_FACES + 3, 3 * BLOCK_FACES + 9, 3 * BLOCK_FACES + 9];
+        for (n, ids) in sizes.into_iter().zip([300, 300, 300, 300, 300, 300, 20_000]) {
             let triangles: Vec<[u32; 3]> =
-                (0..n).map(|_| [0; 3].map(|_| rng.below(300) as u32)).collect();
+                (0..n).map(|_| [0; 3].map(|_| rng.below(ids) as u32)).collect();
             let r = positions[triangles[0][0] as usize];
             let corners = EachTriangle(|f: usize| triangles[f].map(|i: u32| positions[i as usize]));
             let indexed = Indexed { positions: &positions, triangles: &triangles };
+            if n >= 64 {
+                assert_eq!(indexed.scattered(0..n), ids > 300, "{n} triangles");
+            }
             let baseline = triangles_partial_in::<wide::f64x4, _>(&corners, 0..n, r);
             let mut copies = vec![
                 triangles_partial(&corners, 0..n, r),
