@@ -60,8 +60,8 @@
 //! On one thread of an AMD EPYC (Zen 4), a 100k-triangle sphere's arrays: the volume
 //! 0.52 ms → 0.31 ms and the mass properties 1.07 → 0.59 ms with the
 //! changes above (in-cache, a plain unbounded Σ a·(b×c) loop takes 0.23 ms).
-//! Where a chunk's triangles name vertices scattered through memory ([`scattered`]), the
-//! loops ask for the positions [`PREFETCH_TRIANGLES`] triangles ahead: a 1M-triangle
+//! Where a chunk's triangles name vertices scattered through memory (`scattered`), the
+//! loops ask for the positions `PREFETCH_TRIANGLES` triangles ahead: a 1M-triangle
 //! sphere's volume with its vertices in random order, two threads, 6.8 → 2.9 ms (the
 //! mass properties 12 → 5 ms).
 //! From [`PARALLEL_TRIANGLES`] (two chunks) the chunks run on the caller's rayon pool;
