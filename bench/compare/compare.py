@@ -380,56 +380,61 @@ def _staged(argv, setup_timeout, cap, rest_timeout):
     return result, None
 
 
+# The in-process meshes: a UV sphere numbered ring by ring (each triangle's corners near
+# the last one's in memory), and the same sphere with its vertices numbered in random order
+# (as meshes from remeshing or format conversion can be), where every corner read misses.
+INPROCESS_KINDS = {"sphere": "sphere", "sphere_shuffled": "sphere, vertices shuffled"}
+
+
 def run_in_process(ctx: Ctx, sizes, refs):
     args = ctx.args
     rows = []
-    for tool in INPROCESS_TOOLS:
+    for tool, kind, n in ((t, k, n) for t in INPROCESS_TOOLS for k in INPROCESS_KINDS for n in sizes):
         if not ctx.wants(tool):
             continue
-        for n in sizes:
-            row = {"category": "in-process", "section": "inprocess",
-                   "tool": {"meshvol-py": "meshvol (Python)",
-                            "meshvol-py-mp": "meshvol mass_properties (Python)"}.get(tool, tool),
-                   "item": f"sphere {size_label(n)} (arrays)", "file": f"sphere {size_label(n)} (arrays)",
-                   "kind": "sphere", "target": n}
-            key = ("inprocess", tool)
-            cap, skip = plan_cell(ctx.clock, ctx.proj, key, n, args.peer_timeout)
-            if skip:
-                row["skipped"] = skip
-                log(f"in-process {tool:<10} {size_label(n):<5} {skip}")
-                rows.append(row)
-                continue
-            ref, ntri, _ = refs.get("sphere", n)
-            row["triangles"] = ntri
-            budget = max(0.0, min(args.cell_seconds, ctx.clock.left() - cap))
-            argv = [PY, str(TOOLS_DIR / "inprocess.py"), tool, "sphere", str(n),
-                    str(args.runs), str(budget)]
-            out, err = _staged(argv, setup_timeout=max(60.0, 20 * n / 1e6), cap=cap,
-                               rest_timeout=2 * budget + cap + 10)
-            if isinstance(err, tuple):
-                stage, secs = err
-                if stage == "warm-up":
-                    row["over"] = cap
-                    row["error"] = f"> {cap:.0f} s (cut off)"
-                else:
-                    row["error"] = f"{stage} took over {secs:.0f} s"
-                ctx.proj.record(key, n, cap, over=True)
-            elif err:
-                row["error"] = err
-                ctx.proj.record(key, n, args.peer_timeout + 1, over=True)
-            elif "refused" in out:
-                row["refused"] = out["refused"]
-            else:
-                row.update(times=out["times"], median_s=statistics.median(out["times"]),
-                           peak_mb=out["peak_rss_mb"], setup_mb=out["rss_before_timing_mb"],
-                           volume=out["volume"], rel_err=meshgen.rel_error(out["volume"], ref),
-                           correctly_rounded=out["volume"] == float(ref),
-                           warmup_is_sample=out["warmup_is_sample"], method=out["note"])
-                ctx.proj.record(key, n, out["warmup_s"])
-            msg = row.get("error") or (f"refused: {row['refused']}" if "refused" in row
-                                       else f"{row['median_s']:.3f} s (n={len(row['times'])})")
-            log(f"in-process {tool:<10} {size_label(n):<5} {msg}")
+        label = f"{INPROCESS_KINDS[kind]} {size_label(n)} (arrays)"
+        row = {"category": "in-process", "section": "inprocess",
+               "tool": {"meshvol-py": "meshvol (Python)",
+                        "meshvol-py-mp": "meshvol mass_properties (Python)"}.get(tool, tool),
+               "item": label, "file": label, "kind": kind, "target": n}
+        key = ("inprocess", tool)
+        cap, skip = plan_cell(ctx.clock, ctx.proj, key, n, args.peer_timeout)
+        if skip:
+            row["skipped"] = skip
+            log(f"in-process {tool:<10} {kind} {size_label(n):<5} {skip}")
             rows.append(row)
+            continue
+        ref, ntri, _ = refs.get(kind, n)
+        row["triangles"] = ntri
+        budget = max(0.0, min(args.cell_seconds, ctx.clock.left() - cap))
+        argv = [PY, str(TOOLS_DIR / "inprocess.py"), tool, kind, str(n),
+                str(args.runs), str(budget)]
+        out, err = _staged(argv, setup_timeout=max(60.0, 20 * n / 1e6), cap=cap,
+                           rest_timeout=2 * budget + cap + 10)
+        if isinstance(err, tuple):
+            stage, secs = err
+            if stage == "warm-up":
+                row["over"] = cap
+                row["error"] = f"> {cap:.0f} s (cut off)"
+            else:
+                row["error"] = f"{stage} took over {secs:.0f} s"
+            ctx.proj.record(key, n, cap, over=True)
+        elif err:
+            row["error"] = err
+            ctx.proj.record(key, n, args.peer_timeout + 1, over=True)
+        elif "refused" in out:
+            row["refused"] = out["refused"]
+        else:
+            row.update(times=out["times"], median_s=statistics.median(out["times"]),
+                       peak_mb=out["peak_rss_mb"], setup_mb=out["rss_before_timing_mb"],
+                       volume=out["volume"], rel_err=meshgen.rel_error(out["volume"], ref),
+                       correctly_rounded=out["volume"] == float(ref),
+                       warmup_is_sample=out["warmup_is_sample"], method=out["note"])
+            ctx.proj.record(key, n, out["warmup_s"])
+        msg = row.get("error") or (f"refused: {row['refused']}" if "refused" in row
+                                   else f"{row['median_s']:.3f} s (n={len(row['times'])})")
+        log(f"in-process {tool:<10} {kind} {size_label(n):<5} {msg}")
+        rows.append(row)
     return rows
 
 
@@ -610,7 +615,8 @@ def report_inprocess(inp) -> tuple[list[str], list[str]]:
         m = re.fullmatch(r"mass_properties/meshvol/(\d+)", name)
         if m:
             crit_mv[int(m.group(1))] = (name, secs)
-    mv_rows = {r["target"]: r for r in inp if r["tool"] == "meshvol (Python)" and "median_s" in r}
+    mv_rows = {(r.get("kind"), r["target"]): r for r in inp
+               if r["tool"] == "meshvol (Python)" and "median_s" in r}
     L.append("| tool | mesh | triangles | median s | runs | ratio to meshvol | peak MB | relative volume error | meshvol ahead? |")
     L.append("|---|---|--:|--:|--:|--:|--:|--:|---|")
     behind, compared = [], 0
@@ -620,8 +626,8 @@ def report_inprocess(inp) -> tuple[list[str], list[str]]:
         is_mv = r["tool"].startswith("meshvol")
         is_ref = r["tool"] == "meshvol (Python)"
         mv_s, dagger = None, ""
-        if r["target"] in mv_rows:
-            mv_s = mv_rows[r["target"]]["median_s"]
+        if (r.get("kind"), r["target"]) in mv_rows:
+            mv_s = mv_rows[(r.get("kind"), r["target"])]["median_s"]
         elif "triangles" in r:
             near = [v for n, v in crit_mv.items() if abs(n - r["triangles"]) <= 0.1 * n]
             if near:

@@ -121,6 +121,12 @@ def make(kind: str, tris: int):
         return uv_sphere(tris)
     if kind == "sphere_far":  # the same sphere 1e6 away: float32 ulp there is 2**-4
         return uv_sphere(tris, center=(1e6, 1e6, 1e6), q=4)
+    if kind == "sphere_shuffled":  # the same sphere, its vertices numbered in random order
+        v, f, q = uv_sphere(tris)
+        order = np.random.default_rng(7).permutation(len(v))
+        shuffled = np.empty_like(v)
+        shuffled[order] = v
+        return shuffled, order[f], q
     if kind == "torus":
         return torus(tris)
     if kind == "cubes":
