@@ -254,7 +254,7 @@ fn zip(members: &[(&str, &[u8])]) -> Vec<u8> {
 
 /// The JSON report of `volume` with `file` left out.
 fn measured(path: &Path, env: &[(&str, &str)]) -> (Option<i32>, Value, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    let out = Command::new(common::bin())
         .args(["volume", "--json", p(path)])
         .envs(env.iter().copied())
         .output()
@@ -327,7 +327,7 @@ fn bad_or_oversized_archives_are_refused_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let fail = |path: &Path, env: &[(&str, &str)], says: &str| {
-        let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+        let out = Command::new(common::bin())
             .args(["volume", p(path)])
             .envs(env.iter().copied())
             .output()
@@ -483,7 +483,7 @@ fn completions_and_the_manual_page_name_every_subcommand() {
 /// run as shown (from a folder holding `samples/`, outputs written there) and succeed.
 #[test]
 fn help_examples_run() {
-    let bin = Path::new(env!("CARGO_BIN_EXE_meshvol"));
+    let bin = common::bin();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("samples")).unwrap();

@@ -21,6 +21,8 @@
 //! output's final newline too: a block shows it as an empty line before the next `$` or
 //! the closing fence.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 fn repo_root() -> PathBuf {
@@ -93,7 +95,7 @@ fn docs_examples_print_what_they_say() {
 
     let cases = trycmd::TestCases::new();
     cases
-        .register_bin("meshvol", Path::new(env!("CARGO_BIN_EXE_meshvol")))
+        .register_bin("meshvol", common::bin())
         .register_bin("cat", Path::new("/bin/cat"))
         // The same output on any machine: no progress bar, whatever the terminal.
         .env("MESHVOL_PROGRESS_DELAY_MS", "3600000")

@@ -10,7 +10,7 @@ use std::process::{Command, Output, Stdio};
 
 /// Runs meshvol with `input` on standard input.
 fn meshvol_stdin(args: &[&str], input: &[u8]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    let mut child = Command::new(common::bin())
         .args(args)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())

@@ -17,7 +17,7 @@ fn a_typo_of_a_subcommand_suggests_it() {
     }
     // A file by that name is measured: `meshvol FILE` still means `meshvol volume FILE`.
     let chek = write(dir.path(), "chek", box_obj([0.0; 3], [1.0; 3], 1, true, false));
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    let out = std::process::Command::new(common::bin())
         .arg("chek")
         .current_dir(chek.parent().unwrap())
         .output()

@@ -33,7 +33,7 @@ fn cube() -> String {
 /// Starts `meshvol ARGS` on a pseudo-terminal (stdout and stderr both go to it), with
 /// the bar's delay set to `delay_ms`; `stdin` redirects its standard input from a file.
 fn on_terminal(args: &str, delay_ms: u64, stdin: Option<&Path>) -> Child {
-    let mut command = format!("'{}' {args}", env!("CARGO_BIN_EXE_meshvol"));
+    let mut command = format!("'{}' {args}", common::bin().display());
     if let Some(path) = stdin {
         command += &format!(" < '{}'", p(path));
     }
@@ -146,7 +146,7 @@ fn quiet_shows_no_bar_even_on_a_terminal() {
 
 #[test]
 fn no_bar_when_stderr_is_not_a_terminal() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    let mut child = Command::new(common::bin())
         .args(["volume", "--json", "-"])
         .env("MESHVOL_PROGRESS_DELAY_MS", "0")
         .stdin(Stdio::piped())

@@ -20,7 +20,7 @@ fn cli_check(dir: &Path, name: &str, args: &[&str]) -> Value {
 
 /// `meshvol check --json NAME [args]` started in `dir`; [`parse_line`] waits for it.
 fn cli_start(dir: &Path, name: &str, args: &[&str]) -> std::process::Child {
-    Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    Command::new(common::bin())
         .current_dir(dir)
         .args(["check", "--json", name])
         .args(args)
@@ -415,11 +415,7 @@ fn the_pages_answer_holds_the_commands_reports() {
     let page = json(&body);
     let flags = ["--units", "mm:cm", "--density", "7.85g/cm3"];
     let run = |args: &[&str]| -> Value {
-        let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
-            .current_dir(&dir)
-            .args(args)
-            .output()
-            .unwrap();
+        let out = Command::new(common::bin()).current_dir(&dir).args(args).output().unwrap();
         serde_json::from_slice(&out.stdout).unwrap()
     };
     assert_eq!(page["check"], run(&[&["check", "--json", name][..], &flags].concat()));
@@ -486,7 +482,7 @@ fn a_file_without_faces_is_checked_as_the_command_checks_it() {
     assert_eq!(page["volume"]["volume"], 0.0);
     assert_eq!((&page["profile"], &page["slices"]), (&Value::Null, &Value::Null));
     let html = dir.path().join("flat.html");
-    let out = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    let out = Command::new(common::bin())
         .current_dir(dir.path())
         .args(["check", "flat.obj", "--html", html.to_str().unwrap()])
         .output()
@@ -496,7 +492,7 @@ fn a_file_without_faces_is_checked_as_the_command_checks_it() {
 
 /// `meshvol ARGS` run in `dir`, its JSON line.
 fn cli_in(dir: &Path, args: &[&str]) -> Value {
-    let out = Command::new(env!("CARGO_BIN_EXE_meshvol")).current_dir(dir).args(args).output();
+    let out = Command::new(common::bin()).current_dir(dir).args(args).output();
     let out = out.unwrap();
     serde_json::from_slice(&out.stdout)
         .unwrap_or_else(|e| panic!("{args:?}: {e}: {}", String::from_utf8_lossy(&out.stderr)))

@@ -393,7 +393,7 @@ fn the_page_shows_the_commands_numbers_and_draws_the_part_and_its_hole() {
         write(dir.path(), "junk.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nope\n");
     browser.upload(&junk);
     let shown = card(&browser, "junk.stl");
-    let expected = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+    let expected = Command::new(common::bin())
         .current_dir(dir.path())
         .args(["check", "--json", "junk.stl"])
         .output()

@@ -5,6 +5,8 @@
 //! surfaces that are not so (open, flipped, welded within a tolerance, with a duplicate
 //! face as wound) keep the origin's convention.
 
+mod common;
+use common::bumpy_sphere;
 use meshvol::shapes::{torus, uv_sphere};
 use meshvol::topology::{check, Check, CheckOptions, Weld};
 use meshvol::{exact_signed_volume, mass_properties, Faces, MassProperties, Mesh, Point};
@@ -117,14 +119,7 @@ proptest! {
         scale in 1e-3f64..1e3,
         offset in prop::array::uniform3(-1e7f64..1e7),
     ) {
-        let base = uv_sphere(1.0, 12, 7).triangulated();
-        let p: Vec<Point> = base
-            .positions()
-            .iter()
-            .zip(radii.iter().cycle())
-            .map(|(v, r)| [0, 1, 2].map(|k| v[k] * r * scale + offset[k]))
-            .collect();
-        let mesh = Mesh::new(p, base.faces().clone()).unwrap();
+        let mesh = bumpy_sphere(&radii, scale, offset);
         let c = checked(&mesh);
         prop_assert!(c.vector_area_is_zero());
         let exact = exact_signed_volume(&mesh).unwrap();

@@ -5,10 +5,58 @@
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::OnceLock;
+use std::time::SystemTime;
 
-/// Runs the `meshvol` binary under test.
+/// The `meshvol` command under test: the one cargo built for these tests or, when the
+/// environment's `MESHVOL_BIN` names one, that one. CI names the release binary that
+/// scripts/dist.sh has just built from the same tree: the suites then test the artifact
+/// users install, at release speed (in the debug build these suites took 3.5 of CI's
+/// 20 minutes). A named binary older than a source file of the command is refused, so a
+/// stale one never passes for the tree.
+pub fn bin() -> &'static Path {
+    static BIN: OnceLock<PathBuf> = OnceLock::new();
+    BIN.get_or_init(|| {
+        let Some(named) = std::env::var_os("MESHVOL_BIN") else {
+            return PathBuf::from(env!("CARGO_BIN_EXE_meshvol"));
+        };
+        let named = PathBuf::from(named);
+        let built = std::fs::metadata(&named)
+            .and_then(|m| m.modified())
+            .unwrap_or_else(|e| panic!("MESHVOL_BIN={}: {e}", named.display()));
+        let crates = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        for krate in ["meshvol", "meshvol-io", "meshvol-report", "meshvol-cli"] {
+            let newest = newest(&crates.join(krate).join("src"));
+            assert!(
+                newest <= built,
+                "MESHVOL_BIN={} is older than the sources of {krate}: rebuild it or unset it",
+                named.display()
+            );
+        }
+        named
+    })
+}
+
+/// The latest modification time of the files under `dir`.
+fn newest(dir: &Path) -> SystemTime {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            let m = e.metadata().unwrap();
+            if m.is_dir() {
+                newest(&e.path())
+            } else {
+                m.modified().unwrap()
+            }
+        })
+        .max()
+        .unwrap_or(SystemTime::UNIX_EPOCH)
+}
+
+/// Runs the `meshvol` command under test ([`bin`]).
 pub fn meshvol(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_meshvol")).args(args).output().expect("meshvol runs")
+    Command::new(bin()).args(args).output().expect("meshvol runs")
 }
 
 /// Writes `content` to `dir/name`.

@@ -13,7 +13,7 @@ pub struct Server {
 impl Server {
     /// Starts the server with `args` after `serve --port 0`; waits until it listens.
     pub fn start(args: &[&str]) -> Server {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_meshvol"))
+        let mut child = Command::new(super::bin())
             .args(["serve", "--port", "0"])
             .args(args)
             .stderr(Stdio::piped())

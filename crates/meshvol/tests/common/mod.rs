@@ -11,6 +11,15 @@ use meshvol::shapes::cuboid;
 use meshvol::Mesh;
 pub(crate) use test_rng::XorShift;
 
+/// A closed, star-shaped triangle mesh: a UV sphere (12 × 7) whose vertices are pushed in
+/// and out by `radii` (taken in turn), then scaled by `scale` and moved by `offset`.
+pub fn bumpy_sphere(radii: &[f64], scale: f64, offset: [f64; 3]) -> Mesh {
+    let base = meshvol::shapes::uv_sphere(1.0, 12, 7).triangulated();
+    let bumped = base.positions().iter().zip(radii.iter().cycle());
+    let positions = bumped.map(|(v, r)| [0, 1, 2].map(|k| v[k] * r * scale + offset[k])).collect();
+    Mesh::new(positions, base.faces().clone()).unwrap()
+}
+
 /// `mesh` with every position mapped by `f`, its faces unchanged.
 pub fn mapped(mesh: &Mesh, f: impl Fn([f64; 3]) -> [f64; 3]) -> Mesh {
     Mesh::new(mesh.positions().iter().map(|&p| f(p)).collect(), mesh.faces().clone()).unwrap()
