@@ -21,6 +21,8 @@ pub fn bin() -> &'static Path {
             return PathBuf::from(env!("CARGO_BIN_EXE_meshvol"));
         };
         let named = PathBuf::from(named);
+        // cargo runs the tests in the crate's folder, not where the variable was set.
+        assert!(named.is_absolute(), "MESHVOL_BIN={} must be an absolute path", named.display());
         let built = std::fs::metadata(&named)
             .and_then(|m| m.modified())
             .unwrap_or_else(|e| panic!("MESHVOL_BIN={}: {e}", named.display()));
