@@ -492,11 +492,11 @@ fn help_examples_run() {
         dir.path().join("samples/flanged-bushing.stl"),
     )
     .unwrap();
-    let path = format!(
-        "{}:{}",
-        bin.parent().unwrap().display(),
-        std::env::var("PATH").unwrap_or_default()
-    );
+    // The command under test as `meshvol` on the PATH (MESHVOL_BIN may name it otherwise).
+    let on_path = tempfile::tempdir().unwrap();
+    std::os::unix::fs::symlink(bin, on_path.path().join("meshvol")).unwrap();
+    let path =
+        format!("{}:{}", on_path.path().display(), std::env::var("PATH").unwrap_or_default());
     let mut ran = 0;
     for name in subcommands() {
         let (help, _) = text(&meshvol(&[&name, "--help"]));
