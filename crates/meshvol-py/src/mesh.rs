@@ -470,7 +470,9 @@ impl PyMesh {
     /// about its centroid, unit density, as mass_properties' inertia; face_centroids=True
     /// adds aperture_x_centroid, … (faces, 3): the centroid of each face's part inside the
     /// solid, NaN where the aperture is 0. docs/cells.md has the definitions.
-    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None, second_moments = false, face_centroids = false))]
+    /// moments=True (the default) is what it computes, named as meshvol.dask.grid
+    /// names it; moments=False is a ValueError pointing to Mesh.grid, the volumes alone.
+    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None, second_moments = false, face_centroids = false, moments = true))]
     #[allow(clippy::too_many_arguments)]
     fn cells<'py>(
         &self,
@@ -483,7 +485,13 @@ impl PyMesh {
         units: Option<&str>,
         second_moments: bool,
         face_centroids: bool,
+        moments: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
+        if !moments {
+            return Err(crate::errors::bad_argument(
+                "Mesh.cells computes the cut cells (moments=True); for the cells' volumes alone use Mesh.grid",
+            ));
+        }
         properties::require_faces(&self.mesh)?;
         let options = crate::units::options(units, None)?;
         let (scale, warning) = meshvol_report::units::Scale::resolve(&options, self.source.unit)

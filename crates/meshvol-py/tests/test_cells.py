@@ -93,6 +93,20 @@ def test_to_xarray_pickle_and_bad_arguments():
         box_mesh().cells(cells=(0, 1, 1))
 
 
+def test_moments_true_is_the_cut_cells_and_false_points_to_grid():
+    """The issue's spelling, Mesh.cells(cells=..., moments=True), is the default call;
+    its volumes are Mesh.grid's bit for bit; moments=False is an error naming Mesh.grid."""
+    c = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS, moments=True)
+    d = box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS)
+    assert sorted(c) == sorted(d)
+    for name in c:
+        np.testing.assert_array_equal(c[name], d[name])
+    g = box_mesh().grid(cells=(4, 3, 5), bounds=BOUNDS)
+    np.testing.assert_array_equal(c["volume"], np.asarray(g))
+    with pytest.raises(ValueError, match="Mesh.grid"):
+        box_mesh().cells(cells=(4, 3, 5), bounds=BOUNDS, moments=False)
+
+
 @pytest.mark.skipif(not COMMAND, reason="MESHVOL_BIN names no meshvol command to compare with")
 def test_the_same_arrays_as_the_command(tmp_path):
     sample = os.path.join(os.path.dirname(__file__), "../../../samples/flanged-bushing.stl")

@@ -1,7 +1,7 @@
 """Type stubs for meshvol (the runtime objects carry the full docstrings)."""
 
 import os
-from typing import TYPE_CHECKING, Any, BinaryIO, Iterable, Mapping, Optional, Sequence, Tuple, Union as _Union
+from typing import TYPE_CHECKING, Any, BinaryIO, Iterable, Literal, Mapping, Optional, Sequence, Tuple, Union as _Union
 
 import numpy as np
 import numpy.typing as npt
@@ -147,10 +147,12 @@ class Mesh:
         units: Optional[str] = None,
         second_moments: bool = False,
         face_centroids: bool = False,
+        moments: Literal[True] = True,
     ) -> CutCells:
         """The cut-cell geometry on a grid (`meshvol grid --moments`): volume, fraction,
         centroid, boundary_area, boundary_vector, boundary_centroid, aperture_x/_y/_z;
-        with second_moments, inertia; with face_centroids, aperture_x/_y/_z_centroid."""
+        with second_moments, inertia; with face_centroids, aperture_x/_y/_z_centroid.
+        moments=False is a ValueError: Mesh.grid gives the volumes alone."""
     def profile(
         self,
         axis: str = "z",
