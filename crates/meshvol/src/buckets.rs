@@ -172,16 +172,19 @@ pub(crate) fn par_starts<T>(n: usize, size: impl Fn(usize) -> T + Sync) -> Vec<T
 where
     T: Copy + Default + std::ops::Add<Output = T> + Send + Sync,
 {
-    const BLOCK: usize = 1 << 16;
-    let block = |b: usize| b * BLOCK..((b + 1) * BLOCK).min(n);
-    let block_sums: Vec<T> = (0..n.div_ceil(BLOCK))
+    // Blocks of 4k to 64k items, at least four a thread where there are enough items:
+    // a block is one task (sizes can cost a pass over other arrays), and integer sums
+    // are the same whatever the blocks.
+    let len = n.div_ceil(4 * rayon::current_num_threads()).clamp(1 << 12, 1 << 16);
+    let block = |b: usize| b * len..((b + 1) * len).min(n);
+    let block_sums: Vec<T> = (0..n.div_ceil(len))
         .into_par_iter()
         .map(|b| block(b).fold(T::default(), |total, k| total + size(k)))
         .collect();
     let block_start = starts(block_sums.into_iter());
     let mut start = filled(n + 1, T::default());
     start[n] = block_start[block_start.len() - 1];
-    start[..n].par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
+    start[..n].par_chunks_mut(len).enumerate().for_each(|(b, out)| {
         let mut total = block_start[b];
         for (o, k) in out.iter_mut().zip(block(b)) {
             *o = total;
@@ -202,7 +205,12 @@ pub(crate) fn par_compact<T: Copy + Default + Send + Sync>(
     const BLOCK: usize = 1 << 16;
     let blocks = n.div_ceil(BLOCK);
     let block = |b: usize| (b * BLOCK..((b + 1) * BLOCK).min(n)).filter(|&i| keep(i));
-    let first = par_starts(blocks, |b| block(b).count());
+    // Each block counted by a task of its own: `par_starts` over the few blocks would
+    // hand them all to one task (it splits its input in blocks of its own size), and
+    // counting is a pass over every item (on 16 threads, the welded vertices' 15M
+    // corners took 27 ms this way, as long as on 2).
+    let counts: Vec<usize> = (0..blocks).into_par_iter().map(|b| block(b).count()).collect();
+    let first = starts(counts.into_iter());
     let mut out = filled(first[blocks], T::default());
     for_each_range_mut(&mut out, blocks, &|b| first[b]..first[b + 1], &|b, out| {
         for (out, i) in out.iter_mut().zip(block(b)) {

@@ -348,46 +348,49 @@ impl Bvh {
             begin: begin as u32,
             end: end as u32,
         };
-        let mut nodes = Vec::with_capacity(2 * items.div_ceil(LEAF_SIZE));
-        nodes.push(node(0, items));
-        // Level by level, each in parallel (a node's children and leaf number from
-        // prefix sums over its level): the same numbering as a breadth-first queue.
+        // A full binary tree: 2L − 1 nodes for L leaves, allocated and first touched by
+        // all the workers at once, each level's children written in place after it.
+        let leaf_count = items.div_ceil(LEAF_SIZE);
+        let mut nodes = filled(2 * leaf_count - 1, node(0, 0));
+        nodes[0] = node(0, items);
+        // Level by level, each in parallel (a node's children and leaf number from a
+        // prefix sum over its level): the same numbering as a breadth-first queue.
         let splits = |n: &Node| (n.end - n.begin) as usize > LEAF_SIZE;
-        let (mut levels, mut leaf_nodes) = (vec![0u32], Vec::new());
-        while (levels[levels.len() - 1] as usize) < nodes.len() {
-            let (begin, end) = (levels[levels.len() - 1] as usize, nodes.len());
+        let (mut levels, mut leaf_nodes) = (vec![0u32], Vec::with_capacity(leaf_count));
+        let (mut begin, mut end) = (0, 1);
+        while begin < end {
             levels.push(end as u32);
-            let (children, leaf_rank, next) = {
-                let level = &nodes[begin..end];
-                let children = par_starts(level.len(), |i| 2 * usize::from(splits(&level[i])));
-                let leaf_rank = par_starts(level.len(), |i| usize::from(!splits(&level[i])));
-                let mut next = filled(children[level.len()], node(0, 0));
-                let range = |i: usize| children[i]..children[i + 1];
-                for_each_range_mut(&mut next, level.len(), &range, &|i, out| {
-                    if let [left, right] = out {
-                        let (start, end) = (level[i].begin as usize, level[i].end as usize);
-                        let mid = start + (end - start).div_ceil(LEAF_SIZE).div_ceil(2) * LEAF_SIZE;
-                        (*left, *right) = (node(start, mid), node(mid, end));
-                    }
-                });
-                leaf_nodes.extend(par_compact(
-                    level.len(),
-                    |i| !splits(&level[i]),
-                    |i| (begin + i) as u32,
-                ));
-                (children, leaf_rank, next)
-            };
-            let first_leaf = leaf_nodes.len() - leaf_rank[leaf_rank.len() - 1];
-            nodes[begin..end].par_iter_mut().enumerate().for_each(|(i, n)| {
+            let (done, rest) = nodes.split_at_mut(end);
+            let level = &mut done[begin..];
+            let leaf_rank = par_starts(level.len(), |i| usize::from(!splits(&level[i])));
+            // Every node before i that is not a leaf has two children before i's.
+            let child = |i: usize| 2 * (i - leaf_rank[i]);
+            let children = child(level.len());
+            let range = |i: usize| child(i)..child(i + 1);
+            for_each_range_mut(&mut rest[..children], level.len(), &range, &|i, out| {
+                if let [left, right] = out {
+                    let (start, end) = (level[i].begin as usize, level[i].end as usize);
+                    let mid = start + (end - start).div_ceil(LEAF_SIZE).div_ceil(2) * LEAF_SIZE;
+                    (*left, *right) = (node(start, mid), node(mid, end));
+                }
+            });
+            let first_leaf = leaf_nodes.len();
+            leaf_nodes.extend(par_compact(
+                level.len(),
+                |i| !splits(&level[i]),
+                |i| (begin + i) as u32,
+            ));
+            level.par_iter_mut().enumerate().for_each(|(i, n)| {
                 if splits(n) {
-                    n.start = (end + children[i]) as u32;
+                    n.start = (end + child(i)) as u32;
                 } else {
                     n.start = (first_leaf + leaf_rank[i]) as u32;
                     n.count = n.end - n.begin;
                 }
             });
-            nodes.par_extend(next.par_iter().copied());
+            (begin, end) = (end, end + children);
         }
+        debug_assert!(end == nodes.len() && leaf_nodes.len() == leaf_count);
         // Leaves' boxes (most of the reading) in parallel, written in place (a filtered
         // collect would append them on one thread), then inner nodes bottom-up.
         let (mut leaves, mut bounds) = (Vec::new(), filled(nodes.len(), Box32::EMPTY));
@@ -643,10 +646,19 @@ impl Bvh {
             return self.pairs_in_thread(a, b, test, found);
         }
         let (x, y) = if a == b {
+            // The pairs across the two children alongside those within each: no thread
+            // waits for both halves before the seam between them starts.
             let (l, r) = (na.start as usize, na.start as usize + 1);
-            let (mut x, y) =
-                rayon::join(|| self.collect_pairs(l, l, test), || self.collect_pairs(r, r, test));
-            x.extend(self.collect_pairs(l, r, test));
+            let ((mut x, y), across) = rayon::join(
+                || {
+                    rayon::join(
+                        || self.collect_pairs(l, l, test),
+                        || self.collect_pairs(r, r, test),
+                    )
+                },
+                || self.collect_pairs(l, r, test),
+            );
+            x.extend(across);
             (x, y)
         } else {
             let (keep, split) = self.split(a, b);
