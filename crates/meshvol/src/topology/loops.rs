@@ -33,6 +33,16 @@ impl Loops {
         if faces >= (1 << 31) - 1 {
             return Err(CheckError::TooManyFaces { faces });
         }
+        if surface.faces_are_triangles() || surface.indexed_triangles().is_some() {
+            // One triangle a face, as the surface says: three corners each, without a
+            // pass over the faces (which decodes every record of a binary STL, 8–27 ms
+            // of a 5M-triangle check at 16 threads, 36–99 ms on one).
+            if u32::try_from(3 * faces).is_err() {
+                return Err(CheckError::TooLarge { corners: 3 * faces });
+            }
+            let start = (0..faces + 1).into_par_iter().map(|f| (3 * f) as u32).collect();
+            return Ok(Loops { start });
+        }
         let sizes: Vec<u32> = (0..faces)
             .into_par_iter()
             .map(|f| {
@@ -58,6 +68,11 @@ impl Loops {
         for_each_range_mut(&mut corners, self.face_count(), &|f| self.face(f), &|f, corners| {
             let mut next = 0;
             surface.fan(f, |a, b, c| {
+                // A fan longer than the face's loop (a surface breaking its word that
+                // each face is one triangle) is cut to the loop, never written past it.
+                if next + 2 > corners.len() {
+                    return;
+                }
                 if next == 0 {
                     corners[0] = a;
                     next = 1;
@@ -113,6 +128,65 @@ impl Loops {
             self.start[f + 1] as usize - 1
         } else {
             c - 1
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Loops;
+    use crate::shapes::uv_sphere;
+    use crate::{Point, Surface};
+
+    /// A surface read through its fans alone: its loops are counted face by face.
+    struct FansOnly<'a, S>(&'a S);
+
+    impl<S: Surface> Surface for FansOnly<'_, S> {
+        fn face_count(&self) -> usize {
+            self.0.face_count()
+        }
+
+        fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
+            self.0.fan(face, triangle)
+        }
+    }
+
+    /// A surface that says each face is one triangle but whose fans are longer: cut to
+    /// three corners, never written past them.
+    struct Overlong<'a, S>(&'a S);
+
+    impl<S: Surface> Surface for Overlong<'_, S> {
+        fn face_count(&self) -> usize {
+            self.0.face_count()
+        }
+
+        fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
+            self.0.fan(face, triangle)
+        }
+
+        fn faces_are_triangles(&self) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn triangle_surfaces_take_three_corners_a_face_as_their_fans_count() {
+        let triangles = uv_sphere(1.0, 24, 12).triangulated();
+        assert!(triangles.indexed_triangles().is_some());
+        let counted = Loops::of(&FansOnly(&triangles)).unwrap();
+        let said = Loops::of(&triangles).unwrap();
+        assert_eq!(said.start, counted.start);
+        assert_eq!(said.corners(&triangles), counted.corners(&FansOnly(&triangles)));
+        // Quads said to be triangles: three corners a face, the fan cut to them.
+        let quads = uv_sphere(1.0, 24, 12);
+        let loops = Loops::of(&Overlong(&quads)).unwrap();
+        assert_eq!(loops.corner_count(), 3 * quads.face_count());
+        let corners = loops.corners(&Overlong(&quads));
+        let all = Loops::of(&quads).unwrap().corners(&quads);
+        let first = Loops::of(&quads).unwrap();
+        for f in 0..quads.face_count() {
+            let whole = &all[first.face(f)];
+            assert_eq!(&corners[loops.face(f)], &whole[..3], "face {f}");
         }
     }
 }
