@@ -139,24 +139,11 @@ mod tests {
     use crate::shapes::uv_sphere;
     use crate::{Point, Surface};
 
-    /// A surface read through its fans alone: its loops are counted face by face.
-    struct FansOnly<'a, S>(&'a S);
+    /// A surface read through its fans alone (its loops counted face by face), saying
+    /// that each face is one triangle when `.1`, whatever its fans are.
+    struct Fans<'a, S>(&'a S, bool);
 
-    impl<S: Surface> Surface for FansOnly<'_, S> {
-        fn face_count(&self) -> usize {
-            self.0.face_count()
-        }
-
-        fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
-            self.0.fan(face, triangle)
-        }
-    }
-
-    /// A surface that says each face is one triangle but whose fans are longer: cut to
-    /// three corners, never written past them.
-    struct Overlong<'a, S>(&'a S);
-
-    impl<S: Surface> Surface for Overlong<'_, S> {
+    impl<S: Surface> Surface for Fans<'_, S> {
         fn face_count(&self) -> usize {
             self.0.face_count()
         }
@@ -166,7 +153,7 @@ mod tests {
         }
 
         fn faces_are_triangles(&self) -> bool {
-            true
+            self.1
         }
     }
 
@@ -174,15 +161,15 @@ mod tests {
     fn triangle_surfaces_take_three_corners_a_face_as_their_fans_count() {
         let triangles = uv_sphere(1.0, 24, 12).triangulated();
         assert!(triangles.indexed_triangles().is_some());
-        let counted = Loops::of(&FansOnly(&triangles)).unwrap();
+        let counted = Loops::of(&Fans(&triangles, false)).unwrap();
         let said = Loops::of(&triangles).unwrap();
         assert_eq!(said.start, counted.start);
-        assert_eq!(said.corners(&triangles), counted.corners(&FansOnly(&triangles)));
+        assert_eq!(said.corners(&triangles), counted.corners(&Fans(&triangles, false)));
         // Quads said to be triangles: three corners a face, the fan cut to them.
         let quads = uv_sphere(1.0, 24, 12);
-        let loops = Loops::of(&Overlong(&quads)).unwrap();
+        let loops = Loops::of(&Fans(&quads, true)).unwrap();
         assert_eq!(loops.corner_count(), 3 * quads.face_count());
-        let corners = loops.corners(&Overlong(&quads));
+        let corners = loops.corners(&Fans(&quads, true));
         let all = Loops::of(&quads).unwrap().corners(&quads);
         let first = Loops::of(&quads).unwrap();
         for f in 0..quads.face_count() {
