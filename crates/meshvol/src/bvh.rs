@@ -356,7 +356,7 @@ impl Bvh {
         // Level by level, each in parallel (a node's children and leaf number from a
         // prefix sum over its level): the same numbering as a breadth-first queue.
         let splits = |n: &Node| (n.end - n.begin) as usize > LEAF_SIZE;
-        let (mut levels, mut leaf_nodes) = (vec![0u32], Vec::with_capacity(leaf_count));
+        let (mut levels, mut leaves_before) = (vec![0u32], 0);
         let (mut begin, mut end) = (0, 1);
         while begin < end {
             levels.push(end as u32);
@@ -374,22 +374,20 @@ impl Bvh {
                     (*left, *right) = (node(start, mid), node(mid, end));
                 }
             });
-            let first_leaf = leaf_nodes.len();
-            leaf_nodes.extend(par_compact(
-                level.len(),
-                |i| !splits(&level[i]),
-                |i| (begin + i) as u32,
-            ));
             level.par_iter_mut().enumerate().for_each(|(i, n)| {
                 if splits(n) {
                     n.start = (end + child(i)) as u32;
                 } else {
-                    n.start = (first_leaf + leaf_rank[i]) as u32;
+                    n.start = (leaves_before + leaf_rank[i]) as u32;
                     n.count = n.end - n.begin;
                 }
             });
+            leaves_before += leaf_rank[level.len()];
             (begin, end) = (end, end + children);
         }
+        // Leaves are numbered in node order, so the leaves' nodes are the nodes with
+        // items, in order.
+        let leaf_nodes = par_compact(nodes.len(), |n| nodes[n].count > 0, |n| n as u32);
         debug_assert!(end == nodes.len() && leaf_nodes.len() == leaf_count);
         // Leaves' boxes (most of the reading) in parallel, written in place (a filtered
         // collect would append them on one thread), then inner nodes bottom-up.

@@ -170,10 +170,10 @@ mod tests {
         let loops = Loops::of(&Fans(&quads, true)).unwrap();
         assert_eq!(loops.corner_count(), 3 * quads.face_count());
         let corners = loops.corners(&Fans(&quads, true));
-        let all = Loops::of(&quads).unwrap().corners(&quads);
-        let first = Loops::of(&quads).unwrap();
+        let whole_loops = Loops::of(&quads).unwrap();
+        let all = whole_loops.corners(&quads);
         for f in 0..quads.face_count() {
-            let whole = &all[first.face(f)];
+            let whole = &all[whole_loops.face(f)];
             assert_eq!(&corners[loops.face(f)], &whole[..3], "face {f}");
         }
     }
