@@ -7,6 +7,7 @@ use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol::overlap::Body;
+use meshvol::topology::CheckOptions;
 use meshvol_report::intersect::{intersect_prepared, overlapping_pairs, prepare, prepare_pair};
 use rayon::prelude::*;
 use std::path::PathBuf;
@@ -60,7 +61,7 @@ pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
     driver::once(&files, output, |progress| {
         let mut inputs = Vec::new();
         for path in &files.files {
-            inputs.push(solid::read(path, args.solid.check(), progress)?);
+            inputs.push(solid::read(path, check_options(&args), progress)?);
             progress.done(path);
         }
         let subjects = solid::subjects(&inputs);
@@ -81,7 +82,7 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
     let mut driver = driver::start(files, output);
     let mut inputs = Vec::new();
     for path in &files.files {
-        match solid::read(path, args.solid.check(), &driver.progress) {
+        match solid::read(path, check_options(args), &driver.progress) {
             Ok(input) => inputs.push(input),
             Err(e) => driver.fail(&path.display().to_string(), &e),
         }
@@ -133,4 +134,10 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
         }
     }
     driver.finish()
+}
+
+/// The check each input gets: the command's, keeping the crossing search's spatial index
+/// for the input's body to take ([`CheckOptions::keep_spatial_index`]).
+fn check_options(args: &IntersectArgs) -> Option<CheckOptions> {
+    args.solid.check().map(|options| CheckOptions { keep_spatial_index: true, ..options })
 }

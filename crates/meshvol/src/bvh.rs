@@ -120,8 +120,10 @@ impl Box32 {
     };
 
     pub fn around(b: &Bounds) -> Box32 {
-        let [x, y, z] = b.min.map(f32_down);
-        let [u, v, w] = b.max.map(f32_up);
+        // `+ 0.0` turns −0 into +0: a box around −0 is the box around +0, bit for bit
+        // (a check's welded points may keep −0 where a body's points have +0).
+        let [x, y, z] = b.min.map(|x| f32_down(x) + 0.0);
+        let [u, v, w] = b.max.map(|x| f32_up(x) + 0.0);
         Box32 { min: [x, y, z, 0.0], max: [u, v, w, 0.0] }
     }
 
@@ -297,6 +299,15 @@ pub struct Bvh {
     leaf_nodes: Vec<u32>,
     /// The nodes at depth k are `levels[k]..levels[k + 1]` (breadth-first order).
     levels: Vec<u32>,
+}
+
+/// The centre of the box around a triangle's corners, by which the crossing search and
+/// the overlap's bodies put triangles in spatial order: it does not depend on the order
+/// of the corners, so a triangle turned over (as a check's solid turns a shell) keeps
+/// its place, and a body can take the order its check found. (Halves are added, so it
+/// never overflows.)
+pub(crate) fn triangle_centre([a, b, c]: [Point; 3]) -> Point {
+    std::array::from_fn(|k| 0.5 * a[k].min(b[k]).min(c[k]) + 0.5 * a[k].max(b[k]).max(c[k]))
 }
 
 impl Bvh {

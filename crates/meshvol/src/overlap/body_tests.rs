@@ -9,6 +9,7 @@ use crate::test_rng::XorShift;
 use crate::topology::{check, CheckOptions, Weld};
 use crate::{Mesh, Point};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// Runs `f` on a pool of `threads` threads.
 fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
@@ -76,15 +77,26 @@ fn cases() -> Vec<(&'static str, Mesh, Weld, bool)> {
 #[test]
 fn a_body_from_the_check_is_the_body_welded_from_its_solid_bit_for_bit() {
     for (name, mesh, weld, taken) in cases() {
-        let options = CheckOptions { weld, ..CheckOptions::default() };
-        let checked = check(&mesh, &options).unwrap();
-        assert_eq!(checked.solid_triangles().is_some(), taken, "{name}");
-        let scratch = bits(&Body::new(&checked.solid(&mesh)));
-        for threads in [1, 2, 5] {
-            let from_check = on_threads(threads, || Body::of_solid(&checked, &mesh));
-            assert_eq!(bits(&from_check), scratch, "{name}, {threads} threads");
+        // With the check's spatial index kept, a body takes it where it holds every
+        // triangle of the solid (not where a face was dropped); its order and
+        // hierarchy must be those the body builds from scratch.
+        for keep_spatial_index in [false, true] {
+            let options = CheckOptions { weld, keep_spatial_index, ..CheckOptions::default() };
+            let checked = check(&mesh, &options).unwrap();
+            assert_eq!(checked.solid_triangles().is_some(), taken, "{name}");
+            let index = checked.spatial_index();
+            assert_eq!(index.is_some(), keep_spatial_index && weld != Weld::Tolerance(1e-12));
+            let scratch = bits(&Body::new(&checked.solid(&mesh)));
+            for threads in [1, 2, 5] {
+                let from_check = on_threads(threads, || Body::of_solid(&checked, &mesh));
+                let shared = index.is_some_and(|i| Arc::ptr_eq(&i.bvh, &from_check.bvh));
+                let takes = taken && keep_spatial_index && checked.repairs().1 == 0;
+                assert_eq!(shared, takes, "{name}: the check's hierarchy taken");
+                assert_eq!(bits(&from_check), scratch, "{name}, {threads} threads, {options:?}");
+            }
+            let again = on_threads(1, || Body::new(&checked.solid(&mesh)));
+            assert_eq!(bits(&again), scratch, "{name}");
         }
-        assert_eq!(bits(&on_threads(1, || Body::new(&checked.solid(&mesh)))), scratch, "{name}");
     }
 }
 

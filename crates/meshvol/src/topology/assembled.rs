@@ -142,6 +142,8 @@ fn compose(assembly: &Assembly, parts: &[Check], examples: usize) -> Check {
         volume,
         volume_uncertainty,
         solid: Solid::assembled(&part_solids, &part_shells, &assembly.placements),
+        // Not exactly welded (a transform may round two of a part's points to one).
+        spatial_index: None,
     }
 }
 

@@ -21,11 +21,12 @@ use super::loops::Loops;
 use super::predicates;
 use super::weld::Welded;
 use crate::buckets::{filled, for_each_range_mut, par_starts};
-use crate::bvh::{Box32, Bvh};
+use crate::bvh::{triangle_centre, Box32, Bvh};
 use crate::properties::Bounds;
 use crate::Point;
 use rayon::prelude::*;
 use std::collections::BTreeSet;
+use std::sync::Arc;
 
 /// The triangles of the kept faces' fans, as parallel arrays: the crossing search
 /// tags nearby pairs by `ids` and reads their points only for pairs sharing no vertex.
@@ -40,11 +41,33 @@ pub(super) struct Triangles<'a> {
 }
 
 impl Triangles<'_> {
+    /// The triangles' order, as their faces, with the hierarchy built over them.
+    pub fn into_index(self, bvh: Bvh) -> SpatialIndex {
+        SpatialIndex { faces: Arc::new(self.face), bvh: Arc::new(bvh) }
+    }
+
     pub fn points(&self, i: usize) -> [Point; 3] {
         // Not `ids.map(..)`: that built the array through the stack in pieces whose
         // reads straddled two writes (a store-forwarding stall per point, measured).
         let ([a, b, c], p) = (self.ids[i], self.positions);
         [p[a as usize], p[b as usize], p[c as usize]]
+    }
+}
+
+/// The crossing search's spatial order and hierarchy, kept by a check that is asked to
+/// ([`super::CheckOptions::keep_spatial_index`]) for a body of its solid to take
+/// instead of ordering and building them again ([`crate::overlap::Body::of_solid`]).
+#[derive(Clone)]
+pub(crate) struct SpatialIndex {
+    /// The face of each triangle in spatial order.
+    pub faces: Arc<Vec<u32>>,
+    /// The hierarchy over those triangles' boxes, in that order.
+    pub bvh: Arc<Bvh>,
+}
+
+impl std::fmt::Debug for SpatialIndex {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "SpatialIndex({} triangles)", self.faces.len())
     }
 }
 
@@ -105,15 +128,14 @@ pub(super) fn triangles_in_space<'a>(
             [r.start, c, c + 1]
         }
     };
-    // Ordered by the face's own corners (read in sequence), not the welded vertices.
-    // (The centres are kept, 24 bytes a triangle: finding them afresh on each of the
-    // order's two reads, as `Bvh::spatial_order_of` allows, took 6 ms longer at 1M.)
+    // Ordered by the face's own corners (read in sequence), not the welded vertices,
+    // by the centres of their boxes, as a body orders its triangles (so that a body
+    // can take this order: [`SpatialIndex`]). (The centres are kept, 24 bytes a
+    // triangle: finding them afresh on each of the order's two reads, as
+    // `Bvh::spatial_order_of` allows, took 6 ms longer at 1M.)
     let mut centres = Vec::new();
     fans.par_iter()
-        .map(|&fan| {
-            let p = corners(fan).map(|c| welded.at(c));
-            [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
-        })
+        .map(|&fan| triangle_centre(corners(fan).map(|c| welded.at(c))))
         .collect_into_vec(&mut centres);
     let order = Bvh::spatial_order(&centres);
     drop(centres);

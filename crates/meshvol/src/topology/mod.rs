@@ -94,6 +94,7 @@ mod verdict;
 pub(crate) mod weld;
 
 pub use assembled::check_assembled;
+pub(crate) use crossings::SpatialIndex;
 pub use solid::{AsWoundView, Measured, Solid, SolidView};
 pub use verdict::volume_warnings;
 
@@ -130,11 +131,21 @@ pub struct CheckOptions {
     pub intersections: bool,
     /// How many example face pairs to keep.
     pub examples: usize,
+    /// Keep the crossing search's spatial order and hierarchy of the triangles (about
+    /// 34 bytes a triangle) for a body of the solid to take
+    /// ([`crate::overlap::Body::of_solid`]) instead of building them again: what
+    /// `intersect` asks for. Kept only with `intersections` and an exact weld.
+    pub keep_spatial_index: bool,
 }
 
 impl Default for CheckOptions {
     fn default() -> Self {
-        CheckOptions { weld: Weld::Auto, intersections: true, examples: 5 }
+        CheckOptions {
+            weld: Weld::Auto,
+            intersections: true,
+            examples: 5,
+            keep_spatial_index: false,
+        }
     }
 }
 
@@ -254,6 +265,9 @@ pub struct Check {
     /// How much the caps on holes could be off (0 when closed).
     pub volume_uncertainty: f64,
     solid: Solid,
+    /// With [`CheckOptions::keep_spatial_index`]: the crossing search's triangles in
+    /// space, for a body of the solid.
+    spatial_index: Option<SpatialIndex>,
 }
 
 impl Check {
@@ -302,6 +316,12 @@ impl Check {
     /// the vertices, and each face of [`Check::solid`] as its corners' vertex ids.
     pub(crate) fn solid_triangles(&self) -> Option<(&[crate::Point], Vec<[u32; 3]>)> {
         self.solid.triangles()
+    }
+
+    /// The crossing search's spatial order and hierarchy, when the check was asked to
+    /// keep them ([`CheckOptions::keep_spatial_index`]).
+    pub(crate) fn spatial_index(&self) -> Option<&SpatialIndex> {
+        self.spatial_index.as_ref()
     }
 
     /// The solid as a welded mesh, ready to write: shells turned outward (cavities
@@ -502,7 +522,13 @@ fn analyse<S: Surface + ?Sized>(
     stage.stage("nesting shells");
     let containers =
         nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
-    drop((triangles, bvh));
+    let keep = options.keep_spatial_index && tolerance.is_none() && crossing.is_some();
+    let spatial_index = if keep {
+        Some(triangles.into_index(bvh))
+    } else {
+        drop((triangles, bvh));
+        None
+    };
     let crossings = crossing.map(|pairs| {
         crossings::face_pairs(pairs, &shells.of_face, options.examples, &mut overlapping_shells)
     });
@@ -581,6 +607,7 @@ fn analyse<S: Surface + ?Sized>(
         volume: roles.volume,
         volume_uncertainty: caps.volume_uncertainty,
         solid,
+        spatial_index,
     }
 }
 
