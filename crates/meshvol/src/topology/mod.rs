@@ -438,9 +438,14 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     // The corners' positions are needed for welding only (see `loops.rs`); the vertices
     // are at the same positions. Read as the f32 a file stored them in where the surface
     // has them (a binary STL): half the bytes, the same weld.
-    let exact = match loops.corners_f32(surface) {
-        Some(corners) => weld::exact(&corners),
-        None => weld::exact(&loops.corners(surface)),
+    // An indexed triangle mesh welds its positions, not its corners.
+    let indexed = surface.indexed_triangles().filter(|(_, t)| loops.corner_count() == 3 * t.len());
+    let exact = match indexed {
+        Some((positions, triangles)) => weld::exact_indexed(positions, triangles),
+        None => match loops.corners_f32(surface) {
+            Some(corners) => weld::exact(&corners),
+            None => weld::exact(&loops.corners(surface)),
+        },
     };
     let diagonal = Bounds::of_points(&exact.positions).map_or(0.0, |b| norm(b.size()));
     Ok(match options.weld {

@@ -199,6 +199,31 @@ pub(crate) fn exact<C: Corner>(corners: &[C]) -> Welded {
     number(&exact_representatives(corners), |c| corners[c].point())
 }
 
+/// [`exact`] of the corners of indexed triangles (corner 3t + i at
+/// `positions[triangles[t][i]]`, every index in range), bit for bit, welding the
+/// positions instead of the corners: a triangle mesh has about half as many positions
+/// as triangles, a sixth of its corners. Positions at one point are grouped (each under
+/// the first of them), then each corner's representative is the first corner of its
+/// group, found in one pass in corner order. (On a 1M-triangle OBJ, 2 cores: welding
+/// 0.054 s → 0.016–0.019 s, without the corners' 72 MB of positions.)
+pub(crate) fn exact_indexed(positions: &[Point], triangles: &[[u32; 3]]) -> Welded {
+    let ids = triangles.as_flattened();
+    let group = exact_representatives(positions);
+    // Serial: one pass in corner order over a table of 4 bytes a position.
+    let mut first = filled(positions.len(), u32::MAX);
+    for (c, &v) in ids.iter().enumerate() {
+        let slot = &mut first[group[v as usize] as usize];
+        if *slot == u32::MAX {
+            *slot = c as u32;
+        }
+    }
+    let mut representative = Vec::new();
+    ids.par_iter()
+        .map(|&v| first[group[v as usize] as usize])
+        .collect_into_vec(&mut representative);
+    number(&representative, |c| positions[ids[c] as usize])
+}
+
 impl Welded {
     /// Welds these (exactly welded) vertices further: those whose coordinates differ
     /// by at most `t` become one. Each corner's position is its exact vertex's, bit for
@@ -409,6 +434,42 @@ mod tests {
             for j in 0..n {
                 assert_eq!(label[i] == label[j], w.corner_vertex[i] == w.corner_vertex[j]);
             }
+        }
+    }
+
+    #[test]
+    fn indexed_triangles_weld_as_their_corners() {
+        // 30 000 triangles over 12 000 positions drawn from 3 000 points (so most
+        // points are stored several times, some with −0.0 for a zero, and some
+        // positions are used by no triangle): welding the positions must give what
+        // welding every corner gives, bit for bit (positions' signs of zero included).
+        let mut rng = crate::test_rng::XorShift::new(0x2545_f491_4f6c_dd1d);
+        let points: Vec<Point> = (0..3000)
+            .map(|i| [(i % 13) as f64, (i / 13 % 7) as f64 - 3.0, (i / 91) as f64])
+            .collect();
+        let positions: Vec<Point> = (0..12_000)
+            .map(|_| {
+                let p = points[rng.below(3000) as usize];
+                if rng.below(2) == 0 {
+                    p.map(|x| if x == 0.0 { -0.0 } else { x })
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let triangles: Vec<[u32; 3]> =
+            (0..30_000).map(|_| [0; 3].map(|_| rng.below(11_000) as u32)).collect();
+        let corners: Vec<Point> =
+            triangles.iter().flatten().map(|&v| positions[v as usize]).collect();
+        let show = |w: &Welded| {
+            let positions: Vec<_> = w.positions.iter().map(|p| p.map(f64::to_bits)).collect();
+            (w.corner_vertex.clone(), positions, w.first_corner.clone())
+        };
+        let by_corner = show(&exact(&corners));
+        for threads in [1, 2, 5] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let indexed = pool.install(|| exact_indexed(&positions, &triangles));
+            assert_eq!(show(&indexed), by_corner, "{threads} threads");
         }
     }
 }
