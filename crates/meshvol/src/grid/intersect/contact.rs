@@ -242,7 +242,8 @@ impl Contact {
     /// rounding of their sum.
     pub fn normal(&self) -> Option<[f64; 3]> {
         let length = dot(self.vector, self.vector).sqrt();
-        let direction = length > 0.0 && length > NORMAL_FLOOR * self.area && length.is_finite();
+        // The floor is never negative, so a length above it is above 0 too.
+        let direction = length > NORMAL_FLOOR * self.area && length.is_finite();
         direction.then(|| self.vector.map(|x| x / length))
     }
 }
