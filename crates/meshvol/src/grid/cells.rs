@@ -460,24 +460,37 @@ impl Bins {
     }
 }
 
-/// An array of `len` default (zero) entries, or the error naming the memory it needed.
+/// An array of `len` zero entries, or the error naming the memory it needed.
 ///
-/// Written by all the workers, a part each: the first touch of fresh memory (the
-/// system's faults and zeroing of its pages) is most of the cost of a large array, and
-/// `vec!` was serial (the allocator writes the zeros itself, on one thread: in a profile
-/// of `grid --moments` at 256³, 1.9 GB of arrays, the system's page zeroing under that
-/// one thread was 44% of the run's samples, the workers idle). Nor is `calloc` better
-/// though it skips the zeros' pass: the sweeps then add into the cells, so each fresh
-/// page is first read (the system maps its shared zero page) and then written (a second
-/// fault, copying it): with 4 KiB pages (the system allocator, as in Python) the cut
-/// cells at 256³ took 4.1 s against 0.90 s this way (two cores, 9 µs a fault on a VM).
-pub(crate) fn zeroed<T: Copy + Default + Send + Sync>(len: usize) -> Result<Vec<T>, GridError> {
-    let mut out: Vec<T> = Vec::new();
+/// Zeroed by the allocator (`calloc`: fresh memory from the system is zero already) and
+/// then written, by all the workers, once a page: the first touch of fresh memory (the
+/// system's fault and zeroing of each page) is most of the cost of a large array, and
+/// it happens here in parallel, on a write. A write, because the sweeps add into the
+/// cells: a page first read would map the system's shared zero page and fault again,
+/// copying it, on the first write (with 4 KiB pages, as under the system allocator in
+/// Python, the cut cells at 256³ took 4.1 s against 0.90 s so, two cores, 9 µs a fault
+/// on a VM). Not `vec!`: it writes the zeros on one thread (in a profile of
+/// `grid --moments` at 256³, 1.9 GB of arrays, the page zeroing under that thread was
+/// 44% of the run, the workers idle). Nor all the zeros written by the workers, as
+/// before: that is a pass over the arrays that the allocator's zeros make needless.
+pub(crate) fn zeroed<T: bytemuck::Zeroable + Send>(len: usize) -> Result<Vec<T>, GridError> {
     let bytes = len as u128 * std::mem::size_of::<T>() as u128;
-    out.try_reserve_exact(len).map_err(|_| GridError::OutOfMemory { bytes })?;
-    out.par_extend(rayon::iter::repeat_n(T::default(), len));
+    let mut out = bytemuck::allocation::try_zeroed_vec::<T>(len)
+        .map_err(|_| GridError::OutOfMemory { bytes })?;
+    // Runs of at most a page: every page of the array holds a run's first entry.
+    let per_page = (TOUCH_BYTES / std::mem::size_of::<T>().max(1)).max(1);
+    out.par_chunks_mut(per_page).for_each(|run| {
+        // SAFETY: `run` is a non-empty slice of the array, so its first entry is valid
+        // for writes. Volatile: the compiler may drop a plain store of zeros into memory
+        // it knows the allocator zeroed, and the store is here for the fault it takes.
+        unsafe { std::ptr::write_volatile(run.as_mut_ptr(), T::zeroed()) }
+    });
     Ok(out)
 }
+
+/// The smallest page size of the systems meshvol runs on: [`zeroed`] writes an entry
+/// at least this often.
+const TOUCH_BYTES: usize = 4096;
 
 /// Adds the column pieces of `faces` that fall in `columns` (a run of `block`'s
 /// columns) to `cells` (the run's cells) and `area` ([`Block::areas`] per column), in

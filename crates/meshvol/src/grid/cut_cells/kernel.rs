@@ -54,7 +54,7 @@ struct TileCells<'a> {
 }
 
 /// A cell's sums for the second moments and the face centroids.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable)]
 pub(super) struct Extra {
     /// During the sweep the in-layer terms of [`second`]'s first six; once the column is
     /// finished, the solid's second moments about the cell's centroid, world units,

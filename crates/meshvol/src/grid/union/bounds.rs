@@ -104,7 +104,7 @@ pub(super) enum Cell {
 }
 
 /// One cell's tally over the bodies, from which it is exact or open.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Default, bytemuck::Zeroable)]
 pub(super) struct Tally {
     /// A body that does not touch the cell decides it: for a union, one that fills it
     /// (the union is the whole cell); for an intersection, one that misses it (empty).
