@@ -187,11 +187,17 @@ impl LeafBoxes {
         mask
     }
 
+    /// Lane i's box. Indexed in place: `self.min.map(|m| m[i])` copied each 16-lane
+    /// row to the stack before taking one lane (six row copies an item in the pair
+    /// search's profile).
+    #[inline(always)]
     fn get(&self, i: u32) -> Box32 {
         let i = i as usize;
-        let [x, y, z] = self.min.map(|m| m[i]);
-        let [u, v, w] = self.max.map(|m| m[i]);
-        Box32 { min: [x, y, z, 0.0], max: [u, v, w, 0.0] }
+        let (min, max) = (&self.min, &self.max);
+        Box32 {
+            min: [min[0][i], min[1][i], min[2][i], 0.0],
+            max: [max[0][i], max[1][i], max[2][i], 0.0],
+        }
     }
 }
 
