@@ -385,6 +385,12 @@ def _staged(argv, setup_timeout, cap, rest_timeout):
 # (as meshes from remeshing or format conversion can be), where every corner read misses.
 INPROCESS_KINDS = {"sphere": "sphere", "sphere_shuffled": "sphere, vertices shuffled"}
 
+# Timed calls per in-process cell, at most (within the cell's budget): calls of a few
+# milliseconds vary by ±30% one to the next on a shared machine. With five (the
+# whole-process default) the 2026-11-28 run gave meshvol's 1M volume 3.3 ms, where sixty
+# calls in each of six processes right after gave medians of 1.9–2.6 ms.
+INPROCESS_RUNS = 60
+
 
 def run_in_process(ctx: Ctx, sizes, refs):
     args = ctx.args
@@ -408,7 +414,7 @@ def run_in_process(ctx: Ctx, sizes, refs):
         row["triangles"] = ntri
         budget = max(0.0, min(args.cell_seconds, ctx.clock.left() - cap))
         argv = [PY, str(TOOLS_DIR / "inprocess.py"), tool, kind, str(n),
-                str(args.runs), str(budget)]
+                str(max(args.runs, INPROCESS_RUNS)), str(budget)]
         out, err = _staged(argv, setup_timeout=max(60.0, 20 * n / 1e6), cap=cap,
                            rest_timeout=2 * budget + cap + 10)
         if isinstance(err, tuple):
@@ -592,7 +598,9 @@ def report_inprocess(inp) -> tuple[list[str], list[str]]:
     if not inp:
         return L + ["Not run.\n"], []
     measured = any(r["tool"] == "meshvol (Python)" and "median_s" in r for r in inp)
-    L.append("Each run builds the tool's mesh object from (vertices, faces) outside the timer, "
+    L.append(f"Each tool runs in its own Python process: one warm-up call, then up to "
+             f"{INPROCESS_RUNS} timed calls within the cell's time budget; the table gives their median. "
+             "Each run builds the tool's mesh object from (vertices, faces) outside the timer, "
              "so no cached result carries over; the timer covers the mass-property call only (for "
              "manifold3d, which has no other way in, the `Manifold` build plus `volume()` and "
              "`surface_area()`; for Open3D, `get_volume()`, which first runs `is_watertight()` "
