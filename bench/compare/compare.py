@@ -414,7 +414,7 @@ def run_in_process(ctx: Ctx, sizes, refs):
         row["triangles"] = ntri
         budget = max(0.0, min(args.cell_seconds, ctx.clock.left() - cap))
         argv = [PY, str(TOOLS_DIR / "inprocess.py"), tool, kind, str(n),
-                str(max(args.runs, INPROCESS_RUNS)), str(budget)]
+                str(INPROCESS_RUNS), str(budget)]
         out, err = _staged(argv, setup_timeout=max(60.0, 20 * n / 1e6), cap=cap,
                            rest_timeout=2 * budget + cap + 10)
         if isinstance(err, tuple):
