@@ -7,7 +7,9 @@ use clap::{ArgGroup, Args};
 use meshvol::grid::Grid;
 use meshvol_io::grid_out::{self, Legend, Slice};
 use meshvol_report::cutfill::{cutfill_with, Against, CutFillReport, Spacing};
+use meshvol_report::reported_cells;
 use meshvol_report::subject::Source;
+use meshvol_report::units::Scale;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -109,9 +111,18 @@ fn measure(args: &CutFillArgs, progress: &Progress) -> Result<CutFillReport, Str
         (None, None) => None,
     };
     let hook = progress.kernel("measuring cut and fill".to_string());
-    let (report, cells) = cutfill_with(&source, &surface, against, spacing, &hook)?;
+    let (report, mut cells) = cutfill_with(&source, &surface, against, spacing, &hook)?;
     drop(hook);
-    if let (Some(cells), Some(info)) = (cells, report.grid) {
+    // The report and the per-cell values (--out, --png) in the units asked for, each
+    // converted once by the report layer.
+    let mut files = vec![(source.name(), source.unit)];
+    files.extend(design.as_ref().map(|(s, _)| (s.name(), s.unit)));
+    let options = args.units.options();
+    let report = report.in_units(&options, &files)?;
+    let (scale, _) = Scale::resolve_all(&options, &files)?;
+    if let (Some(cells), Some(info)) = (cells.as_mut(), &report.grid) {
+        reported_cells::volumes(&scale, &mut cells.cut);
+        reported_cells::volumes(&scale, &mut cells.fill);
         let [nx, ny] = info.counts;
         if let Some(out) = &args.out {
             progress.stage("writing", out);
@@ -145,8 +156,5 @@ fn measure(args: &CutFillArgs, progress: &Progress) -> Result<CutFillReport, Str
                 .map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
         }
     }
-    // The per-cell values (--out, --png) stay in the file's units.
-    let mut files = vec![(source.name(), source.unit)];
-    files.extend(design.as_ref().map(|(s, _)| (s.name(), s.unit)));
-    report.in_units(&args.units.options(), &files)
+    Ok(report)
 }

@@ -11,10 +11,12 @@ use meshvol::grid::{
 };
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point, Surface};
-use meshvol_io::grid_out::{self, Slice};
+use meshvol_io::grid_out::{self, CellValues, Slice};
 use meshvol_report::grid::{
     check_memory, choose, layer_holding, summary, GridReport, GridRun, Spacing,
 };
+use meshvol_report::reported_cells;
+use meshvol_report::units::Scale;
 use meshvol_report::subject::{union_bodies, Subject};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -233,15 +235,21 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         (None, None) => return Err("give --cells NX,NY,NZ or --pitch H".into()),
     };
     let (grid, bounds_from) = choose(args.bounds, mp.bounds, spacing, "--bounds")?;
+    // The units, resolved before any work: the kernels run in the file's coordinates,
+    // and every array is converted once (`reported_cells`) before a sink reads it.
+    let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
+    let (scale, unit_warnings) = Scale::resolve_all(&args.units.options(), &files)?;
+    let reported = reported_cells::grid(&scale, &grid)?;
+    let density = scale.mass_per_volume();
     let mesh_volume = if args.union {
         bodies.iter().map(|b| mass_properties(b).signed_volume.abs()).sum()
     } else {
         mp.signed_volume
     };
     let mut run = GridRun {
-        files: files.iter().map(|p| p.display().to_string()).collect(),
+        files: files.iter().map(|(name, _)| name.to_string()).collect(),
         bounds_from,
-        mesh_volume,
+        mesh_volume: scale.volume(mesh_volume),
         union: args.union,
         bodies: bodies.len(),
         columns_unresolved: 0,
@@ -249,13 +257,13 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         out: args.out.as_ref().map(|p| p.display().to_string()),
         chunks: None,
         fraction: args.fraction,
-        units: None,
+        units: scale.names(),
         mass: None,
         png: args.png.as_ref().map(|p| p.display().to_string()),
         moments: args.moments,
         second_moments: args.second_moments,
         face_centroids: args.face_centroids,
-        warnings,
+        warnings: warnings.into_iter().chain(unit_warnings).collect(),
     };
     let out_kind = args.out.as_deref().and_then(extension);
     if args.moments && !matches!(out_kind.as_deref(), Some("npz" | "vti" | "zarr")) {
@@ -272,23 +280,23 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
                         write .npy, .vti or .csv with them, not .zarr"
                 .into());
         }
-        let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
-        let report = if args.union {
+        let write = zarr::Write { grid: &grid, scale: &scale, out, chunks: args.chunks };
+        let mut report = if args.union {
             // The union's boundary is measured as the solids' surface is, row by row;
             // the seconds computing include finding it.
             let start = Instant::now();
             let boundary = boundary_of(&bodies, progress)?;
             let finding = start.elapsed().as_secs_f64();
-            let mut report =
-                zarr::write_cut_cells(&boundary, &grid, out, args.chunks, extras, run, progress)?;
+            let mut report = write.cut_cells(&boundary, extras, run, progress)?;
             report.run.seconds += finding;
             report
         } else if args.moments {
-            zarr::write_cut_cells(&together, &grid, out, args.chunks, extras, run, progress)?
+            write.cut_cells(&together, extras, run, progress)?
         } else {
-            zarr::write(&together, &grid, out, args.chunks, run, progress)?
+            write.cells(&together, cell_values(args.fraction, density), run, progress)?
         };
-        return report.in_units(&args.units.options(), &files);
+        report.run.mass = scale.mass(report.cells.total);
+        return Ok(report);
     }
     if args.chunks.is_some() {
         return Err("--chunks is for a .zarr output (--out cells.zarr)".into());
@@ -305,7 +313,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     progress.stage_all("computing cell volumes");
     let start = Instant::now();
     let mut cut = None;
-    let (volumes, columns_unresolved) = if args.union && args.moments {
+    let (mut volumes, columns_unresolved) = if args.union && args.moments {
         // The cut cells of the union: those of its boundary, the pieces of the solids'
         // surfaces outside the other solids.
         let boundary = boundary_of(&bodies, progress)?;
@@ -323,6 +331,10 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     };
     run.seconds = start.elapsed().as_secs_f64();
     run.columns_unresolved = columns_unresolved;
+    match &mut cut {
+        Some(cells) => reported_cells::cut_cells(&scale, cells)?,
+        None => reported_cells::volumes(&scale, &mut volumes),
+    }
     // The cut cells hold the volumes (the same bits as cell_volumes'): not copied.
     let volumes: &[f64] = cut.as_ref().map_or(&volumes, |c| &c.volume);
 
@@ -331,25 +343,38 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         let file = std::fs::File::create(out)
             .map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
         let mut w = BufWriter::new(file);
+        let values = cell_values(args.fraction, density);
         let written = match (out_kind.as_deref(), &cut) {
-            (Some("npz"), Some(cells)) => grid_out::npz_cut_cells(&mut w, cells),
-            (Some("npz"), None) => grid_out::npz(&mut w, &grid, volumes),
-            (Some("vti"), Some(cells)) => grid_out::vti_cut_cells(&mut w, cells),
-            (Some("npy"), _) => grid_out::npy(&mut w, &grid, volumes, args.fraction),
-            (Some("vti"), None) => grid_out::vti(&mut w, &grid, volumes),
-            _ => grid_out::csv(&mut w, &grid, volumes).map(|_| ()),
+            (Some("npz"), Some(cells)) => grid_out::npz_cut_cells(&mut w, cells, density),
+            (Some("npz"), None) => grid_out::npz(&mut w, &reported, volumes, density),
+            (Some("vti"), Some(cells)) => grid_out::vti_cut_cells(&mut w, cells, density),
+            (Some("npy"), _) => grid_out::npy(&mut w, &reported, volumes, values),
+            (Some("vti"), None) => grid_out::vti(&mut w, &reported, volumes, density),
+            _ => grid_out::csv(&mut w, &reported, volumes, density).map(|_| ()),
         };
         written.and_then(|()| w.flush()).map_err(|e| format!("{}: {e}", out.display()))?;
     }
     if let (Some(png), Some(at)) = (&args.png, args.slice) {
         progress.stage("drawing", png);
+        // The slice is asked in the file's coordinates; drawn in the reported ones.
         let slice = slice_of(at, &grid)?;
         let mut bytes = Vec::new();
-        grid_out::png(&mut bytes, &grid, volumes, slice).map_err(|e| e.to_string())?;
+        grid_out::png(&mut bytes, &reported, volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
-    let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
-    summary(&grid, volumes, run).in_units(&args.units.options(), &files)
+    let mut report = summary(&reported, volumes, run);
+    report.run.mass = scale.mass(report.cells.total);
+    Ok(report)
+}
+
+/// What a one-array file holds: fractions with --fraction, masses with --density, else
+/// volumes.
+fn cell_values(fraction: bool, density: Option<f64>) -> CellValues {
+    match (fraction, density) {
+        (true, _) => CellValues::Fraction,
+        (false, Some(rho)) => CellValues::Mass(rho),
+        (false, None) => CellValues::Volume,
+    }
 }
 
 /// The cut cells of `surface` on the whole of `grid`.

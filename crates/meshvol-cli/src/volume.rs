@@ -4,7 +4,7 @@ use crate::driver::{self, Output};
 use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::{Args, ValueEnum};
-use meshvol_report::inertial::{inertial, RobotFormat};
+use meshvol_report::inertial::{inertial, refuse_units, RobotFormat};
 use meshvol_report::units::Density;
 use meshvol_report::volume::{volume, VolumeOptions};
 use std::path::{Path, PathBuf};
@@ -25,7 +25,8 @@ pub struct VolumeArgs {
     /// What to print: `text` (the default), `json`, `csv` (one table: a header, then a
     /// row per file, the JSON keys as columns, nested ones as `parent.child`), or the
     /// `<inertial>` element of a robot description, `urdf`, `sdf` or `mjcf` (mass, centre
-    /// of mass and inertia in SI units: give --units FILE:m and --density in kg/m³).
+    /// of mass and inertia in kg, m and kg·m², converted from any --units and a --density
+    /// with its unit, e.g. `--units mm --density 2.7g/cm3`).
     #[arg(long, value_enum)]
     format: Option<Format>,
     #[command(flatten)]
@@ -77,6 +78,11 @@ pub fn run(args: VolumeArgs, quiet: bool) -> ExitCode {
             return driver::each(&inputs, output, measure);
         }
     };
+    let format = format!("{robot:?}").to_ascii_lowercase();
+    if let Err(e) = refuse_units(&args.units.options(), &format) {
+        eprintln!("meshvol: error: {e}");
+        return ExitCode::from(2);
+    }
     // One element per file, after a comment naming it.
     let mut driver = driver::start(&inputs, Output { json: false, quiet, csv: false });
     for path in &inputs.files {

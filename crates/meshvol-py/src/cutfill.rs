@@ -146,7 +146,8 @@ pub fn cutfill(
     let (scale, _) =
         meshvol_report::units::Scale::resolve_all(&options, &files).map_err(mesh_error)?;
     if let Some(c) = cells.as_mut() {
-        c.cut.iter_mut().chain(c.fill.iter_mut()).for_each(|v| *v = scale.volume(*v));
+        meshvol_report::reported_cells::volumes(&scale, &mut c.cut);
+        meshvol_report::reported_cells::volumes(&scale, &mut c.fill);
     }
     // The reader's warnings of a mesh loaded before were given then.
     let new: Vec<String> = if read_here {

@@ -10,7 +10,8 @@ use meshvol_report::grid::{check_memory, choose, Spacing};
 use meshvol_report::profile::ProfileReport;
 use meshvol_report::subject::Subject;
 use meshvol_report::union::UnionReport;
-use meshvol_report::units::Scale;
+use meshvol_io::grid_out::CellValues;
+use meshvol_report::reported_cells;
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
@@ -124,48 +125,50 @@ pub fn cut_cells<'py, S: Surface>(
     }
     let region = region.unwrap_or_else(|| grid.counts.map(|n| 0..n));
     let mut c = py
-        .detach(|| grid::cut_cells_extras(mesh, &grid, &region, extras, &()))
+        .detach(|| -> Result<_, String> {
+            let mut c = grid::cut_cells_extras(mesh, &grid, &region, extras, &())
+                .map_err(|e| e.to_string())?;
+            // In the report's units, where they are (the one conversion every grid sink
+            // takes): at 256³ the arrays are 1.9 GB, the only copy.
+            reported_cells::cut_cells(scale, &mut c)?;
+            Ok(c)
+        })
         .map_err(mesh_error)?;
     let [nx, ny, nz] = c.shape();
-    // The arrays are scaled where they are, in parallel, and moved into NumPy without a
-    // copy: they are the only copy (at 256³, 1.9 GB; a scaled copy of each, made on one
-    // thread, doubled the memory and took longer than the kernel).
     let fraction = c.fraction();
     let dict = pyo3::types::PyDict::new(py);
-    let put = |name: &str, shape: Vec<usize>, mut values: Vec<f64>, by: fn(&Scale, f64) -> f64| {
-        if scale.converts() {
-            py.detach(|| values.par_iter_mut().for_each(|x| *x = by(scale, *x)));
-        }
+    // Moved into NumPy without a copy.
+    let put = |name: &str, shape: Vec<usize>, values: Vec<f64>| {
         let array = Array::from_shape_vec(IxDyn(&shape), values).map_err(mesh_error)?;
         dict.set_item(name, array.into_pyarray(py))
     };
     let (cells, vectors) = (vec![nx, ny, nz], vec![nx, ny, nz, 3]);
     let [ax, ay, az] = std::mem::take(&mut c.aperture);
     let [cx, cy, cz] = std::mem::take(&mut c.aperture_centroid);
-    put("volume", cells.clone(), c.volume, Scale::volume)?;
-    put("fraction", cells.clone(), fraction, |_, x| x)?;
-    put("centroid", vectors.clone(), c.centroid.into_flattened(), Scale::length)?;
-    put("boundary_area", cells, c.boundary_area, Scale::area)?;
-    put("boundary_vector", vectors.clone(), c.boundary_vector.into_flattened(), Scale::area)?;
-    put("boundary_centroid", vectors, c.boundary_centroid.into_flattened(), Scale::length)?;
-    put("aperture_x", vec![nx + 1, ny, nz], ax, |_, x| x)?;
-    put("aperture_y", vec![nx, ny + 1, nz], ay, |_, x| x)?;
-    put("aperture_z", vec![nx, ny, nz + 1], az, |_, x| x)?;
+    put("volume", cells.clone(), c.volume)?;
+    put("fraction", cells.clone(), fraction)?;
+    put("centroid", vectors.clone(), c.centroid.into_flattened())?;
+    put("boundary_area", cells, c.boundary_area)?;
+    put("boundary_vector", vectors.clone(), c.boundary_vector.into_flattened())?;
+    put("boundary_centroid", vectors, c.boundary_centroid.into_flattened())?;
+    put("aperture_x", vec![nx + 1, ny, nz], ax)?;
+    put("aperture_y", vec![nx, ny + 1, nz], ay)?;
+    put("aperture_z", vec![nx, ny, nz + 1], az)?;
     if !c.inertia.is_empty() {
-        let values = c.inertia.into_flattened().into_flattened();
-        put("inertia", vec![nx, ny, nz, 3, 3], values, Scale::volume_moment)?;
+        put("inertia", vec![nx, ny, nz, 3, 3], c.inertia.into_flattened().into_flattened())?;
     }
     let shapes = [[nx + 1, ny, nz, 3], [nx, ny + 1, nz, 3], [nx, ny, nz + 1, 3]];
     let names = ["aperture_x_centroid", "aperture_y_centroid", "aperture_z_centroid"];
     for ((name, shape), points) in names.into_iter().zip(shapes).zip([cx, cy, cz]) {
         if !points.is_empty() {
-            put(name, shape.to_vec(), points.into_flattened(), Scale::length)?;
+            put(name, shape.to_vec(), points.into_flattened())?;
         }
     }
     let class = py.import("meshvol._grid")?.getattr("CutCells")?;
-    let origin: [f64; 3] =
-        [0, 1, 2].map(|a| grid.origin[a] + c.region[a].start as f64 * grid.cell[a]);
-    class.call1((dict, scale.point(origin), grid.cell.map(|h| scale.length(h))))
+    // c.grid is in the report's units: the block's corner as the grid computes it.
+    let g = c.grid;
+    let origin: [f64; 3] = [0, 1, 2].map(|a| g.origin[a] + c.region[a].start as f64 * g.cell[a]);
+    class.call1((dict, origin, g.cell))
 }
 
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
@@ -202,23 +205,24 @@ pub fn cell_volumes<'py, S: Surface>(
             (volumes.map_err(mesh_error)?, shape)
         }
     };
-    if fraction {
-        let cell = grid.cell_volume();
-        volumes.iter_mut().for_each(|v| *v /= cell);
-    } else {
-        // Volumes in the report's unit, and with a density, masses.
-        let rho = scale.mass(1.0).map_or(1.0, |m| m.mass);
-        volumes.iter_mut().for_each(|v| *v = scale.volume(*v) * rho);
-    }
+    // In the report's units (the one conversion every grid sink takes), then what the
+    // array holds, as the command's .npy: fractions, masses with a density, or volumes.
+    let reported = reported_cells::grid(scale, &grid).map_err(mesh_error)?;
+    let values = match (fraction, scale.mass_per_volume()) {
+        (true, _) => CellValues::Fraction,
+        (false, Some(rho)) => CellValues::Mass(rho),
+        (false, None) => CellValues::Volume,
+    };
+    let cell = reported.cell_volume();
+    py.detach(|| {
+        reported_cells::volumes(scale, &mut volumes);
+        volumes.par_iter_mut().for_each(|v| *v = values.of(*v, cell));
+    });
     let array = Array3::from_shape_vec(shape, volumes).map_err(mesh_error)?;
-    let origin: [f64; 3] = [0, 1, 2].map(|a| grid.origin[a] + start[a] as f64 * grid.cell[a]);
+    let g = reported;
+    let origin: [f64; 3] = [0, 1, 2].map(|a| g.origin[a] + start[a] as f64 * g.cell[a]);
     let class = py.import("meshvol._grid")?.getattr("Grid")?;
-    class.call1((
-        array.into_pyarray(py),
-        scale.point(origin),
-        grid.cell.map(|h| scale.length(h)),
-        fraction,
-    ))
+    class.call1((array.into_pyarray(py), origin, g.cell, fraction))
 }
 
 /// A profile along an axis, with the names of the keys of `meshvol profile --json`:

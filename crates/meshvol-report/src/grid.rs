@@ -293,33 +293,42 @@ impl Report for GridReport {
             c.cells_full, c.cells_partial, c.cells_empty
         );
         if let Some(out) = &r.out {
+            // With a density the files hold masses too: alone in a one-array file, beside
+            // the volumes in the others.
+            let one = if r.fraction {
+                "fractions"
+            } else if r.mass.is_some() {
+                "masses"
+            } else {
+                "volumes"
+            };
+            let mass = if r.mass.is_some() { ", mass" } else { "" };
             let what = match Path::new(out).extension().and_then(|e| e.to_str()) {
-                Some(e) if e.eq_ignore_ascii_case("npy") => format!(
-                    "float64 {}, shape ({nx}, {ny}, {nz}), C order",
-                    if r.fraction { "fractions" } else { "volumes" }
-                ),
+                Some(e) if e.eq_ignore_ascii_case("npy") => {
+                    format!("float64 {one}, shape ({nx}, {ny}, {nz}), C order")
+                }
                 Some(e) if e.eq_ignore_ascii_case("vti") && r.moments => format!(
-                    "VTK image data: cell arrays volume, fraction, centroid, boundary_area, \
+                    "VTK image data: cell arrays volume, fraction{mass}, centroid, boundary_area, \
                      boundary_vector, boundary_centroid{}; field arrays aperture_x, _y, _z{}",
                     if r.second_moments { ", inertia" } else { "" },
                     if r.face_centroids { ", aperture_x_centroid, _y_, _z_" } else { "" }
                 ),
                 Some(e) if e.eq_ignore_ascii_case("vti") => {
-                    "VTK image data, cell arrays volume and fraction".to_string()
+                    format!("VTK image data, cell arrays volume, fraction{mass}")
                 }
                 Some(e) if e.eq_ignore_ascii_case("npz") && r.moments => format!(
-                    "NumPy arrays volume, fraction, centroid, boundary_area, boundary_vector, \
-                     boundary_centroid, aperture_x, _y, _z{}{}, origin, cell_size",
+                    "NumPy arrays volume, fraction{mass}, centroid, boundary_area, \
+                     boundary_vector, boundary_centroid, aperture_x, _y, _z{}{}, origin, cell_size",
                     if r.second_moments { ", inertia" } else { "" },
                     if r.face_centroids { ", aperture_x_centroid, _y_, _z_" } else { "" }
                 ),
                 Some(e) if e.eq_ignore_ascii_case("npz") => {
-                    "NumPy arrays volume, fraction, origin, cell_size".to_string()
+                    format!("NumPy arrays volume, fraction{mass}, origin, cell_size")
                 }
                 Some(e) if e.eq_ignore_ascii_case("zarr") && r.moments => {
                     let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
                     format!(
-                        "Zarr v3 group of float64 arrays volume, fraction, centroid, \
+                        "Zarr v3 group of float64 arrays volume, fraction{mass}, centroid, \
                          boundary_area, boundary_vector, boundary_centroid, aperture_x, _y, _z{}{}, \
                          chunks ({cx}, {cy}, {cz})",
                         if r.second_moments { ", inertia" } else { "" },
@@ -329,11 +338,10 @@ impl Report for GridReport {
                 Some(e) if e.eq_ignore_ascii_case("zarr") => {
                     let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
                     format!(
-                        "Zarr v3 float64 {}, shape ({nx}, {ny}, {nz}), chunks ({cx}, {cy}, {cz})",
-                        if r.fraction { "fractions" } else { "volumes" }
+                        "Zarr v3 float64 {one}, shape ({nx}, {ny}, {nz}), chunks ({cx}, {cy}, {cz})"
                     )
                 }
-                _ => "i,j,k,volume,fraction of the non-empty cells".to_string(),
+                _ => format!("i,j,k,volume,fraction{} of the non-empty cells", mass.replace(' ', "")),
             };
             let _ = writeln!(s, "  wrote          {out} ({what})");
         }
@@ -348,8 +356,8 @@ impl Report for GridReport {
 
 impl GridReport {
     /// The summary in the units `options` ask for (and with `--density`, the mass), for
-    /// files (named, with the unit each declares) that must agree on their unit. (The
-    /// cell values written to `--out` stay in the file's units.)
+    /// files (named, with the unit each declares) that must agree on their unit: for a
+    /// summary whose cells were not converted already (`reported_cells`), as the page's.
     pub fn in_units(
         mut self,
         options: &UnitOptions,

@@ -43,6 +43,7 @@ pub mod intersect;
 pub mod number;
 pub mod profile;
 pub mod repair;
+pub mod reported_cells;
 pub mod section;
 pub mod subject;
 pub mod table;

@@ -62,6 +62,11 @@ impl Unit {
         self.volume
     }
 
+    /// The length unit's symbol (`mm`; `cm` for mL).
+    pub fn length_symbol(&self) -> &'static str {
+        self.length
+    }
+
     /// Cubic metres per volume unit.
     pub fn cubic_metres(&self) -> f64 {
         self.cubic_metres
@@ -79,6 +84,17 @@ const FT: Unit = Unit::cube("ft", "ft^2", "ft^3", 0.3048);
 const YD: Unit = Unit::cube("yd", "yd^2", "yd^3", 0.9144);
 /// A US survey-independent international acre: 43,560 ft².
 const ACRE_M2: f64 = 43_560.0 * 0.3048 * 0.3048;
+
+/// Metres in one unit of the length a report names (`mm`, `in`, `yd`): how a sink that
+/// needs SI (the robot formats) converts a report made in any unit.
+pub fn metres_per(length: &str) -> Option<f64> {
+    report_length(length).map(|u| u.metres)
+}
+
+/// Kilograms in one unit of the mass a report names (`g`, `lb`).
+pub fn kilograms_per(mass: &str) -> Option<f64> {
+    mass_unit(mass).map(|m| m.kilograms)
+}
 
 /// Parses a length unit's name: um (or µm, micron), mm, cm, m, in (inch), ft (foot).
 fn length_unit(s: &str) -> Option<LengthUnit> {
@@ -530,6 +546,12 @@ impl Scale {
     /// The names of the reported units, when known.
     pub fn names(&self) -> Option<UnitNames> {
         self.units.map(|u| u.names())
+    }
+
+    /// Mass per reported volume (or area) unit, with `--density`: what a sink that
+    /// writes masses multiplies reported volumes by.
+    pub fn mass_per_volume(&self) -> Option<f64> {
+        self.rho
     }
 
     /// Mass per reported volume unit (1 without `--density`).

@@ -24,7 +24,7 @@
 //! `(NX, NY, NZ, 3, 3)`) and `aperture_x_centroid`, `aperture_y_centroid`,
 //! `aperture_z_centroid` (the apertures' shapes with a last axis of 3).
 
-use super::{check_len, npy_array, vti_arrays, VtiArray, VtiField};
+use super::{check_len, npy_array, vti_arrays, CellValues, VtiArray, VtiField};
 use meshvol::grid::{CutCells, Grid};
 use std::io::{self, Seek, Write};
 use zip::write::SimpleFileOptions;
@@ -48,62 +48,77 @@ fn entry<W: Write + Seek>(
     npy_array(zip, shape, values)
 }
 
-/// The grid's `origin` and `cell_size`, `volume` and `fraction`.
-fn grid_entries<W: Write + Seek>(
-    zip: &mut ZipWriter<W>,
+/// A `.npz` of a grid's cell volumes: `origin`, `cell_size`, `volume`, `fraction`, and
+/// given a `density` (mass per volume unit), `mass`.
+pub fn npz<W: Write + Seek>(
+    out: W,
     grid: &Grid,
     volumes: &[f64],
+    density: Option<f64>,
 ) -> io::Result<()> {
     check_len(grid, volumes)?;
     let cell = grid.cell_volume();
-    entry(zip, "origin", &[3], grid.origin.into_iter())?;
-    entry(zip, "cell_size", &[3], grid.cell.into_iter())?;
-    entry(zip, "volume", &grid.counts, volumes.iter().copied())?;
-    entry(zip, "fraction", &grid.counts, volumes.iter().map(|v| v / cell))
-}
-
-/// A `.npz` of a grid's cell volumes.
-pub fn npz<W: Write + Seek>(out: W, grid: &Grid, volumes: &[f64]) -> io::Result<()> {
     let mut zip = ZipWriter::new(out);
-    grid_entries(&mut zip, grid, volumes)?;
+    entry(&mut zip, "origin", &[3], grid.origin.into_iter())?;
+    entry(&mut zip, "cell_size", &[3], grid.cell.into_iter())?;
+    entry(&mut zip, "volume", &grid.counts, volumes.iter().copied())?;
+    entry(&mut zip, "fraction", &grid.counts, volumes.iter().map(|v| v / cell))?;
+    if let Some(rho) = density {
+        entry(&mut zip, "mass", &grid.counts, volumes.iter().map(|v| v * rho))?;
+    }
     zip.finish().map_err(io::Error::other)?;
     Ok(())
 }
 
 /// One float64 array of the cut-cell geometry: its name, its shape (the cells' along x,
 /// y and z, one more along the axis of an array on faces, and a last axis of 3 for
-/// vectors) and its values in C order, each divided by `divisor` when written.
+/// vectors) and its values in C order, each written as [`CellValues::of`] makes it.
 pub struct CellArray<'a> {
     pub name: &'static str,
     pub shape: Vec<usize>,
     pub values: &'a [f64],
-    pub divisor: f64,
+    /// What is written of each value: the value (`Volume`), or for the arrays made from
+    /// the volumes, `Fraction` (of `cell`) or `Mass`.
+    pub written_as: CellValues,
+    pub cell: f64,
 }
 
 impl CellArray<'_> {
     /// The values as written.
     pub fn written(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
-        self.values.iter().map(|v| v / self.divisor)
+        self.values.iter().map(|&v| self.written_as.of(v, self.cell))
     }
 }
 
 /// The arrays of `cells` as every cut-cell output names and orders them (module docs),
-/// over the cells' region: the whole grid, or a block of it.
-pub fn cut_cell_arrays(cells: &CutCells) -> Vec<CellArray<'_>> {
+/// over the cells' region: the whole grid, or a block of it; given a `density` (mass
+/// per volume unit), `mass` after `fraction`.
+pub fn cut_cell_arrays(cells: &CutCells, density: Option<f64>) -> Vec<CellArray<'_>> {
     let shape = cells.shape();
     let vectors = vec![shape[0], shape[1], shape[2], 3];
-    let array = |name, shape: Vec<usize>, values| CellArray { name, shape, values, divisor: 1.0 };
+    let cell = cells.grid.cell_volume();
+    let array = |name, shape: Vec<usize>, values| CellArray {
+        name,
+        shape,
+        values,
+        written_as: CellValues::Volume,
+        cell,
+    };
+    let of_volumes = |name, written_as| CellArray {
+        written_as,
+        ..array(name, shape.to_vec(), &cells.volume)
+    };
     let mut arrays = vec![
         array("volume", shape.to_vec(), &cells.volume),
-        CellArray {
-            divisor: cells.grid.cell_volume(),
-            ..array("fraction", shape.to_vec(), &cells.volume)
-        },
+        of_volumes("fraction", CellValues::Fraction),
+    ];
+    arrays.extend(density.map(|rho| of_volumes("mass", CellValues::Mass(rho))));
+    arrays.extend([
         array("centroid", vectors.clone(), cells.centroid.as_flattened()),
         array("boundary_area", shape.to_vec(), &cells.boundary_area),
         array("boundary_vector", vectors.clone(), cells.boundary_vector.as_flattened()),
         array("boundary_centroid", vectors, cells.boundary_centroid.as_flattened()),
-    ];
+    ]);
     for (axis, name) in ["aperture_x", "aperture_y", "aperture_z"].into_iter().enumerate() {
         let mut faces = shape.to_vec();
         faces[axis] += 1;
@@ -124,24 +139,34 @@ pub fn cut_cell_arrays(cells: &CutCells) -> Vec<CellArray<'_>> {
     arrays
 }
 
-/// A `.npz` of the cut-cell geometry (module docs).
-pub fn npz_cut_cells<W: Write + Seek>(out: W, cells: &CutCells) -> io::Result<()> {
+/// A `.npz` of the cut-cell geometry (module docs), with `mass` given a `density`.
+pub fn npz_cut_cells<W: Write + Seek>(
+    out: W,
+    cells: &CutCells,
+    density: Option<f64>,
+) -> io::Result<()> {
     let grid = &cells.grid;
     check_len(grid, &cells.volume)?;
     let mut zip = ZipWriter::new(out);
     entry(&mut zip, "origin", &[3], grid.origin.into_iter())?;
     entry(&mut zip, "cell_size", &[3], grid.cell.into_iter())?;
-    for array in cut_cell_arrays(cells) {
+    for array in cut_cell_arrays(cells, density) {
         entry(&mut zip, array.name, &array.shape, array.written())?;
     }
     zip.finish().map_err(io::Error::other)?;
     Ok(())
 }
 
-/// A `.vti` of the cut-cell geometry (module docs).
-pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
+/// A `.vti` of the cut-cell geometry (module docs), with the cell array `mass` given a
+/// `density`.
+pub fn vti_cut_cells(
+    out: &mut impl Write,
+    cells: &CutCells,
+    density: Option<f64>,
+) -> io::Result<()> {
     let grid = &cells.grid;
     let cell = grid.cell_volume();
+    let rho = density.unwrap_or(1.0);
     let [nx, ny, nz] = grid.counts;
     let inertia = |c: usize, m: usize| cells.inertia[c][m / 3][m % 3];
     let arrays = [
@@ -160,9 +185,12 @@ pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
             values: &|c, m| cells.boundary_centroid[c][m],
         },
         VtiArray { name: "inertia", components: 9, values: &inertia },
+        VtiArray { name: "mass", components: 1, values: &|c, _| cells.volume[c] * rho },
     ];
-    // The extra arrays last, written where computed.
-    let arrays = &arrays[..if cells.inertia.is_empty() { 6 } else { 7 }];
+    // The extra arrays last, written where computed or asked for.
+    let wanted = [true, true, true, true, true, true, !cells.inertia.is_empty(), density.is_some()];
+    let arrays: Vec<VtiArray> =
+        arrays.into_iter().zip(wanted).filter(|(_, w)| *w).map(|(a, _)| a).collect();
     // Each aperture array in VTK's order (x fastest) over its own shape.
     let shapes = [[nx + 1, ny, nz], [nx, ny + 1, nz], [nx, ny, nz + 1]];
     let c_order = move |axis: usize, t: usize| {
@@ -203,5 +231,5 @@ pub fn vti_cut_cells(out: &mut impl Write, cells: &CutCells) -> io::Result<()> {
         },
     ];
     let fields = &fields[..if cells.aperture_centroid[0].is_empty() { 3 } else { 6 }];
-    vti_arrays(out, grid, arrays, fields)
+    vti_arrays(out, grid, &arrays, fields)
 }

@@ -13,7 +13,7 @@
 //!   and `fraction`, in VTK's order (x fastest), as raw little-endian appended data with
 //!   `UInt64` byte counts: ParaView, VisIt and `vtk` read it.
 //! - **`.npz`**, and the cut-cell geometry as `.npz` or `.vti`: the `cut_cells` module.
-//! - **`.csv`**: `i,j,k,volume,fraction`, one row per non-empty cell (|volume| above
+//! - **`.csv`**: `i,j,k,volume,fraction` (and `mass` given a density), one row per non-empty cell (|volume| above
 //!   [`OCCUPANCY_TOLERANCE`] of a cell), numbers in shortest round-trip form.
 //! - **`.zarr`** (feature `zarr`): a Zarr v3 array written chunk by chunk, for grids
 //!   larger than memory (the `zarr` module).
@@ -65,12 +65,48 @@ fn write_f64s(out: &mut impl Write, mut values: impl Iterator<Item = f64>) -> io
     }
 }
 
-/// A `.npy` file of the cell volumes, or of the fractions with `fraction`.
-pub fn npy(out: &mut impl Write, grid: &Grid, volumes: &[f64], fraction: bool) -> io::Result<()> {
+/// What a one-array grid file (`.npy`, a `.zarr` array) holds in each cell, from the
+/// cell's volume.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CellValues {
+    /// The volume.
+    Volume,
+    /// Volume / cell volume.
+    Fraction,
+    /// Volume × this density (mass per volume unit of the values): the mass.
+    Mass(f64),
+}
+
+impl CellValues {
+    /// The value written for a cell of `volume` in a cell of volume `cell`.
+    pub fn of(self, volume: f64, cell: f64) -> f64 {
+        match self {
+            CellValues::Volume => volume,
+            CellValues::Fraction => volume / cell,
+            CellValues::Mass(density) => volume * density,
+        }
+    }
+
+    /// Its name in metadata: `volume`, `fraction` or `mass`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CellValues::Volume => "volume",
+            CellValues::Fraction => "fraction",
+            CellValues::Mass(_) => "mass",
+        }
+    }
+}
+
+/// A `.npy` file of the cells' `values` (from their volumes).
+pub fn npy(
+    out: &mut impl Write,
+    grid: &Grid,
+    volumes: &[f64],
+    values: CellValues,
+) -> io::Result<()> {
     check_len(grid, volumes)?;
     let cell = grid.cell_volume();
-    let values = volumes.iter().map(|v| if fraction { v / cell } else { *v });
-    npy_array(out, &grid.counts, values)
+    npy_array(out, &grid.counts, volumes.iter().map(|&v| values.of(v, cell)))
 }
 
 /// A `.npy` file of float64 `values` in C order, of shape `shape` (their number must be
@@ -102,15 +138,23 @@ pub fn npy_array(
     write_f64s(out, values)
 }
 
-/// A `.vti` file with cell arrays `volume` and `fraction`.
-pub fn vti(out: &mut impl Write, grid: &Grid, volumes: &[f64]) -> io::Result<()> {
+/// A `.vti` file with cell arrays `volume` and `fraction`, and with a `density` (mass
+/// per volume unit) `mass`.
+pub fn vti(
+    out: &mut impl Write,
+    grid: &Grid,
+    volumes: &[f64],
+    density: Option<f64>,
+) -> io::Result<()> {
     check_len(grid, volumes)?;
     let cell = grid.cell_volume();
+    let rho = density.unwrap_or(1.0);
     let arrays = [
         VtiArray { name: "volume", components: 1, values: &|c, _| volumes[c] },
         VtiArray { name: "fraction", components: 1, values: &|c, _| volumes[c] / cell },
+        VtiArray { name: "mass", components: 1, values: &|c, _| volumes[c] * rho },
     ];
-    vti_arrays(out, grid, &arrays, &[])
+    vti_arrays(out, grid, &arrays[..if density.is_some() { 3 } else { 2 }], &[])
 }
 
 /// A named array of a `.vti` file: `values(c, m)` is component `m` of entry `c` (a cell
@@ -201,18 +245,29 @@ pub fn vti_arrays(
     out.write_all(b"\n  </AppendedData>\n</VTKFile>\n")
 }
 
-/// A `.csv` of the non-empty cells; returns how many rows were written.
-pub fn csv(out: &mut impl Write, grid: &Grid, volumes: &[f64]) -> io::Result<usize> {
+/// A `.csv` of the non-empty cells, with a `mass` column given a `density` (mass per
+/// volume unit); returns how many rows were written.
+pub fn csv(
+    out: &mut impl Write,
+    grid: &Grid,
+    volumes: &[f64],
+    density: Option<f64>,
+) -> io::Result<usize> {
     check_len(grid, volumes)?;
     let [_, ny, nz] = grid.counts;
     let cell = grid.cell_volume();
     let tolerance = OCCUPANCY_TOLERANCE * cell;
-    writeln!(out, "i,j,k,volume,fraction")?;
+    let mass_column = if density.is_some() { ",mass" } else { "" };
+    writeln!(out, "i,j,k,volume,fraction{mass_column}")?;
     let mut rows = 0;
     for (c, &v) in volumes.iter().enumerate() {
         if v.abs() > tolerance {
             let (i, j, k) = (c / (ny * nz), c / nz % ny, c % nz);
-            writeln!(out, "{i},{j},{k},{v:?},{:?}", v / cell)?;
+            write!(out, "{i},{j},{k},{v:?},{:?}", v / cell)?;
+            match density {
+                Some(rho) => writeln!(out, ",{:?}", v * rho)?,
+                None => writeln!(out)?,
+            }
             rows += 1;
         }
     }
@@ -255,7 +310,7 @@ mod tests {
     fn npy_header_and_data() {
         let g = grid();
         let mut out = Vec::new();
-        npy(&mut out, &g, &values(&g), false).unwrap();
+        npy(&mut out, &g, &values(&g), CellValues::Volume).unwrap();
         assert_eq!(&out[..8], b"\x93NUMPY\x01\x00");
         let header_len = u16::from_le_bytes([out[8], out[9]]) as usize;
         assert_eq!((10 + header_len) % 64, 0);
@@ -267,7 +322,7 @@ mod tests {
         assert_eq!(at(g.index([1, 2, 3])), g.index([1, 2, 3]) as f64 / 256.0);
         // Fractions: the cell volume is 0.125.
         let mut out = Vec::new();
-        npy(&mut out, &g, &values(&g), true).unwrap();
+        npy(&mut out, &g, &values(&g), CellValues::Fraction).unwrap();
         let data = &out[10 + header_len..];
         assert_eq!(f64::from_le_bytes(data[8..16].try_into().unwrap()), 8.0 / 256.0);
         // Any shape: a 1-tuple keeps its comma, as Python writes it.
@@ -283,8 +338,13 @@ mod tests {
         let mut v = vec![0.0; 24];
         v[g.index([1, 0, 2])] = 0.0625;
         let mut out = Vec::new();
-        assert_eq!(csv(&mut out, &g, &v).unwrap(), 1);
+        assert_eq!(csv(&mut out, &g, &v, None).unwrap(), 1);
         assert_eq!(String::from_utf8(out).unwrap(), "i,j,k,volume,fraction\n1,0,2,0.0625,0.5\n");
+        // With a density, the mass: 0.0625 × 8.
+        let mut out = Vec::new();
+        csv(&mut out, &g, &v, Some(8.0)).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert_eq!(text, "i,j,k,volume,fraction,mass\n1,0,2,0.0625,0.5,0.5\n");
     }
 
     #[test]

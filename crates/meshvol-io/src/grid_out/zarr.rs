@@ -13,7 +13,7 @@
 //!
 //! - [`ZarrCells`]: one array of the cells, shape `(nx, ny, nz)`, dimension names `x`,
 //!   `y`, `z`, attributes `origin`, `cell_size` (f64 numbers that read back to the same
-//!   bits) and `values` (`volume` or `fraction`).
+//!   bits) and `values` (`volume`, `fraction` or `mass`: [`CellValues`]).
 //! - [`ZarrGroup`]: a group (attributes `origin` and `cell_size`) of named arrays over
 //!   the cells ([`CellArray`]: the cut-cell geometry), each an array of the group named
 //!   as in the `.npz`: chunks of the cells' chunk shape, and whole along the axes after
@@ -23,7 +23,7 @@
 //!   faces), named `x_face`, `y_face` or `z_face`; the chunk row that ends the grid
 //!   writes the far x faces.
 
-use super::CellArray;
+use super::{CellArray, CellValues};
 use meshvol::grid::Grid;
 use rayon::prelude::*;
 use std::io;
@@ -210,9 +210,9 @@ impl RowArray {
 pub struct ZarrCells {
     array: RowArray,
     rows: Rows,
-    /// What each volume is divided by before it is stored (the cell volume for
-    /// fractions).
-    divisor: f64,
+    /// What is stored of each volume.
+    values: CellValues,
+    cell: f64,
 }
 
 impl ZarrCells {
@@ -223,19 +223,18 @@ impl ZarrCells {
         path: &Path,
         grid: &Grid,
         chunks: [usize; 3],
-        fraction: bool,
+        values: CellValues,
     ) -> io::Result<ZarrCells> {
         let rows = Rows::new(grid, chunks)?;
         let store = store_at(path, "array")?;
         let attributes = serde_json::json!({
             "origin": grid.origin,
             "cell_size": grid.cell,
-            "values": if fraction { "fraction" } else { "volume" },
+            "values": values.name(),
         });
         let names = ["x", "y", "z"].map(String::from).to_vec();
         let array = RowArray::create(store, "/", &grid.counts, chunks, names, attributes)?;
-        let divisor = if fraction { grid.cell_volume() } else { 1.0 };
-        Ok(ZarrCells { array, rows, divisor })
+        Ok(ZarrCells { array, rows, values, cell: grid.cell_volume() })
     }
 
     /// Cells along x of chunk row `row`: the rows of cells [`ZarrCells::write_row`] takes.
@@ -252,8 +251,8 @@ impl ZarrCells {
     /// along x and every cell along y and z, in C order. The row's chunks are encoded
     /// and written in parallel.
     pub fn write_row(&self, row: usize, volumes: &[f64]) -> io::Result<()> {
-        let divisor = self.divisor;
-        self.array.write_layers(self.row_cells(row), volumes, |v| v / divisor)
+        let (values, cell) = (self.values, self.cell);
+        self.array.write_layers(self.row_cells(row), volumes, |v| values.of(v, cell))
     }
 }
 
@@ -362,9 +361,9 @@ impl ZarrGroup {
             let layers =
                 if cells.end == nx { cells.start..cells.end + extra } else { cells.clone() };
             let per_layer = a.values.len() / a.shape[0].max(1);
-            let divisor = a.divisor;
+            let (written_as, cell) = (a.written_as, a.cell);
             array.write_layers(layers.clone(), &a.values[..layers.len() * per_layer], |v| {
-                v / divisor
+                written_as.of(v, cell)
             })?;
         }
         Ok(())
@@ -392,7 +391,7 @@ mod tests {
             // The row's faces and the one beyond it, as the cut cells of a row hold them.
             let values = &all[cells.start * per_layer..(cells.end + 1) * per_layer];
             let shape = vec![cells.len() + 1, ny, nz, 2, 3];
-            let array = CellArray { name: "faces", shape, values, divisor: 1.0 };
+            let array = CellArray { name: "faces", shape, values, written_as: CellValues::Volume, cell: 1.0 };
             group.write_row(row, &[array]).unwrap();
         }
         let store = Arc::new(FilesystemStore::new(dir.path()).unwrap());
@@ -411,11 +410,13 @@ mod tests {
             array.retrieve_array_subset_elements(&ArraySubset::new_with_shape(shape)).unwrap();
         assert_eq!(back, all);
         // Misuse is an error, not a panic: a row past the grid, arrays that change.
-        let array = CellArray { name: "faces", shape: vec![1, ny, nz], values: &[], divisor: 1.0 };
+        let plain = CellValues::Volume;
+        let array =
+            CellArray { name: "faces", shape: vec![1, ny, nz], values: &[], written_as: plain, cell: 1.0 };
         assert!(group.write_row(3, &[array]).is_err());
         let values = vec![0.0; 2 * ny * nz];
         let other =
-            CellArray { name: "other", shape: vec![2, ny, nz], values: &values, divisor: 1.0 };
+            CellArray { name: "other", shape: vec![2, ny, nz], values: &values, written_as: plain, cell: 1.0 };
         assert!(group.write_row(0, &[other]).is_err());
     }
 }
