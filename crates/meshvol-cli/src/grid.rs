@@ -16,8 +16,8 @@ use meshvol_report::grid::{
     check_memory, choose, layer_holding, summary, GridReport, GridRun, Spacing,
 };
 use meshvol_report::reported_cells;
-use meshvol_report::units::Scale;
 use meshvol_report::subject::{union_bodies, Subject};
+use meshvol_report::units::Scale;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

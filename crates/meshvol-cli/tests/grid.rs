@@ -2,7 +2,7 @@
 //! here, checked against closed forms (boxes) and by reading the outputs back.
 
 mod common;
-use common::{f, meshvol, p, read_npy, read_npz, write};
+use common::{f, meshvol, p, read_npy, read_npz, read_vti, write};
 
 use serde_json::Value;
 use std::path::Path;
@@ -34,58 +34,6 @@ fn box_obj(lo: [f64; 3], hi: [f64; 3], first: usize) -> String {
         s += &format!("f {} {} {} {}\n", q[0] + first, q[1] + first, q[2] + first, q[3] + first);
     }
     s
-}
-
-/// Reads a little-endian f64 array.
-fn f64s(bytes: &[u8]) -> Vec<f64> {
-    bytes.chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
-}
-
-/// The value of attribute `name` in the first tag that has it.
-fn attribute<'a>(xml: &'a str, name: &str) -> &'a str {
-    let start = xml.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
-    &xml[start..start + xml[start..].find('"').unwrap()]
-}
-
-/// A `.vti` file read back: extent, origin, spacing, and the `volume` and `fraction`
-/// arrays (x fastest, as VTK stores them).
-struct Vti {
-    extent: Vec<usize>,
-    origin: Vec<f64>,
-    spacing: Vec<f64>,
-    volume: Vec<f64>,
-    fraction: Vec<f64>,
-}
-
-fn read_vti(path: &Path) -> Vti {
-    let bytes = std::fs::read(path).unwrap();
-    let marker = b"<AppendedData encoding=\"raw\">\n_";
-    let at = bytes.windows(marker.len()).position(|w| w == marker).unwrap();
-    let xml = std::str::from_utf8(&bytes[..at]).unwrap();
-    assert!(xml.contains("type=\"ImageData\"") && xml.contains("header_type=\"UInt64\""));
-    assert!(xml.contains("Name=\"volume\"") && xml.contains("Name=\"fraction\""));
-    let numbers =
-        |s: &str| s.split_whitespace().map(|x| x.parse::<f64>().unwrap()).collect::<Vec<_>>();
-    let data = &bytes[at + marker.len()..];
-    let array = |offset: usize| {
-        let n = u64::from_le_bytes(data[offset..offset + 8].try_into().unwrap()) as usize;
-        f64s(&data[offset + 8..offset + 8 + n])
-    };
-    let offsets: Vec<usize> = xml
-        .match_indices("offset=\"")
-        .map(|(i, _)| {
-            let rest = &xml[i + 8..];
-            rest[..rest.find('"').unwrap()].parse().unwrap()
-        })
-        .collect();
-    assert!(std::str::from_utf8(&bytes[bytes.len() - 30..]).unwrap().contains("</VTKFile>"));
-    Vti {
-        extent: numbers(attribute(xml, "WholeExtent")).iter().map(|&x| x as usize).collect(),
-        origin: numbers(attribute(xml, "Origin")),
-        spacing: numbers(attribute(xml, "Spacing")),
-        volume: array(offsets[0]),
-        fraction: array(offsets[1]),
-    }
 }
 
 /// Length of [a0, a1] ∩ [b0, b1].
@@ -154,9 +102,12 @@ fn grid_writes_npy_vti_and_csv_that_read_back() {
         for j in 0..3 {
             for i in 0..4 {
                 let at = (k * 3 + j) * 4 + i;
-                assert_eq!(v.volume[at], values[(i * 3 + j) * 5 + k]);
+                assert_eq!(v.array("volume")[at], values[(i * 3 + j) * 5 + k]);
                 let cell_volume = 0.5 * 0.5 * 0.3;
-                assert!((v.fraction[at] - values[(i * 3 + j) * 5 + k] / cell_volume).abs() < 1e-15);
+                assert!(
+                    (v.array("fraction")[at] - values[(i * 3 + j) * 5 + k] / cell_volume).abs()
+                        < 1e-15
+                );
             }
         }
     }

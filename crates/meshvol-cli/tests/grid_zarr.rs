@@ -3,10 +3,9 @@
 //! grid, and against a box's closed-form volume.
 
 mod common;
-use common::{box_obj, f, meshvol, p, read_npy, read_npz, write};
+use common::{box_obj, f, meshvol, numbers, p, read_npy, read_npz, read_zarr, write};
 
 use serde_json::Value;
-use std::path::Path;
 
 /// OBJ text of a tetrahedron-fan octahedron: centre `c`, half-diagonal `r`; volume
 /// 4r³/3, and its faces lie on no grid plane below.
@@ -24,63 +23,6 @@ fn octahedron(c: [f64; 3], r: f64) -> String {
         s += &format!("f {} {} {}\n", t[0], t[1], t[2]);
     }
     s
-}
-
-fn numbers(v: &Value) -> Vec<usize> {
-    v.as_array().unwrap().iter().map(|x| x.as_u64().unwrap() as usize).collect()
-}
-
-/// The whole array of a Zarr v3 array with the `bytes` codec (of any number of axes),
-/// chunk by chunk: a missing chunk is the fill value, edge chunks are whole (padded).
-fn read_zarr(path: &Path) -> (Value, Vec<f64>) {
-    let meta: Value =
-        serde_json::from_slice(&std::fs::read(path.join("zarr.json")).unwrap()).unwrap();
-    assert_eq!(meta["zarr_format"], 3);
-    assert_eq!(meta["node_type"], "array");
-    assert_eq!(meta["data_type"], "float64");
-    assert_eq!(meta["chunk_grid"]["name"], "regular");
-    assert_eq!(meta["chunk_key_encoding"]["configuration"]["separator"], "/");
-    assert_eq!(
-        meta["codecs"],
-        serde_json::json!([{"name": "bytes", "configuration": {"endian": "little"}}])
-    );
-    let fill = f(&meta["fill_value"]);
-    let shape = numbers(&meta["shape"]);
-    let chunk = numbers(&meta["chunk_grid"]["configuration"]["chunk_shape"]);
-    let d = shape.len();
-    let blocks: Vec<usize> = (0..d).map(|a| shape[a].div_ceil(chunk[a])).collect();
-    // C-order index of `at` in an array of `shape`.
-    let index = |at: &[usize], shape: &[usize]| at.iter().zip(shape).fold(0, |n, (i, s)| n * s + i);
-    let unravel = |mut n: usize, shape: &[usize]| {
-        let mut at = vec![0; shape.len()];
-        for a in (0..shape.len()).rev() {
-            at[a] = n % shape[a];
-            n /= shape[a];
-        }
-        at
-    };
-    let mut out = vec![f64::NAN; shape.iter().product()];
-    for b in 0..blocks.iter().product() {
-        let block = unravel(b, &blocks);
-        let key: Vec<String> = block.iter().map(|i| i.to_string()).collect();
-        let file = path.join(format!("c/{}", key.join("/")));
-        let values: Vec<f64> = match std::fs::read(&file) {
-            Ok(bytes) => {
-                assert_eq!(bytes.len(), chunk.iter().product::<usize>() * 8, "{file:?}");
-                let v = bytes.chunks_exact(8);
-                v.map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
-            }
-            Err(_) => vec![fill; chunk.iter().product()],
-        };
-        for (n, &v) in values.iter().enumerate() {
-            let local = unravel(n, &chunk);
-            let g: Vec<usize> = (0..d).map(|a| block[a] * chunk[a] + local[a]).collect();
-            if (0..d).all(|a| g[a] < shape[a]) {
-                out[index(&g, &shape)] = v;
-            }
-        }
-    }
-    (meta, out)
 }
 
 fn json(args: &[&str]) -> Value {

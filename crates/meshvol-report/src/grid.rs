@@ -341,7 +341,9 @@ impl Report for GridReport {
                         "Zarr v3 float64 {one}, shape ({nx}, {ny}, {nz}), chunks ({cx}, {cy}, {cz})"
                     )
                 }
-                _ => format!("i,j,k,volume,fraction{} of the non-empty cells", mass.replace(' ', "")),
+                _ => {
+                    format!("i,j,k,volume,fraction{} of the non-empty cells", mass.replace(' ', ""))
+                }
             };
             let _ = writeln!(s, "  wrote          {out} ({what})");
         }

@@ -143,3 +143,115 @@ pub fn box_obj(min: [f64; 3], max: [f64; 3], base: usize, outward: bool, open: b
     s
 }
 pub mod server;
+
+/// Reads a little-endian f64 array.
+fn f64s(bytes: &[u8]) -> Vec<f64> {
+    bytes.chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
+}
+
+/// The value of attribute `name` in the first tag that has it.
+fn attribute<'a>(xml: &'a str, name: &str) -> &'a str {
+    let start = xml.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+    &xml[start..start + xml[start..].find('"').unwrap()]
+}
+
+/// A `.vti` file read back: extent, origin, spacing, and its arrays by name (in VTK's
+/// order, x fastest; components interleaved).
+pub struct Vti {
+    pub extent: Vec<usize>,
+    pub origin: Vec<f64>,
+    pub spacing: Vec<f64>,
+    pub arrays: std::collections::BTreeMap<String, Vec<f64>>,
+}
+
+impl Vti {
+    pub fn array(&self, name: &str) -> &[f64] {
+        self.arrays.get(name).unwrap_or_else(|| panic!("no array {name} in the .vti"))
+    }
+}
+
+pub fn read_vti(path: &Path) -> Vti {
+    let bytes = std::fs::read(path).unwrap();
+    let marker = b"<AppendedData encoding=\"raw\">\n_";
+    let at = bytes.windows(marker.len()).position(|w| w == marker).unwrap();
+    let xml = std::str::from_utf8(&bytes[..at]).unwrap();
+    assert!(xml.contains("type=\"ImageData\"") && xml.contains("header_type=\"UInt64\""));
+    let numbers =
+        |s: &str| s.split_whitespace().map(|x| x.parse::<f64>().unwrap()).collect::<Vec<_>>();
+    let data = &bytes[at + marker.len()..];
+    let array = |offset: usize| {
+        let n = u64::from_le_bytes(data[offset..offset + 8].try_into().unwrap()) as usize;
+        f64s(&data[offset + 8..offset + 8 + n])
+    };
+    let arrays = xml
+        .match_indices("<DataArray ")
+        .map(|(i, _)| {
+            let tag = &xml[i..i + xml[i..].find("/>").unwrap()];
+            (attribute(tag, "Name").to_string(), array(attribute(tag, "offset").parse().unwrap()))
+        })
+        .collect();
+    assert!(std::str::from_utf8(&bytes[bytes.len() - 30..]).unwrap().contains("</VTKFile>"));
+    Vti {
+        extent: numbers(attribute(xml, "WholeExtent")).iter().map(|&x| x as usize).collect(),
+        origin: numbers(attribute(xml, "Origin")),
+        spacing: numbers(attribute(xml, "Spacing")),
+        arrays,
+    }
+}
+
+pub fn numbers(v: &Value) -> Vec<usize> {
+    v.as_array().unwrap().iter().map(|x| x.as_u64().unwrap() as usize).collect()
+}
+
+/// The whole array of a Zarr v3 array with the `bytes` codec (of any number of axes),
+/// chunk by chunk: a missing chunk is the fill value, edge chunks are whole (padded).
+pub fn read_zarr(path: &Path) -> (Value, Vec<f64>) {
+    let meta: Value =
+        serde_json::from_slice(&std::fs::read(path.join("zarr.json")).unwrap()).unwrap();
+    assert_eq!(meta["zarr_format"], 3);
+    assert_eq!(meta["node_type"], "array");
+    assert_eq!(meta["data_type"], "float64");
+    assert_eq!(meta["chunk_grid"]["name"], "regular");
+    assert_eq!(meta["chunk_key_encoding"]["configuration"]["separator"], "/");
+    assert_eq!(
+        meta["codecs"],
+        serde_json::json!([{"name": "bytes", "configuration": {"endian": "little"}}])
+    );
+    let fill = f(&meta["fill_value"]);
+    let shape = numbers(&meta["shape"]);
+    let chunk = numbers(&meta["chunk_grid"]["configuration"]["chunk_shape"]);
+    let d = shape.len();
+    let blocks: Vec<usize> = (0..d).map(|a| shape[a].div_ceil(chunk[a])).collect();
+    // C-order index of `at` in an array of `shape`.
+    let index = |at: &[usize], shape: &[usize]| at.iter().zip(shape).fold(0, |n, (i, s)| n * s + i);
+    let unravel = |mut n: usize, shape: &[usize]| {
+        let mut at = vec![0; shape.len()];
+        for a in (0..shape.len()).rev() {
+            at[a] = n % shape[a];
+            n /= shape[a];
+        }
+        at
+    };
+    let mut out = vec![f64::NAN; shape.iter().product()];
+    for b in 0..blocks.iter().product() {
+        let block = unravel(b, &blocks);
+        let key: Vec<String> = block.iter().map(|i| i.to_string()).collect();
+        let file = path.join(format!("c/{}", key.join("/")));
+        let values: Vec<f64> = match std::fs::read(&file) {
+            Ok(bytes) => {
+                assert_eq!(bytes.len(), chunk.iter().product::<usize>() * 8, "{file:?}");
+                let v = bytes.chunks_exact(8);
+                v.map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
+            }
+            Err(_) => vec![fill; chunk.iter().product()],
+        };
+        for (n, &v) in values.iter().enumerate() {
+            let local = unravel(n, &chunk);
+            let g: Vec<usize> = (0..d).map(|a| block[a] * chunk[a] + local[a]).collect();
+            if (0..d).all(|a| g[a] < shape[a]) {
+                out[index(&g, &shape)] = v;
+            }
+        }
+    }
+    (meta, out)
+}

@@ -104,10 +104,8 @@ pub fn cut_cell_arrays(cells: &CutCells, density: Option<f64>) -> Vec<CellArray<
         written_as: CellValues::Volume,
         cell,
     };
-    let of_volumes = |name, written_as| CellArray {
-        written_as,
-        ..array(name, shape.to_vec(), &cells.volume)
-    };
+    let of_volumes =
+        |name, written_as| CellArray { written_as, ..array(name, shape.to_vec(), &cells.volume) };
     let mut arrays = vec![
         array("volume", shape.to_vec(), &cells.volume),
         of_volumes("fraction", CellValues::Fraction),

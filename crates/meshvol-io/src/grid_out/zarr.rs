@@ -391,7 +391,13 @@ mod tests {
             // The row's faces and the one beyond it, as the cut cells of a row hold them.
             let values = &all[cells.start * per_layer..(cells.end + 1) * per_layer];
             let shape = vec![cells.len() + 1, ny, nz, 2, 3];
-            let array = CellArray { name: "faces", shape, values, written_as: CellValues::Volume, cell: 1.0 };
+            let array = CellArray {
+                name: "faces",
+                shape,
+                values,
+                written_as: CellValues::Volume,
+                cell: 1.0,
+            };
             group.write_row(row, &[array]).unwrap();
         }
         let store = Arc::new(FilesystemStore::new(dir.path()).unwrap());
@@ -411,12 +417,22 @@ mod tests {
         assert_eq!(back, all);
         // Misuse is an error, not a panic: a row past the grid, arrays that change.
         let plain = CellValues::Volume;
-        let array =
-            CellArray { name: "faces", shape: vec![1, ny, nz], values: &[], written_as: plain, cell: 1.0 };
+        let array = CellArray {
+            name: "faces",
+            shape: vec![1, ny, nz],
+            values: &[],
+            written_as: plain,
+            cell: 1.0,
+        };
         assert!(group.write_row(3, &[array]).is_err());
         let values = vec![0.0; 2 * ny * nz];
-        let other =
-            CellArray { name: "other", shape: vec![2, ny, nz], values: &values, written_as: plain, cell: 1.0 };
+        let other = CellArray {
+            name: "other",
+            shape: vec![2, ny, nz],
+            values: &values,
+            written_as: plain,
+            cell: 1.0,
+        };
         assert!(group.write_row(0, &[other]).is_err());
     }
 }
