@@ -48,7 +48,9 @@ pub struct GridArgs {
     /// cut-cell arrays too), .vti (VTK image data, cell arrays `volume` and `fraction`, and
     /// with --moments the rest), .csv (non-empty cells), or .zarr (a Zarr v3 array, written
     /// chunk by chunk: for grids larger than memory; with --moments a group of the
-    /// cut-cell arrays).
+    /// cut-cell arrays). Values, origin and cell sizes in the reported units (--units);
+    /// with --density, masses (alone in .npy and .zarr, a `mass` array or column beside
+    /// `volume` in the others).
     #[arg(long, short, value_name = "OUT", value_parser = parse_out)]
     out: Option<PathBuf>,
     /// The chunk shape of a .zarr output (default 64 cells along each axis, at most the

@@ -10,6 +10,7 @@ use clap::Args;
 use meshvol::polygon::Polygon;
 use meshvol::section::Plane;
 use meshvol_report::section::{section, SectionReport};
+use meshvol_report::units::Scale;
 
 #[derive(Args)]
 pub struct SectionArgs {
@@ -112,7 +113,17 @@ fn measure(
     let out_geojson = args.out.as_deref().map(out_is_geojson).transpose()?;
     let input = crate::solid::read(&args.file, args.solid.check(), progress)?;
     progress.stage("cutting", &args.file);
-    let (report, polygons) = section(&input.subject(), &args.plane);
+    let (report, mut polygons) = section(&input.subject(), &args.plane);
+    // The report and the outline (WKT, GeoJSON) in the units asked for: the outline's
+    // coordinates in the plane scale as lengths, so its area is the report's.
+    let options = args.units.options();
+    let report = report.in_units(&options, input.source.unit)?;
+    let (scale, _) = Scale::resolve(&options, input.source.unit)?;
+    for polygon in &mut polygons {
+        for ring in std::iter::once(&mut polygon.exterior).chain(&mut polygon.holes) {
+            ring.iter_mut().for_each(|p| *p = scale.point(*p));
+        }
+    }
     if let (Some(out), Some(geojson)) = (&args.out, out_geojson) {
         let bytes = geometry(&report, &polygons, geojson).map_err(|e| e.to_string())?;
         std::fs::write(out, bytes).map_err(|e| format!("{}: {e}", out.display()))?;
@@ -123,8 +134,6 @@ fn measure(
     } else {
         None
     };
-    // The outline (WKT, GeoJSON) stays in the file's coordinates.
-    let report = report.in_units(&args.units.options(), input.source.unit)?;
     Ok((report, printed))
 }
 

@@ -282,3 +282,40 @@ fn cut_and_fill_cells_are_in_the_units_of_the_report() {
     near(total(&raw), raw_cells, "report and cells, mm³");
     near(total(&cm), cm_cells, "report and cells, cm³");
 }
+
+/// The shoelace area of the rings of a GeoJSON (Multi)Polygon's coordinates: exterior
+/// minus holes, whatever their winding.
+fn geojson_area(geometry: &Value) -> f64 {
+    let ring = |r: &Value| {
+        let pts: Vec<[f64; 2]> =
+            r.as_array().unwrap().iter().map(|p| [f(&p[0]), f(&p[1])]).collect();
+        let twice: f64 = pts.windows(2).map(|w| w[0][0] * w[1][1] - w[1][0] * w[0][1]).sum();
+        twice.abs() / 2.0
+    };
+    let polygon = |rings: &Value| {
+        let rings = rings.as_array().unwrap();
+        ring(&rings[0]) - rings[1..].iter().map(ring).sum::<f64>()
+    };
+    match geometry["type"].as_str().unwrap() {
+        "Polygon" => polygon(&geometry["coordinates"]),
+        _ => geometry["coordinates"].as_array().unwrap().iter().map(polygon).sum(),
+    }
+}
+
+#[test]
+fn a_sections_outline_is_in_the_units_of_its_area() {
+    let dir = tempfile::tempdir().unwrap();
+    let solid = write(dir.path(), "box.obj", box_obj(LO, HI, 1, true, false));
+    for (units, _, l) in UNITS {
+        let out = dir.path().join("section.geojson");
+        let mut a = vec!["section", p(&solid), "--plane", "z=18", "--json", "--out", p(&out)];
+        a.extend(units.iter().flat_map(|u| ["--units", u]));
+        let v = json(&a);
+        let what = format!("{units:?}");
+        // A 10 × 20 rectangle.
+        near(f(&v["area"]), 200.0 * l * l, &what);
+        let feature: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        near(f(&feature["properties"]["area"]), f(&v["area"]), &what);
+        near(geojson_area(&feature["geometry"]), f(&v["area"]), &what);
+    }
+}
