@@ -13,7 +13,7 @@ use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point, Surface};
 use meshvol_io::grid_out::{self, CellValues, Slice};
 use meshvol_report::grid::{
-    check_memory, choose, layer_holding, summary, GridReport, GridRun, Spacing,
+    check_memory, choose, layer_holding, reported_summary, GridReport, GridRun, Spacing,
 };
 use meshvol_report::reported_cells;
 use meshvol_report::subject::{union_bodies, Subject};
@@ -364,9 +364,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         grid_out::png(&mut bytes, &reported, volumes, slice).map_err(|e| e.to_string())?;
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
-    let mut report = summary(&reported, volumes, run);
-    report.run.mass = scale.mass(report.cells.total);
-    Ok(report)
+    Ok(reported_summary(&scale, &reported, volumes, run))
 }
 
 /// What a one-array file holds: fractions with --fraction, masses with --density, else

@@ -2,7 +2,7 @@
 //! and the memory estimate that refuses a grid before it is allocated.
 
 use crate::number::{count, num, vector};
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, Scale, UnitNames};
 use crate::Report;
 use meshvol::accumulate::CompensatedSum;
 use meshvol::grid::{bytes_text, occupancy, Grid, GridError, Occupancy};
@@ -314,7 +314,12 @@ impl Report for GridReport {
                     if r.face_centroids { ", aperture_x_centroid, _y_, _z_" } else { "" }
                 ),
                 Some(e) if e.eq_ignore_ascii_case("vti") => {
-                    format!("VTK image data, cell arrays volume, fraction{mass}")
+                    let arrays = if r.mass.is_some() {
+                        "volume, fraction and mass"
+                    } else {
+                        "volume and fraction"
+                    };
+                    format!("VTK image data, cell arrays {arrays}")
                 }
                 Some(e) if e.eq_ignore_ascii_case("npz") && r.moments => format!(
                     "NumPy arrays volume, fraction{mass}, centroid, boundary_area, \
@@ -356,27 +361,19 @@ impl Report for GridReport {
     }
 }
 
-impl GridReport {
-    /// The summary in the units `options` ask for (and with `--density`, the mass), for
-    /// files (named, with the unit each declares) that must agree on their unit: for a
-    /// summary whose cells were not converted already (`reported_cells`), as the page's.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        files: &[(&str, Option<meshvol_io::LengthUnit>)],
-    ) -> Result<Self, String> {
-        let (scale, warnings) = Scale::resolve_all(options, files)?;
-        self.run.warnings.extend(warnings);
-        let c = &mut self.cells;
-        c.bounds.min = scale.point(c.bounds.min);
-        c.bounds.max = scale.point(c.bounds.max);
-        c.cell_size = scale.point(c.cell_size);
-        c.total = scale.volume(c.total);
-        self.run.mesh_volume = scale.volume(self.run.mesh_volume);
-        self.run.mass = scale.mass(c.total);
-        self.run.units = scale.names();
-        Ok(self)
-    }
+/// The summary of `volumes`, cells already converted to the units of `scale`
+/// (`reported_cells`) on the `reported` grid: its total is the sum of what the sinks
+/// write. Names the units and, with a density, gives the mass of the total.
+pub fn reported_summary(
+    scale: &Scale,
+    reported: &Grid,
+    volumes: &[f64],
+    run: GridRun,
+) -> GridReport {
+    let mut report = summary(reported, volumes, run);
+    report.run.units = scale.names();
+    report.run.mass = scale.mass(report.cells.total);
+    report
 }
 
 #[cfg(test)]

@@ -15,10 +15,11 @@
 //! [`MAX_OUTLINE_POINTS`] points a level, and at most 64³ = 262,144 cells, each an
 //! integer round(255 × fraction) (a few bytes of JSON each; about 1 MiB at most).
 
-use crate::grid::{layer_holding, summary, GridReport, GridRun};
+use crate::grid::{layer_holding, reported_summary, GridReport, GridRun};
+use crate::reported_cells;
 use crate::section::{section, SectionReport};
 use crate::subject::{input_warnings, Subject};
-use crate::units::UnitOptions;
+use crate::units::{Scale, UnitOptions};
 use meshvol::grid::{cell_volumes, Grid};
 use meshvol::polygon::{Point2, Polygon};
 use meshvol::section::Plane;
@@ -78,10 +79,11 @@ pub fn slices<S: Surface>(
     let start = Instant::now();
     let volumes = cell_volumes(&measured, &grid).map_err(|e| e.to_string())?;
     let name = subject.source.name().to_string();
+    let (scale, unit_warnings) = Scale::resolve_all(units, &[(&name, subject.source.unit)])?;
     let run = GridRun {
         files: vec![name.clone()],
         bounds_from: "mesh",
-        mesh_volume: mp.signed_volume,
+        mesh_volume: scale.volume(mp.signed_volume),
         union: false,
         bodies: 0,
         columns_unresolved: 0,
@@ -95,11 +97,18 @@ pub fn slices<S: Surface>(
         face_centroids: false,
         units: None,
         mass: None,
-        warnings: input_warnings(std::slice::from_ref(subject)),
+        warnings: input_warnings(std::slice::from_ref(subject))
+            .into_iter()
+            .chain(unit_warnings)
+            .collect(),
     };
     let full = grid.cell_volume();
     let fractions = volumes.iter().map(|v| (255.0 * (v / full)).round() as i32).collect();
-    let report = summary(&grid, &volumes, run).in_units(units, &[(&name, subject.source.unit)])?;
+    // The cells converted as the command's grid converts them: the same total.
+    let mut reported_volumes = volumes.clone();
+    reported_cells::volumes(&scale, &mut reported_volumes);
+    let reported = reported_cells::grid(&scale, &grid)?;
+    let report = reported_summary(&scale, &reported, &reported_volumes, run);
     let (z0, h) = (grid.origin[2], grid.cell[2]);
     let levels: Vec<f64> = (0..SLICE_LEVELS).map(|k| z0 + (k as f64 + 0.5) * h).collect();
     let layers = levels.iter().map(|&z| layer_holding(&grid, 2, z).unwrap_or(0)).collect();
