@@ -71,6 +71,7 @@ pub mod stl;
 mod text;
 pub mod threemf;
 mod transform;
+pub mod walk;
 pub mod wkt;
 pub mod write;
 
@@ -80,6 +81,7 @@ pub use polygons::{
     read_polygons, read_polygons_bytes, PolygonFeature, PolygonFile, PolygonFormat,
 };
 pub use stl::StlSoup;
+pub use walk::InputKind;
 
 use error::ParseError;
 use source::Bytes;
@@ -349,43 +351,6 @@ fn named(mut e: ReadError, given: &Path, inner: &Path) -> ReadError {
         e.path = given.to_path_buf();
     }
     e
-}
-
-/// What a command reads, for choosing the files in a folder by their names
-/// ([`InputKind::accepts`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum InputKind {
-    /// Meshes ([`read`]).
-    Mesh,
-    /// Point clouds ([`read_points`]): text points and meshes.
-    Points,
-    /// Polygons ([`read_polygons`]).
-    Polygons,
-}
-
-impl InputKind {
-    /// The extensions read (without the dot, lower case), before compression.
-    pub fn extensions(self) -> &'static [&'static str] {
-        match self {
-            InputKind::Mesh => &["stl", "obj", "off", "ply", "3mf", "gltf", "glb"],
-            InputKind::Points => {
-                &["xyz", "txt", "csv", "pts", "stl", "obj", "off", "ply", "3mf", "gltf", "glb"]
-            }
-            InputKind::Polygons => &["wkt", "geojson", "json", "txt", "xy", "csv"],
-        }
-    }
-
-    /// Whether a file of this name is read: one of [`extensions`](Self::extensions), that
-    /// compressed (`part.stl.gz`, `.bz2`, `.zst`), or a `.zip`.
-    pub fn accepts(self, path: &Path) -> bool {
-        let ext = |p: &Path| p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        let known = |p: &Path| ext(p).is_some_and(|e| self.extensions().contains(&e.as_str()));
-        match compressed::Compression::of_path(path) {
-            Some(compressed::Compression::Zip) => true,
-            Some(_) => known(&path.with_extension("")),
-            None => known(path),
-        }
-    }
 }
 
 /// The format families an extension or a sniff can name.

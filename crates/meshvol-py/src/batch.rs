@@ -1,9 +1,12 @@
-//! `meshvol.measure`'s native part: many files measured at once, the files spread over
-//! a rayon pool with the GIL released, each file's `meshvol volume --json` line (or
-//! `{"file", "error"}`) returned in the input's order.
+//! `meshvol.measure`'s native part: the paths expanded into files by the command's own
+//! walk (`meshvol_io::walk`: folders, patterns, `--glob`), then many files measured at
+//! once, the files spread over a rayon pool with the GIL released, each file's
+//! `meshvol volume --json` line (or `{"file", "error"}`) returned in the input's order.
 
 use crate::errors::bad_argument;
 use meshvol::topology::{self, CheckOptions};
+use meshvol_io::walk::{Filter, Walk};
+use meshvol_io::InputKind;
 use meshvol_report::subject::{Source, Subject};
 use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions, NO_FACES};
@@ -79,4 +82,36 @@ pub fn _measure_files(
             .map_err(|e| e.to_string()),
     })
     .map_err(crate::errors::mesh_error)
+}
+
+/// The files to measure, and each folder or pattern that gave none with its error.
+type Expanded = (Vec<PathBuf>, Vec<(String, String)>);
+
+/// The files `paths` stands for, as `meshvol volume` reads its arguments (with
+/// `--recursive` when `recursive`, and a `--glob` for each of `globs`), and the folders
+/// and patterns that gave none, with the command's error for each. A path that names
+/// nothing but holds `*`, `?` or `[` is a pattern, as Python's `glob` expands it (the
+/// shell does for the command). A malformed glob is a `ValueError`.
+#[pyfunction]
+#[pyo3(signature = (paths, recursive = true, globs = Vec::new()))]
+pub fn _expand(
+    py: Python<'_>,
+    paths: Vec<PathBuf>,
+    recursive: bool,
+    globs: Vec<String>,
+) -> PyResult<Expanded> {
+    let filters = globs
+        .iter()
+        .map(|g| Filter::parse(g).map_err(|e| bad_argument(format!("glob {e}"))))
+        .collect::<PyResult<Vec<_>>>()?;
+    let walk = Walk { recursive, filters, patterns: true };
+    let inputs = py.detach(|| walk.expand(&paths, InputKind::Mesh));
+    Ok((inputs.files, inputs.problems))
+}
+
+/// The endings of the file names a folder is searched for (`.stl`, ..., `.stl.gz`, ...,
+/// `.zip`), lower case: `meshvol_io`'s one rule, for Python's `MESH_EXTENSIONS`.
+#[pyfunction]
+pub fn _mesh_name_endings() -> Vec<String> {
+    InputKind::Mesh.name_endings()
 }

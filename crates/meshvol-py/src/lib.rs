@@ -65,6 +65,8 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hull::hull_volume, m)?)?;
     m.add_function(wrap_pyfunction!(cutfill::cutfill, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_measure_files, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::_expand, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::_mesh_name_endings, m)?)?;
     m.add_function(wrap_pyfunction!(volume::volume, m)?)?;
     Ok(())
 }

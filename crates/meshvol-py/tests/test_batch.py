@@ -76,12 +76,18 @@ def test_directories_globs_and_nothing(folder):
     assert names == ["a_box.obj", "c_open.obj", "d_broken.obj", os.path.join("sub", "b_cube.obj")]
     by_glob = meshvol.measure(str(folder / "**" / "*_c*.obj"))
     assert [os.path.basename(f) for f in by_glob["file"]] == ["b_cube.obj"]
-    with pytest.warns(meshvol.MeshWarning, match="no mesh files"):
-        empty = meshvol.measure(str(folder / "*.stl"))
-    assert isinstance(empty, pandas.DataFrame) and empty.empty
+    # A pattern or a folder that gives no file is a row naming it, as the command's
+    # failed input; only an empty list of paths is an empty frame.
+    unmatched = meshvol.measure(str(folder / "*.stl"))
+    assert unmatched["file"].tolist() == [str(folder / "*.stl")]
+    assert "no mesh files matching this pattern" in unmatched["error"][0]
     (folder / "empty").mkdir()
+    empty = meshvol.measure(folder / "empty")
+    assert empty["file"].tolist() == [str(folder / "empty")]
+    assert "no mesh files in this folder" in empty["error"][0]
     with pytest.warns(meshvol.MeshWarning, match="no mesh files"):
-        assert meshvol.measure(folder / "empty").empty
+        nothing = meshvol.measure([])
+    assert isinstance(nothing, pandas.DataFrame) and nothing.empty
 
 
 def test_any_worker_count_gives_the_same_frame(folder, tmp_path):

@@ -197,5 +197,9 @@ def test_measure_many_files_on_the_cluster(client, tmp_path):
 def test_measure_with_no_files_is_an_empty_frame(tmp_path):
     pytest.importorskip("dask.dataframe")
     with pytest.warns(meshvol.MeshWarning, match="no mesh files"):
-        frame = meshvol.dask.measure(str(tmp_path / "*.stl"))
+        frame = meshvol.dask.measure([])
     assert len(frame.compute()) == 0 and "volume" in frame.columns
+    # A pattern that matches nothing is a row naming it, as in meshvol.measure.
+    unmatched = meshvol.dask.measure(str(tmp_path / "*.stl")).compute()
+    assert unmatched["file"].tolist() == [str(tmp_path / "*.stl")]
+    assert "no mesh files matching this pattern" in unmatched["error"][0]

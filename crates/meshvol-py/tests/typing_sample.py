@@ -46,6 +46,7 @@ def main(folder: pathlib.Path) -> None:
         assert isinstance(e, meshvol.MeshError)
     frame = meshvol.measure([path, folder / "missing.stl"], workers=1)
     assert len(frame) == 2
+    assert len(meshvol.measure(folder, recursive=False, glob=["*.obj", "!missing*"])) >= 1
     area: meshvol.AreaProperties = meshvol.polygon_area([[0, 0], [2, 0], [2, 1], [0, 1]], units="m:cm")
     assert area.area == 20000.0 and area.principal_moments[0] <= area.principal_moments[1]
 

@@ -644,9 +644,13 @@ def measure(
     density: _Density = 1.0,
     units: Optional[str] = None,
     exact: bool = False,
+    *,
+    recursive: bool = True,
+    glob: _Union[str, Iterable[str], None] = None,
 ) -> "pandas.DataFrame":
     """`meshvol volume --json` of many files as a DataFrame, one row a file, columns
-    flattened as pandas.json_normalize(sep='.'); failed files have 'error'."""
+    flattened as pandas.json_normalize(sep='.'); failed files have 'error'.
+    measure(folder) is `meshvol volume -r folder --json`: the same rows, in order."""
 
 def union(
     meshes: _Union[Any, Iterable[Any]],

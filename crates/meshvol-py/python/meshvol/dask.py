@@ -17,7 +17,8 @@ Needs the `dask` extra: pip install "meshvol[dask]" (dask[array], distributed, z
 
 Many files, one table: meshvol.dask.measure("parts/**/*.stl") is meshvol.measure over a
 cluster, a dask DataFrame with one row a file (each file read once, by one worker),
-ready for .to_parquet().
+ready for .to_parquet(); meshvol.dask.measure(folder) computes the rows of
+`meshvol volume -r folder --json`, in the same order.
 
 There is no meshvol.dask.union: the union's cells are refined until the gap summed over
 the whole grid is below a tolerance, a budget shared by every cell, so its blocks are
@@ -48,7 +49,7 @@ import dask.array as da
 import numpy as np
 
 from . import Mesh, MeshError, MeshWarning, load
-from ._batch import PathArg, _reports, mesh_files
+from ._batch import GlobArg, PathArg, _inputs, _reports
 
 if TYPE_CHECKING:
     import dask.dataframe as dd
@@ -326,13 +327,16 @@ def _measure_partition(
     density: float,
     units: Optional[str],
     exact: bool,
+    failed: Sequence[Dict[str, Any]] = (),
 ) -> "pandas.DataFrame":
-    """One partition, on a worker: meshvol.measure's rows, in meta's columns and dtypes."""
+    """One partition, on a worker: meshvol.measure's rows (the `failed` rows of the
+    directories and patterns that gave no file first), in meta's columns and dtypes."""
     import pandas
 
-    if not files:
+    rows = list(failed) + (_reports(files, threads, check, density, units, exact) if files else [])
+    if not rows:
         return meta
-    frame = pandas.json_normalize(_reports(files, threads, check, density, units, exact), sep=".")
+    frame = pandas.json_normalize(rows, sep=".")
     frame = frame.reindex(columns=meta.columns)
     return frame.astype(meta.dtypes.to_dict())
 
@@ -345,33 +349,42 @@ def measure(
     density: float = 1.0,
     units: Optional[str] = None,
     exact: bool = False,
+    *,
+    recursive: bool = True,
+    glob: GlobArg = None,
 ) -> "dd.DataFrame":
     """meshvol.measure as a lazy dask DataFrame: one row a file, in the order of the
     files found, each partition `files_per_partition` files measured by one task (one
     worker reads each file once, its files in parallel on `threads` threads; None, one
     per core of the worker). Write it with .to_parquet(path), or filter it
-    (df[df.closed & (df.volume > 1)]) before .compute().
+    (df[df.closed & (df.volume > 1)]) before .compute(). Computed, it holds
+    meshvol.measure's rows for the same arguments: for a folder, those of
+    `meshvol volume -r folder --json`, in the same order.
 
-    paths_or_glob: as meshvol.measure (files, directories, glob patterns), expanded here
-    on the client: the files must be at the same paths on every worker (shared storage).
-    The columns are meshvol.measure's for these options, fixed whatever the files hold:
-    the volume report's keys flattened ('bounds.min', 'units.volume', ...), 'objects'
-    and 'error'; counts are Int64 and facts boolean (nullable, for failed files). No
-    files: an empty frame and a MeshWarning.
+    paths_or_glob, recursive, glob: as meshvol.measure (files, directories, glob
+    patterns; the command's walk), expanded here on the client: the files must be at
+    the same paths on every worker (shared storage). A directory or pattern that gives
+    no mesh file is a row with an 'error', in the first partition, as in
+    meshvol.measure. The columns are meshvol.measure's for these options, fixed
+    whatever the files hold: the volume report's keys flattened ('bounds.min',
+    'units.volume', ...), 'objects' and 'error'; counts are Int64 and facts boolean
+    (nullable, for failed files). An empty list: an empty frame and a MeshWarning.
     """
     import dask.dataframe as ddf
     import pandas
 
     if files_per_partition < 1:
         raise ValueError(f"files_per_partition must be at least 1; got {files_per_partition}")
-    files = mesh_files(paths_or_glob)
+    files, failed = _inputs(paths_or_glob, recursive, glob)
     meta = _schema(check, density, units, exact)
-    if not files:
+    if not files and not failed:
         warnings.warn(f"no mesh files in {paths_or_glob!r}: the DataFrame is empty", MeshWarning, stacklevel=2)
         return ddf.from_pandas(meta, npartitions=1)
-    chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)]
+    chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)] or [[]]
     frames = [
-        dask.delayed(_measure_partition, pure=True)(chunk, meta, threads, check, density, units, exact)
-        for chunk in chunks
+        dask.delayed(_measure_partition, pure=True)(
+            chunk, meta, threads, check, density, units, exact, failed if k == 0 else []
+        )
+        for k, chunk in enumerate(chunks)
     ]
     return ddf.from_delayed(frames, meta=meta, verify_meta=False)
