@@ -4,6 +4,7 @@
 use crate::driver::{self, Output};
 use clap::Args;
 use meshvol_report::area::area;
+use meshvol_report::quantities::Quantities;
 use std::path::PathBuf;
 use std::process::ExitCode;
 

@@ -5,6 +5,7 @@ use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol_report::below::{below, BelowOptions, Waterline};
+use meshvol_report::quantities::Quantities;
 use std::path::PathBuf;
 use std::process::ExitCode;
 

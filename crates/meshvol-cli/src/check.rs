@@ -5,6 +5,7 @@ use crate::driver::{self, Output};
 use crate::input;
 use clap::Args;
 use meshvol_report::check::{check, CheckReport};
+use meshvol_report::quantities::Quantities;
 use meshvol_report::subject::Source;
 use meshvol_report::units::UnitOptions;
 use std::path::{Path, PathBuf};

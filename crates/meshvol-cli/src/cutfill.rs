@@ -7,6 +7,7 @@ use clap::{ArgGroup, Args};
 use meshvol::grid::Grid;
 use meshvol_io::grid_out::{self, Legend, Slice};
 use meshvol_report::cutfill::{cutfill_with, Against, CutFillReport, Spacing};
+use meshvol_report::quantities::Quantities;
 use meshvol_report::reported_cells;
 use meshvol_report::subject::Source;
 use meshvol_report::units::Scale;

@@ -5,6 +5,7 @@ use clap::Args;
 use meshvol::hull::convex_hull_with;
 use meshvol_io::write::MeshFormat;
 use meshvol_report::hull::hull;
+use meshvol_report::quantities::Quantities;
 use meshvol_report::written::write_mesh;
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -7,6 +7,7 @@ use crate::solid::{self, SolidArgs};
 use clap::{Args, ValueEnum};
 use meshvol::grid::{Axis, Levels};
 use meshvol_report::profile::{profile, ProfileReport};
+use meshvol_report::quantities::Quantities;
 use std::path::PathBuf;
 use std::process::ExitCode;
 

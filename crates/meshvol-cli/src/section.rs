@@ -9,6 +9,7 @@ use crate::input::Progress;
 use clap::Args;
 use meshvol::polygon::Polygon;
 use meshvol::section::Plane;
+use meshvol_report::quantities::Quantities;
 use meshvol_report::section::{section, SectionReport};
 use meshvol_report::units::Scale;
 

@@ -319,3 +319,22 @@ fn a_sections_outline_is_in_the_units_of_its_area() {
         near(geojson_area(&feature["geometry"]), f(&v["area"]), &what);
     }
 }
+
+#[test]
+fn check_and_volume_report_one_set_of_facts_in_every_unit() {
+    let dir = tempfile::tempdir().unwrap();
+    let solid = write(dir.path(), "box.obj", box_obj(LO, HI, 1, true, false));
+    for (units, _, l) in UNITS {
+        let flags: Vec<&str> = units.iter().flat_map(|u| ["--units", u]).collect();
+        let tolerance = ["--weld-tolerance", "0.5"];
+        let check = json(&[&["check", p(&solid), "--json"], &tolerance[..], &flags].concat());
+        let volume = json(&[&["volume", p(&solid), "--json"], &tolerance[..], &flags].concat());
+        let what = format!("{units:?}");
+        // The weld tolerance is a length, the solid's volume a volume, in both.
+        near(f(&check["weld_tolerance"]), 0.5 * l, &what);
+        near(f(&volume["weld_tolerance"]), 0.5 * l, &what);
+        near(f(&check["solid_volume"]), VOLUME * l.powi(3), &what);
+        assert_eq!(f(&check["solid_volume"]), f(&volume["solid_volume"]), "{what}");
+        assert_eq!(check["units"], volume["units"], "{what}");
+    }
+}

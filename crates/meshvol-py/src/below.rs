@@ -5,6 +5,7 @@ use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::PyMesh;
 use crate::properties::require_faces;
 use meshvol_report::below::{below, BelowOptions, BelowReport, Waterline};
+use meshvol_report::quantities::Quantities;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 

@@ -6,6 +6,7 @@ use crate::mesh::PyMesh;
 use crate::properties::{self, PyMassProperties};
 use meshvol::topology::{Check, CheckOptions, Weld};
 use meshvol_report::check::{CheckReport, ShellReport};
+use meshvol_report::quantities::Quantities;
 use pyo3::prelude::*;
 
 /// One shell (connected component of faces) of a checked mesh: an entry of

@@ -6,6 +6,7 @@ use crate::errors::{bad_argument, mesh_error, warn_all};
 use crate::mesh::{load, mesh_of, PyMesh};
 use meshvol::cutfill::CellCutFill;
 use meshvol_report::cutfill::{cutfill as report, cutfill_with, Against, CutFillReport, Spacing};
+use meshvol_report::quantities::Quantities;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;

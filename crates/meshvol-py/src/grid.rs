@@ -9,6 +9,7 @@ use meshvol::{mass_properties, Mesh, Surface};
 use meshvol_io::grid_out::CellValues;
 use meshvol_report::grid::{check_memory, choose, Spacing};
 use meshvol_report::profile::ProfileReport;
+use meshvol_report::quantities::Quantities;
 use meshvol_report::reported_cells;
 use meshvol_report::subject::Subject;
 use meshvol_report::union::UnionReport;

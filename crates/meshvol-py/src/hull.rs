@@ -7,6 +7,7 @@ use crate::errors::{invalid, mesh_error};
 use crate::mesh::PyMesh;
 use meshvol::hull::{self, Hull, HullError};
 use meshvol_report::hull::HullReport;
+use meshvol_report::quantities::Quantities;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 

@@ -7,6 +7,7 @@ use crate::errors::{invalid, mesh_error};
 use meshvol::polygon::{polygon_issues, Point2, Polygon};
 use meshvol_io::PolygonFeature;
 use meshvol_report::area::{area, AreaReport, InertiaReport};
+use meshvol_report::quantities::Quantities;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;

@@ -8,6 +8,7 @@ use crate::properties::require_faces;
 use meshvol::polygon::Polygon;
 use meshvol::section::Plane;
 use meshvol::{Faces, Mesh, Surface};
+use meshvol_report::quantities::Quantities;
 use meshvol_report::section::{section, SectionReport};
 use numpy::ndarray::{arr2, Array2};
 use numpy::{IntoPyArray, PyArray1, PyArray2};

@@ -3,10 +3,11 @@
 //! second moments ([`InertiaReport`]) have this one shape wherever they are reported
 //! (`area`, `section`).
 
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use std::fmt::Write as _;
 
 use crate::number::{count, num};
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::polygon::{
     area_properties, polygon_issues, AreaProperties, Polygon, RingRole, SecondMoments,
@@ -321,45 +322,36 @@ fn overflow(r: &mut AreaReport, features: &[PolygonFeature]) -> Result<(), Strin
     Ok(())
 }
 
-impl AreaReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// a file declaring `declared`.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        declared: Option<meshvol_io::LengthUnit>,
-    ) -> Result<Self, String> {
-        let file = crate::Report::file(&self).to_string();
-        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
-        self.area = scale.area(self.area);
-        self.perimeter = scale.length(self.perimeter);
-        self.centroid = self.centroid.map(|c| scale.point(c));
-        self.inertia = self.inertia.map(|i| i.scaled(&scale));
-        for r in &mut self.rings {
-            r.signed_area = scale.area(r.signed_area);
-            r.perimeter = scale.length(r.perimeter);
-        }
-        for f in self.features.iter_mut().flatten() {
-            f.area = scale.area(f.area);
-            f.perimeter = scale.length(f.perimeter);
-            f.centroid = f.centroid.map(|c| scale.point(c));
-            f.inertia = f.inertia.map(|i| i.scaled(&scale));
-        }
-        // With a density per area, the mass of a sheet of the polygons' outline.
-        self.mass = scale.mass(self.area);
-        self.units = scale.names();
-        Ok(self)
+impl InertiaReport {
+    /// The moments in reported units (area × length²).
+    pub fn convert(&mut self, to: &Converter) {
+        to.all(AreaMoment, [&mut self.ix, &mut self.iy, &mut self.ixy, &mut self.polar]);
+        to.all(AreaMoment, &mut self.principal);
     }
 }
 
-impl InertiaReport {
-    /// The moments in the units of `scale` (area × length²).
-    pub fn scaled(mut self, scale: &Scale) -> InertiaReport {
-        self.ix = scale.area_moment(self.ix);
-        self.iy = scale.area_moment(self.iy);
-        self.ixy = scale.area_moment(self.ixy);
-        self.polar = scale.area_moment(self.polar);
-        self.principal = self.principal.map(|x| scale.area_moment(x));
-        self
+impl Quantities for AreaReport {
+    fn convert(&mut self, to: &Converter) {
+        to.one(Area, &mut self.area);
+        to.one(Length, &mut self.perimeter);
+        to.point(&mut self.centroid);
+        self.inertia.iter_mut().for_each(|i| i.convert(to));
+        for r in &mut self.rings {
+            to.one(Area, &mut r.signed_area);
+            to.one(Length, &mut r.perimeter);
+        }
+        for f in self.features.iter_mut().flatten() {
+            to.one(Area, &mut f.area);
+            to.one(Length, &mut f.perimeter);
+            to.point(&mut f.centroid);
+            f.inertia.iter_mut().for_each(|i| i.convert(to));
+        }
     }
+
+    /// With a density per area, the mass of a sheet of the polygons' outline.
+    fn mass_basis(&self) -> f64 {
+        self.area
+    }
+
+    crate::unit_slots!();
 }

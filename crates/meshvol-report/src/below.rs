@@ -3,8 +3,9 @@
 //! volume it must hold; turned by heel and trim.
 
 use crate::number::{num, vector};
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::Subject;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::below::{below as kernel, level_for_volume};
 use meshvol::section::Plane;
@@ -138,26 +139,21 @@ impl Report for BelowReport {
     }
 }
 
-impl BelowReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// a file declaring `declared`.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        declared: Option<meshvol_io::LengthUnit>,
-    ) -> Result<Self, String> {
-        let file = crate::Report::file(&self).to_string();
-        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
-        self.level = scale.length(self.level);
-        self.volume = scale.volume(self.volume);
-        self.centroid = self.centroid.map(|c| scale.point(c));
-        self.wetted_area = scale.area(self.wetted_area);
-        self.section_area = scale.area(self.section_area);
-        self.section_centroid = self.section_centroid.map(|c| scale.point(c));
-        self.mass = scale.mass(self.volume);
-        self.units = scale.names();
-        Ok(self)
+impl Quantities for BelowReport {
+    fn convert(&mut self, to: &Converter) {
+        to.one(Length, &mut self.level);
+        to.one(Volume, &mut self.volume);
+        to.point(&mut self.centroid);
+        to.one(Area, &mut self.wetted_area);
+        to.one(Area, &mut self.section_area);
+        to.point(&mut self.section_centroid);
     }
+
+    fn mass_basis(&self) -> f64 {
+        self.volume
+    }
+
+    crate::unit_slots!();
 }
 
 #[cfg(test)]

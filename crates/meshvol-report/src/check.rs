@@ -1,8 +1,9 @@
 //! `check`: can the volume be trusted? The same facts appear in `volume`'s report.
 
 use crate::number::{count, num};
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::Source;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::topology::{Check, Orientation, Shell};
 use serde::Serialize;
@@ -113,11 +114,12 @@ impl CheckFacts {
         }
     }
 
-    /// The volumes scaled by `f3` (a unit conversion's length factor cubed).
-    pub fn scale_volumes(&mut self, f3: f64) {
-        self.solid_volume *= f3;
-        self.volume_uncertainty *= f3;
-        self.shell_details.iter_mut().for_each(|s| s.volume *= f3);
+    /// The facts in reported units: volumes, and the weld tolerance a length.
+    pub fn convert(&mut self, to: &Converter) {
+        to.one(Volume, &mut self.solid_volume);
+        to.one(Volume, &mut self.volume_uncertainty);
+        to.all(Volume, self.shell_details.iter_mut().map(|s| &mut s.volume));
+        to.some(Length, &mut self.weld_tolerance);
     }
 }
 
@@ -252,20 +254,14 @@ impl Report for CheckReport {
     }
 }
 
-impl CheckReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// a file declaring `declared`.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        declared: Option<meshvol_io::LengthUnit>,
-    ) -> Result<Self, String> {
-        let file = crate::Report::file(&self).to_string();
-        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
-        self.facts.scale_volumes(scale.volume(1.0));
-        self.facts.weld_tolerance = self.facts.weld_tolerance.map(|t| scale.length(t));
-        self.mass = scale.mass(self.facts.solid_volume);
-        self.units = scale.names();
-        Ok(self)
+impl Quantities for CheckReport {
+    fn convert(&mut self, to: &Converter) {
+        self.facts.convert(to);
     }
+
+    fn mass_basis(&self) -> f64 {
+        self.facts.solid_volume
+    }
+
+    crate::unit_slots!();
 }

@@ -3,8 +3,9 @@
 //! and optionally the same per cell of a plan grid.
 
 use crate::number::num;
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::Source;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::cutfill::{cell_cut_fill_with, cut_fill_with, CellCutFill, Design, PlanGrid, Terrain};
 use meshvol::progress::Progress;
@@ -260,39 +261,25 @@ impl Report for CutFillReport {
     }
 }
 
-impl CutFillReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// files (named, with the unit each declares) that must agree on their unit.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        files: &[(&str, Option<meshvol_io::LengthUnit>)],
-    ) -> Result<Self, String> {
-        let (scale, warnings) = Scale::resolve_all(options, files)?;
-        self.warnings.extend(warnings);
-        self.level = self.level.map(|z| scale.length(z));
-        for x in [&mut self.cut, &mut self.fill, &mut self.net] {
-            *x = scale.volume(*x);
-        }
-        for x in [
-            &mut self.area_cut,
-            &mut self.area_fill,
-            &mut self.footprint_area,
-            &mut self.existing_area,
-        ] {
-            *x = scale.area(*x);
-        }
-        self.design_area = self.design_area.map(|a| scale.area(a));
-        self.footprint_bounds = self.footprint_bounds.map(|b| b.map(|p| scale.point(p)));
+impl Quantities for CutFillReport {
+    fn convert(&mut self, to: &Converter) {
+        to.some(Length, &mut self.level);
+        to.all(Volume, [&mut self.cut, &mut self.fill, &mut self.net]);
+        let areas = [&mut self.area_cut, &mut self.area_fill, &mut self.footprint_area];
+        to.all(Area, areas.into_iter().chain([&mut self.existing_area]));
+        to.some(Area, &mut self.design_area);
+        to.all(Length, self.footprint_bounds.iter_mut().flatten().flatten());
         if let Some(g) = &mut self.grid {
-            g.origin = scale.point(g.origin);
-            g.cell = scale.point(g.cell);
+            to.all(Length, g.origin.iter_mut().chain(&mut g.cell));
         }
-        // The mass of the fill (material brought in), with --density.
-        self.mass = scale.mass(self.fill);
-        self.units = scale.names();
-        Ok(self)
     }
+
+    /// The fill's: the material brought in.
+    fn mass_basis(&self) -> f64 {
+        self.fill
+    }
+
+    crate::unit_slots!();
 }
 
 #[cfg(test)]

@@ -1,9 +1,10 @@
 //! `hull`: volume, area and centroid of the convex hull of a point cloud.
 
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use std::fmt::Write as _;
 
 use crate::number::{num, vector};
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::written::WrittenReport;
 use crate::Report;
 use meshvol::hull::Hull;
@@ -132,22 +133,17 @@ impl Report for HullReport {
     }
 }
 
-impl HullReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// a file declaring `declared`.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        declared: Option<meshvol_io::LengthUnit>,
-    ) -> Result<Self, String> {
-        let file = crate::Report::file(&self).to_string();
-        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
-        self.volume = scale.volume(self.volume);
-        self.volume_error_bound = scale.volume(self.volume_error_bound);
-        self.area = scale.area(self.area);
-        self.centroid = self.centroid.map(|c| scale.point(c));
-        self.mass = scale.mass(self.volume);
-        self.units = scale.names();
-        Ok(self)
+impl Quantities for HullReport {
+    fn convert(&mut self, to: &Converter) {
+        to.one(Volume, &mut self.volume);
+        to.one(Volume, &mut self.volume_error_bound);
+        to.one(Area, &mut self.area);
+        to.point(&mut self.centroid);
     }
+
+    fn mass_basis(&self) -> f64 {
+        self.volume
+    }
+
+    crate::unit_slots!();
 }

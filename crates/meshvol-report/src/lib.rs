@@ -32,6 +32,20 @@ macro_rules! file_and_warnings {
 }
 pub(crate) use file_and_warnings;
 
+/// `Quantities::unit_slots` of a report with the fields `warnings`, `units` and `mass`.
+macro_rules! unit_slots {
+    () => {
+        fn unit_slots(&mut self) -> crate::quantities::UnitSlots<'_> {
+            crate::quantities::UnitSlots {
+                warnings: &mut self.warnings,
+                units: &mut self.units,
+                mass: &mut self.mass,
+            }
+        }
+    };
+}
+pub(crate) use unit_slots;
+
 pub mod area;
 pub mod below;
 pub mod check;
@@ -42,6 +56,7 @@ pub mod inertial;
 pub mod intersect;
 pub mod number;
 pub mod profile;
+pub mod quantities;
 pub mod repair;
 pub mod reported_cells;
 pub mod section;

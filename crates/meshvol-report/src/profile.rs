@@ -2,8 +2,9 @@
 //! section area at each level (a strapping table).
 
 use crate::number::num;
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::Subject;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::grid::{profile as kernel, Axis, Levels};
 use meshvol::Surface;
@@ -112,22 +113,18 @@ impl Report for ProfileReport {
     }
 }
 
-impl ProfileReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// a file declaring `declared`.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        declared: Option<meshvol_io::LengthUnit>,
-    ) -> Result<Self, String> {
-        let file = crate::Report::file(&self).to_string();
-        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
-        self.levels.iter_mut().for_each(|x| *x = scale.length(*x));
-        self.volume_below.iter_mut().for_each(|x| *x = scale.volume(*x));
-        self.slab_volume.iter_mut().for_each(|x| *x = scale.volume(*x));
-        self.section_area.iter_mut().for_each(|x| *x = scale.area(*x));
-        self.mass = scale.mass(self.volume_below.last().copied().unwrap_or(0.0));
-        self.units = scale.names();
-        Ok(self)
+impl Quantities for ProfileReport {
+    fn convert(&mut self, to: &Converter) {
+        to.all(Length, &mut self.levels);
+        to.all(Volume, &mut self.volume_below);
+        to.all(Volume, &mut self.slab_volume);
+        to.all(Area, &mut self.section_area);
     }
+
+    /// The whole solid's.
+    fn mass_basis(&self) -> f64 {
+        self.volume_below.last().copied().unwrap_or(0.0)
+    }
+
+    crate::unit_slots!();
 }

@@ -15,6 +15,7 @@
 //! `volume`, or the masses alone in a one-array `.npy` or `.zarr`) multiply the reported
 //! volume by [`Scale::mass_per_volume`].
 
+use crate::quantities::Dimension::{self, *};
 use crate::units::Scale;
 use meshvol::grid::{CutCells, Grid};
 use meshvol::Point;
@@ -29,34 +30,34 @@ pub fn grid(scale: &Scale, grid: &Grid) -> Result<Grid, String> {
         .map_err(|e| format!("the grid in the units asked for: {e}"))
 }
 
-/// Scales `values` where they are, in parallel, by `by`.
-fn convert(values: &mut [f64], scale: &Scale, by: fn(&Scale, f64) -> f64) {
+/// Scales `values` of dimension `d` where they are, in parallel.
+fn convert(values: &mut [f64], scale: &Scale, d: Dimension) {
     if scale.converts() {
-        values.par_iter_mut().for_each(|x| *x = by(scale, *x));
+        values.par_iter_mut().for_each(|x| *x = scale.convert(d, *x));
     }
 }
 
 /// Scales points (or vectors of one dimension) where they are.
-fn convert_points(values: &mut [Point], scale: &Scale, by: fn(&Scale, f64) -> f64) {
-    convert(values.as_flattened_mut(), scale, by);
+fn convert_points(values: &mut [Point], scale: &Scale, d: Dimension) {
+    convert(values.as_flattened_mut(), scale, d);
 }
 
 /// Cell volumes in reported volume units, where they are.
 pub fn volumes(scale: &Scale, volumes: &mut [f64]) {
-    convert(volumes, scale, Scale::volume);
+    convert(volumes, scale, Volume);
 }
 
 /// Every array of `cells` in reported units, where they are, and its grid.
 pub fn cut_cells(scale: &Scale, cells: &mut CutCells) -> Result<(), String> {
     cells.grid = grid(scale, &cells.grid)?;
-    convert(&mut cells.volume, scale, Scale::volume);
-    convert_points(&mut cells.centroid, scale, Scale::length);
-    convert(&mut cells.boundary_area, scale, Scale::area);
-    convert_points(&mut cells.boundary_vector, scale, Scale::area);
-    convert_points(&mut cells.boundary_centroid, scale, Scale::length);
-    convert(cells.inertia.as_flattened_mut().as_flattened_mut(), scale, Scale::volume_moment);
+    convert(&mut cells.volume, scale, Volume);
+    convert_points(&mut cells.centroid, scale, Length);
+    convert(&mut cells.boundary_area, scale, Area);
+    convert_points(&mut cells.boundary_vector, scale, Area);
+    convert_points(&mut cells.boundary_centroid, scale, Length);
+    convert(cells.inertia.as_flattened_mut().as_flattened_mut(), scale, VolumeMoment);
     for centroids in &mut cells.aperture_centroid {
-        convert_points(centroids, scale, Scale::length);
+        convert_points(centroids, scale, Length);
     }
     Ok(())
 }

@@ -1,11 +1,12 @@
 //! `section`: the cross-section of an input's solid by a plane, its area and moments.
 
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use std::fmt::Write as _;
 
 use crate::area::InertiaReport;
 use crate::number::{count, num, vector};
 use crate::subject::Subject;
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::polygon::{area_properties, Polygon};
 use meshvol::section::{section as kernel, Plane, PlaneFrame};
@@ -176,26 +177,23 @@ impl Report for SectionReport {
     }
 }
 
-impl SectionReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// a file declaring `declared`.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        declared: Option<meshvol_io::LengthUnit>,
-    ) -> Result<Self, String> {
-        let file = crate::Report::file(&self).to_string();
-        let scale = Scale::for_report(options, declared, &file, &mut self.warnings)?;
-        self.plane.origin = scale.point(self.plane.origin);
-        self.area = scale.area(self.area);
-        self.signed_area = scale.area(self.signed_area);
-        self.perimeter = scale.length(self.perimeter);
-        self.centroid = self.centroid.map(|c| scale.point(c));
-        self.centroid_3d = self.centroid_3d.map(|c| scale.point(c));
-        self.inertia = self.inertia.map(|i| i.scaled(&scale));
-        // With a density per area, the mass of a sheet of the section's outline.
-        self.mass = scale.mass(self.area);
-        self.units = scale.names();
-        Ok(self)
+impl Quantities for SectionReport {
+    fn convert(&mut self, to: &Converter) {
+        to.all(Length, &mut self.plane.origin);
+        to.one(Area, &mut self.area);
+        to.one(Area, &mut self.signed_area);
+        to.one(Length, &mut self.perimeter);
+        to.point(&mut self.centroid);
+        to.point(&mut self.centroid_3d);
+        if let Some(i) = &mut self.inertia {
+            i.convert(to);
+        }
     }
+
+    /// With a density per area, the mass of a sheet of the section's outline.
+    fn mass_basis(&self) -> f64 {
+        self.area
+    }
+
+    crate::unit_slots!();
 }

@@ -16,6 +16,7 @@
 //! integer round(255 × fraction) (a few bytes of JSON each; about 1 MiB at most).
 
 use crate::grid::{layer_holding, reported_summary, GridReport, GridRun};
+use crate::quantities::Quantities;
 use crate::reported_cells;
 use crate::section::{section, SectionReport};
 use crate::subject::{input_warnings, Subject};

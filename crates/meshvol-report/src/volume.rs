@@ -6,6 +6,7 @@
 
 use crate::check::CheckFacts;
 use crate::number::{num, vector};
+use crate::quantities::Converter;
 use crate::subject::Subject;
 use crate::units::{Density, Scale, UnitNames, UnitOptions, UnitsArg};
 use crate::Report;
@@ -186,7 +187,7 @@ pub fn volume<S: Surface>(
     }
     let check = subject.check.map(|c| {
         let mut facts = CheckFacts::of(c);
-        facts.scale_volumes(scale.volume(1.0));
+        facts.convert(&Converter::new(&scale));
         facts
     });
     Ok(VolumeReport {

@@ -5,6 +5,7 @@ use meshvol::grid::{Axis, Levels};
 use meshvol::topology::{self, CheckOptions};
 use meshvol_report::check::{check, CheckReport};
 use meshvol_report::profile::{profile, ProfileReport};
+use meshvol_report::quantities::Quantities;
 use meshvol_report::subject::{Source, Subject};
 use meshvol_report::units::{Density, UnitOptions};
 use meshvol_report::view::{view, View};
