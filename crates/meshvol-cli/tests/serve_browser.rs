@@ -402,6 +402,38 @@ fn the_page_shows_the_commands_numbers_and_draws_the_part_and_its_hole() {
     assert_eq!(shown["state"], "failed", "{shown}");
     assert_eq!(shown["error"], expected["error"], "{shown}");
 
+    // A material with a file that declares no unit: the card asks for it, and measured in
+    // the unit chosen, the mass is the command's.
+    browser.run(
+        "const m = document.getElementById('material'); m.value = '7.85g/cm3'; \
+         m.dispatchEvent(new Event('change')); return true;",
+    );
+    let unitless =
+        write(dir.path(), "unitless.obj", box_obj([0.0; 3], [10.0, 20.0, 5.0], 1, true, false));
+    browser.upload(&unitless);
+    let shown = card(&browser, "unitless.obj");
+    assert_eq!(shown["state"], "asking", "{shown}");
+    browser.run(
+        "document.querySelector('.card[data-file=\"unitless.obj\"] button[data-unit=\"mm\"]').click(); \
+         return true;",
+    );
+    let shown = card(&browser, "unitless.obj");
+    assert_eq!(shown["state"], "done", "{shown}");
+    let mass = browser.until(
+        "const t = document.querySelector('.card[data-file=\"unitless.obj\"] .mass'); \
+         return t ? t.dataset.value : null;",
+    );
+    let expected =
+        cli_json(&["volume", "--json", p(&unitless), "--units", "mm", "--density", "7.85g/cm3"]);
+    let mass: f64 = mass.as_str().unwrap().parse().unwrap();
+    assert_eq!(mass, expected["mass"].as_f64().unwrap());
+    // 1000 mm³ of steel at 7.85 g/cm³: 7.85 g.
+    assert!((mass - 7.85).abs() < 1e-12, "{mass}");
+    browser.run(
+        "const m = document.getElementById('material'); m.value = ''; \
+         document.getElementById('density').value = ''; return true;",
+    );
+
     // `check --html`: the same page from one file, no server.
     let html = dir.path().join("open-box.html");
     let out = meshvol(&["check", p(&open), "--html", p(&html)]);

@@ -2,7 +2,7 @@
 //! closed forms and hand-computed values.
 
 mod common;
-use common::{f, meshvol, write};
+use common::{box_obj, f, meshvol, p, write};
 
 use serde_json::Value;
 use std::path::Path;
@@ -201,4 +201,24 @@ fn errors_name_the_file_and_place_and_set_the_exit_status() {
     assert!(stderr.contains("missing.stl"), "{stderr}");
     // No file at all is a usage error.
     assert_eq!(meshvol(&["volume"]).status.code(), Some(2));
+}
+
+/// Caps close an open surface's holes for its volume, but its area is its own faces':
+/// a flat unit square (capped by itself) has area 1, not 2; a unit box without its top
+/// has area 5 and, capped, volume 1.
+#[test]
+fn an_open_surfaces_area_leaves_its_caps_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let sheet = write(dir.path(), "sheet.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    let open = box_obj([0.0; 3], [1.0; 3], 1, true, true);
+    let open = write(dir.path(), "open.obj", open);
+    let json = |path: &Path| {
+        let out = meshvol(&["volume", p(path), "--json", "-q"]);
+        serde_json::from_slice::<Value>(&out.stdout).unwrap()
+    };
+    let (sheet, open) = (json(&sheet), json(&open));
+    assert_eq!((f(&sheet["area"]), f(&sheet["volume"])), (1.0, 0.0));
+    assert_eq!(f(&open["area"]), 5.0);
+    assert!((f(&open["volume"]) - 1.0).abs() < 1e-15);
+    assert_eq!(open["boundary_loops"], 1);
 }

@@ -163,6 +163,15 @@ pub fn volume<S: Surface>(
         _ => as_wound,
     };
     warnings.extend(meshvol::topology::volume_warnings(subject.check, &as_wound, &mp));
+    // The area is the surface's own: caps close its holes for the volume, but are no
+    // part of it (a flat open sheet has its own area, not twice it).
+    let area = match subject.check {
+        Some(checked) if checked.repairs().2 > 0 => {
+            let solid = checked.solid(subject.surface);
+            mass_properties(&FaceRange::new(&solid, 0..solid.surface_faces())).area
+        }
+        _ => mp.area,
+    };
 
     let f = scale.length(1.0);
     let volume = scale.volume(mp.signed_volume.abs());
@@ -201,7 +210,7 @@ pub fn volume<S: Surface>(
         signed_volume: scale.volume(as_wound.signed_volume),
         volume_error_bound: scale.volume(mp.volume_error_bound) + conversion,
         exact,
-        area: scale.area(mp.area),
+        area: scale.area(area),
         centroid: mp.centroid.map(|c| c.map(|x| x * f)),
         inertia,
         principal_moments,

@@ -254,6 +254,66 @@ fn triangle_segment(plane: &Plane, corners: [Point; 3]) -> Option<Segment> {
     Some(Segment { from, to, start, end })
 }
 
+/// Moves the pieces of one face's fan (`pieces`, emptied) into `found`, as the face
+/// itself crosses the plane.
+///
+/// A fan's pieces chain through the crossings of its diagonals, from a crossing of the
+/// face's own edges (where the chain enters) to another (where it leaves). Where the
+/// fan's first corner does not see all of a non-convex face, some of its triangles fold
+/// back over others, and a chain may join the entry of one piece of the face's section
+/// to the exit of another, across a gap outside the face: the sums are unchanged, but
+/// the loops are not the section's (they run over the gap and back, and split into loops
+/// of both windings). The face's section lies on one line; along it entries and exits
+/// alternate, so the k-th entry pairs with the k-th exit, and each pair is one segment
+/// between the face's own edges (the same keys and points: chaining with the
+/// neighbouring faces is untouched). A fan that does not fold (every piece runs forward
+/// along the line) is kept as it is, bit for bit.
+fn face_segments(pieces: &mut Vec<Segment>, found: &mut Vec<Segment>) {
+    if pieces.len() < 2 {
+        found.append(pieces);
+        return;
+    }
+    // The direction of the section along the line: the chains' net run, Σ (end − start).
+    let mut along = [0.0; 3];
+    for s in pieces.iter() {
+        along = [0, 1, 2].map(|k| along[k] + (s.end[k] - s.start[k]));
+    }
+    let run = |s: &Segment| dot(sub(s.end, s.start), along);
+    if pieces.iter().all(|s| run(s) >= 0.0) || along == [0.0; 3] {
+        found.append(pieces);
+        return;
+    }
+    // The face's own edges: keys not both ended and started by its pieces.
+    let mut tos: Vec<EdgeKey> = pieces.iter().map(|s| s.to).collect();
+    let mut froms: Vec<EdgeKey> = pieces.iter().map(|s| s.from).collect();
+    tos.sort_unstable();
+    froms.sort_unstable();
+    let mut entries: Vec<(EdgeKey, Point)> = pieces
+        .iter()
+        .filter(|s| tos.binary_search(&s.from).is_err())
+        .map(|s| (s.from, s.start))
+        .collect();
+    let mut exits: Vec<(EdgeKey, Point)> = pieces
+        .iter()
+        .filter(|s| froms.binary_search(&s.to).is_err())
+        .map(|s| (s.to, s.end))
+        .collect();
+    let at = |p: &Point| dot(*p, along);
+    entries.sort_by(|a, b| at(&a.1).total_cmp(&at(&b.1)));
+    exits.sort_by(|a, b| at(&a.1).total_cmp(&at(&b.1)));
+    let pairs = entries.iter().zip(&exits);
+    // A face that is not a consistently wound planar polygon: left as its fan says.
+    if entries.is_empty()
+        || entries.len() != exits.len()
+        || pairs.clone().any(|(entry, exit)| at(&exit.1) < at(&entry.1))
+    {
+        found.append(pieces);
+        return;
+    }
+    found.extend(pairs.map(|(&(from, start), &(to, end))| Segment { from, to, start, end }));
+    pieces.clear();
+}
+
 /// The cross-section of `surface` by `plane`.
 ///
 /// ```
@@ -282,13 +342,14 @@ pub fn section<S: Surface + ?Sized>(surface: &S, plane: &Plane) -> Section {
         surface.face_count(),
         CHUNK_FACES,
         |range| {
-            let mut found = Vec::new();
+            let (mut found, mut pieces) = (Vec::new(), Vec::new());
             for face in range {
                 surface.fan(face, |a, b, c| {
                     if let Some(s) = triangle_segment(plane, [a, b, c]) {
-                        found.push(s);
+                        pieces.push(s);
                     }
                 });
+                face_segments(&mut pieces, &mut found);
             }
             found
         },

@@ -26,22 +26,40 @@ function el(tag, attrs = {}, ...children) {
 }
 
 // ---- the request --------------------------------------------------------------------
-function unitsParam() {
-  const file = $("units-file").value, report = $("units-report").value;
+function unitsParam(fileUnit) {
+  const file = fileUnit || $("units-file").value, report = $("units-report").value;
   if (!file && !report) return "";
   return file + (report ? ":" + report : "");
 }
 function densityParam() {
   return $("density").value.trim();
 }
-async function send(file) {
+// A material turns volumes into masses, which needs the file's length unit: a file that
+// does not declare one (STL, OBJ, PLY, OFF) is asked about, on its card, and measured
+// again in the unit chosen, instead of failing with the command's advice.
+const FILE_UNITS = [["mm", "mm"], ["cm", "cm"], ["m", "m"], ["in", "in"], ["ft", "ft"], ["um", "µm"]];
+function needsUnit(body) {
+  return densityParam() && !$("units-file").value && /length unit is not known/.test(body.error || "");
+}
+function askUnit(card, file) {
+  card.replaceChildren(el("h2", {}, file.name));
+  card.setAttribute("data-state", "asking");
+  const buttons = FILE_UNITS.map(([value, label]) => {
+    const b = el("button", { type: "button", "data-unit": value }, label);
+    b.addEventListener("click", () => { card.remove(); send(file, value); });
+    return b;
+  });
+  card.append(el("p", { class: "ask" }, "This file does not say its length unit, and a mass needs one. Its numbers are in:"), el("p", { class: "units" }, ...buttons));
+}
+async function send(file, fileUnit) {
   const q = new URLSearchParams({ name: file.name });
-  if (unitsParam()) q.set("units", unitsParam());
+  if (unitsParam(fileUnit)) q.set("units", unitsParam(fileUnit));
   if (densityParam()) q.set("density", densityParam());
   const card = addCard({ name: file.name, pending: true });
   try {
     const response = await fetch("/api/view?" + q, { method: "POST", body: file });
     const body = await response.json().catch(() => ({ error: "HTTP " + response.status + " (no JSON)" }));
+    if (!response.ok && !fileUnit && needsUnit(body)) return askUnit(card, file);
     if (!response.ok) return fillCard(card, { name: file.name, error: body.error || "HTTP " + response.status });
     fillCard(card, { name: file.name, page: body });
   } catch (e) {

@@ -262,6 +262,14 @@ impl<S: ?Sized> Clone for SolidView<'_, S> {
 
 impl<S: ?Sized> Copy for SolidView<'_, S> {}
 
+impl<S: ?Sized> SolidView<'_, S> {
+    /// How many of the solid's faces are the checked surface's own: faces
+    /// `0..surface_faces()`; the caps over its holes follow them.
+    pub fn surface_faces(&self) -> usize {
+        self.solid.faces.len()
+    }
+}
+
 impl<S: Surface + ?Sized> Surface for SolidView<'_, S> {
     fn face_count(&self) -> usize {
         self.solid.faces.len() + self.solid.caps.len()
