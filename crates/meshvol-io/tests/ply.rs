@@ -2,8 +2,6 @@
 
 mod common;
 
-use std::time::{Duration, Instant};
-
 use common::*;
 use meshvol::{Faces, Surface};
 use meshvol_io::write::{ply, PlyEncoding};
@@ -176,9 +174,9 @@ fn lying_headers_fail_fast() {
              float y\nproperty float z\nelement face 1000000000000\nproperty list uchar int \
              vertex_indices\nend_header\n0 0 0\n"
         );
-        let start = Instant::now();
+        // Refused from the header: reading 4·10⁹ vertices (or allocating for them) would
+        // not come back with this error.
         let e = read_err("lie.ply", text);
-        assert!(start.elapsed() < Duration::from_secs(1));
         assert!(e.message.contains("4000000000"), "{e}");
         // Counts beyond 32-bit indices are refused from the header.
         let text = format!(
@@ -193,9 +191,7 @@ fn lying_headers_fail_fast() {
     let text = "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n\
                 property float y\nproperty float z\nelement face 1000000000000\nproperty list \
                 uint int vertex_indices\nend_header\n\0\0\0\0";
-    let start = Instant::now();
     let e = read_err("lie.ply", text);
-    assert!(start.elapsed() < Duration::from_secs(1));
     assert!(e.message.contains("ends inside face 1"), "{e}");
 }
 

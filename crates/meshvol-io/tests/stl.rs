@@ -2,8 +2,6 @@
 
 mod common;
 
-use std::time::{Duration, Instant};
-
 use common::*;
 use meshvol::Surface;
 use meshvol_io::{read, Format, LoadedSurface, Location};
@@ -71,9 +69,8 @@ fn binary_header_claiming_4e9_triangles_fails_fast() {
     for header in ["", "solid huge"] {
         let mut bytes = binary_stl(header, &tetra_triangles());
         bytes[80..84].copy_from_slice(&4_000_000_000u32.to_le_bytes());
-        let t = Instant::now();
+        // Refused from the header: allocating for 4·10⁹ triangles would abort instead.
         let e = read_err("huge.stl", bytes);
-        assert!(t.elapsed() < Duration::from_secs(1));
         assert!(e.message.contains("4000000000 triangles"), "{e}");
         assert!(e.message.contains("200000000084 bytes"), "{e}");
         // Through the file system as well (memory-mapped).
@@ -81,9 +78,8 @@ fn binary_header_claiming_4e9_triangles_fails_fast() {
         let mut bytes = binary_stl(header, &tetra_triangles());
         bytes[80..84].copy_from_slice(&u32::MAX.to_le_bytes());
         let path = write_temp(dir.path(), "huge.stl", &bytes);
-        let t = Instant::now();
-        assert!(read(&path).is_err());
-        assert!(t.elapsed() < Duration::from_secs(1));
+        let e = read(&path).unwrap_err();
+        assert!(e.message.contains("truncated"), "{e}");
     }
 }
 

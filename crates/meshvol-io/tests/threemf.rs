@@ -158,9 +158,9 @@ fn build_expansion_is_bounded_before_allocating() {
         }
         resources += "</components></object>";
     }
-    let start = std::time::Instant::now();
+    // Refused by the count of placements before any is made: expanding 10^8 boxes would
+    // not come back with this error.
     let e = read_err("big.3mf", three_mf(&model("", &resources, r#"<item objectid="8"/>"#)));
-    assert!(start.elapsed() < std::time::Duration::from_secs(2));
     assert!(e.message.contains("placed objects"), "{e}");
 }
 

@@ -21,26 +21,25 @@ def test_other_threads_run_while_meshvol_computes():
             break
 
     done = threading.Event()
-    gaps = []
+    ticks = []
 
     def ticker():
-        last = time.perf_counter()
         while not done.is_set():
             time.sleep(0.001)
-            now = time.perf_counter()
-            gaps.append(now - last)
-            last = now
+            ticks.append(time.perf_counter())
 
     thread = threading.Thread(target=ticker)
     thread.start()
     time.sleep(0.02)
     started = time.perf_counter()
     mesh.check()
-    took = time.perf_counter() - started
+    ended = time.perf_counter()
     done.set()
     thread.join()
-    # Holding the GIL would stall the ticker for the whole call.
-    assert max(gaps) < took / 2, (max(gaps), took)
+    # Holding the GIL would keep the ticker from running at all during the call (a tick
+    # at most, on either side of it): no timing threshold, only whether it ran.
+    during = [t for t in ticks if started < t < ended]
+    assert len(during) >= 3, (len(during), ended - started)
 
 
 def test_threads_measure_in_parallel_with_the_same_answers():

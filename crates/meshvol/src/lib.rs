@@ -34,6 +34,7 @@ mod eigen;
 pub mod exact;
 pub mod grid;
 pub mod hull;
+mod lanes;
 pub mod mesh;
 pub mod overlap;
 pub mod polygon;

@@ -65,9 +65,10 @@
 //!   its rounding, u·|V|. Only if that sum is out of range does the wide bound stay.
 
 use crate::accumulate::{gamma, ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
+use crate::lanes::{dispatch, Lanes, OnLanes};
 use crate::mesh::only_triangle;
 use crate::vector::{add, dot, norm, scale, sub};
-use crate::volume::{Corners, Lanes};
+use crate::volume::Corners;
 use crate::{Point, Surface};
 use rayon::prelude::*;
 use std::ops::{Add, Mul};
@@ -547,41 +548,29 @@ fn triangles_partial<T: Triangles>(
     range: std::ops::Range<usize>,
     r: Point,
 ) -> Partial {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx512vl") {
-        // SAFETY: the CPU has AVX-512VL.
-        return unsafe { triangles_partial_avx512(corners, range, r) };
-    }
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2.
-        return unsafe { triangles_partial_avx2(corners, range, r) };
-    }
-    triangles_partial_in::<wide::f64x4, T>(corners, range, r)
+    dispatch(TrianglesPartial { corners, range, r })
 }
 
-/// [`triangles_partial`] compiled for AVX2, its lanes one register (see
-/// [`crate::volume`]'s docs): the same operations, so the same bits.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn triangles_partial_avx2<T: Triangles>(
-    corners: &T,
+/// [`triangles_partial_in`]'s arguments, for the lanes [`dispatch`] picks.
+struct TrianglesPartial<'a, T> {
+    corners: &'a T,
     range: std::ops::Range<usize>,
     r: Point,
-) -> Partial {
-    triangles_partial_in::<crate::volume::Avx, T>(corners, range, r)
 }
 
-/// [`triangles_partial`] compiled for AVX-512VL: the same 256-bit operations, with its
-/// 32 registers.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,avx512f,avx512vl")]
-fn triangles_partial_avx512<T: Triangles>(
-    corners: &T,
-    range: std::ops::Range<usize>,
-    r: Point,
-) -> Partial {
-    triangles_partial_in::<crate::volume::Avx, T>(corners, range, r)
+// Not derived: `T` need not be Clone for its reference to be.
+impl<T> Clone for TrianglesPartial<'_, T> {
+    fn clone(&self) -> Self {
+        TrianglesPartial { corners: self.corners, range: self.range.clone(), r: self.r }
+    }
+}
+
+impl<T: Triangles> OnLanes for TrianglesPartial<'_, T> {
+    type Output = Partial;
+    #[inline(always)]
+    fn run<L: Lanes>(self) -> Partial {
+        triangles_partial_in::<L, T>(self.corners, self.range, self.r)
+    }
 }
 
 #[inline(always)]
@@ -852,6 +841,7 @@ fn moment_terms<T: Copy + Add<Output = T> + Mul<Output = T>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lanes::every_copy;
     use crate::test_rng::XorShift;
 
     /// The baseline lanes (`wide`, what a CPU without AVX2 runs) give the bits of the
@@ -882,25 +872,11 @@ mod tests {
             if n >= 64 {
                 assert_eq!(indexed.scattered(0..n), ids > 300, "{n} triangles");
             }
-            let baseline = triangles_partial_in::<wide::f64x4, _>(&corners, 0..n, r);
-            let mut copies = vec![
-                triangles_partial(&corners, 0..n, r),
-                triangles_partial(&indexed, 0..n, r),
-                triangles_partial_in::<wide::f64x4, _>(&indexed, 0..n, r),
-            ];
-            #[cfg(target_arch = "x86_64")]
-            {
-                if std::arch::is_x86_feature_detected!("avx2") {
-                    // SAFETY: the CPU has AVX2.
-                    copies.push(unsafe { triangles_partial_avx2(&corners, 0..n, r) });
-                    copies.push(unsafe { triangles_partial_avx2(&indexed, 0..n, r) });
-                }
-                if std::arch::is_x86_feature_detected!("avx512vl") {
-                    // SAFETY: the CPU has AVX-512VL.
-                    copies.push(unsafe { triangles_partial_avx512(&corners, 0..n, r) });
-                    copies.push(unsafe { triangles_partial_avx512(&indexed, 0..n, r) });
-                }
-            }
+            let mut copies = every_copy(TrianglesPartial { corners: &corners, range: 0..n, r });
+            let baseline = copies.remove(0);
+            copies.extend(every_copy(TrianglesPartial { corners: &indexed, range: 0..n, r }));
+            copies.push(triangles_partial(&corners, 0..n, r));
+            copies.push(triangles_partial(&indexed, 0..n, r));
             for copy in copies {
                 assert_eq!(format!("{baseline:?}"), format!("{copy:?}"), "{n} triangles");
             }

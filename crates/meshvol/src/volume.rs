@@ -68,10 +68,10 @@
 //! below, on the caller's thread.
 
 use crate::accumulate::{ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
+use crate::lanes::{dispatch, Lanes, OnLanes};
 use crate::mesh::MeshError;
 use crate::properties::{VolumeSums, CHUNK_FACES};
 use crate::{Point, Surface};
-use std::ops::{Add, AddAssign, Mul, Sub};
 use wide::f64x4;
 
 /// Below this many faces (two chunks) the volume (and [`crate::mass_properties`]) is
@@ -323,187 +323,6 @@ pub(crate) struct VolumeLanes<L: Lanes = f64x4> {
     triangles: usize,
 }
 
-/// Four f64 lanes and the IEEE operations the sums take of them, lane by lane (never a
-/// fused multiply-add): `wide::f64x4` (the baseline target's), and [`Avx`], one 256-bit
-/// register, for the copies compiled for AVX2 and AVX-512VL.
-pub(crate) trait Lanes:
-    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + AddAssign
-{
-    const ZERO: Self;
-    fn splat(x: f64) -> Self;
-    fn from_array(x: [f64; 4]) -> Self;
-    fn to_array(self) -> [f64; 4];
-    fn abs(self) -> Self;
-    /// `wide::f64x4::min`: `rhs` where it is less than `self` and not NaN.
-    fn min(self, rhs: Self) -> Self;
-    /// `wide::f64x4::max`: `rhs` where it is greater than `self` and not NaN.
-    fn max(self, rhs: Self) -> Self;
-    /// [`Lanes::min`] for lanes that hold no NaN: without its NaN test.
-    fn min_of_numbers(self, rhs: Self) -> Self;
-    /// [`Lanes::max`] for lanes that hold no NaN: without its NaN test.
-    fn max_of_numbers(self, rhs: Self) -> Self;
-    fn sqrt(self) -> Self;
-    /// Four points' coordinates as lanes, lane j holding point j's: [x, y, z].
-    #[inline(always)]
-    fn gather([p0, p1, p2, p3]: [&Point; 4]) -> [Self; 3] {
-        [
-            Self::from_array([p0[0], p1[0], p2[0], p3[0]]),
-            Self::from_array([p0[1], p1[1], p2[1], p3[1]]),
-            Self::from_array([p0[2], p1[2], p2[2], p3[2]]),
-        ]
-    }
-}
-
-impl Lanes for f64x4 {
-    const ZERO: Self = f64x4::ZERO;
-    #[inline(always)]
-    fn splat(x: f64) -> Self {
-        f64x4::splat(x)
-    }
-    #[inline(always)]
-    fn from_array(x: [f64; 4]) -> Self {
-        f64x4::new(x)
-    }
-    #[inline(always)]
-    fn to_array(self) -> [f64; 4] {
-        f64x4::to_array(self)
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        f64x4::abs(self)
-    }
-    #[inline(always)]
-    fn min(self, rhs: Self) -> Self {
-        f64x4::min(self, rhs)
-    }
-    #[inline(always)]
-    fn max(self, rhs: Self) -> Self {
-        f64x4::max(self, rhs)
-    }
-    #[inline(always)]
-    fn min_of_numbers(self, rhs: Self) -> Self {
-        f64x4::fast_min(self, rhs)
-    }
-    #[inline(always)]
-    fn max_of_numbers(self, rhs: Self) -> Self {
-        f64x4::fast_max(self, rhs)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        f64x4::sqrt(self)
-    }
-}
-
-/// Four lanes in one 256-bit AVX register, for functions compiled with AVX enabled
-/// (`wide::f64x4` is chosen when this crate is compiled, for the baseline target: two
-/// 128-bit halves). Its operations are the AVX instructions of `wide`'s own AVX build.
-#[cfg(target_arch = "x86_64")]
-#[derive(Clone, Copy)]
-pub(crate) struct Avx(std::arch::x86_64::__m256d);
-
-#[cfg(target_arch = "x86_64")]
-mod avx {
-    use super::{Avx, Lanes};
-    use std::arch::x86_64::*;
-    use std::ops::{Add, AddAssign, Mul, Sub};
-
-    // SAFETY (every `unsafe` here): `Avx` values are only made in functions compiled
-    // with AVX enabled, on a CPU that has it (`chunk_sums`).
-    macro_rules! op {
-        ($trait:ident, $f:ident, $intrinsic:ident) => {
-            impl $trait for Avx {
-                type Output = Avx;
-                #[inline(always)]
-                fn $f(self, o: Avx) -> Avx {
-                    Avx(unsafe { $intrinsic(self.0, o.0) })
-                }
-            }
-        };
-    }
-    op!(Add, add, _mm256_add_pd);
-    op!(Sub, sub, _mm256_sub_pd);
-    op!(Mul, mul, _mm256_mul_pd);
-
-    impl AddAssign for Avx {
-        #[inline(always)]
-        fn add_assign(&mut self, o: Avx) {
-            *self = *self + o;
-        }
-    }
-
-    impl Lanes for Avx {
-        const ZERO: Self = Avx(unsafe { std::mem::transmute::<[f64; 4], __m256d>([0.0; 4]) });
-        #[inline(always)]
-        fn splat(x: f64) -> Self {
-            Avx(unsafe { _mm256_set1_pd(x) })
-        }
-        #[inline(always)]
-        fn from_array(x: [f64; 4]) -> Self {
-            Avx(unsafe { _mm256_setr_pd(x[0], x[1], x[2], x[3]) })
-        }
-        #[inline(always)]
-        fn to_array(self) -> [f64; 4] {
-            unsafe { std::mem::transmute::<__m256d, [f64; 4]>(self.0) }
-        }
-        #[inline(always)]
-        fn gather([p0, p1, p2, p3]: [&[f64; 3]; 4]) -> [Self; 3] {
-            // (x, y) pairs in two 128-bit loads a pair of points, unpacked across them;
-            // z two at a time: 11 instructions a corner instead of 15 through `from_array`.
-            // (No closures: see `corners`.)
-            unsafe {
-                let xy02 = _mm256_insertf128_pd::<1>(
-                    _mm256_castpd128_pd256(_mm_loadu_pd(p0.as_ptr())),
-                    _mm_loadu_pd(p2.as_ptr()),
-                );
-                let xy13 = _mm256_insertf128_pd::<1>(
-                    _mm256_castpd128_pd256(_mm_loadu_pd(p1.as_ptr())),
-                    _mm_loadu_pd(p3.as_ptr()),
-                );
-                let z01 = _mm_loadh_pd(_mm_load_sd(&p0[2]), &p1[2]);
-                let z23 = _mm_loadh_pd(_mm_load_sd(&p2[2]), &p3[2]);
-                [
-                    Avx(_mm256_unpacklo_pd(xy02, xy13)),
-                    Avx(_mm256_unpackhi_pd(xy02, xy13)),
-                    Avx(_mm256_insertf128_pd::<1>(_mm256_castpd128_pd256(z01), z23)),
-                ]
-            }
-        }
-        #[inline(always)]
-        fn abs(self) -> Self {
-            // Clears the sign bits, as f64::abs.
-            Avx(unsafe { _mm256_andnot_pd(_mm256_set1_pd(-0.0), self.0) })
-        }
-        #[inline(always)]
-        fn min_of_numbers(self, rhs: Self) -> Self {
-            Avx(unsafe { _mm256_min_pd(self.0, rhs.0) })
-        }
-        #[inline(always)]
-        fn max_of_numbers(self, rhs: Self) -> Self {
-            Avx(unsafe { _mm256_max_pd(self.0, rhs.0) })
-        }
-        #[inline(always)]
-        fn min(self, rhs: Self) -> Self {
-            // As `wide`: vminpd gives its second operand unless the first is less
-            // (so on NaN and on equal zeros); a NaN `rhs` keeps `self`.
-            unsafe {
-                let nan = _mm256_cmp_pd::<_CMP_UNORD_Q>(rhs.0, rhs.0);
-                Avx(_mm256_blendv_pd(_mm256_min_pd(self.0, rhs.0), self.0, nan))
-            }
-        }
-        #[inline(always)]
-        fn max(self, rhs: Self) -> Self {
-            unsafe {
-                let nan = _mm256_cmp_pd::<_CMP_UNORD_Q>(rhs.0, rhs.0);
-                Avx(_mm256_blendv_pd(_mm256_max_pd(self.0, rhs.0), self.0, nan))
-            }
-        }
-        #[inline(always)]
-        fn sqrt(self) -> Self {
-            Avx(unsafe { _mm256_sqrt_pd(self.0) })
-        }
-    }
-}
-
 /// Four triangles' corners: `[corner][axis]`, one triangle a lane.
 pub(crate) type Corners<L = f64x4> = [[L; 3]; 3];
 
@@ -623,39 +442,24 @@ fn chunk_sums<I: VertexIndex>(
     first: usize,
     r: Point,
 ) -> Result<VolumeSums, MeshError> {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx512vl") {
-        // SAFETY: the CPU has AVX-512VL.
-        return unsafe { chunk_sums_avx512(positions, triangles, first, r) };
-    }
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2.
-        return unsafe { chunk_sums_avx2(positions, triangles, first, r) };
-    }
-    chunk_sums_any::<I, f64x4>(positions, triangles, first, r)
+    dispatch(ChunkSums { positions, triangles, first, r })
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,avx512f,avx512vl")]
-fn chunk_sums_avx512<I: VertexIndex>(
-    positions: &[Point],
-    triangles: &[[I; 3]],
+/// [`chunk_sums_any`]'s arguments, for the lanes [`dispatch`] picks.
+#[derive(Clone, Copy)]
+struct ChunkSums<'a, I> {
+    positions: &'a [Point],
+    triangles: &'a [[I; 3]],
     first: usize,
     r: Point,
-) -> Result<VolumeSums, MeshError> {
-    chunk_sums_any::<I, Avx>(positions, triangles, first, r)
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn chunk_sums_avx2<I: VertexIndex>(
-    positions: &[Point],
-    triangles: &[[I; 3]],
-    first: usize,
-    r: Point,
-) -> Result<VolumeSums, MeshError> {
-    chunk_sums_any::<I, Avx>(positions, triangles, first, r)
+impl<I: VertexIndex> OnLanes for ChunkSums<'_, I> {
+    type Output = Result<VolumeSums, MeshError>;
+    #[inline(always)]
+    fn run<L: Lanes>(self) -> Self::Output {
+        chunk_sums_any::<I, L>(self.positions, self.triangles, self.first, self.r)
+    }
 }
 
 /// How far ahead of the four triangles being summed the corner loops ask for the
@@ -759,6 +563,7 @@ fn chunk_sums_any<I: VertexIndex, L: Lanes>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lanes::every_copy;
     use crate::test_rng::XorShift;
 
     /// The baseline lanes (`wide`, what a CPU without AVX2 runs) give the bits of the
@@ -785,20 +590,11 @@ mod tests {
                 assert_eq!(scattered(&triangles), ids > 200, "{n} triangles");
             }
             let r = positions[triangles[0][0] as usize];
-            let baseline = chunk_sums_any::<u32, f64x4>(&positions, &triangles, 0, r).unwrap();
-            let mut copies = vec![chunk_sums(&positions, &triangles, 0, r).unwrap()];
-            #[cfg(target_arch = "x86_64")]
-            {
-                if std::arch::is_x86_feature_detected!("avx2") {
-                    // SAFETY: the CPU has AVX2.
-                    copies.push(unsafe { chunk_sums_avx2(&positions, &triangles, 0, r) }.unwrap());
-                }
-                if std::arch::is_x86_feature_detected!("avx512vl") {
-                    // SAFETY: the CPU has AVX-512VL.
-                    let avx512 = unsafe { chunk_sums_avx512(&positions, &triangles, 0, r) };
-                    copies.push(avx512.unwrap());
-                }
-            }
+            let sums = ChunkSums { positions: &positions, triangles: &triangles, first: 0, r };
+            let mut copies = every_copy(sums);
+            let baseline = copies.remove(0).unwrap();
+            copies.push(chunk_sums(&positions, &triangles, 0, r));
+            let copies: Vec<VolumeSums> = copies.into_iter().map(Result::unwrap).collect();
             for copy in copies {
                 assert_eq!(format!("{baseline:?}"), format!("{copy:?}"), "{n} triangles");
             }
