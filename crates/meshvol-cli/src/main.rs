@@ -78,7 +78,8 @@ enum Command {
     #[command(after_help = EXAMPLES_HULL)]
     Hull(hull::HullArgs),
     /// The volume of the solid in each cell of a regular grid (exact, not voxels): .npy,
-    /// .vti or .csv, a summary, and a PNG of a slice.
+    /// .npz, .vti, .csv or .zarr (with --moments, the cut cells), a summary, and a PNG of
+    /// a slice.
     #[command(after_help = EXAMPLES_GRID)]
     Grid(grid::GridArgs),
     /// Volume below each level along an axis, slab volumes and section areas (a
@@ -304,7 +305,16 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     }
-    let cli = Cli::parse_from(with_default_command(args));
+    let cli = match Cli::try_parse_from(with_default_command(args)) {
+        Ok(cli) => cli,
+        // Usage errors with the prefix of every other error of the command (clap's own
+        // is `error:`), exit status 2.
+        Err(e) if e.use_stderr() => {
+            eprint!("meshvol: {}", e.render());
+            return ExitCode::from(2);
+        }
+        Err(e) => e.exit(),
+    };
     // A server runs for long: memory a check frees goes back to the system.
     if !matches!(cli.command, Command::Serve(_)) {
         keep_freed_memory();
