@@ -356,6 +356,10 @@ class Union:
 
     lower: float
     upper: float
+    certified: bool
+    """Whether [lower, upper] is proven to hold the union (see uncertified_reason)."""
+    uncertified_reason: Optional[str]
+    """Why the interval is not certified; None when it is."""
     volume: float
     bodies: int
     sum_of_volumes: float
@@ -383,6 +387,10 @@ class Intersection:
 
     lower: float
     upper: float
+    certified: bool
+    """Whether [lower, upper] is proven to hold |A∩B| (see uncertified_reason)."""
+    uncertified_reason: Optional[str]
+    """Why the interval is not certified; None when it is."""
     volume: float
     """The midpoint of [lower, upper], which holds |A∩B|."""
     volume_a: float
