@@ -93,6 +93,16 @@ fn objects_inside_objects_are_summed_with_a_warning_and_unioned() {
         let warnings = v["warnings"].to_string();
         assert!(warnings.contains("'packaging' and 'part': one lies inside the other"), "{v}");
         assert!(warnings.contains("meshvol union"), "{v}");
+        let pair = serde_json::json!([{"objects": ["packaging", "part"], "nested": true}]);
+        assert_eq!(v["overlapping_objects"], pair);
+        // `check` says the file does not bound one volume: exit 1.
+        let out = meshvol(&["check", "--json", p(scene)]);
+        assert_eq!(out.status.code(), Some(1));
+        let c: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(
+            (&c["overlapping_objects"], &c["bounds_a_volume"]),
+            (&pair, &Value::Bool(false))
+        );
         let u = json(&meshvol(&["union", "--json", p(scene)]));
         assert_eq!(u["bodies"], 2);
         let names =
@@ -107,6 +117,7 @@ fn objects_inside_objects_are_summed_with_a_warning_and_unioned() {
     let v = json(&meshvol(&["volume", "--json", p(&single)]));
     assert_eq!((f(&v["volume"]), &v["cavities"]), (outer - inner, &Value::from(1)));
     assert!(!v["warnings"].to_string().contains("share volume"), "{v}");
+    assert_eq!(v["overlapping_objects"], serde_json::json!([]));
     let u = json(&meshvol(&["union", "--json", p(&single)]));
     assert!(f(&u["lower"]) <= outer - inner && outer - inner <= f(&u["upper"]), "{u}");
     assert_eq!(u["certified"], true);

@@ -68,6 +68,15 @@ impl Source {
         self.bodies.iter().map(|b| b.faces.clone()).collect()
     }
 
+    /// The name of body `b` (of [`Source::bodies`], as the check numbers them): the
+    /// file's name for it, else `object N`.
+    pub fn body_name(&self, b: usize) -> String {
+        match self.bodies.get(b) {
+            Some(o) if !o.name.is_empty() => o.name.clone(),
+            _ => format!("object {b}"),
+        }
+    }
+
     /// The name messages use: the file, or `mesh` for arrays.
     pub fn name(&self) -> &str {
         self.file.as_deref().unwrap_or("mesh")
@@ -111,11 +120,7 @@ impl<'a, S: Surface> Subject<'a, S> {
     pub fn warnings(&self) -> Vec<String> {
         let mut warnings = self.source.warnings.clone();
         if let Some(check) = self.check {
-            let bodies = &self.source.bodies;
-            let object = |b: usize| match bodies.get(b) {
-                Some(o) if !o.name.is_empty() => format!("'{}'", o.name),
-                _ => format!("object {b}"),
-            };
+            let object = |b: usize| format!("'{}'", self.source.body_name(b));
             warnings.extend(check.doubts_naming(&object));
         }
         warnings

@@ -185,7 +185,7 @@ pub fn volume<S: Surface>(
         ));
     }
     let check = subject.check.map(|c| {
-        let mut facts = CheckFacts::of(c);
+        let mut facts = CheckFacts::of(c, subject.source);
         facts.scale_volumes(scale.volume(1.0));
         facts
     });

@@ -221,6 +221,8 @@ class _CheckFacts:
     winding: Optional[str]
     shells: int
     cavities: int
+    overlapping_objects: list[dict[str, Any]]
+    """Objects (of a 3MF or glTF) that share volume: {'objects': [name, name], 'nested': bool}."""
     self_intersections: Optional[int]
     euler_characteristic: int
     solid_volume: float
