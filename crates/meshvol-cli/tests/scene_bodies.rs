@@ -113,6 +113,10 @@ fn objects_inside_objects_are_summed_with_a_warning_and_unioned() {
         let text = String::from_utf8(meshvol(&["union", p(scene)]).stdout).unwrap();
         assert!(text.contains("  certified        ["), "{text}");
     }
+    // Written as one mesh, the objects become one body again: `repair` says so.
+    let out = dir.path().join("repaired.stl");
+    let r = json(&meshvol(&["repair", "--json", p(&items), "-o", p(&out)]));
+    assert!(r["warnings"].to_string().contains("written as one object"), "{r}");
     // One object: the inner shell is a cavity, as slicers read it.
     let v = json(&meshvol(&["volume", "--json", p(&single)]));
     assert_eq!((f(&v["volume"]), &v["cavities"]), (outer - inner, &Value::from(1)));
