@@ -35,8 +35,8 @@ pub(super) fn of_shells(bodies: &[Range<usize>], shells: &Shells, kept: &[bool])
     if bodies.is_empty() {
         return vec![0; shells.count];
     }
-    // Shells are numbered by their first face, and a fold visits a shell's faces in
-    // order: the first one seen is the smallest.
+    // The fold visits a shell's faces in order (chunks merged in order): the first one
+    // kept is the smallest.
     let first = shells.fold_faces(
         kept,
         |first: &mut Option<usize>, f| {
