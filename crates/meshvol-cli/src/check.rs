@@ -64,6 +64,7 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
         let c = meshvol::topology::check_assembled(
             &loaded.surface,
             loaded.assembly.as_ref(),
+            &loaded.body_faces(),
             &options,
             &progress.kernel(format!("checking {}", path.display())),
         )

@@ -77,6 +77,7 @@ pub fn read(
             let check = topology::check_assembled(
                 &loaded.surface,
                 loaded.assembly.as_ref(),
+                &loaded.body_faces(),
                 &options,
                 &progress.kernel(format!("checking {}", path.display())),
             )

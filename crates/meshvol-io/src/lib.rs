@@ -26,6 +26,13 @@
 //! format without objects (binary STL, OFF, PLY). Measure one object with
 //! [`meshvol::surface::FaceRange`].
 //!
+//! Where the format makes its objects separate parts (3MF objects, components and build
+//! items: each placed mesh; glTF mesh instances), they are also [`Loaded::bodies`]: the
+//! check nests shells within a body only, so a part inside its packaging is two solids,
+//! not a part with a cavity. An ASCII STL's solids and an OBJ's groups are not bodies:
+//! slicers read such a file as one model, and a group is often a piece of one surface
+//! (a material, a smoothing group), so a shell inside another is a cavity there.
+//!
 //! # Units
 //!
 //! A file that declares its length unit sets [`Loaded::unit`]: a 3MF model's `unit`
@@ -287,6 +294,9 @@ pub struct Loaded {
     pub surface: LoadedSurface,
     /// The file's objects when it holds two or more (see the crate docs); else empty.
     pub objects: Vec<Object>,
+    /// The file's separate bodies when the format makes its objects separate parts (3MF,
+    /// glTF; see the crate docs) and it holds two or more; else empty (one body).
+    pub bodies: Vec<Object>,
     /// The length unit the file declares, if its format declares one.
     pub unit: Option<LengthUnit>,
     pub warnings: Vec<String>,
@@ -310,6 +320,11 @@ impl Loaded {
     /// The number of triangles in the faces' fans (a face of k vertices counts k − 2).
     pub fn triangle_count(&self) -> usize {
         self.surface.triangle_count()
+    }
+
+    /// The faces of each of [`Loaded::bodies`], as the check takes them.
+    pub fn body_faces(&self) -> Vec<std::ops::Range<usize>> {
+        self.bodies.iter().map(|b| b.faces.clone()).collect()
     }
 }
 
@@ -469,6 +484,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
         }
     };
     let mut objects = Vec::new();
+    let mut bodies = Vec::new();
     let mut unit = None;
     let mut assembly = None;
     let (format, surface) = match family {
@@ -507,6 +523,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
         Family::ThreeMf => {
             let model = threemf::read(&bytes, &mut warnings).map_err(with_path)?;
             objects = model.objects;
+            bodies = model.bodies;
             unit = Some(model.unit);
             assembly = model.assembly;
             (Format::ThreeMf, LoadedSurface::Mesh(model.mesh))
@@ -514,6 +531,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
         Family::Gltf => {
             let scene = gltf::read(path, &bytes, &mut warnings).map_err(with_path)?;
             objects = scene.objects;
+            bodies = scene.bodies;
             unit = Some(LengthUnit::Metre);
             assembly = scene.assembly;
             let format = if scene.binary { Format::Glb } else { Format::Gltf };
@@ -525,6 +543,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
         format_source,
         surface,
         objects: objects_if_several(objects),
+        bodies: objects_if_several(bodies),
         unit,
         warnings,
         assembly,

@@ -24,8 +24,10 @@
 //! `[x y z 1]` times the matrix). A mirroring transform (negative determinant) reverses
 //! the winding, so outward faces stay outward. Each build item is an
 //! [`Object`], named after its object's `name`, else the item's
-//! `partnumber`, else `object ID`. Items whose object is of type `support`, `surface` or
-//! `other` hold no solid: skipped with a warning.
+//! `partnumber`, else `object ID`. Each placed mesh (an item's object, or each mesh its
+//! components reach) is a body ([`crate::Loaded::bodies`]): the 3MF specification makes
+//! objects and components separate parts. Items whose object is of type `support`,
+//! `surface` or `other` hold no solid: skipped with a warning.
 //!
 //! The model's `unit` (`micron`, `millimeter` — the default —, `centimeter`, `inch`,
 //! `foot`, `meter`) becomes [`crate::Loaded::unit`]. Elements of other namespaces
@@ -64,6 +66,8 @@ const MAX_PLACEMENTS: u64 = 10_000_000;
 pub(crate) struct Model {
     pub mesh: Mesh,
     pub objects: Vec<Object>,
+    /// Each placed mesh object (a build item's, or one of its components'): a body.
+    pub bodies: Vec<Object>,
     pub unit: LengthUnit,
     /// Which object each placed copy is, when an object is placed more than once.
     pub assembly: Option<Assembly>,
@@ -573,13 +577,27 @@ fn build(
         .map_err(|m| ParseError::new(None, m))?;
     for item in measured {
         let first = placed.triangle_count();
+        let object = &parsed.objects[&item.object];
+        let name = object
+            .name
+            .clone()
+            .or_else(|| item.part_number.clone())
+            .unwrap_or_else(|| format!("object {}", item.object));
         let mut stack = vec![(item.object, item.transform)];
         while let Some((id, placement)) = stack.pop() {
             // Defined: `size` checked every reachable object.
             let Some(object) = parsed.objects.get(&id) else { continue };
             match &object.content {
                 Content::Mesh { positions, triangles } => {
-                    placed.add((id, 0), positions, triangles, &placement)
+                    let body_first = placed.triangle_count();
+                    placed.add((id, 0), positions, triangles, &placement);
+                    // A component is a body of its own, named after its object.
+                    let body = match &object.name {
+                        _ if id == item.object => name.clone(),
+                        Some(own) => own.clone(),
+                        None => format!("object {id}"),
+                    };
+                    placed.close_body(body, body_first);
                 }
                 Content::Components(list) => {
                     for c in list.iter().rev() {
@@ -588,15 +606,9 @@ fn build(
                 }
             }
         }
-        let object = &parsed.objects[&item.object];
-        let name = object
-            .name
-            .clone()
-            .or_else(|| item.part_number.clone())
-            .unwrap_or_else(|| format!("object {}", item.object));
         placed.close_object(name, first);
     }
-    let (mesh, objects, assembly) =
-        placed.finish().map_err(|e| ParseError::new(None, e.to_string()))?;
-    Ok(Model { mesh, objects, unit: parsed.unit, assembly })
+    let g = placed.finish().map_err(|e| ParseError::new(None, e.to_string()))?;
+    let (mesh, objects, bodies, assembly) = (g.mesh, g.objects, g.bodies, g.assembly);
+    Ok(Model { mesh, objects, bodies, unit: parsed.unit, assembly })
 }

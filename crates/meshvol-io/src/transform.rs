@@ -9,12 +9,13 @@ use rayon::prelude::*;
 
 use crate::Object;
 
-/// Triangle meshes placed by transforms, gathered into one mesh, with one [`Object`] per
-/// placed part.
+/// Triangle meshes placed by transforms, gathered into one mesh, with the objects and the
+/// bodies the reader names (see [`crate::Loaded::bodies`]).
 pub(crate) struct Placed {
     positions: Vec<Point>,
     triangles: Vec<[u32; 3]>,
     objects: Vec<Object>,
+    bodies: Vec<Object>,
     /// The parts and copies, when the reader asked for them.
     assembly: Option<Assembly>,
     /// The reader's name of each part recorded in `assembly`, and its index there.
@@ -47,6 +48,7 @@ impl Placed {
             positions: Vec::new(),
             triangles: Vec::new(),
             objects: Vec::new(),
+            bodies: Vec::new(),
             assembly: None,
             part_index: HashMap::new(),
         };
@@ -158,10 +160,26 @@ impl Placed {
         }
     }
 
-    /// The mesh, its objects, and its assembly when one was asked for and a part is
-    /// placed more than once.
-    pub fn finish(self) -> Result<(Mesh, Vec<Object>, Option<Assembly>), meshvol::MeshError> {
-        let assembly = self.assembly.filter(Assembly::repeats_parts);
-        Ok((Mesh::from_triangles(self.positions, self.triangles)?, self.objects, assembly))
+    /// Names the triangles added since `first` as one body (nothing when there are none).
+    pub fn close_body(&mut self, name: String, first: usize) {
+        if self.triangles.len() > first {
+            self.bodies.push(Object { name, faces: first..self.triangles.len() });
+        }
     }
+
+    /// The mesh, its objects and bodies, and its assembly when one was asked for and a
+    /// part is placed more than once.
+    pub fn finish(self) -> Result<Gathered, meshvol::MeshError> {
+        let assembly = self.assembly.filter(Assembly::repeats_parts);
+        let mesh = Mesh::from_triangles(self.positions, self.triangles)?;
+        Ok(Gathered { mesh, objects: self.objects, bodies: self.bodies, assembly })
+    }
+}
+
+/// What [`Placed`] gathered.
+pub(crate) struct Gathered {
+    pub mesh: Mesh,
+    pub objects: Vec<Object>,
+    pub bodies: Vec<Object>,
+    pub assembly: Option<Assembly>,
 }

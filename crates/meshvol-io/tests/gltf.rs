@@ -351,7 +351,7 @@ fn a_mesh_placed_by_many_nodes_is_decoded_once() {
     use meshvol::topology::{check, check_assembled, CheckOptions};
     let options = CheckOptions::default();
     let whole = check(&loaded.surface, &options).unwrap();
-    let parts = check_assembled(&loaded.surface, Some(assembly), &options, &|_| {}).unwrap();
+    let parts = check_assembled(&loaded.surface, Some(assembly), &[], &options, &|_| {}).unwrap();
     let facts = |c: &meshvol::topology::Check| {
         (c.shells.len(), c.vertices, c.edges, c.closed, c.orientation, c.volume)
     };

@@ -29,6 +29,7 @@ fn measure_one(path: &Path, check: bool, options: &VolumeOptions) -> String {
             let c = topology::check_assembled(
                 &loaded.surface,
                 loaded.assembly.as_ref(),
+                &loaded.body_faces(),
                 &CheckOptions::default(),
                 &(),
             )

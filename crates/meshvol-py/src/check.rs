@@ -94,7 +94,8 @@ pub fn check(
         .py()
         .detach(|| match &clock {
             Some(clock) => {
-                meshvol::topology::check_assembled(&m.mesh, m.assembly.as_deref(), &options, clock)
+                let (assembly, bodies) = (m.assembly.as_deref(), m.source.body_faces());
+                meshvol::topology::check_assembled(&m.mesh, assembly, &bodies, &options, clock)
             }
             None => m.check_with(&options),
         })

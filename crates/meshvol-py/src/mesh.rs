@@ -87,7 +87,8 @@ impl PyMesh {
 
     /// The check of this mesh with `options` (from its parts when it is an assembly).
     pub(crate) fn check_with(&self, options: &CheckOptions) -> Result<Check, CheckError> {
-        topology::check_assembled(&self.mesh, self.assembly.as_deref(), options, &())
+        let bodies = self.source.body_faces();
+        topology::check_assembled(&self.mesh, self.assembly.as_deref(), &bodies, options, &())
     }
 
     /// What a measurement is taken of: with `check`, the solid the surface bounds (as
@@ -106,9 +107,11 @@ impl PyMesh {
     ) -> PyResult<Check> {
         clock.start("checking");
         let options = CheckOptions::default();
+        let bodies = self.source.body_faces();
         let owned = py
             .detach(|| {
-                topology::check_assembled(&self.mesh, self.assembly.as_deref(), &options, clock)
+                let assembly = self.assembly.as_deref();
+                topology::check_assembled(&self.mesh, assembly, &bodies, &options, clock)
             })
             .map_err(crate::errors::mesh_error)?;
         if self.checked.get().is_none() {

@@ -17,7 +17,8 @@ CHECK_KEYS = [
     "non_manifold_vertices",
     "degenerate_faces", "flat_faces", "duplicate_faces", "double_wall_faces",
     "consistently_oriented", "orientation", "winding",
-    "shells", "cavities", "shell_details", "overlapping_shells", "self_intersections",
+    "shells", "cavities", "shell_details", "overlapping_shells", "overlapping_objects",
+    "self_intersections",
     "intersection_examples", "euler_characteristic", "solid_volume", "volume_uncertainty",
     "units",
 ]

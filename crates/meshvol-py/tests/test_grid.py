@@ -79,6 +79,7 @@ def test_union_of_two_overlapping_boxes():
     assert u.lower <= 15.0 <= u.upper and u.upper - u.lower < 1e-8
     assert u.volume == pytest.approx(15.0, rel=1e-12)
     assert (u.bodies, u.sum_of_volumes, u.flipped) == (2, 16.0, [])
+    assert u.certified and u.uncertified_reason is None
 
 
 def test_union_of_the_shells_of_one_mesh():
@@ -97,6 +98,8 @@ def test_union_of_the_shells_of_one_mesh():
         u = meshvol.union(meshvol.Mesh(v, f), check=False)
     assert u.lower <= 16.0 - overlap <= u.upper
     assert u.bodies == 2 and u.flipped == [1]
+    # Unchecked, the bodies are not known to be closed solids: not certified, and why.
+    assert not u.certified and "unchecked" in u.uncertified_reason
     assert len(u.warnings) == 1 and "measured as a solid turned outward" in u.warnings[0]
 
 

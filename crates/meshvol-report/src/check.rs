@@ -41,6 +41,15 @@ impl From<&Shell> for ShellReport {
     }
 }
 
+/// Two of a file's objects (its bodies: 3MF, glTF) that share volume.
+#[derive(Clone, Debug, Serialize)]
+pub struct ObjectOverlap {
+    /// Their names, as the file gives them (`object N` for an unnamed one).
+    pub objects: [String; 2],
+    /// One lies inside the other's material, their surfaces apart; else they cross.
+    pub nested: bool,
+}
+
 /// The topology facts. Field names are JSON keys; `volume` flattens them into its
 /// report.
 #[derive(Clone, Debug, Serialize)]
@@ -73,6 +82,8 @@ pub struct CheckFacts {
     pub cavities: usize,
     pub shell_details: Vec<ShellReport>,
     pub overlapping_shells: Vec<[usize; 2]>,
+    /// Objects that share volume: the volume counts it twice (`meshvol union` once).
+    pub overlapping_objects: Vec<ObjectOverlap>,
     pub self_intersections: Option<usize>,
     pub intersection_examples: Vec<[usize; 2]>,
     pub euler_characteristic: i64,
@@ -82,7 +93,9 @@ pub struct CheckFacts {
 }
 
 impl CheckFacts {
-    pub fn of(c: &Check) -> CheckFacts {
+    /// The facts of `c`, a check of the surface `source` describes (which names its
+    /// objects).
+    pub fn of(c: &Check, source: &Source) -> CheckFacts {
         CheckFacts {
             bounds_a_volume: c.bounds_a_volume(),
             verdict: c.verdict(),
@@ -106,6 +119,14 @@ impl CheckFacts {
             cavities: c.cavities,
             shell_details: c.shells.iter().map(ShellReport::from).collect(),
             overlapping_shells: c.overlapping_shells.clone(),
+            overlapping_objects: c
+                .overlapping_bodies
+                .iter()
+                .map(|o| ObjectOverlap {
+                    objects: o.bodies.map(|b| source.body_name(b)),
+                    nested: o.nested,
+                })
+                .collect(),
             self_intersections: c.self_intersections,
             intersection_examples: c.intersection_examples.clone(),
             euler_characteristic: c.euler_characteristic,
@@ -146,7 +167,7 @@ pub fn check(source: &Source, c: &Check) -> CheckReport {
     CheckReport {
         file: source.file.clone(),
         format: source.format,
-        facts: CheckFacts::of(c),
+        facts: CheckFacts::of(c, source),
         units: None,
         mass: None,
         warnings: source.warnings.clone(),
@@ -230,6 +251,16 @@ impl Report for CheckReport {
             let more = r.overlapping_shells.len() - shown.len();
             let more = if more > 0 { format!(" and {more} more") } else { String::new() };
             let _ = writeln!(s, "  overlapping shells {shown:?}{more}");
+        }
+        if !r.overlapping_objects.is_empty() {
+            let shown = r.overlapping_objects.iter().take(LISTED).map(|o| {
+                let how = if o.nested { "one inside the other" } else { "crossing" };
+                format!("'{}' and '{}' ({how})", o.objects[0], o.objects[1])
+            });
+            let shown: Vec<String> = shown.collect();
+            let more = r.overlapping_objects.len() - shown.len();
+            let more = if more > 0 { format!(" and {more} more") } else { String::new() };
+            let _ = writeln!(s, "  objects sharing volume {}{more}", shown.join(", "));
         }
         match r.self_intersections {
             Some(n) => {

@@ -4,7 +4,7 @@
 
 use crate::number::{count, num};
 use crate::subject::{joined_names, Subject};
-use crate::union::{interval_text, Interval};
+use crate::union::{interval_text, uncertified, Interval};
 use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
 use meshvol::assembly::Affine;
@@ -26,6 +26,11 @@ pub struct IntersectReport {
     /// `lower ≤ |A∩B| ≤ upper`; `volume` is the midpoint.
     pub lower: f64,
     pub upper: f64,
+    /// Whether [lower, upper] is proven to hold |A∩B| of the measured solids (the
+    /// union's rule, each input one body).
+    pub certified: bool,
+    /// Why it is not, when it is not (null when certified).
+    pub uncertified_reason: Option<String>,
     pub volume: f64,
     /// |A| and |B|: the volumes of the two checked solids.
     pub volume_a: f64,
@@ -188,6 +193,7 @@ pub fn prepare<S: Surface + Sync>(s: &Subject<'_, S>) -> Option<Body> {
     let check = s.check?;
     let simple = check.self_intersections == Some(0)
         && check.overlapping_shells.is_empty()
+        && check.overlapping_bodies.is_empty()
         && check.non_manifold_edges == 0
         && check.double_wall_faces == 0;
     // The check's solid (as `whole()` measures it), from the check's own weld.
@@ -227,6 +233,9 @@ pub fn intersect_prepared<S: Surface + Sync>(
     }
     i.error_a += ua;
     i.error_b += ub;
+    // Boxes apart give 0 whatever the bodies are.
+    let certification =
+        if i.disjoint { None } else { uncertified(&subjects, true, i.bodies_not_solid.len()) };
     warnings.extend(
         Interval {
             names: &names,
@@ -246,6 +255,8 @@ pub fn intersect_prepared<S: Surface + Sync>(
         files: names,
         lower: i.lower,
         upper: i.upper,
+        certified: certification.is_none(),
+        uncertified_reason: certification,
         volume: i.volume(),
         volume_a: i.volume_a,
         volume_b: i.volume_b,
@@ -312,7 +323,8 @@ impl Report for IntersectReport {
         let mut s = String::new();
         let [nx, ny, nz] = self.grid;
         let _ = writeln!(s, "intersection of {} and {}", self.files[0], self.files[1]);
-        interval_text(&mut s, self.volume, (self.lower, self.upper), self.volume_uncertainty);
+        let (bounds, why) = ((self.lower, self.upper), self.uncertified_reason.as_deref());
+        interval_text(&mut s, self.volume, bounds, why, self.volume_uncertainty);
         if let Some(c) = self.centroid {
             let c: Vec<String> = c.iter().map(|&x| num(x, 10)).collect();
             let _ = writeln!(s, "  centroid         ({})", c.join(", "));

@@ -57,6 +57,14 @@ pub fn repair<S: Surface>(
             count(holes_left, "hole is", "holes are")
         ));
     }
+    if !check.overlapping_bodies.is_empty() {
+        // The file's objects were separate bodies; the mesh written is one object.
+        warnings.push(format!(
+            "{} of objects share volume, and the mesh is written as one object: read \
+             back, a shell inside another is a cavity, not the sum `volume` reports",
+            count(check.overlapping_bodies.len(), "pair", "pairs")
+        ));
+    }
     warnings.extend(written.warning());
     RepairReport {
         file: source.file.clone(),

@@ -36,6 +36,9 @@ pub struct Source {
     pub unit: Option<LengthUnit>,
     /// The file's objects when it has two or more.
     pub objects: Vec<Object>,
+    /// The file's separate bodies (3MF, glTF objects) when it has two or more: the check
+    /// nests shells within each only.
+    pub bodies: Vec<Object>,
     /// What the reader read but did not use, or had to guess.
     pub warnings: Vec<String>,
 }
@@ -50,6 +53,7 @@ impl Source {
             vertices: loaded.vertex_count(),
             unit: loaded.unit,
             objects: loaded.objects.clone(),
+            bodies: loaded.bodies.clone(),
             warnings: loaded.warnings.clone(),
         }
     }
@@ -57,6 +61,20 @@ impl Source {
     /// A surface built from arrays of `vertices` points.
     pub fn arrays(vertices: usize) -> Source {
         Source { vertices, ..Source::default() }
+    }
+
+    /// The faces of each of [`Source::bodies`], as the check takes them.
+    pub fn body_faces(&self) -> Vec<std::ops::Range<usize>> {
+        self.bodies.iter().map(|b| b.faces.clone()).collect()
+    }
+
+    /// The name of body `b` (of [`Source::bodies`], as the check numbers them): the
+    /// file's name for it, else `object N`.
+    pub fn body_name(&self, b: usize) -> String {
+        match self.bodies.get(b) {
+            Some(o) if !o.name.is_empty() => o.name.clone(),
+            _ => format!("object {b}"),
+        }
     }
 
     /// The name messages use: the file, or `mesh` for arrays.
@@ -83,7 +101,8 @@ impl<S> Copy for Subject<'_, S> {}
 /// One body of a union: a whole input, or one outermost shell of a single input with
 /// what is nested in it.
 pub struct Body<'a, S: Surface> {
-    /// `FILE` or `FILE, shell N` (shells numbered as `check` numbers them).
+    /// `FILE`, `FILE, shell N` (shells numbered as `check` numbers them), or `FILE,
+    /// OBJECT (shell N)` for an object of a file whose objects are bodies.
     pub name: String,
     pub surface: FaceSubset<Measured<'a, S>>,
 }
@@ -101,7 +120,8 @@ impl<'a, S: Surface> Subject<'a, S> {
     pub fn warnings(&self) -> Vec<String> {
         let mut warnings = self.source.warnings.clone();
         if let Some(check) = self.check {
-            warnings.extend(check.doubts());
+            let object = |b: usize| format!("'{}'", self.source.body_name(b));
+            warnings.extend(check.doubts_naming(&object));
         }
         warnings
     }
@@ -111,20 +131,30 @@ impl<'a, S: Surface> Subject<'a, S> {
         self.check.map_or(0.0, |c| c.volume_uncertainty)
     }
 
-    /// The input's bodies: the checked solid's outermost shells, each with its cavities;
-    /// unchecked, the surface's connected parts.
+    /// The input's bodies: the checked solid's outermost shells of each object, each
+    /// with its cavities; unchecked, the surface's connected parts.
     pub fn bodies(&self) -> Vec<Body<'a, S>> {
         let surface = self.measured();
-        let parts: Vec<(usize, Vec<usize>)> = match self.check {
-            Some(check) => check.bodies().into_iter().map(|b| (b.shell, b.faces)).collect(),
-            None => connected_parts(self.surface).into_iter().enumerate().collect(),
+        let file = self.source.name();
+        let named = |shell: usize, object: Option<usize>| match object
+            .and_then(|o| self.source.bodies.get(o))
+        {
+            Some(o) => format!("{file}, {} (shell {shell})", o.name),
+            None => format!("{file}, shell {shell}"),
+        };
+        let parts: Vec<(String, Vec<usize>)> = match self.check {
+            Some(check) => {
+                check.bodies().into_iter().map(|b| (named(b.shell, b.object), b.faces)).collect()
+            }
+            None => connected_parts(self.surface)
+                .into_iter()
+                .enumerate()
+                .map(|(shell, faces)| (named(shell, None), faces))
+                .collect(),
         };
         parts
             .into_iter()
-            .map(|(shell, faces)| Body {
-                name: format!("{}, shell {shell}", self.source.name()),
-                surface: FaceSubset::new(surface, faces),
-            })
+            .map(|(name, faces)| Body { name, surface: FaceSubset::new(surface, faces) })
             .collect()
     }
 

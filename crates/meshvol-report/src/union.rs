@@ -20,10 +20,16 @@ pub struct UnionReport {
     pub files: Vec<String>,
     pub lower: f64,
     pub upper: f64,
+    /// Whether [lower, upper] is proven to hold the union of the measured solids (see
+    /// [`uncertified`]: the rule).
+    pub certified: bool,
+    /// Why it is not, when it is not (null when certified).
+    pub uncertified_reason: Option<String>,
     /// The midpoint of [lower, upper].
     pub volume: f64,
     pub bodies: usize,
-    /// Each body's name: `FILE`, or `FILE, shell N` for the bodies of a single input.
+    /// Each body's name: `FILE`, or `FILE, shell N` for the bodies of a single input
+    /// (`FILE, OBJECT (shell N)` where its objects are bodies).
     pub body_names: Vec<String>,
     /// Σ of the bodies' volumes (overlaps counted more than once).
     pub sum_of_volumes: f64,
@@ -79,6 +85,10 @@ pub fn union_with<S: Surface + Sync>(
     let uncertainty: f64 = subjects.iter().map(Subject::volume_uncertainty).sum();
     u.lower = (u.lower - uncertainty).max(0.0);
     u.upper += uncertainty;
+    // A single input's bodies are its outermost shells and objects, each apart; several
+    // inputs are each one body, whole.
+    let whole = subjects.len() > 1;
+    let certification = uncertified(subjects, whole, u.bodies_not_solid.len());
     warnings.extend(
         Interval {
             names: &names,
@@ -97,6 +107,8 @@ pub fn union_with<S: Surface + Sync>(
         files: subjects.iter().map(|s| s.source.name().to_string()).collect(),
         lower: u.lower,
         upper: u.upper,
+        certified: certification.is_none(),
+        uncertified_reason: certification,
         volume: u.volume(),
         bodies: u.bodies,
         body_names: names,
@@ -112,6 +124,56 @@ pub fn union_with<S: Surface + Sync>(
         mass: None,
         warnings,
     })
+}
+
+/// Why the interval of the union's machinery (`union`, `intersect`) over `subjects` is
+/// not certified, `None` when it is. The kernel proves its bounds for closed solids that
+/// do not cross themselves, so it is certified when every body was checked, no body's
+/// cell volumes left their bounds (`not_solid` bodies did), no surface crosses itself, a
+/// body taken whole (`whole`: each input one body) holds no shells or objects that
+/// overlap (its solid would count their common volume twice), and no hole was capped by
+/// a guess (a ragged cap's uncertainty is an estimate, not a bound; a flat hole's cap is
+/// exact).
+pub(crate) fn uncertified<S: Surface>(
+    subjects: &[Subject<'_, S>],
+    whole: bool,
+    not_solid: usize,
+) -> Option<String> {
+    let named = |s: &Subject<'_, S>, why: String| match subjects {
+        [_] => why,
+        _ => format!("{}: {why}", s.source.name()),
+    };
+    if let Some(s) = subjects.iter().find(|s| s.check.is_none()) {
+        return Some(named(s, "measured unchecked, so not known to be closed solids".into()));
+    }
+    if not_solid > 0 {
+        return Some(format!(
+            "{} not a closed solid (volume outside a cell's bounds)",
+            count(not_solid, "body is", "bodies are")
+        ));
+    }
+    for s in subjects {
+        let Some(c) = s.check else { continue };
+        if let Some(n) = c.self_intersections.filter(|&n| n > 0) {
+            let pairs = count(n, "self-intersecting face pair", "self-intersecting face pairs");
+            return Some(named(s, format!("the surface crosses itself ({pairs})")));
+        }
+        if whole && !(c.overlapping_shells.is_empty() && c.overlapping_bodies.is_empty()) {
+            return Some(named(
+                s,
+                "its shells or objects overlap, so as one body it counts their common \
+                     volume twice"
+                    .into(),
+            ));
+        }
+        if c.volume_uncertainty > 0.0 {
+            return Some(named(
+                s,
+                "holes capped by a guess (their uncertainty is an estimate)".into(),
+            ));
+        }
+    }
+    None
 }
 
 /// What a certified interval from the union's machinery (`union`, `intersect`) says
@@ -170,17 +232,24 @@ impl Interval<'_> {
     }
 }
 
-/// The text lines of a certified interval: its midpoint, its bounds and width, and the
-/// caps' share of it.
-pub(crate) fn interval_text(s: &mut String, volume: f64, (lower, upper): (f64, f64), caps: f64) {
+/// The text lines of an interval: its midpoint, its bounds and width, `certified` only
+/// when it is (else the reason it is not, `uncertified`), and the caps' share of it.
+pub(crate) fn interval_text(
+    s: &mut String,
+    volume: f64,
+    (lower, upper): (f64, f64),
+    uncertified: Option<&str>,
+    caps: f64,
+) {
     let _ = writeln!(s, "  volume           {}  (midpoint)", num(volume, 15));
-    let _ = writeln!(
-        s,
-        "  certified        [{}, {}]  (width {})",
-        num(lower, 17),
-        num(upper, 17),
-        num(upper - lower, 3)
-    );
+    let bounds = format!("[{}, {}]", num(lower, 17), num(upper, 17));
+    let width = num(upper - lower, 3);
+    let _ = match uncertified {
+        None => writeln!(s, "  certified        {bounds}  (width {width})"),
+        Some(why) => {
+            writeln!(s, "  interval         {bounds}  (width {width}; not certified: {why})")
+        }
+    };
     if caps > 0.0 {
         let _ = writeln!(s, "  caps on holes    ± {} (in the interval)", num(caps, 4));
     }
@@ -204,7 +273,8 @@ impl Report for UnionReport {
             count(self.bodies, "body", "bodies"),
             self.body_names.join("; ")
         );
-        interval_text(&mut s, self.volume, (self.lower, self.upper), self.volume_uncertainty);
+        let (bounds, why) = ((self.lower, self.upper), self.uncertified_reason.as_deref());
+        interval_text(&mut s, self.volume, bounds, why, self.volume_uncertainty);
         let _ = writeln!(s, "  sum of volumes   {}", num(self.sum_of_volumes, 15));
         let _ = writeln!(
             s,

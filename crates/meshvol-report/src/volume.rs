@@ -195,7 +195,7 @@ pub fn volume<S: Surface>(
         ));
     }
     let check = subject.check.map(|c| {
-        let mut facts = CheckFacts::of(c);
+        let mut facts = CheckFacts::of(c, subject.source);
         facts.convert(&Converter::new(&scale));
         facts
     });

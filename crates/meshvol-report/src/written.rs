@@ -163,7 +163,8 @@ fn measure<S: Surface>(
     assembly: Option<&meshvol::assembly::Assembly>,
     triangles: usize,
 ) -> Result<Measure, String> {
-    let check: Check = check_assembled(surface, assembly, &CheckOptions::default(), &())
+    // One body, read back or in memory: the solid written is compared as a whole.
+    let check: Check = check_assembled(surface, assembly, &[], &CheckOptions::default(), &())
         .map_err(|e| e.to_string())?;
     let solid = mass_properties(&check.solid(surface));
     Ok(Measure {

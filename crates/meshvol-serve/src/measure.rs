@@ -67,9 +67,9 @@ pub fn measure(
     let path = folder.join(name);
     let unfold = |e: String| e.replace(&format!("{}/", folder.display()), "");
     let loaded = meshvol_io::read_bytes(&path, bytes).map_err(|e| unfold(e.to_string()))?;
-    let c =
-        topology::check_assembled(&loaded.surface, loaded.assembly.as_ref(), &options.check, &())
-            .map_err(|e| format!("{name}: {e}"))?;
+    let (assembly, bodies) = (loaded.assembly.as_ref(), loaded.body_faces());
+    let c = topology::check_assembled(&loaded.surface, assembly, &bodies, &options.check, &())
+        .map_err(|e| format!("{name}: {e}"))?;
     let source = Source::of(name, &loaded);
     let report = check(&source, &c).in_units(&options.units, loaded.unit)?;
     if !with_view {

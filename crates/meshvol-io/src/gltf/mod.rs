@@ -50,6 +50,8 @@ use schema::Document;
 pub(crate) struct Scene {
     pub mesh: Mesh,
     pub objects: Vec<Object>,
+    /// Each mesh instance (a node with a mesh): a body.
+    pub bodies: Vec<Object>,
     /// Whether it was a GLB container.
     pub binary: bool,
     /// Which primitive each placed copy is, when a mesh is placed more than once.
@@ -107,6 +109,6 @@ pub(crate) fn read(
         }
     }
     let buffers = Buffers { doc: &doc, path, bin, loaded: Vec::new(), file_bytes: bytes.len() };
-    let (mesh, objects, assembly) = place(&doc, buffers, warnings)?;
-    Ok(Scene { mesh, objects, binary, assembly })
+    let g = place(&doc, buffers, warnings)?;
+    Ok(Scene { mesh: g.mesh, objects: g.objects, bodies: g.bodies, binary, assembly: g.assembly })
 }

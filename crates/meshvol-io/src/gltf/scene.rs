@@ -1,16 +1,15 @@
 //! The scene: nodes and their transforms, primitives and their modes, and the placed
 //! mesh of every primitive reached from the default scene.
 
-use meshvol::{Mesh, Point};
+use meshvol::Point;
 use rayon::prelude::*;
 
 use super::at;
 use super::buffers::{packed_triangles, read_accessor, strided, Buffers, Component};
 use super::schema::{Document, Node, Primitive};
 use crate::error::ParseError;
-use crate::transform::Placed;
-use crate::Object;
-use meshvol::assembly::{Affine, Assembly};
+use crate::transform::{Gathered, Placed};
+use meshvol::assembly::Affine;
 
 /// glTF's componentType of 32-bit floats.
 const FLOAT: u64 = 5126;
@@ -186,7 +185,7 @@ pub(super) fn place(
     doc: &Document,
     mut buffers: Buffers<'_>,
     warnings: &mut Vec<String>,
-) -> Result<(Mesh, Vec<Object>, Option<Assembly>), ParseError> {
+) -> Result<Gathered, ParseError> {
     let instances = instances(doc)?;
 
     // Totals first: an accessor's count is checked against its data when it is read,
@@ -243,6 +242,8 @@ pub(super) fn place(
             .clone()
             .or_else(|| doc.meshes[instance.mesh].name.clone())
             .unwrap_or_else(|| format!("node {}", instance.node));
+        // A mesh instance is a body: its primitives (split by material) are its parts.
+        placed.close_body(name.clone(), first);
         placed.close_object(name, first);
     }
     placed.finish().map_err(|e| ParseError::new(None, e.to_string()))

@@ -221,6 +221,8 @@ class _CheckFacts:
     winding: Optional[str]
     shells: int
     cavities: int
+    overlapping_objects: list[dict[str, Any]]
+    """Objects (of a 3MF or glTF) that share volume: {'objects': [name, name], 'nested': bool}."""
     self_intersections: Optional[int]
     euler_characteristic: int
     solid_volume: float
@@ -356,6 +358,10 @@ class Union:
 
     lower: float
     upper: float
+    certified: bool
+    """Whether [lower, upper] is proven to hold the union (see uncertified_reason)."""
+    uncertified_reason: Optional[str]
+    """Why the interval is not certified; None when it is."""
     volume: float
     bodies: int
     sum_of_volumes: float
@@ -383,6 +389,10 @@ class Intersection:
 
     lower: float
     upper: float
+    certified: bool
+    """Whether [lower, upper] is proven to hold |A∩B| (see uncertified_reason)."""
+    uncertified_reason: Optional[str]
+    """Why the interval is not certified; None when it is."""
     volume: float
     """The midpoint of [lower, upper], which holds |A∩B|."""
     volume_a: float

@@ -22,30 +22,34 @@ use crate::assembly::Assembly;
 use crate::bvh::Bvh;
 use crate::{Bounds, Surface};
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// [`check`] of `surface`, from one check of each part of `assembly` when it describes
 /// how `surface` was assembled, repeats parts, and its copies are apart (see the module
 /// docs); the same facts either way, at the cost of the parts instead of the copies.
-/// `stage` is called as each stage starts, as in [`super::check_in_stages`].
+/// `bodies` and `stage` are [`super::check_in_stages`]'s: copies apart share no volume,
+/// so their bodies matter only to the ordinary check.
 pub fn check_assembled<S: Surface + ?Sized>(
     surface: &S,
     assembly: Option<&Assembly>,
+    bodies: &[Range<usize>],
     options: &CheckOptions,
     stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
     if let Some(assembly) = assembly.filter(|a| a.repeats_parts()) {
         stage.stage("checking each placed part once");
-        if let Some(whole) = from_parts(assembly, surface.face_count(), options)? {
+        if let Some(whole) = from_parts(assembly, surface.face_count(), bodies, options)? {
             return Ok(whole);
         }
     }
-    check_in_stages(surface, options, stage)
+    check_in_stages(surface, bodies, options, stage)
 }
 
 /// The whole's check from its parts', or `None` when it must be checked whole.
 fn from_parts(
     assembly: &Assembly,
     faces: usize,
+    bodies: &[Range<usize>],
     options: &CheckOptions,
 ) -> Result<Option<Check>, CheckError> {
     let placements = &assembly.placements;
@@ -67,7 +71,7 @@ fn from_parts(
     if options.weld == Weld::Auto && parts.iter().any(|c| c.boundary_edges > 0) {
         return Ok(None);
     }
-    Ok(Some(compose(assembly, &parts, options.examples)))
+    Ok(Some(compose(assembly, &parts, bodies, options.examples)))
 }
 
 /// Whether no two copies' boxes meet (touching counts as meeting).
@@ -87,13 +91,19 @@ fn copies_apart(assembly: &Assembly) -> bool {
     bvh.first_overlapping_pair(None, meet).is_none()
 }
 
-/// The copies' facts side by side.
-fn compose(assembly: &Assembly, parts: &[Check], examples: usize) -> Check {
+/// The copies' facts side by side; each copy's shells in the body of its first face.
+fn compose(
+    assembly: &Assembly,
+    parts: &[Check],
+    bodies: &[Range<usize>],
+    examples: usize,
+) -> Check {
     let copies = || assembly.placements.iter().map(|p| (&parts[p.part as usize], p.transform));
     let sum = |fact: fn(&Check) -> usize| copies().map(|(c, _)| fact(c)).sum::<usize>();
     let mut shells = Vec::with_capacity(sum(|c| c.shells.len()));
     let (mut overlapping_shells, mut intersection_examples) = (Vec::new(), Vec::new());
     let (mut volume, mut volume_uncertainty, mut face_offset) = (0.0, 0.0, 0);
+    let mut object_of_shell = Vec::new();
     for (part, transform) in copies() {
         let (scale, shell_offset) = (transform.determinant().abs(), shells.len());
         shells.extend(part.shells.iter().map(|s| super::Shell {
@@ -108,6 +118,9 @@ fn compose(assembly: &Assembly, parts: &[Check], examples: usize) -> Check {
         intersection_examples.extend(pairs.map(|p| moved(p, face_offset)));
         volume += part.volume * scale;
         volume_uncertainty += part.volume_uncertainty * scale;
+        // A body is a run of whole copies (a 3MF mesh placed, a glTF node's primitives).
+        let object = super::bodies::of_face(bodies, face_offset);
+        object_of_shell.extend(part.shells.iter().map(|_| object));
         face_offset += part.faces;
     }
     let placed: Vec<&Check> = copies().map(|(c, _)| c).collect();
@@ -136,6 +149,8 @@ fn compose(assembly: &Assembly, parts: &[Check], examples: usize) -> Check {
         cavities: sum(|c| c.cavities),
         shells,
         overlapping_shells,
+        // Copies apart share no volume.
+        overlapping_bodies: Vec::new(),
         self_intersections,
         intersection_examples,
         euler_characteristic: placed.iter().map(|c| c.euler_characteristic).sum(),
@@ -144,6 +159,7 @@ fn compose(assembly: &Assembly, parts: &[Check], examples: usize) -> Check {
         solid: Solid::assembled(&part_solids, &part_shells, &assembly.placements),
         // Not exactly welded (a transform may round two of a part's points to one).
         spatial_index: None,
+        object_of_shell: (!bodies.is_empty()).then_some(object_of_shell),
     }
 }
 
@@ -261,7 +277,7 @@ mod tests {
         for intersections in [true, false] {
             for weld in [Weld::Exact, Weld::Auto] {
                 let options = CheckOptions { weld, intersections, ..CheckOptions::default() };
-                let fast = from_parts(&assembly, mesh.face_count(), &options).unwrap();
+                let fast = from_parts(&assembly, mesh.face_count(), &[], &options).unwrap();
                 let fast = fast.expect("the copies are apart");
                 assert_same(&fast, &check(&mesh, &options).unwrap(), &mesh);
             }
@@ -280,14 +296,14 @@ mod tests {
         let assembly = Assembly { parts: vec![open], placements };
         let mesh = expand(&assembly);
         let exact = CheckOptions { weld: Weld::Exact, ..CheckOptions::default() };
-        let fast = from_parts(&assembly, mesh.face_count(), &exact).unwrap().unwrap();
+        let fast = from_parts(&assembly, mesh.face_count(), &[], &exact).unwrap().unwrap();
         assert_same(&fast, &check(&mesh, &exact).unwrap(), &mesh);
         assert_eq!(fast.boundary_loops, 20);
         // Auto would weld the whole again within a tolerance: checked whole.
         let auto = CheckOptions::default();
-        assert!(from_parts(&assembly, mesh.face_count(), &auto).unwrap().is_none());
+        assert!(from_parts(&assembly, mesh.face_count(), &[], &auto).unwrap().is_none());
         let tolerance = CheckOptions { weld: Weld::Tolerance(1e-6), ..auto };
-        assert!(from_parts(&assembly, mesh.face_count(), &tolerance).unwrap().is_none());
+        assert!(from_parts(&assembly, mesh.face_count(), &[], &tolerance).unwrap().is_none());
     }
 
     #[test]
@@ -302,8 +318,8 @@ mod tests {
             ];
             let assembly = Assembly { parts: vec![cube.clone()], placements };
             let mesh = expand(&assembly);
-            assert!(from_parts(&assembly, mesh.face_count(), &options).unwrap().is_none());
-            let c = check_assembled(&mesh, Some(&assembly), &options, &|_| {}).unwrap();
+            assert!(from_parts(&assembly, mesh.face_count(), &[], &options).unwrap().is_none());
+            let c = check_assembled(&mesh, Some(&assembly), &[], &options, &|_| {}).unwrap();
             assert_same(&c, &check(&mesh, &options).unwrap(), &mesh);
         }
         // A degenerate transform, and an assembly that is not this surface's.
@@ -313,8 +329,8 @@ mod tests {
             Placement { part: 0, transform: flat },
         ];
         let assembly = Assembly { parts: vec![cube.clone()], placements };
-        assert!(from_parts(&assembly, 24, &options).unwrap().is_none());
-        assert!(from_parts(&assembly, 25, &options).unwrap().is_none());
+        assert!(from_parts(&assembly, 24, &[], &options).unwrap().is_none());
+        assert!(from_parts(&assembly, 25, &[], &options).unwrap().is_none());
     }
 
     #[test]
@@ -329,7 +345,7 @@ mod tests {
             .collect();
         let assembly = Assembly { parts: vec![tet], placements };
         let mesh = expand(&assembly);
-        let c = from_parts(&assembly, mesh.face_count(), &CheckOptions::default());
+        let c = from_parts(&assembly, mesh.face_count(), &[], &CheckOptions::default());
         let c = c.unwrap().expect("the copies are apart");
         assert!(c.bounds_a_volume());
         assert_eq!((c.shells.len(), c.faces, c.volume), (100_000, 400_000, 12500.0));

@@ -42,7 +42,9 @@
 //!    edge tries the next axis direction; a corner on another surface is skipped). Inside for every sample: the shell is *nested*;
 //!    inside for some and outside for others: the two *overlap*. A shell inside an odd
 //!    number of others bounds a *cavity*. The solid's volume is Σ ±|shell volume|, +
-//!    for solids and − for cavities, whatever each shell's winding in the file.
+//!    for solids and − for cavities, whatever each shell's winding in the file. Where
+//!    the file names separate objects (bodies), nesting pairs shells of one body only;
+//!    between bodies it finds *overlapping bodies* (`bodies.rs`).
 //! 7. **Crossings**: pairs of triangles where an edge of one passes strictly through
 //!    the interior of the other, found through a [`Bvh`] (never all pairs), skipping
 //!    pairs that share a vertex. Pairs from one shell are *self-intersections*; from two
@@ -67,18 +69,20 @@
 //! | 4. shells | connected components and orientation (a parallel union–find with parities), open shells | `shells.rs` |
 //! | 5. holes | open edges in loops, their caps, capped shell volumes | `holes.rs` |
 //! | 6. nesting | candidates, containment rays, overlaps, roles, the volume | `nesting.rs` |
+//! | 6b. bodies | nesting within each body; overlapping bodies; the solid's bodies | `bodies.rs` |
 //! | 7. crossings | triangles in space, crossing face pairs | `crossings.rs` |
 //! | 8. Euler | χ and genus per shell | `euler.rs` |
 //! | | exact orientation predicates for stages 6 and 7 | `predicates.rs` |
 //! | | the solid as a surface or a mesh | `solid.rs` |
 //! | | the check of an assembly of placed parts, from one check per part | `assembled.rs` |
-//! | | the verdict, doubts and warnings in words | `verdict.rs` |
+//! | | the winding, verdict, doubts and warnings in words | `verdict.rs` |
 //!
 //! [`Check::solid`] gives a [`Surface`] of the solid: shells turned outward (cavities
 //! inward), collapsed and duplicate faces dropped (flat ones kept), holes capped, so that
 //! [`crate::mass_properties`] of it gives the solid's volume, centroid and inertia.
 
 mod assembled;
+mod bodies;
 mod crossings;
 mod edges;
 mod euler;
@@ -94,9 +98,11 @@ mod verdict;
 pub(crate) mod weld;
 
 pub use assembled::check_assembled;
+pub use bodies::{Body, BodyOverlap};
 pub(crate) use crossings::SpatialIndex;
+pub use nesting::Shell;
 pub use solid::{AsWoundView, Measured, Solid, SolidView};
-pub use verdict::volume_warnings;
+pub use verdict::{volume_warnings, Orientation};
 
 use crate::bvh::Bvh;
 use crate::properties::Bounds;
@@ -105,6 +111,7 @@ use crate::Surface;
 use loops::Loops;
 use rayon::prelude::*;
 use std::collections::BTreeSet;
+use std::ops::Range;
 
 /// How corners are welded into vertices.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -149,69 +156,6 @@ impl Default for CheckOptions {
     }
 }
 
-/// How the file's faces are wound.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Orientation {
-    /// Every shell is wound so its normals point out of the solid (counter-clockwise
-    /// seen from outside); cavities' normals point into the void.
-    Outward,
-    /// Every shell is wound the other way (clockwise seen from outside, as OpenSCAD's
-    /// polyhedron() wants).
-    Inward,
-    /// Some shells one way, some the other, or faces within a shell disagree.
-    Mixed,
-}
-
-impl Orientation {
-    /// `outward`, `inward` or `mixed`: the names reports use.
-    pub fn name(self) -> &'static str {
-        match self {
-            Orientation::Outward => "outward",
-            Orientation::Inward => "inward",
-            Orientation::Mixed => "mixed",
-        }
-    }
-
-    /// The winding seen from outside: `ccw` for outward normals, `cw` for OpenSCAD's
-    /// convention; `None` when shells disagree.
-    pub fn winding(self) -> Option<&'static str> {
-        match self {
-            Orientation::Outward => Some("ccw"),
-            Orientation::Inward => Some("cw"),
-            Orientation::Mixed => None,
-        }
-    }
-}
-
-/// One connected component of faces.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Shell {
-    /// Faces in the shell (flat faces included; collapsed and dropped duplicate faces
-    /// are in no shell).
-    pub faces: usize,
-    /// Every edge used by exactly two faces.
-    pub closed: bool,
-    /// Orientation could be propagated consistently over the shell.
-    pub orientable: bool,
-    /// Its faces are consistently wound in the file.
-    pub consistently_oriented: bool,
-    /// Volume enclosed (holes capped), positive.
-    pub volume: f64,
-    /// The shell bounds a void inside another shell.
-    pub cavity: bool,
-    /// The smallest shell containing this one.
-    pub parent: Option<usize>,
-    /// Whether the file winds it the right way for its role (outward for a solid,
-    /// inward for a cavity); `None` when not consistently oriented.
-    pub wound_outward: Option<bool>,
-    /// Boundary loops (holes) in this shell.
-    pub boundary_loops: usize,
-    /// V − E + F.
-    pub euler_characteristic: i64,
-    /// (2 − χ)/2 for closed orientable shells.
-    pub genus: Option<i64>,
-}
-
 /// The facts [`check`] finds. See the module docs for the definitions.
 #[derive(Clone, Debug)]
 pub struct Check {
@@ -252,8 +196,11 @@ pub struct Check {
     pub orientation: Option<Orientation>,
     pub shells: Vec<Shell>,
     pub cavities: usize,
-    /// Pairs of shells whose surfaces cross.
+    /// Pairs of shells of one body whose surfaces cross.
     pub overlapping_shells: Vec<[usize; 2]>,
+    /// Pairs of the file's objects (the bodies given to the check) that share volume:
+    /// their surfaces cross, or one lies inside the other. The volume is their sum.
+    pub overlapping_bodies: Vec<BodyOverlap>,
     /// Crossing face pairs within a shell; `None` when not looked for.
     pub self_intersections: Option<usize>,
     /// A few crossing face pairs, each once: within shells first, then between shells.
@@ -268,6 +215,8 @@ pub struct Check {
     /// With [`CheckOptions::keep_spatial_index`]: the crossing search's triangles in
     /// space, for a body of the solid.
     spatial_index: Option<SpatialIndex>,
+    /// With bodies given: each shell's body, which [`Check::bodies`] names.
+    object_of_shell: Option<Vec<usize>>,
 }
 
 impl Check {
@@ -277,6 +226,7 @@ impl Check {
             && self.non_manifold_edges == 0
             && self.shells.iter().all(|s| s.orientable)
             && self.overlapping_shells.is_empty()
+            && self.overlapping_bodies.is_empty()
             && self.self_intersections.unwrap_or(0) == 0
     }
 
@@ -342,56 +292,6 @@ impl Check {
     pub fn repairs(&self) -> (usize, usize, usize) {
         self.solid.changes()
     }
-
-    /// The solid's bodies: each outermost shell with the shells nested in it (its
-    /// cavities, and islands in those), as faces of [`Check::solid`]. Bodies are
-    /// numbered as their outermost shells are, in shell order; overlapping shells are
-    /// separate bodies. Each body is a solid of its own (cavities wound inward), so
-    /// measuring one gives its volume with its cavities subtracted.
-    ///
-    /// ```
-    /// use meshvol::shapes::cuboid;
-    /// use meshvol::topology::{check, CheckOptions};
-    /// use meshvol::{mass_properties, Mesh, Surface};
-    /// // A 2×2×2 box with a centred 1×1×1 cavity (both wound outward in the file).
-    /// let (outer, inner) = (cuboid([0.0; 3], [2.0; 3]), cuboid([0.5; 3], [1.5; 3]));
-    /// let mesh = Mesh::concatenate(&[outer, inner]);
-    /// let c = check(&mesh, &CheckOptions::default()).unwrap();
-    /// let bodies = c.bodies();
-    /// assert_eq!((bodies.len(), bodies[0].shell, bodies[0].faces.len()), (1, 0, 12));
-    /// assert_eq!(mass_properties(&c.solid(&mesh)).signed_volume, 7.0);
-    /// ```
-    pub fn bodies(&self) -> Vec<Body> {
-        let root = |mut s: usize| {
-            // Parents are strictly larger shells, so the walk ends.
-            while let Some(p) = self.shells[s].parent {
-                s = p;
-            }
-            s
-        };
-        let roots: Vec<usize> =
-            (0..self.shells.len()).filter(|&s| self.shells[s].parent.is_none()).collect();
-        let mut body_of_root = vec![usize::MAX; self.shells.len()];
-        for (b, &r) in roots.iter().enumerate() {
-            body_of_root[r] = b;
-        }
-        let group: Vec<usize> = (0..self.shells.len()).map(|s| body_of_root[root(s)]).collect();
-        self.solid
-            .faces_by(roots.len(), |s| group[s])
-            .into_iter()
-            .zip(roots)
-            .map(|(faces, shell)| Body { shell, faces })
-            .collect()
-    }
-}
-
-/// One body of a checked solid: see [`Check::bodies`].
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Body {
-    /// Its outermost shell.
-    pub shell: usize,
-    /// Its faces, as indices of the faces of [`Check::solid`].
-    pub faces: Vec<usize>,
 }
 
 /// Why a surface could not be checked.
@@ -403,7 +303,7 @@ pub enum CheckError {
     TooManyFaces { faces: usize },
 }
 
-/// Checks the topology of `surface`.
+/// Checks the topology of `surface`, one body ([`check_in_stages`] takes several).
 ///
 /// ```
 /// use meshvol::shapes::cuboid;
@@ -417,7 +317,7 @@ pub fn check<S: Surface + ?Sized>(
     surface: &S,
     options: &CheckOptions,
 ) -> Result<Check, CheckError> {
-    check_in_stages(surface, options, &())
+    check_in_stages(surface, &[], options, &())
 }
 
 /// What a long check is doing, for a progress display: its
@@ -426,9 +326,13 @@ pub fn check<S: Surface + ?Sized>(
 /// taking the name will do.
 pub use crate::progress::StageReport;
 
-/// [`check`], calling `stage` as each stage starts.
+/// [`check`], calling `stage` as each stage starts, of a surface whose faces are the
+/// separate `bodies` given (runs of faces covering them all, as a file's objects): nesting
+/// pairs shells within a body only, and what lies across bodies is reported as
+/// [`Check::overlapping_bodies`]. No runs: the whole surface is one body.
 pub fn check_in_stages<S: Surface + ?Sized>(
     surface: &S,
+    bodies: &[Range<usize>],
     options: &CheckOptions,
     stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
@@ -449,14 +353,14 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     };
     let diagonal = Bounds::of_points(&exact.positions).map_or(0.0, |b| norm(b.size()));
     Ok(match options.weld {
-        Weld::Exact => analyse(surface, &loops, &exact, None, options, stage),
+        Weld::Exact => analyse(surface, &loops, &exact, None, bodies, options, stage),
         Weld::Tolerance(t) => {
             let welded = exact.within(t);
             drop(exact);
-            analyse(surface, &loops, &welded, Some(t), options, stage)
+            analyse(surface, &loops, &welded, Some(t), bodies, options, stage)
         }
         Weld::Auto => {
-            let exact_check = analyse(surface, &loops, &exact, None, options, stage);
+            let exact_check = analyse(surface, &loops, &exact, None, bodies, options, stage);
             if exact_check.boundary_edges == 0 || diagonal == 0.0 {
                 exact_check
             } else {
@@ -464,7 +368,7 @@ pub fn check_in_stages<S: Surface + ?Sized>(
                 let t = AUTO_WELD * diagonal;
                 let welded = exact.within(t);
                 drop(exact);
-                let welded = analyse(surface, &loops, &welded, Some(t), options, stage);
+                let welded = analyse(surface, &loops, &welded, Some(t), bodies, options, stage);
                 if welded.boundary_edges < exact_check.boundary_edges {
                     welded
                 } else {
@@ -481,6 +385,7 @@ fn analyse<S: Surface + ?Sized>(
     loops: &Loops,
     welded: &weld::Welded,
     tolerance: Option<f64>,
+    bodies: &[Range<usize>],
     options: &CheckOptions,
     stage: StageReport<'_>,
 ) -> Check {
@@ -525,7 +430,7 @@ fn analyse<S: Surface + ?Sized>(
     };
     let mut overlapping_shells = BTreeSet::new();
     stage.stage("nesting shells");
-    let containers =
+    let mut containers =
         nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
     let keep = options.keep_spatial_index && tolerance.is_none() && crossing.is_some();
     let spatial_index = if keep {
@@ -537,6 +442,9 @@ fn analyse<S: Surface + ?Sized>(
     let crossings = crossing.map(|pairs| {
         crossings::face_pairs(pairs, &shells.of_face, options.examples, &mut overlapping_shells)
     });
+    let body_of_shell = bodies::of_shells(bodies, &shells, kept);
+    let overlapping_bodies =
+        bodies::split(&body_of_shell, &mut containers, &mut overlapping_shells);
     let roles = nesting::roles(
         &containers,
         &shell_signed,
@@ -606,6 +514,7 @@ fn analyse<S: Surface + ?Sized>(
         cavities: roles.shells.iter().filter(|s| s.cavity).count(),
         shells: roles.shells,
         overlapping_shells: overlapping_shells.into_iter().collect(),
+        overlapping_bodies,
         self_intersections: crossings.as_ref().map(|c| c.self_intersections),
         intersection_examples: crossings.map(|c| c.examples).unwrap_or_default(),
         euler_characteristic: vertices.used as i64 - edges as i64 + kept_faces as i64,
@@ -613,6 +522,7 @@ fn analyse<S: Surface + ?Sized>(
         volume_uncertainty: caps.volume_uncertainty,
         solid,
         spatial_index,
+        object_of_shell: (!bodies.is_empty()).then_some(body_of_shell),
     }
 }
 

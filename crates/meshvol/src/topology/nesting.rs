@@ -1,5 +1,5 @@
 //! Stage 6, nesting: which closed shells lie inside which, which overlap, and so each
-//! shell's role (solid or cavity) and the solid's volume.
+//! shell's role (solid or cavity, reported as a [`Shell`]) and the solid's volume.
 //!
 //! Only closed orientable shells can contain anything. For each shell, the candidates
 //! are those whose boxes overlap its own (a [`Bvh`] over the shells' boxes). From the
@@ -22,7 +22,6 @@ use super::loops::Loops;
 use super::predicates;
 use super::shells::Shells;
 use super::weld::Welded;
-use super::Shell;
 use crate::accumulate::CompensatedSum;
 use crate::bvh::Bvh;
 use crate::properties::Bounds;
@@ -30,6 +29,35 @@ use crate::vector::{add, norm, scale};
 use crate::Point;
 use rayon::prelude::*;
 use std::collections::BTreeSet;
+
+/// One connected component of faces.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shell {
+    /// Faces in the shell (flat faces included; collapsed and dropped duplicate faces
+    /// are in no shell).
+    pub faces: usize,
+    /// Every edge used by exactly two faces.
+    pub closed: bool,
+    /// Orientation could be propagated consistently over the shell.
+    pub orientable: bool,
+    /// Its faces are consistently wound in the file.
+    pub consistently_oriented: bool,
+    /// Volume enclosed (holes capped), positive.
+    pub volume: f64,
+    /// The shell bounds a void inside another shell.
+    pub cavity: bool,
+    /// The smallest shell containing this one.
+    pub parent: Option<usize>,
+    /// Whether the file winds it the right way for its role (outward for a solid,
+    /// inward for a cavity); `None` when not consistently oriented.
+    pub wound_outward: Option<bool>,
+    /// Boundary loops (holes) in this shell.
+    pub boundary_loops: usize,
+    /// V − E + F.
+    pub euler_characteristic: i64,
+    /// (2 − χ)/2 for closed orientable shells.
+    pub genus: Option<i64>,
+}
 
 /// Triangles per shell whose corners are classified against other shells for nesting
 /// and overlap.

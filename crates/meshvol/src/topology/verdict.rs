@@ -1,7 +1,42 @@
-//! What a check means for a measurement, in words: the one-line verdict, the doubts
-//! every measurement of the solid carries, and the warnings a volume report adds.
+//! What a check means for a measurement, in words: the winding's names, the one-line
+//! verdict, the doubts every measurement of the solid carries, and the warnings a volume
+//! report adds.
 
-use super::{Check, Orientation};
+use super::Check;
+
+/// How the file's faces are wound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Orientation {
+    /// Every shell is wound so its normals point out of the solid (counter-clockwise
+    /// seen from outside); cavities' normals point into the void.
+    Outward,
+    /// Every shell is wound the other way (clockwise seen from outside, as OpenSCAD's
+    /// polyhedron() wants).
+    Inward,
+    /// Some shells one way, some the other, or faces within a shell disagree.
+    Mixed,
+}
+
+impl Orientation {
+    /// `outward`, `inward` or `mixed`: the names reports use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Orientation::Outward => "outward",
+            Orientation::Inward => "inward",
+            Orientation::Mixed => "mixed",
+        }
+    }
+
+    /// The winding seen from outside: `ccw` for outward normals, `cw` for OpenSCAD's
+    /// convention; `None` when shells disagree.
+    pub fn winding(self) -> Option<&'static str> {
+        match self {
+            Orientation::Outward => Some("ccw"),
+            Orientation::Inward => Some("cw"),
+            Orientation::Mixed => None,
+        }
+    }
+}
 
 impl Check {
     /// A one-line verdict, most important fact first: "closed, 2 shells, 1 cavity:
@@ -39,6 +74,13 @@ impl Check {
                 plural(c.overlapping_shells.len(), "pair of shells", "pairs of shells")
             ));
         }
+        if !c.overlapping_bodies.is_empty() {
+            problems.push(format!(
+                "{} overlap or lie one inside another (their common volume is counted twice: \
+                 use `meshvol union`)",
+                plural(c.overlapping_bodies.len(), "pair of objects", "pairs of objects")
+            ));
+        }
         if let Some(n) = c.self_intersections.filter(|&n| n > 0) {
             problems.push(plural(n, "self-intersection", "self-intersections"));
         }
@@ -67,8 +109,14 @@ impl Check {
     /// line, empty when it is beyond doubt: holes capped, non-manifold edges, shells
     /// that cannot be oriented, overlapping shells, self-intersections, faces wound
     /// against their shell and duplicate faces left out. (Degenerate faces hold no
-    /// volume and are not a doubt.) Every measurement of the solid carries these.
+    /// volume and are not a doubt.) Every measurement of the solid carries these. Objects
+    /// that overlap are named `object N`, numbered as the bodies given to the check.
     pub fn doubts(&self) -> Vec<String> {
+        self.doubts_naming(&|b| format!("object {b}"))
+    }
+
+    /// [`Check::doubts`], naming each object (a body given to the check) by `object`.
+    pub fn doubts_naming(&self, object: &dyn Fn(usize) -> String) -> Vec<String> {
         let mut doubts = Vec::new();
         if self.shells.is_empty() {
             doubts.push(self.no_faces_left());
@@ -112,6 +160,9 @@ impl Check {
                 "{} overlap: their common volume is counted twice (the union counts it once)",
                 plural(self.overlapping_shells.len(), "pair of shells", "pairs of shells")
             ));
+        }
+        if !self.overlapping_bodies.is_empty() {
+            doubts.push(overlapping_objects(&self.overlapping_bodies, object));
         }
         if let Some(n) = self.self_intersections.filter(|&n| n > 0) {
             doubts.push(format!(
@@ -168,6 +219,32 @@ pub fn volume_warnings(
             .to_string()];
     }
     Vec::new()
+}
+
+/// The doubt of objects that share volume, naming the first few pairs.
+fn overlapping_objects(pairs: &[super::BodyOverlap], object: &dyn Fn(usize) -> String) -> String {
+    const NAMED: usize = 3;
+    let mut named: Vec<String> = pairs
+        .iter()
+        .take(NAMED)
+        .map(|p| {
+            let (a, b) = (object(p.bodies[0]), object(p.bodies[1]));
+            if p.nested {
+                format!("{a} and {b}: one lies inside the other")
+            } else {
+                format!("{a} and {b} overlap")
+            }
+        })
+        .collect();
+    if pairs.len() > NAMED {
+        named.push(format!("{} more", plural(pairs.len() - NAMED, "pair", "pairs")));
+    }
+    format!(
+        "{} of separate objects share volume ({}): the volume is their sum, counting the \
+         common volume twice; `meshvol union` gives the union",
+        plural(pairs.len(), "pair", "pairs"),
+        named.join("; ")
+    )
 }
 
 fn plural(n: usize, one: &str, many: &str) -> String {
