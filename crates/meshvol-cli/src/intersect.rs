@@ -9,6 +9,7 @@ use clap::Args;
 use meshvol::overlap::Body;
 use meshvol::topology::CheckOptions;
 use meshvol_report::intersect::{intersect_prepared, overlapping_pairs, prepare, prepare_pair};
+use meshvol_report::quantities::Quantities;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -4,6 +4,7 @@
 use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
+use meshvol_report::quantities::Quantities;
 use meshvol_report::union::union_with;
 use std::path::PathBuf;
 use std::process::ExitCode;

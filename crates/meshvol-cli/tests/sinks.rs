@@ -338,3 +338,27 @@ fn check_and_volume_report_one_set_of_facts_in_every_unit() {
         assert_eq!(check["units"], volume["units"], "{what}");
     }
 }
+
+#[test]
+fn a_certified_interval_converted_still_holds_the_volume() {
+    // Two 2-unit cubes overlapping in a unit cube (samples/a.obj, b.obj): union 15,
+    // intersection 1, in the file's units.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples");
+    let (a, b) = (dir.join("a.obj"), dir.join("b.obj"));
+    for (units, _, l) in UNITS {
+        let flags: Vec<&str> = units.iter().flat_map(|u| ["--units", u]).collect();
+        let what = format!("{units:?}");
+        let union = json(&[&["union", p(&a), p(&b), "--json"], &flags[..]].concat());
+        let both = json(&[&["intersect", p(&a), p(&b), "--json"], &flags[..]].concat());
+        for (v, lower, upper, exact) in [
+            (&union, "lower", "upper", 15.0),
+            (&both, "lower", "upper", 1.0),
+            (&both, "union_lower", "union_upper", 15.0),
+        ] {
+            let want = exact * l.powi(3);
+            assert!(f(&v[lower]) <= want && want <= f(&v[upper]), "{what} {lower}: {v}");
+        }
+        assert_eq!(union["certified"], true, "{what}");
+        near(f(&both["contact_area"]), 6.0 * l * l, &what);
+    }
+}

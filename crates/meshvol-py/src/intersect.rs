@@ -6,6 +6,7 @@ use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::{mesh_of, PyMesh};
 use meshvol::assembly::Affine;
 use meshvol_report::intersect::{intersect_poses, intersect_prepared, rigid_pose, IntersectReport};
+use meshvol_report::quantities::Quantities;
 use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;

@@ -3,9 +3,10 @@
 //! caps' uncertainty, with the warnings that say when it is not certified.
 
 use crate::number::{count, num};
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::{joined_names, Subject};
 use crate::union::{interval_text, uncertified, Interval};
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::assembly::Affine;
 use meshvol::grid::{intersection_placed as kernel, overlapping_boxes, Bounded};
@@ -368,39 +369,24 @@ impl Report for IntersectReport {
     }
 }
 
-impl IntersectReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// files (named, with the unit each declares) that must agree on their unit.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        files: &[(&str, Option<meshvol_io::LengthUnit>)],
-    ) -> Result<Self, String> {
-        let (scale, warnings) = Scale::resolve_all(options, files)?;
-        self.warnings.extend(warnings);
-        for x in [
-            &mut self.lower,
-            &mut self.upper,
-            &mut self.volume,
-            &mut self.volume_a,
-            &mut self.volume_b,
-            &mut self.union,
-            &mut self.union_lower,
-            &mut self.union_upper,
-            &mut self.a_minus_b,
-            &mut self.b_minus_a,
-            &mut self.volume_uncertainty,
-        ] {
-            *x = scale.volume(*x);
-        }
-        self.centroid = self.centroid.map(|c| scale.point(c));
-        self.inertia = self.inertia.map(|m| m.map(|row| row.map(|x| scale.volume_moment(x))));
-        self.contact_area = self.contact_area.map(|x| scale.area(x));
-        self.contact_vector = self.contact_vector.map(|v| v.map(|x| scale.area(x)));
-        self.mass = scale.mass(self.volume);
-        self.units = scale.names();
-        Ok(self)
+impl Quantities for IntersectReport {
+    fn convert(&mut self, to: &Converter) {
+        to.interval(&mut self.lower, &mut self.upper);
+        to.interval(&mut self.union_lower, &mut self.union_upper);
+        let volumes = [&mut self.volume, &mut self.volume_a, &mut self.volume_b];
+        to.all(Volume, volumes.into_iter().chain([&mut self.union, &mut self.a_minus_b]));
+        to.all(Volume, [&mut self.b_minus_a, &mut self.volume_uncertainty]);
+        to.point(&mut self.centroid);
+        to.all(VolumeMoment, self.inertia.iter_mut().flatten().flatten());
+        to.some(Area, &mut self.contact_area);
+        to.all(Area, self.contact_vector.iter_mut().flatten());
     }
+
+    fn mass_basis(&self) -> f64 {
+        self.volume
+    }
+
+    crate::unit_slots!();
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@
 
 use crate::units::{Mass, Scale, UnitNames, UnitOptions};
 use crate::Report;
+use meshvol::accumulate::UNIT_ROUNDOFF;
 use meshvol_io::LengthUnit;
 
 /// What a quantity measures, and so how a change of units scales it.
@@ -67,6 +68,19 @@ impl<'a> Converter<'a> {
     /// A number that may be absent.
     pub fn some(&self, d: Dimension, x: &mut Option<f64>) {
         self.all(d, x.iter_mut());
+    }
+
+    /// A certified interval of volumes, `[lower, upper]`: converted and widened by the
+    /// conversion's rounding (the factor's and the product's, a few units of roundoff),
+    /// so that it still holds the converted value. Nothing changes without a conversion.
+    pub fn interval(&self, lower: &mut f64, upper: &mut f64) {
+        if !self.scale.converts() {
+            return;
+        }
+        let slack = |x: f64| 4.0 * UNIT_ROUNDOFF * x.abs();
+        let (l, u) = (self.scale.volume(*lower), self.scale.volume(*upper));
+        *lower = (l - slack(l)).next_down();
+        *upper = (u + slack(u)).next_up();
     }
 
     /// A point (or a vector of lengths) that may be absent.

@@ -2,8 +2,9 @@
 //! caps' uncertainty, with the warnings that say when it is not certified.
 
 use crate::number::{count, num};
+use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::{joined_names, union_bodies, Subject};
-use crate::units::{Mass, Scale, UnitNames, UnitOptions};
+use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::grid::union_with as kernel;
 use meshvol::progress::Progress;
@@ -288,27 +289,17 @@ impl Report for UnionReport {
     }
 }
 
-impl UnionReport {
-    /// The report in the units `options` ask for (and with `--density`, the mass), for
-    /// files (named, with the unit each declares) that must agree on their unit.
-    pub fn in_units(
-        mut self,
-        options: &UnitOptions,
-        files: &[(&str, Option<meshvol_io::LengthUnit>)],
-    ) -> Result<Self, String> {
-        let (scale, warnings) = Scale::resolve_all(options, files)?;
-        self.warnings.extend(warnings);
-        for x in [
-            &mut self.lower,
-            &mut self.upper,
-            &mut self.volume,
-            &mut self.sum_of_volumes,
-            &mut self.volume_uncertainty,
-        ] {
-            *x = scale.volume(*x);
-        }
-        self.mass = scale.mass(self.volume);
-        self.units = scale.names();
-        Ok(self)
+impl Quantities for UnionReport {
+    fn convert(&mut self, to: &Converter) {
+        to.interval(&mut self.lower, &mut self.upper);
+        to.all(Volume, [&mut self.volume, &mut self.sum_of_volumes]);
+        to.one(Volume, &mut self.volume_uncertainty);
     }
+
+    /// The interval's midpoint's.
+    fn mass_basis(&self) -> f64 {
+        self.volume
+    }
+
+    crate::unit_slots!();
 }
