@@ -362,3 +362,58 @@ fn a_certified_interval_converted_still_holds_the_volume() {
         near(f(&both["contact_area"]), 6.0 * l * l, &what);
     }
 }
+
+/// The JSON lines of `args`, one a file (failed files have `error`).
+fn lines(args: &[&str]) -> Vec<Value> {
+    let out = run(args);
+    let text = String::from_utf8(out.stdout).unwrap();
+    text.lines().map(|l| serde_json::from_str(l).unwrap()).collect()
+}
+
+#[test]
+fn the_corpus_gives_one_number_in_every_unit_and_sink() {
+    let corpus =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/trimesh-models");
+    if !corpus.exists() {
+        eprintln!("corpus not found at {}, skipping", corpus.display());
+        return;
+    }
+    // The files a run reads in seconds (the large scans are the invariance suite's).
+    let mut files: Vec<String> = std::fs::read_dir(&corpus)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_file() && p.metadata().unwrap().len() < 1 << 20)
+        .map(|p| p.to_str().unwrap().to_string())
+        .collect();
+    files.sort();
+    let names: Vec<&str> = files.iter().map(String::as_str).collect();
+    let plain = lines(&[&["volume", "--json", "-q", "--units", "mm"], &names[..]].concat());
+    let cm = ["--units", "mm:cm", "--density", "490lb/ft3"];
+    let converted = lines(&[&["volume", "--json", "-q"], &cm[..], &names[..]].concat());
+    let checked = lines(&[&["check", "--json", "-q"], &cm[..], &names[..]].concat());
+    assert_eq!(
+        (plain.len(), converted.len(), checked.len()),
+        (files.len(), files.len(), files.len())
+    );
+    // 490 lb/ft³ in lb/cm³, written out: 490 / 30.48³.
+    let rho = 490.0 / (30.48 * 30.48 * 30.48);
+    let mut measured = 0;
+    for ((p, c), k) in plain.iter().zip(&converted).zip(&checked) {
+        let what = p["file"].as_str().unwrap();
+        assert_eq!(p.get("error").is_some(), c.get("error").is_some(), "{what}");
+        if p.get("error").is_some() {
+            continue;
+        }
+        measured += 1;
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-300);
+        assert!(close(f(&c["volume"]), f(&p["volume"]) * 1e-3), "{what}");
+        assert!(close(f(&c["area"]), f(&p["area"]) * 1e-2), "{what}");
+        assert!(close(f(&c["mass"]), f(&c["volume"]) * rho), "{what}");
+        assert_eq!(c["mass_unit"], "lb", "{what}");
+        // check and volume: one solid, one set of facts.
+        assert_eq!(k["solid_volume"], c["solid_volume"], "{what}");
+        assert_eq!(k["units"], c["units"], "{what}");
+        assert!(close(f(&k["mass"]), f(&k["solid_volume"]) * rho), "{what}");
+    }
+    assert!(measured > 50, "{measured} corpus files measured");
+}
