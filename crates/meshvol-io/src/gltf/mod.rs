@@ -41,6 +41,7 @@ use std::path::Path;
 use meshvol::Mesh;
 
 use crate::error::{Location, ParseError};
+use crate::limits::Limits;
 use crate::Object;
 use buffers::{glb_chunks, Buffers};
 use scene::place;
@@ -72,11 +73,12 @@ fn at(item: impl Into<String>, message: impl Into<String>) -> ParseError {
     ParseError::new(Some(Location::Json(item.into())), message)
 }
 
-/// Reads a `.gltf` or `.glb` file; `path` locates external buffers.
+/// Reads a `.gltf` or `.glb` file within `limits`; `path` locates external buffers.
 pub(crate) fn read(
     path: &Path,
     bytes: &[u8],
     warnings: &mut Vec<String>,
+    limits: &Limits,
 ) -> Result<Scene, ParseError> {
     let binary = looks_like_glb(bytes);
     let (json, bin) = if binary { glb_chunks(bytes, warnings)? } else { (bytes, None) };
@@ -107,6 +109,6 @@ pub(crate) fn read(
         }
     }
     let buffers = Buffers { doc: &doc, path, bin, loaded: Vec::new(), file_bytes: bytes.len() };
-    let (mesh, objects, assembly) = place(&doc, buffers, warnings)?;
+    let (mesh, objects, assembly) = place(&doc, buffers, warnings, limits)?;
     Ok(Scene { mesh, objects, binary, assembly })
 }
