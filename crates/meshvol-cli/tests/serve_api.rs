@@ -1,14 +1,15 @@
 //! `meshvol serve`'s HTTP API against the command: `POST /api/check` answers exactly
 //! what `meshvol check --json` prints for the same file (samples/, and every file of the
 //! corpus when ../shared/corpus is there), raw or multipart, with the same options; and
-//! the limits (413, 503, the time limit) answer with a message instead of giving way.
+//! an upload over the limit answers 413 with a message. The other limits, and hostile
+//! clients, are tested in serve_hostile.rs.
 
 mod common;
 
 use common::server::{agent, peak_memory_kib, Server};
 use common::{box_obj, f, meshvol, p, read_npy, write};
 use serde_json::Value;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -233,54 +234,6 @@ fn an_upload_over_the_limit_is_413_with_a_message() {
     let (status, body) = server.post("/api/check?name=box.obj", small.as_bytes());
     assert_eq!(status, 200, "{body}");
     assert_eq!(json(&body)["solid_volume"], 1.0);
-}
-
-/// Opens a request that announces a body and never sends it: it holds a check's place
-/// (the body is read once the place is taken) until the time limit.
-fn stalled(server: &Server) -> std::net::TcpStream {
-    let address = server.url.trim_start_matches("http://");
-    let mut stream = std::net::TcpStream::connect(address).unwrap();
-    write!(
-        stream,
-        "POST /api/check?name=slow.obj HTTP/1.1\r\nHost: {address}\r\nContent-Length: 100\r\n\r\n"
-    )
-    .unwrap();
-    stream
-}
-
-#[test]
-fn too_many_at_once_is_503_with_a_message() {
-    // A time limit no check here comes near, however busy the machine.
-    let server = Server::start(&["--max-concurrent", "1", "--queue", "0", "--timeout", "600"]);
-    let cube = box_obj([0.0; 3], [1.0; 3], 1, true, false);
-    // Until the stalled request holds the one place, a request may still get it; then
-    // every one is turned away at once. On a busy machine a check may take the place
-    // first, and the stalled request is itself turned away: then stall another.
-    for attempt in 0.. {
-        let slow = stalled(&server);
-        let busy = (0..200).find_map(|_| {
-            let (status, body) = server.post("/api/check?name=box.obj", cube.as_bytes());
-            (status == 503).then_some(body)
-        });
-        if let Some(busy) = busy {
-            assert!(json(&busy)["error"].as_str().unwrap().starts_with("busy: "), "{busy}");
-            drop(slow);
-            break;
-        }
-        assert!(attempt < 20, "no stalled request ever took the place");
-    }
-}
-
-#[test]
-fn a_request_past_the_time_limit_is_503_and_frees_its_place() {
-    let server = Server::start(&["--max-concurrent", "1", "--queue", "0", "--timeout", "1"]);
-    // Twice: had the first kept its place, the second would be turned away as busy.
-    for _ in 0..2 {
-        let mut answer = String::new();
-        stalled(&server).read_to_string(&mut answer).unwrap();
-        assert!(answer.starts_with("HTTP/1.1 503"), "{answer}");
-        assert!(answer.contains("longer than the limit of 1 s"), "{answer}");
-    }
 }
 
 /// 200 uploads from 8 clients at once, on loopback: every one answered, each with the

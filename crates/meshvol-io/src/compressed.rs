@@ -18,7 +18,8 @@
 use std::io::{Cursor, Read};
 use std::path::{Path, PathBuf};
 
-use crate::source::{stream_limit, Bytes, STREAM_LIMIT_VARIABLE};
+use crate::limits::{Budget, Limits};
+use crate::source::{Bytes, STREAM_LIMIT_VARIABLE};
 use crate::ReadError;
 
 /// The extensions of the compressed forms read, without the dot.
@@ -57,7 +58,7 @@ impl Compression {
 }
 
 fn error(path: &Path, message: String) -> ReadError {
-    ReadError { path: path.to_path_buf(), location: None, message }
+    ReadError { path: path.to_path_buf(), location: None, message, budget: None }
 }
 
 /// The decompressed content of the file at `path` (compressed as its extension says) and
@@ -69,51 +70,56 @@ pub(crate) fn open(
     wanted: impl Fn(&Path) -> bool,
 ) -> Result<(PathBuf, Vec<u8>), ReadError> {
     let bytes = Bytes::open(path).map_err(|e| error(path, e.to_string()))?;
-    decompress(path, &bytes, compression, wanted)
+    decompress(path, &bytes, compression, wanted, Limits::from_env().inflated_bytes)
 }
 
-/// [`open`] of bytes already read.
+/// [`open`] of bytes already read, inflated up to `limit` bytes.
 pub(crate) fn decompress(
     path: &Path,
     bytes: &[u8],
     compression: Compression,
     wanted: impl Fn(&Path) -> bool,
+    limit: u64,
 ) -> Result<(PathBuf, Vec<u8>), ReadError> {
     let damaged =
         |e: std::io::Error| error(path, format!("not a readable {} file: {e}", compression.name()));
     let inner = path.with_extension("");
     match compression {
         Compression::Gzip => {
-            let data = bounded(path, flate2::read::MultiGzDecoder::new(bytes)).map_err(damaged)?;
+            let data =
+                bounded(path, flate2::read::MultiGzDecoder::new(bytes), limit).map_err(damaged)?;
             Ok((inner, data?))
         }
         Compression::Bzip2 => {
-            let data = bounded(path, bzip2::read::MultiBzDecoder::new(bytes)).map_err(damaged)?;
+            let data =
+                bounded(path, bzip2::read::MultiBzDecoder::new(bytes), limit).map_err(damaged)?;
             Ok((inner, data?))
         }
         Compression::Zstd => {
             let decoder = ruzstd::decoding::StreamingDecoder::new(bytes)
                 .map_err(|e| damaged(std::io::Error::other(e.to_string())))?;
-            let data = bounded(path, decoder).map_err(damaged)?;
+            let data = bounded(path, decoder, limit).map_err(damaged)?;
             Ok((inner, data?))
         }
-        Compression::Zip => unzip(path, bytes, wanted),
+        Compression::Zip => unzip(path, bytes, wanted, limit),
     }
 }
 
-/// All of `reader`, or an error naming `path` when it goes on past the limit.
-fn bounded(path: &Path, reader: impl Read) -> std::io::Result<Result<Vec<u8>, ReadError>> {
-    let limit = stream_limit();
+/// All of `reader`, or an error naming `path` (and the budget) when it goes on past
+/// `limit` bytes.
+fn bounded(
+    path: &Path,
+    reader: impl Read,
+    limit: u64,
+) -> std::io::Result<Result<Vec<u8>, ReadError>> {
     let mut data = Vec::new();
     reader.take(limit.saturating_add(1)).read_to_end(&mut data)?;
     if data.len() as u64 > limit {
-        return Ok(Err(error(
-            path,
-            format!(
-                "decompresses to more than {limit} bytes: refused (a compressed input is \
-                 read up to {STREAM_LIMIT_VARIABLE} bytes, 2 GiB unless it says otherwise)"
-            ),
-        )));
+        let message = format!(
+            "decompresses to more than {limit} bytes: refused (a compressed input is read \
+             up to {STREAM_LIMIT_VARIABLE} bytes, 2 GiB unless it says otherwise)"
+        );
+        return Ok(Err(ReadError { budget: Some(Budget::InflatedBytes), ..error(path, message) }));
     }
     Ok(Ok(data))
 }
@@ -129,6 +135,7 @@ fn unzip(
     path: &Path,
     bytes: &[u8],
     wanted: impl Fn(&Path) -> bool,
+    limit: u64,
 ) -> Result<(PathBuf, Vec<u8>), ReadError> {
     let damaged = |e: String| error(path, format!("not a readable zip archive: {e}"));
     let mut archive =
@@ -184,7 +191,7 @@ fn unzip(
     let file = archive
         .by_name(&member)
         .map_err(|e| error(&inner, format!("cannot read the archive member: {e}")))?;
-    let data = bounded(&inner, file)
+    let data = bounded(&inner, file, limit)
         .map_err(|e| error(&inner, format!("cannot read the archive member: {e}")))?;
     Ok((inner, data?))
 }
@@ -194,6 +201,9 @@ mod tests {
     use super::*;
     use std::io::Write;
 
+    /// A limit none of these inputs comes near.
+    const LIMIT: u64 = 1 << 30;
+
     fn gz(data: &[u8]) -> Vec<u8> {
         let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
         e.write_all(data).unwrap();
@@ -201,16 +211,35 @@ mod tests {
     }
 
     #[test]
+    fn past_the_limit_is_an_error_naming_the_budget() {
+        let data = gz(&[b'#'; 1001]);
+        let (_, back) =
+            decompress(Path::new("a.obj.gz"), &data, Compression::Gzip, |_| true, 1001).unwrap();
+        assert_eq!(back, [b'#'; 1001]);
+        let e = decompress(Path::new("a.obj.gz"), &data, Compression::Gzip, |_| true, 1000)
+            .unwrap_err();
+        assert_eq!(e.budget, Some(Budget::InflatedBytes), "{e}");
+        assert!(e.message.contains("more than 1000 bytes"), "{e}");
+    }
+
+    #[test]
     fn gzip_names_the_inner_file_and_damage_is_an_error() {
-        let (inner, data) =
-            decompress(Path::new("a/part.stl.gz"), &gz(b"hello"), Compression::Gzip, |_| true)
-                .unwrap();
+        let (inner, data) = decompress(
+            Path::new("a/part.stl.gz"),
+            &gz(b"hello"),
+            Compression::Gzip,
+            |_| true,
+            LIMIT,
+        )
+        .unwrap();
         assert_eq!((inner, data), (PathBuf::from("a/part.stl"), b"hello".to_vec()));
-        let err = decompress(Path::new("x.obj.gz"), b"not gzip", Compression::Gzip, |_| true)
-            .unwrap_err();
+        let err =
+            decompress(Path::new("x.obj.gz"), b"not gzip", Compression::Gzip, |_| true, LIMIT)
+                .unwrap_err();
         assert!(err.to_string().contains("x.obj.gz") && err.to_string().contains("gzip"), "{err}");
-        let err = decompress(Path::new("x.obj.zst"), b"not zstd", Compression::Zstd, |_| true)
-            .unwrap_err();
+        let err =
+            decompress(Path::new("x.obj.zst"), b"not zstd", Compression::Zstd, |_| true, LIMIT)
+                .unwrap_err();
         assert!(err.to_string().contains("Zstandard"), "{err}");
     }
 
@@ -261,7 +290,8 @@ mod tests {
             (Compression::Zstd, zst),
             (Compression::Zip, zip),
         ] {
-            let (_, back) = decompress(Path::new("a.stl.x"), &good, compression, |_| true).unwrap();
+            let (_, back) =
+                decompress(Path::new("a.stl.x"), &good, compression, |_| true, LIMIT).unwrap();
             assert_eq!(back, data, "{compression:?}");
             for _ in 0..300 {
                 let mut bad = good.clone();
@@ -272,7 +302,7 @@ mod tests {
                 if next() % 3 == 0 {
                     bad.truncate((next() % bad.len() as u64) as usize);
                 }
-                let _ = decompress(Path::new("a.stl.x"), &bad, compression, |_| true);
+                let _ = decompress(Path::new("a.stl.x"), &bad, compression, |_| true, LIMIT);
             }
         }
     }

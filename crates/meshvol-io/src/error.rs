@@ -5,6 +5,7 @@
 //! (0-based, like the face indices of [`meshvol::Mesh`]), a line of one part of a 3MF
 //! archive, or the JSON path of a glTF item.
 
+use crate::limits::Budget;
 use std::fmt;
 use std::path::PathBuf;
 
@@ -45,6 +46,9 @@ pub struct ReadError {
     pub path: PathBuf,
     pub location: Option<Location>,
     pub message: String,
+    /// The limit of the read ([`crate::Limits`]) that the file went past, if that is
+    /// why it was refused.
+    pub budget: Option<Budget>,
 }
 
 impl fmt::Display for ReadError {
@@ -64,11 +68,12 @@ impl std::error::Error for ReadError {}
 pub(crate) struct ParseError {
     pub location: Option<Location>,
     pub message: String,
+    pub budget: Option<Budget>,
 }
 
 impl ParseError {
     pub fn new(location: Option<Location>, message: impl Into<String>) -> ParseError {
-        ParseError { location, message: message.into() }
+        ParseError { location, message: message.into(), budget: None }
     }
 
     /// An error at `line` (1-based).
@@ -81,8 +86,13 @@ impl ParseError {
         ParseError::line(line_of(bytes, offset), message)
     }
 
+    /// The same error, saying that the read went past `budget`.
+    pub fn over(self, budget: Budget) -> ParseError {
+        ParseError { budget: Some(budget), ..self }
+    }
+
     pub fn with_path(self, path: PathBuf) -> ReadError {
-        ReadError { path, location: self.location, message: self.message }
+        ReadError { path, location: self.location, message: self.message, budget: self.budget }
     }
 }
 

@@ -68,6 +68,7 @@ mod error;
 pub mod geojson;
 pub mod gltf;
 pub mod grid_out;
+pub mod limits;
 pub mod obj;
 pub mod off;
 pub mod ply;
@@ -91,8 +92,9 @@ pub use stl::StlSoup;
 pub use walk::InputKind;
 
 use error::ParseError;
+pub use limits::{Budget, Limits};
 use source::Bytes;
-pub use source::{read_stream, stream_limit, STREAM_LIMIT_VARIABLE};
+pub use source::{read_stream, stream_limit, stream_limit_setting, STREAM_LIMIT_VARIABLE};
 
 /// A file format the readers know.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -334,14 +336,16 @@ impl Loaded {
 pub fn read(path: &Path) -> Result<Loaded, ReadError> {
     if let Some(compression) = compressed::Compression::of_path(path) {
         let (inner, data) = compressed::open(path, compression, has_mesh_extension)?;
-        return load(&inner, Bytes::Owned(data)).map_err(|e| named(e, path, &inner));
+        return load(&inner, Bytes::Owned(data), &Limits::from_env())
+            .map_err(|e| named(e, path, &inner));
     }
     let bytes = Bytes::open(path).map_err(|e| ReadError {
         path: path.to_path_buf(),
         location: None,
         message: e.to_string(),
+        budget: None,
     })?;
-    load(path, bytes)
+    load(path, bytes, &Limits::from_env())
 }
 
 /// Reads a mesh from bytes already in memory, as [`read`] would read a file at `path`
@@ -351,12 +355,28 @@ pub fn read(path: &Path) -> Result<Loaded, ReadError> {
 /// `.bz2`, `.zst` or `.zip` is decompressed first, as [`read`] does (an upload named
 /// `part.stl.gz`).
 pub fn read_bytes(path: &Path, bytes: Vec<u8>) -> Result<Loaded, ReadError> {
+    read_bytes_within(path, bytes, &Limits::from_env())
+}
+
+/// [`read_bytes`] within `limits` instead of the command's: an error past one says
+/// which in its `budget`.
+pub fn read_bytes_within(
+    path: &Path,
+    bytes: Vec<u8>,
+    limits: &Limits,
+) -> Result<Loaded, ReadError> {
     if let Some(compression) = compressed::Compression::of_path(path) {
-        let (inner, data) = compressed::decompress(path, &bytes, compression, has_mesh_extension)?;
+        let (inner, data) = compressed::decompress(
+            path,
+            &bytes,
+            compression,
+            has_mesh_extension,
+            limits.inflated_bytes,
+        )?;
         drop(bytes);
-        return load(&inner, Bytes::Owned(data)).map_err(|e| named(e, path, &inner));
+        return load(&inner, Bytes::Owned(data), limits).map_err(|e| named(e, path, &inner));
     }
-    load(path, Bytes::Owned(bytes))
+    load(path, Bytes::Owned(bytes), limits)
 }
 
 /// An error about the decompressed `inner` named as the file given (`part.stl.gz`); a zip
@@ -442,7 +462,7 @@ fn objects_if_several(objects: Vec<Object>) -> Vec<Object> {
     }
 }
 
-fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
+fn load(path: &Path, bytes: Bytes, limits: &Limits) -> Result<Loaded, ReadError> {
     let with_path = |e: ParseError| e.with_path(PathBuf::from(path));
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let mut warnings = Vec::new();
@@ -480,7 +500,12 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
             } else {
                 format!("{what}, and the content looks like none of STL, OBJ, OFF, PLY, 3MF, glTF")
             };
-            return Err(ReadError { path: path.to_path_buf(), location: None, message: what });
+            return Err(ReadError {
+                path: path.to_path_buf(),
+                location: None,
+                message: what,
+                budget: None,
+            });
         }
     };
     let mut objects = Vec::new();
@@ -521,7 +546,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
             (format, LoadedSurface::Mesh(mesh))
         }
         Family::ThreeMf => {
-            let model = threemf::read(&bytes, &mut warnings).map_err(with_path)?;
+            let model = threemf::read(&bytes, &mut warnings, limits).map_err(with_path)?;
             objects = model.objects;
             bodies = model.bodies;
             unit = Some(model.unit);
@@ -529,7 +554,7 @@ fn load(path: &Path, bytes: Bytes) -> Result<Loaded, ReadError> {
             (Format::ThreeMf, LoadedSurface::Mesh(model.mesh))
         }
         Family::Gltf => {
-            let scene = gltf::read(path, &bytes, &mut warnings).map_err(with_path)?;
+            let scene = gltf::read(path, &bytes, &mut warnings, limits).map_err(with_path)?;
             objects = scene.objects;
             bodies = scene.bodies;
             unit = Some(LengthUnit::Metre);

@@ -81,6 +81,7 @@ pub fn read_points(path: &Path) -> Result<PointCloud, ReadError> {
         path: path.to_path_buf(),
         location: None,
         message: e.to_string(),
+        budget: None,
     })?;
     points(path, bytes)
 }
@@ -110,7 +111,7 @@ fn points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadError> {
             .map_err(|e| e.with_path(PathBuf::from(path)))?;
         return Ok(PointCloud { source: PointSource::Text, points, warnings: Vec::new() });
     }
-    let loaded = crate::load(path, bytes)?;
+    let loaded = crate::load(path, bytes, &crate::Limits::from_env())?;
     let points = match loaded.surface {
         LoadedSurface::Mesh(mesh) => mesh.positions().to_vec(),
         other => other
@@ -119,6 +120,7 @@ fn points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadError> {
                 path: path.to_path_buf(),
                 location: None,
                 message: e.to_string(),
+                budget: None,
             })?
             .positions()
             .to_vec(),

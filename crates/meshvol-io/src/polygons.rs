@@ -87,6 +87,7 @@ pub fn read_polygons(path: &Path) -> Result<PolygonFile, ReadError> {
         path: path.to_path_buf(),
         location: None,
         message: e.to_string(),
+        budget: None,
     })?;
     read_polygons_bytes(path, &bytes)
 }
@@ -121,6 +122,7 @@ pub fn read_polygons_bytes(path: &Path, bytes: &[u8]) -> Result<PolygonFile, Rea
                         message: "not a polygon file: expected WKT, GeoJSON or x y lines \
                                   (extensions .wkt, .geojson, .json, .txt, .xy, .csv)"
                             .to_string(),
+                        budget: None,
                     })
                 }
             }

@@ -53,7 +53,23 @@ pub const STREAM_LIMIT_VARIABLE: &str = "MESHVOL_MAX_STREAM_BYTES";
 /// The most bytes read from a stream (a pipe, standard input): 2 GiB, or what
 /// `MESHVOL_MAX_STREAM_BYTES` says. (A 40-million-triangle binary STL is 2 GB.)
 pub fn stream_limit() -> u64 {
-    std::env::var(STREAM_LIMIT_VARIABLE).ok().and_then(|v| v.trim().parse().ok()).unwrap_or(2 << 30)
+    stream_limit_setting().ok().flatten().unwrap_or(2 << 30)
+}
+
+/// What `MESHVOL_MAX_STREAM_BYTES` says: nothing when it is unset, or an error naming
+/// it when it is not a number of bytes (`256MiB`), for a program that refuses to start
+/// on a bad setting rather than use the default.
+pub fn stream_limit_setting() -> Result<Option<u64>, String> {
+    match std::env::var(STREAM_LIMIT_VARIABLE) {
+        Err(std::env::VarError::NotPresent) => Ok(None),
+        Ok(v) => match v.trim().parse() {
+            Ok(n) => Ok(Some(n)),
+            Err(_) => Err(format!("{STREAM_LIMIT_VARIABLE}={v} is not a number of bytes")),
+        },
+        Err(std::env::VarError::NotUnicode(v)) => {
+            Err(format!("{STREAM_LIMIT_VARIABLE}={v:?} is not a number of bytes"))
+        }
+    }
 }
 
 /// All of a stream, refused beyond [`stream_limit`] bytes.

@@ -49,6 +49,7 @@ use quick_xml::name::ResolveResult;
 use quick_xml::NsReader;
 
 use crate::error::{line_of, Location, ParseError};
+use crate::limits::{Budget, Limits};
 use crate::transform::Placed;
 use crate::{LengthUnit, Object};
 use meshvol::assembly::{Affine, Assembly};
@@ -57,10 +58,8 @@ use meshvol::assembly::{Affine, Assembly};
 const CORE: &[u8] = b"http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
 /// The model part when the package names none.
 const DEFAULT_MODEL: &str = "3D/3dmodel.model";
-/// The most bytes one archive part may decompress to.
+/// The most bytes one archive part may decompress to, whatever the read's limit.
 const MAX_PART: u64 = 1 << 32;
-/// The most placements (build items and components, expanded) that are read.
-const MAX_PLACEMENTS: u64 = 10_000_000;
 
 /// What a 3MF file gave.
 pub(crate) struct Model {
@@ -78,23 +77,31 @@ pub(crate) fn looks_like_zip(bytes: &[u8]) -> bool {
     bytes.starts_with(b"PK\x03\x04")
 }
 
-/// Reads a 3MF package.
-pub(crate) fn read(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Model, ParseError> {
+/// Reads a 3MF package within `limits`: its parts' inflated bytes, the placements of its
+/// build and their triangles.
+pub(crate) fn read(
+    bytes: &[u8],
+    warnings: &mut Vec<String>,
+    limits: &Limits,
+) -> Result<Model, ParseError> {
     let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes))
         .map_err(|e| ParseError::new(None, format!("not a readable zip archive: {e}")))?;
-    let part = model_part(&mut archive)?;
-    let xml = read_part(&mut archive, &part)?;
+    let part = model_part(&mut archive, limits)?;
+    let xml = read_part(&mut archive, &part, limits)?;
     let in_part = |at: usize, message: String| {
         let line = line_of(&xml, at);
         ParseError::new(Some(Location::PartLine { part: part.clone(), line }), message)
     };
     let parsed = parse_model(&xml).map_err(|(at, message)| in_part(at, message))?;
-    build(&parsed, warnings, &in_part)
+    build(&parsed, warnings, &in_part, limits)
 }
 
 /// The name of the model part: the `3dmodel` relationship's target, or the default.
-fn model_part(archive: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>) -> Result<String, ParseError> {
-    let target = match read_part(archive, "_rels/.rels") {
+fn model_part(
+    archive: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>,
+    limits: &Limits,
+) -> Result<String, ParseError> {
+    let target = match read_part(archive, "_rels/.rels", limits) {
         Ok(rels) => relationship_target(&rels),
         Err(_) => None,
     };
@@ -143,17 +150,19 @@ fn attribute<'e>(e: &'e BytesStart<'_>, name: &[u8]) -> Option<Cow<'e, [u8]>> {
     e.attributes().with_checks(false).flatten().find(|a| a.key.as_ref() == name).map(|a| a.value)
 }
 
-/// The decompressed bytes of an archive part.
+/// The decompressed bytes of an archive part, up to the read's inflated bytes.
 fn read_part(
     archive: &mut zip::ZipArchive<std::io::Cursor<&[u8]>>,
     name: &str,
+    limits: &Limits,
 ) -> Result<Vec<u8>, ParseError> {
     let error = |m: String| ParseError::new(None, format!("archive part '{name}': {m}"));
+    let limit = limits.inflated_bytes.min(MAX_PART);
     let file = archive.by_name(name).map_err(|e| error(e.to_string()))?;
-    let mut data = Vec::with_capacity(file.size().min(64 << 20) as usize);
-    file.take(MAX_PART + 1).read_to_end(&mut data).map_err(|e| error(e.to_string()))?;
-    if data.len() as u64 > MAX_PART {
-        return Err(error(format!("more than {MAX_PART} bytes")));
+    let mut data = Vec::with_capacity(file.size().min(limit).min(64 << 20) as usize);
+    file.take(limit + 1).read_to_end(&mut data).map_err(|e| error(e.to_string()))?;
+    if data.len() as u64 > limit {
+        return Err(error(format!("more than {limit} bytes")).over(Budget::InflatedBytes));
     }
     Ok(data)
 }
@@ -535,6 +544,7 @@ fn build(
     parsed: &Parsed,
     warnings: &mut Vec<String>,
     in_part: &dyn Fn(usize, String) -> ParseError,
+    limits: &Limits,
 ) -> Result<Model, ParseError> {
     // Sizes first, each object's once: nothing is reserved before the totals are known.
     let mut sizes = HashMap::new();
@@ -561,15 +571,7 @@ fn build(
             skipped.join(", ")
         ));
     }
-    if total.placements > MAX_PLACEMENTS {
-        return Err(ParseError::new(
-            None,
-            format!(
-                "the build expands to {} placed objects; more than {MAX_PLACEMENTS} are not read",
-                total.placements
-            ),
-        ));
-    }
+    limits.expansion(total.triangles, total.placements)?;
     let mesh_objects =
         parsed.objects.values().filter(|o| matches!(o.content, Content::Mesh { .. })).count();
     let copies = (total.meshes > mesh_objects as u64).then_some(total.meshes);

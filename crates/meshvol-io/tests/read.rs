@@ -119,6 +119,7 @@ fn read_error_display() {
         path: "a/b.stl".into(),
         location: Some(Location::Line(12)),
         message: "expected 3 coordinates after 'vertex', found 2".into(),
+        budget: None,
     };
     assert_eq!(e.to_string(), "a/b.stl: line 12: expected 3 coordinates after 'vertex', found 2");
     let e = ReadError { location: Some(Location::Byte(84)), message: "m".into(), ..e };

@@ -4,7 +4,7 @@ mod common;
 
 use common::*;
 use meshvol::surface::FaceRange;
-use meshvol_io::{Format, LengthUnit, Location};
+use meshvol_io::{Budget, Format, LengthUnit, Limits, Location};
 
 fn model(unit: &str, resources: &str, build: &str) -> String {
     format!(
@@ -61,6 +61,35 @@ fn items_components_transforms_and_units() {
     // Mirrored by the item: x ≤ 0.
     let nested = triangles(&FaceRange::new(&loaded.surface, loaded.objects[2].faces.clone()));
     assert!(nested.iter().flatten().all(|p| p[0] <= 0.0));
+}
+
+/// The limits of a read are checked before the build is expanded: this build places
+/// 8 objects (item 1; item 2 and its 2 components; item 3, its component and that one's
+/// 2), 60 triangles in all (five boxes of 12), in a model part of about 1.9 KB.
+#[test]
+fn limits_are_checked_before_the_build_is_expanded() {
+    let resources = format!(
+        r#"<object id="1">{}</object>
+<object id="2"><components><component objectid="1"/><component objectid="1" transform="1 0 0 0 1 0 0 0 1 10 0 0"/></components></object>
+<object id="3"><components><component objectid="2"/></components></object>"#,
+        three_mf_box_mesh([0.0; 3], [1.0, 2.0, 3.0]),
+    );
+    let build = r#"<item objectid="1"/><item objectid="2"/><item objectid="3"/>"#;
+    let bytes = three_mf(&model("", &resources, build));
+    let within = Limits { inflated_bytes: 1 << 20, placements: 8, faces: 60 };
+    let read = |limits: Limits| {
+        meshvol_io::read_bytes_within(std::path::Path::new("a.3mf"), bytes.clone(), &limits)
+    };
+    assert_eq!(read(within).unwrap().triangle_count(), 60);
+    let e = read(Limits { placements: 7, ..within }).unwrap_err();
+    assert_eq!(e.budget, Some(Budget::Placements), "{e}");
+    let e = read(Limits { faces: 59, ..within }).unwrap_err();
+    assert_eq!(e.budget, Some(Budget::Faces), "{e}");
+    let e = read(Limits { inflated_bytes: 1000, ..within }).unwrap_err();
+    assert_eq!(e.budget, Some(Budget::InflatedBytes), "{e}");
+    // Damage is not a budget.
+    let e = read_as("a.3mf", b"PK\x03\x04 not a zip".to_vec()).unwrap_err();
+    assert_eq!(e.budget, None, "{e}");
 }
 
 #[test]

@@ -726,6 +726,7 @@ pub fn load(py: Python<'_>, file: &Bound<'_, PyAny>, file_type: Option<&str>) ->
             path: PathBuf::from(&name),
             location: None,
             message: e.to_string(),
+            budget: None,
         };
         read_error(py, &error)
     })?;

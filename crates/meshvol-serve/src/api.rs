@@ -1,50 +1,61 @@
 //! The HTTP routes: the page's files, `POST /api/check` (the command's JSON),
-//! `POST /api/view` (the page's reports and geometry) and `GET /api/limits`.
+//! `POST /api/view` (the page's reports and geometry) and `GET /api/limits`; every
+//! error as JSON.
 //!
-//! Limits, so that no request can take the server down: a request waits in a queue of
-//! at most `queue` for one of `max_concurrent` checks, or gets 503 at once; its body is
-//! read only once it holds a check's place (so memory is bounded by `max_concurrent`
-//! uploads), up to `max_upload` bytes (more: 413); and it is answered within `timeout`
-//! (or 503). A check that panics is a 500 with a message, not a stopped server.
+//! So that no request can take the server down: a request takes one of
+//! `max_concurrent + queue` places or gets 503 at once; holding it, it reads its upload
+//! (`upload.rs`: rate, size and the bytes all requests hold are bounded) and only then
+//! waits for one of `max_concurrent` checks, so a slow client holds no check. Its check
+//! runs within its budgets (`measure.rs`) and `timeout`: past it, the request is
+//! answered 503 and the check is cancelled at its next stage, which frees its place.
+//! A check that panics is a 500 with a message, not a stopped server.
 
-use crate::measure::{self, Options};
+use crate::guard::{self, Hosts};
+use crate::measure::{self, Failure};
+use crate::upload::{self, Params};
 use crate::{page, size_words, Config};
-use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
-use axum::extract::{DefaultBodyLimit, FromRequest, Multipart, Query, Request, State};
-use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
+use axum::extract::{Query, Request, State};
+use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::Router;
-use meshvol_report::units::{Density, UnitOptions, UnitsArg};
-use serde::Deserialize;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use meshvol::progress::Progress;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use tokio::sync::Semaphore;
+use tokio::time::Instant;
 
 /// What every request shares.
 struct Shared {
     config: Config,
     /// An empty folder, the server's own: uploads are read as if they were in it (and
     /// never written anywhere).
-    folder: tempfile::TempDir,
+    folder: PathBuf,
+    /// Places of requests reading their upload, waiting for a check or checked.
+    places: Arc<Semaphore>,
     checks: Arc<Semaphore>,
-    waiting: AtomicUsize,
+    /// Bytes of the uploads held, all requests together.
+    buffered: Arc<Semaphore>,
+    /// Set when the server stops: every check running is cancelled.
+    stopping: Arc<AtomicBool>,
 }
 
-/// The server's routes over `config`.
-pub fn router(config: Config) -> Result<Router, String> {
-    let folder = tempfile::Builder::new()
-        .prefix("meshvol-serve-")
-        .tempdir()
-        .map_err(|e| format!("cannot make the server's empty folder: {e}"))?;
+/// The server's routes over `config`, reading uploads in `folder`.
+pub fn router(config: &Config, folder: &Path, stopping: Arc<AtomicBool>) -> Router {
+    let hosts = Arc::new(Hosts::new(config.bind, &config.allow_hosts));
+    let checks = config.max_concurrent.max(1);
     let shared = Arc::new(Shared {
-        config,
-        folder,
-        checks: Arc::new(Semaphore::new(config.max_concurrent.max(1))),
-        waiting: AtomicUsize::new(0),
+        config: config.clone(),
+        folder: folder.to_path_buf(),
+        places: Arc::new(Semaphore::new(checks + config.queue)),
+        checks: Arc::new(Semaphore::new(checks)),
+        buffered: Arc::new(Semaphore::new(config.max_buffered.min(Semaphore::MAX_PERMITS))),
+        stopping,
     });
-    Ok(Router::new()
+    Router::new()
         .route("/", get(|| async { page::asset("index.html") }))
         .route(
             "/{*file}",
@@ -53,10 +64,16 @@ pub fn router(config: Config) -> Result<Router, String> {
             }),
         )
         .route("/api/limits", get(limits))
-        .route("/api/check", post(|s, q, h, r| handle(s, q, h, r, false)))
-        .route("/api/view", post(|s, q, h, r| handle(s, q, h, r, true)))
-        .layer(DefaultBodyLimit::max(config.max_upload))
-        .with_state(shared))
+        .route("/api/check", post(|s, q, r| handle(s, q, r, false)))
+        .route("/api/view", post(|s, q, r| handle(s, q, r, true)))
+        .fallback(|| async { not_found() })
+        .method_not_allowed_fallback(|request: Request| async move {
+            let message =
+                format!("{} is not a method of {}", request.method(), request.uri().path());
+            error(StatusCode::METHOD_NOT_ALLOWED, None, &message)
+        })
+        .with_state(shared)
+        .layer(axum::middleware::from_fn_with_state(hosts, guard::guard))
 }
 
 /// The limits, for the page to say them (and refuse a file too large before sending it).
@@ -67,61 +84,16 @@ async fn limits(State(shared): State<Arc<Shared>>) -> Response {
         "max_concurrent": c.max_concurrent,
         "queue": c.queue,
         "timeout_s": c.timeout.as_secs_f64(),
+        "client_timeout_s": c.client_timeout.as_secs_f64(),
+        "min_rate": c.min_rate,
+        "max_connections": c.max_connections,
+        "max_buffered": c.max_buffered,
+        "max_inflated": c.budgets.inflated_bytes,
+        "max_faces": c.budgets.faces,
+        "max_placements": c.budgets.placements,
+        "max_answer": c.budgets.answer_bytes,
     });
     json(StatusCode::OK, body.to_string())
-}
-
-/// The request's options, as query parameters (or multipart fields of the same names):
-/// the file's name (or the `X-File-Name` header), and the command's flags.
-#[derive(Clone, Debug, Default, Deserialize)]
-struct Params {
-    name: Option<String>,
-    units: Option<String>,
-    density: Option<String>,
-    weld_tolerance: Option<String>,
-    no_intersections: Option<String>,
-}
-
-impl Params {
-    fn set(&mut self, field: &str, value: String) {
-        match field {
-            "name" => self.name = Some(value),
-            "units" => self.units = Some(value),
-            "density" => self.density = Some(value),
-            "weld_tolerance" => self.weld_tolerance = Some(value),
-            "no_intersections" => self.no_intersections = Some(value),
-            _ => {}
-        }
-    }
-
-    /// The options, or a message saying which parameter is wrong. Empty values are
-    /// absent (a form's empty field).
-    fn options(&self) -> Result<Options, String> {
-        fn given(v: &Option<String>) -> Option<&str> {
-            v.as_deref().map(str::trim).filter(|v| !v.is_empty())
-        }
-        let units = given(&self.units)
-            .map(|u| u.parse::<UnitsArg>().map_err(|e| format!("units: {e}")))
-            .transpose()?;
-        let density = given(&self.density)
-            .map(|d| d.parse::<Density>().map_err(|e| format!("density: {e}")))
-            .transpose()?;
-        let weld = given(&self.weld_tolerance)
-            .map(|t| match t.parse::<f64>() {
-                Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-                _ => Err(format!("weld_tolerance: must be zero or a positive number; got {t}")),
-            })
-            .transpose()?;
-        let no_intersections = match given(&self.no_intersections) {
-            None | Some("0" | "false" | "no" | "off") => false,
-            Some("1" | "true" | "yes" | "on") => true,
-            Some(v) => return Err(format!("no_intersections: true or false; got {v}")),
-        };
-        Ok(Options {
-            units: UnitOptions { units, density },
-            check: meshvol_report::subject::check_options(weld, !no_intersections),
-        })
-    }
 }
 
 /// A JSON answer.
@@ -132,7 +104,7 @@ fn json(status: StatusCode, body: String) -> Response {
 
 /// A JSON error: `{"file": ..., "error": ...}` (the command's error line) when a file is
 /// named, `{"error": ...}` otherwise.
-fn error(status: StatusCode, file: Option<&str>, message: &str) -> Response {
+pub(crate) fn error(status: StatusCode, file: Option<&str>, message: &str) -> Response {
     let body = match file {
         Some(file) => meshvol_report::error_line(file, message),
         None => serde_json::json!({ "error": message }).to_string(),
@@ -140,12 +112,35 @@ fn error(status: StatusCode, file: Option<&str>, message: &str) -> Response {
     json(status, body)
 }
 
-/// Counts a request in the queue while it lives.
-struct Waiting<'a>(&'a AtomicUsize);
+/// 404 for a path that is neither the page's nor the API's.
+pub(crate) fn not_found() -> Response {
+    error(
+        StatusCode::NOT_FOUND,
+        None,
+        "no such page: the page is /, the API /api/check, /api/view and /api/limits",
+    )
+}
 
-impl Drop for Waiting<'_> {
-    fn drop(&mut self) {
-        self.0.fetch_sub(1, Ordering::SeqCst);
+/// 413 naming the budget (its flag) that `file` went past.
+fn over_budget(file: &str, budget: &str, message: &str) -> Response {
+    let body = serde_json::json!({
+        "file": file,
+        "error": format!("{message} (the budget {budget}: raise it to allow more)"),
+        "budget": budget,
+    });
+    json(StatusCode::PAYLOAD_TOO_LARGE, body.to_string())
+}
+
+/// The cancellation hook a check is run with: its request's deadline passed, or the
+/// server is stopping.
+struct Cancel {
+    late: Arc<AtomicBool>,
+    stopping: Arc<AtomicBool>,
+}
+
+impl Progress for Cancel {
+    fn cancelled(&self) -> bool {
+        self.late.load(Ordering::Relaxed) || self.stopping.load(Ordering::Relaxed)
     }
 }
 
@@ -153,67 +148,86 @@ impl Drop for Waiting<'_> {
 async fn handle(
     State(shared): State<Arc<Shared>>,
     query: Result<Query<Params>, QueryRejection>,
-    headers: HeaderMap,
     request: Request,
     view: bool,
 ) -> Response {
+    let start = Instant::now();
     let params = match query {
         Ok(Query(params)) => params,
         Err(e) => {
             return error(StatusCode::BAD_REQUEST, None, &format!("the query: {}", e.body_text()))
         }
     };
-    let config = shared.config;
-    // A free place is taken at once; otherwise the request waits, if the queue has room.
-    let free = Arc::clone(&shared.checks).try_acquire_owned().ok();
-    let queued = free.is_none().then(|| Waiting(&shared.waiting));
-    if free.is_none() && shared.waiting.fetch_add(1, Ordering::SeqCst) >= config.queue {
-        drop(queued);
+    let encoding = request.headers().get(header::CONTENT_ENCODING);
+    if let Some(encoding) = encoding.filter(|e| e.as_bytes() != b"identity") {
         let message = format!(
-            "busy: {} checks running and {} waiting; try again shortly",
+            "the upload is sent with Content-Encoding {}: send the file's own bytes (a \
+             compressed file named .gz, .bz2, .zst or .zip is read as one)",
+            String::from_utf8_lossy(encoding.as_bytes())
+        );
+        return error(StatusCode::UNSUPPORTED_MEDIA_TYPE, None, &message);
+    }
+    let config = &shared.config;
+    let Ok(place) = Arc::clone(&shared.places).try_acquire_owned() else {
+        let message = format!(
+            "busy: {} checks running and {} requests waiting; try again shortly",
             config.max_concurrent, config.queue
         );
         return error(StatusCode::SERVICE_UNAVAILABLE, None, &message);
-    }
+    };
+    let upload = match upload::read(params, request, start, config, &shared.buffered).await {
+        Ok(upload) => upload,
+        Err(response) => return response,
+    };
+    let options = match upload.params.options() {
+        Ok(options) => options,
+        Err(e) => return error(StatusCode::BAD_REQUEST, Some(&upload.name), &e),
+    };
+    let late = Arc::new(AtomicBool::new(false));
+    let hook = Cancel { late: Arc::clone(&late), stopping: Arc::clone(&shared.stopping) };
+    let shown = upload.name.clone();
     let answer = async {
-        let permit = match free {
-            Some(permit) => permit,
-            None => match Arc::clone(&shared.checks).acquire_owned().await {
-                Ok(permit) => permit,
-                Err(_) => {
-                    return error(StatusCode::SERVICE_UNAVAILABLE, None, "the server is stopping")
-                }
-            },
+        let Ok(check) = Arc::clone(&shared.checks).acquire_owned().await else {
+            return error(StatusCode::SERVICE_UNAVAILABLE, None, "the server is stopping");
         };
-        drop(queued);
-        let (params, name, bytes) = match upload(params, &headers, request, config.max_upload).await
-        {
-            Ok(upload) => upload,
-            Err(response) => return response,
-        };
-        let options = match params.options() {
-            Ok(options) => options,
-            Err(e) => return error(StatusCode::BAD_REQUEST, Some(&name), &e),
-        };
-        let folder = shared.folder.path().to_path_buf();
-        let shown = name.clone();
-        // The permit goes with the check: one that outlives the time limit still counts.
-        // The answer is written there too (a view can be megabytes of JSON), off the
-        // threads that serve connections.
+        let (folder, budgets) = (shared.folder.clone(), config.budgets);
+        // The places go with the check: one that runs on after its request was
+        // answered still counts until its next stage stops it. The answer is written
+        // there too (a view can be megabytes of JSON), off the threads that serve
+        // connections.
         let checked = tokio::task::spawn_blocking(move || {
-            let _permit = permit;
-            let (report, page) = measure::measure(&folder, &name, bytes, &options, view)
-                .map_err(|e| (StatusCode::UNPROCESSABLE_ENTITY, e))?;
-            let body = match page {
-                None => meshvol_report::json_line(&report),
-                Some(page) => serde_json::to_string(&page).map_err(|e| e.to_string()),
+            let _held = (place, check, upload.held);
+            let name = upload.name;
+            let measured =
+                measure::measure(&folder, &name, upload.bytes, &options, view, &budgets, &hook);
+            let (report, page) = measured?;
+            let mut body = Bounded { bytes: Vec::new(), limit: budgets.answer_bytes, over: false };
+            let written = match page {
+                None => serde_json::to_writer(&mut body, &report),
+                Some(page) => serde_json::to_writer(&mut body, &page),
             };
-            body.map_err(|e| (StatusCode::INTERNAL_SERVER_ERROR, format!("{name}: {e}")))
+            match written {
+                Ok(()) => Ok(body.bytes),
+                Err(_) if body.over => {
+                    let message = format!(
+                        "{name}: the answer is larger than {}",
+                        size_words(budgets.answer_bytes)
+                    );
+                    Err(Failure::Over { budget: "--max-answer", message })
+                }
+                Err(e) => Err(Failure::Unreadable(format!("{name}: {e}"))),
+            }
         })
         .await;
         match checked {
-            Ok(Ok(body)) => json(StatusCode::OK, body),
-            Ok(Err((status, e))) => error(status, Some(&shown), &e),
+            Ok(Ok(body)) => json_bytes(body),
+            Ok(Err(Failure::Unreadable(e))) => {
+                error(StatusCode::UNPROCESSABLE_ENTITY, Some(&shown), &e)
+            }
+            Ok(Err(Failure::Over { budget, message })) => over_budget(&shown, budget, &message),
+            Ok(Err(Failure::Cancelled)) => {
+                error(StatusCode::SERVICE_UNAVAILABLE, Some(&shown), "the server is stopping")
+            }
             Err(_) => error(
                 StatusCode::INTERNAL_SERVER_ERROR,
                 Some(&shown),
@@ -223,71 +237,45 @@ async fn handle(
     };
     match tokio::time::timeout(config.timeout, answer).await {
         Ok(response) => response,
-        Err(_) => error(
-            StatusCode::SERVICE_UNAVAILABLE,
-            None,
-            &format!(
-                "the request took longer than the limit of {} s (waiting included); try a \
-                 smaller file, or ask for a longer --timeout",
+        Err(_) => {
+            // The check stops at its next stage and gives its places back.
+            late.store(true, Ordering::Relaxed);
+            let message = format!(
+                "the request took longer than the limit of {} s (--timeout, waiting for a \
+                 check included): its check was stopped; try a smaller file",
                 config.timeout.as_secs_f64()
-            ),
-        ),
+            );
+            error(StatusCode::SERVICE_UNAVAILABLE, Some(&shown), &message)
+        }
     }
 }
 
-/// The upload: the raw body (named by `?name=` or `X-File-Name`), or a multipart form's
-/// `file` field (named by its filename) with the options as other fields.
-async fn upload(
-    mut params: Params,
-    headers: &HeaderMap,
-    request: Request,
-    max_upload: usize,
-) -> Result<(Params, String, Vec<u8>), Response> {
-    let too_large = |status: StatusCode, e: String| {
-        if status == StatusCode::PAYLOAD_TOO_LARGE {
-            let limit = size_words(max_upload);
-            error(
-                status,
-                None,
-                &format!("the upload is larger than the limit of {limit} (--max-upload)"),
-            )
-        } else {
-            error(status, None, &format!("cannot read the upload: {e}"))
+/// A JSON answer already written.
+fn json_bytes(body: Vec<u8>) -> Response {
+    (StatusCode::OK, [(header::CONTENT_TYPE, HeaderValue::from_static("application/json"))], body)
+        .into_response()
+}
+
+/// An answer written up to `limit` bytes: past it, the write fails (and serializing
+/// stops there, holding no more).
+struct Bounded {
+    bytes: Vec<u8>,
+    limit: usize,
+    over: bool,
+}
+
+impl Write for Bounded {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.bytes.len() + buf.len() > self.limit {
+            self.over = true;
+            self.bytes = Vec::new();
+            return Err(std::io::Error::other("past the answer's budget"));
         }
-    };
-    let multipart = headers
-        .get(header::CONTENT_TYPE)
-        .and_then(|v| v.to_str().ok())
-        .is_some_and(|v| v.starts_with("multipart/form-data"));
-    if !multipart {
-        let header_name = headers.get("x-file-name").and_then(|v| v.to_str().ok());
-        let name = params.name.as_deref().or(header_name).map(measure::file_name);
-        let bytes = Bytes::from_request(request, &())
-            .await
-            .map_err(|e| too_large(e.status(), e.body_text()))?;
-        let name = name.unwrap_or_else(|| "upload".to_string());
-        return Ok((params, name, Vec::from(bytes)));
+        self.bytes.extend_from_slice(buf);
+        Ok(buf.len())
     }
-    let mut form = Multipart::from_request(request, &())
-        .await
-        .map_err(|e| too_large(e.status(), e.body_text()))?;
-    let mut file = None;
-    while let Some(field) =
-        form.next_field().await.map_err(|e| too_large(e.status(), e.body_text()))?
-    {
-        let field_name = field.name().unwrap_or_default().to_string();
-        if field_name == "file" {
-            let name = field.file_name().map(measure::file_name);
-            let bytes = field.bytes().await.map_err(|e| too_large(e.status(), e.body_text()))?;
-            file = Some((name, Vec::from(bytes)));
-        } else {
-            let value = field.text().await.map_err(|e| too_large(e.status(), e.body_text()))?;
-            params.set(&field_name, value);
-        }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
     }
-    let Some((file_name, bytes)) = file else {
-        return Err(error(StatusCode::BAD_REQUEST, None, "the form has no `file` field"));
-    };
-    let name = params.name.as_deref().map(measure::file_name).or(file_name);
-    Ok((params.clone(), name.unwrap_or_else(|| "upload".to_string()), bytes))
 }

@@ -1,8 +1,11 @@
 //! One upload measured: bytes → reader → check → the reports and the view, exactly as
 //! `meshvol check --json` and `meshvol volume --json` make them.
 
+use crate::Budgets;
 use meshvol::grid::{Axis, Levels};
-use meshvol::topology::{self, CheckOptions};
+use meshvol::progress::Progress;
+use meshvol::topology::{self, CheckError, CheckOptions};
+use meshvol_io::{Budget, Limits};
 use meshvol_report::check::{check, CheckReport};
 use meshvol_report::profile::{profile, ProfileReport};
 use meshvol_report::quantities::Quantities;
@@ -53,29 +56,76 @@ pub fn file_name(given: &str) -> String {
     }
 }
 
+/// Why an upload was not measured.
+#[derive(Debug)]
+pub enum Failure {
+    /// No reader takes it, or the check refuses it: the command's error.
+    Unreadable(String),
+    /// It goes past a budget, named by its flag.
+    Over { budget: &'static str, message: String },
+    /// `hook` said the answer is no longer wanted.
+    Cancelled,
+}
+
+/// The flag of a reader's limit.
+fn flag(budget: Budget) -> &'static str {
+    match budget {
+        Budget::InflatedBytes => "--max-inflated",
+        Budget::Placements => "--max-placements",
+        Budget::Faces => "--max-faces",
+    }
+}
+
 /// Reads `bytes`, uploaded as `name` (a plain file name), as if it were a file of that
 /// name in `folder` (an empty folder of the server's own: a glTF's external buffers are
-/// looked for there, and found nowhere), checks it and reports, with `view` the page's
-/// geometry too. Errors are the reader's or the kernel's, naming the file as uploaded.
+/// looked for there, and found nowhere), within `budgets`; checks it and reports, with
+/// `view` the page's geometry too. The check, and each step after it, first asks
+/// `hook` whether it is still wanted. Errors name the file as uploaded.
 pub fn measure(
     folder: &Path,
     name: &str,
     bytes: Vec<u8>,
     options: &Options,
     with_view: bool,
-) -> Result<(CheckReport, Option<Page>), String> {
+    budgets: &Budgets,
+    hook: &dyn Progress,
+) -> Result<(CheckReport, Option<Page>), Failure> {
     let path = folder.join(name);
     let unfold = |e: String| e.replace(&format!("{}/", folder.display()), "");
-    let loaded = meshvol_io::read_bytes(&path, bytes).map_err(|e| unfold(e.to_string()))?;
+    let limits = Limits {
+        inflated_bytes: budgets.inflated_bytes,
+        placements: budgets.placements,
+        faces: budgets.faces,
+    };
+    let loaded = meshvol_io::read_bytes_within(&path, bytes, &limits).map_err(|e| {
+        let message = unfold(e.to_string());
+        match e.budget {
+            Some(budget) => Failure::Over { budget: flag(budget), message },
+            None => Failure::Unreadable(message),
+        }
+    })?;
+    let faces = loaded.face_count() as u64;
+    if faces > budgets.faces {
+        let message = format!("{name}: {faces} faces; more than {} are not checked", budgets.faces);
+        return Err(Failure::Over { budget: "--max-faces", message });
+    }
     let (assembly, bodies) = (loaded.assembly.as_ref(), loaded.body_faces());
-    let c = topology::check_assembled(&loaded.surface, assembly, &bodies, &options.check, &())
-        .map_err(|e| format!("{name}: {e}"))?;
+    let c = topology::check_assembled(&loaded.surface, assembly, &bodies, &options.check, hook)
+        .map_err(|e| match e {
+            CheckError::Cancelled => Failure::Cancelled,
+            e => Failure::Unreadable(format!("{name}: {e}")),
+        })?;
     let source = Source::of(name, &loaded);
-    let report = check(&source, &c).in_units(&options.units, loaded.unit)?;
+    let report =
+        check(&source, &c).in_units(&options.units, loaded.unit).map_err(Failure::Unreadable)?;
     if !with_view {
         return Ok((report, None));
     }
-    let page = page(&source, &loaded.surface, &c, report.clone(), &options.units)?;
+    if hook.cancelled() {
+        return Err(Failure::Cancelled);
+    }
+    let page = page(&source, &loaded.surface, &c, report.clone(), &options.units)
+        .map_err(Failure::Unreadable)?;
     Ok((report, Some(page)))
 }
 

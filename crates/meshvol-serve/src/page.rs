@@ -2,7 +2,7 @@
 //! `meshvol check --html` (the same page with its scripts and one file's content
 //! inlined).
 
-use axum::http::{header, HeaderValue, StatusCode};
+use axum::http::{header, HeaderValue};
 use axum::response::{IntoResponse, Response};
 
 const INDEX: &str = include_str!("page/index.html");
@@ -11,6 +11,13 @@ const STYLE: &str = include_str!("page/style.css");
 const THREE: &str = include_str!("page/vendor/three.min.js");
 const ORBIT: &str = include_str!("page/vendor/OrbitControls.js");
 const THREE_LICENSE: &str = include_str!("page/vendor/LICENSE-three.txt");
+
+/// What the page may load and run: its own files only (no inline script, nothing from
+/// elsewhere), the 3D view's drawings, requests to this server; and no other page may
+/// frame it.
+const POLICY: &str = "default-src 'none'; script-src 'self'; style-src 'self'; \
+                      img-src 'self' data: blob:; connect-src 'self'; base-uri 'none'; \
+                      form-action 'none'; frame-ancestors 'none'";
 
 /// The embedded file at `path` (as the page names it), or 404.
 pub fn asset(path: &str) -> Response {
@@ -21,13 +28,14 @@ pub fn asset(path: &str) -> Response {
         "vendor/three.min.js" => (THREE, "text/javascript; charset=utf-8"),
         "vendor/OrbitControls.js" => (ORBIT, "text/javascript; charset=utf-8"),
         "vendor/LICENSE-three.txt" => (THREE_LICENSE, "text/plain; charset=utf-8"),
-        _ => return (StatusCode::NOT_FOUND, "not found\n").into_response(),
+        _ => return crate::api::not_found(),
     };
     (
         [
             (header::CONTENT_TYPE, HeaderValue::from_static(kind)),
             (header::X_CONTENT_TYPE_OPTIONS, HeaderValue::from_static("nosniff")),
             (header::X_FRAME_OPTIONS, HeaderValue::from_static("DENY")),
+            (header::CONTENT_SECURITY_POLICY, HeaderValue::from_static(POLICY)),
         ],
         body,
     )

@@ -8,6 +8,11 @@
 //! progress, and a closure taking a stage name (what the check always took,
 //! [`StageReport`]) gets the stages only.
 //!
+//! The same hook lets the caller give up: [`Progress::cancelled`] says the result is no
+//! longer wanted (a server's request past its deadline), and a kernel that asks stops
+//! at its next stage with an error instead of finishing (the check does). A hook is the
+//! caller's own state, so two calls never cancel each other.
+//!
 //! Kernels report per chunk of work, never per item: a [`Counter`] adds a chunk's
 //! units from any thread and passes on a count that only grows and ends at `total`,
 //! so the hook costs an atomic add and a short lock per chunk, and nothing per point.
@@ -24,6 +29,11 @@ pub trait Progress: Sync {
     /// `done` of `total` units of the current stage are done: within a stage `done`
     /// only grows, and the last call of a stage that finishes has `done == total`.
     fn advance(&self, _done: u64, _total: u64) {}
+    /// Whether the caller no longer wants the result: a kernel that asks stops at its
+    /// next stage with an error. Never, unless the caller implements it.
+    fn cancelled(&self) -> bool {
+        false
+    }
 }
 
 /// No progress wanted.
@@ -139,5 +149,41 @@ mod tests {
         p.stage("one");
         p.advance(1, 2);
         assert_eq!(names.into_inner().unwrap(), ["one"]);
+    }
+
+    /// Cancels once `after` stages have started.
+    struct CancelAfter {
+        after: usize,
+        started: Mutex<Vec<&'static str>>,
+    }
+
+    impl Progress for CancelAfter {
+        fn stage(&self, name: &'static str) {
+            self.started.lock().unwrap().push(name);
+        }
+        fn cancelled(&self) -> bool {
+            self.started.lock().unwrap().len() >= self.after
+        }
+    }
+
+    #[test]
+    fn a_cancelled_check_stops_at_its_next_stage() {
+        use crate::shapes::cuboid;
+        use crate::topology::{check, check_in_stages, CheckError, CheckOptions};
+        let cube = cuboid([0.0; 3], [2.0; 3]);
+        let options = CheckOptions::default();
+        let whole = check(&cube, &options).unwrap();
+        // Never cancelled: the plain check's facts.
+        let never = CancelAfter { after: usize::MAX, started: Mutex::new(Vec::new()) };
+        let c = check_in_stages(&cube, &options, &never).unwrap();
+        assert_eq!((c.volume, c.closed, c.faces), (whole.volume, whole.closed, whole.faces));
+        let stages = never.started.into_inner().unwrap();
+        // Cancelled after each number of stages: the error, and no stage after it.
+        for after in 0..stages.len() {
+            let hook = CancelAfter { after, started: Mutex::new(Vec::new()) };
+            let e = check_in_stages(&cube, &options, &hook).map(|_| ());
+            assert_eq!(e, Err(CheckError::Cancelled));
+            assert_eq!(hook.started.into_inner().unwrap(), stages[..after]);
+        }
     }
 }

@@ -13,9 +13,15 @@ pub struct Server {
 impl Server {
     /// Starts the server with `args` after `serve --port 0`; waits until it listens.
     pub fn start(args: &[&str]) -> Server {
+        Server::start_in_env(args, &[])
+    }
+
+    /// [`Server::start`] with the variables `env` set.
+    pub fn start_in_env(args: &[&str], env: &[(&str, &str)]) -> Server {
         let mut child = Command::new(super::bin())
             .args(["serve", "--port", "0"])
             .args(args)
+            .envs(env.iter().copied())
             .stderr(Stdio::piped())
             .stdout(Stdio::null())
             .spawn()
@@ -37,6 +43,14 @@ impl Server {
             }
         });
         Server { child, url }
+    }
+
+    /// Sends the server the signal `name` (`TERM`, `INT`) and waits for it to exit.
+    pub fn stop(mut self, name: &str) -> std::process::ExitStatus {
+        let pid = self.child.id().to_string();
+        let sent = Command::new("kill").args([&format!("-{name}"), &pid]).status();
+        assert!(sent.is_ok_and(|s| s.success()), "kill -{name} {pid}");
+        self.child.wait().expect("the server exits")
     }
 
     /// The server's process id.

@@ -41,6 +41,7 @@ use std::path::Path;
 use meshvol::Mesh;
 
 use crate::error::{Location, ParseError};
+use crate::limits::Limits;
 use crate::Object;
 use buffers::{glb_chunks, Buffers};
 use scene::place;
@@ -74,11 +75,12 @@ fn at(item: impl Into<String>, message: impl Into<String>) -> ParseError {
     ParseError::new(Some(Location::Json(item.into())), message)
 }
 
-/// Reads a `.gltf` or `.glb` file; `path` locates external buffers.
+/// Reads a `.gltf` or `.glb` file within `limits`; `path` locates external buffers.
 pub(crate) fn read(
     path: &Path,
     bytes: &[u8],
     warnings: &mut Vec<String>,
+    limits: &Limits,
 ) -> Result<Scene, ParseError> {
     let binary = looks_like_glb(bytes);
     let (json, bin) = if binary { glb_chunks(bytes, warnings)? } else { (bytes, None) };
@@ -109,6 +111,6 @@ pub(crate) fn read(
         }
     }
     let buffers = Buffers { doc: &doc, path, bin, loaded: Vec::new(), file_bytes: bytes.len() };
-    let g = place(&doc, buffers, warnings)?;
+    let g = place(&doc, buffers, warnings, limits)?;
     Ok(Scene { mesh: g.mesh, objects: g.objects, bodies: g.bodies, binary, assembly: g.assembly })
 }

@@ -8,6 +8,7 @@ use super::at;
 use super::buffers::{packed_triangles, read_accessor, strided, Buffers, Component};
 use super::schema::{Document, Node, Primitive};
 use crate::error::ParseError;
+use crate::limits::Limits;
 use crate::transform::{Gathered, Placed};
 use meshvol::assembly::Affine;
 
@@ -180,11 +181,12 @@ pub(super) fn primitive_size(
     Ok((vertices, triangles))
 }
 
-/// Reads the scene's primitives into one mesh.
+/// Reads the scene's primitives into one mesh, its size checked against `limits` first.
 pub(super) fn place(
     doc: &Document,
     mut buffers: Buffers<'_>,
     warnings: &mut Vec<String>,
+    limits: &Limits,
 ) -> Result<Gathered, ParseError> {
     let instances = instances(doc)?;
 
@@ -217,6 +219,7 @@ pub(super) fn place(
         let primitives = |m: usize| doc.meshes[m].primitives.len() as u64;
         instances.iter().map(|i| primitives(i.mesh)).sum()
     });
+    limits.expansion(triangles, instances.len() as u64)?;
     let mut placed = Placed::with_capacity(vertices, triangles, copies)
         .map_err(|message| ParseError::new(None, message))?;
     let mut decoded: Vec<Option<Vec<Part>>> = (0..doc.meshes.len()).map(|_| None).collect();

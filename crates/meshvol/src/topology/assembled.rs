@@ -37,7 +37,7 @@ pub fn check_assembled<S: Surface + ?Sized>(
     stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
     if let Some(assembly) = assembly.filter(|a| a.repeats_parts()) {
-        stage.stage("checking each placed part once");
+        super::enter(stage, "checking each placed part once")?;
         if let Some(whole) = from_parts(assembly, surface.face_count(), bodies, options)? {
             return Ok(whole);
         }

@@ -301,6 +301,20 @@ pub enum CheckError {
     TooLarge { corners: usize },
     #[error("{faces} faces: checks number faces with 31 bits (at most 2147483646)")]
     TooManyFaces { faces: usize },
+    /// The caller's hook said the result is no longer wanted
+    /// ([`Progress::cancelled`](crate::progress::Progress::cancelled)).
+    #[error("the check was cancelled")]
+    Cancelled,
+}
+
+/// Starts the stage `name`, unless the caller has cancelled the check: each stage is
+/// near-linear in the faces, so a cancelled check stops within one stage's time.
+fn enter(stage: StageReport<'_>, name: &'static str) -> Result<(), CheckError> {
+    if stage.cancelled() {
+        return Err(CheckError::Cancelled);
+    }
+    stage.stage(name);
+    Ok(())
 }
 
 /// Checks the topology of `surface`, one body ([`check_in_stages`] takes several).
@@ -336,9 +350,9 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     options: &CheckOptions,
     stage: StageReport<'_>,
 ) -> Result<Check, CheckError> {
-    stage.stage("gathering faces");
+    enter(stage, "gathering faces")?;
     let loops = Loops::of(surface)?;
-    stage.stage("welding");
+    enter(stage, "welding")?;
     // The corners' positions are needed for welding only (see `loops.rs`); the vertices
     // are at the same positions. Read as the f32 a file stored them in where the surface
     // has them (a binary STL): half the bytes, the same weld.
@@ -353,22 +367,22 @@ pub fn check_in_stages<S: Surface + ?Sized>(
     };
     let diagonal = Bounds::of_points(&exact.positions).map_or(0.0, |b| norm(b.size()));
     Ok(match options.weld {
-        Weld::Exact => analyse(surface, &loops, &exact, None, bodies, options, stage),
+        Weld::Exact => analyse(surface, &loops, &exact, None, bodies, options, stage)?,
         Weld::Tolerance(t) => {
             let welded = exact.within(t);
             drop(exact);
-            analyse(surface, &loops, &welded, Some(t), bodies, options, stage)
+            analyse(surface, &loops, &welded, Some(t), bodies, options, stage)?
         }
         Weld::Auto => {
-            let exact_check = analyse(surface, &loops, &exact, None, bodies, options, stage);
+            let exact_check = analyse(surface, &loops, &exact, None, bodies, options, stage)?;
             if exact_check.boundary_edges == 0 || diagonal == 0.0 {
                 exact_check
             } else {
-                stage.stage("welding again within a tolerance");
+                enter(stage, "welding again within a tolerance")?;
                 let t = AUTO_WELD * diagonal;
                 let welded = exact.within(t);
                 drop(exact);
-                let welded = analyse(surface, &loops, &welded, Some(t), bodies, options, stage);
+                let welded = analyse(surface, &loops, &welded, Some(t), bodies, options, stage)?;
                 if welded.boundary_edges < exact_check.boundary_edges {
                     welded
                 } else {
@@ -388,9 +402,9 @@ fn analyse<S: Surface + ?Sized>(
     bodies: &[Range<usize>],
     options: &CheckOptions,
     stage: StageReport<'_>,
-) -> Check {
+) -> Result<Check, CheckError> {
     let faces = surface.face_count();
-    stage.stage("sorting out degenerate and duplicate faces");
+    enter(stage, "sorting out degenerate and duplicate faces")?;
     let classes = faces::classify(loops, welded);
     let kept = &classes.kept;
 
@@ -399,14 +413,16 @@ fn analyse<S: Surface + ?Sized>(
     // are never held at once. (Run side by side on 2 cores, a 5M-triangle check peaked
     // at 283–297 bytes a triangle, one after the other at 227–231; a 1M check takes
     // 0.54–0.57 s this way against 0.47–0.49 s.)
-    let connected = connect(surface, loops, welded, kept, stage);
-    let space = options.intersections.then(|| {
-        stage.stage("ordering triangles in space");
+    let connected = connect(surface, loops, welded, kept, stage)?;
+    let space = if options.intersections {
+        enter(stage, "ordering triangles in space")?;
         let (triangles, bvh) = crossings::triangles_in_space(loops, &classes.spatial, welded);
-        stage.stage("finding crossings");
+        enter(stage, "finding crossings")?;
         let crossing = crossings::crossing_pairs(&triangles, &bvh);
-        (triangles, bvh, crossing)
-    });
+        Some((triangles, bvh, crossing))
+    } else {
+        None
+    };
     let Connected {
         vertices,
         edges,
@@ -429,7 +445,7 @@ fn analyse<S: Surface + ?Sized>(
         None => (crossings::Triangles::default(), Bvh::default(), None),
     };
     let mut overlapping_shells = BTreeSet::new();
-    stage.stage("nesting shells");
+    enter(stage, "nesting shells")?;
     let mut containers =
         nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
     let keep = options.keep_spatial_index && tolerance.is_none() && crossing.is_some();
@@ -464,7 +480,7 @@ fn analyse<S: Surface + ?Sized>(
         Some(Orientation::Mixed)
     };
 
-    stage.stage("building the solid");
+    enter(stage, "building the solid")?;
     let (flip, flip_shell, shell_of_face) = (&shells.flip, &roles.flip_shell, &shells.of_face);
     let face_flip: Vec<bool> = (0..faces)
         .into_par_iter()
@@ -491,7 +507,7 @@ fn analyse<S: Surface + ?Sized>(
     let kept_faces = count(kept);
     let closed = kept_faces > 0 && edge_counts.boundary == 0 && edge_counts.non_manifold == 0;
     solid.mark_balanced(closed && edge_counts.consistently_oriented);
-    Check {
+    Ok(Check {
         weld_tolerance: tolerance,
         vertices: vertices.used,
         edges,
@@ -523,7 +539,7 @@ fn analyse<S: Surface + ?Sized>(
         solid,
         spatial_index,
         object_of_shell: (!bodies.is_empty()).then_some(body_of_shell),
-    }
+    })
 }
 
 /// What the check derives from how faces connect, by edges and vertices (stages 3–5,
@@ -549,20 +565,20 @@ fn connect<S: Surface + ?Sized>(
     welded: &weld::Welded,
     kept: &[bool],
     stage: StageReport<'_>,
-) -> Connected {
-    stage.stage("finding edges");
+) -> Result<Connected, CheckError> {
+    enter(stage, "finding edges")?;
     let (mut edges, vertices) = edges::edges(loops, welded, kept);
     let unpaired = sheets::pair(&mut edges, loops, welded);
     let edge_counts = edges::count(&edges, kept.len());
-    stage.stage("finding shells");
+    enter(stage, "finding shells")?;
     let shells = shells::shells(loops, kept, &edges);
-    stage.stage("capping holes");
+    enter(stage, "capping holes")?;
     let caps = holes::caps(loops, welded, &edges, &shells);
     let shell_signed = holes::shell_volumes(surface, welded, kept, &shells, &caps);
-    stage.stage("counting shells");
+    enter(stage, "counting shells")?;
     let candidates = nesting::candidates(loops, welded, kept, &shells);
     let counts = euler::per_shell(loops, welded, kept, &shells, &edges, vertices.used);
-    Connected {
+    Ok(Connected {
         vertices,
         edges: edges.len(),
         edge_counts,
@@ -572,5 +588,5 @@ fn connect<S: Surface + ?Sized>(
         shell_signed,
         candidates,
         counts,
-    }
+    })
 }
