@@ -29,10 +29,17 @@ mod run;
 pub use devices::{auto_choice, devices, DeviceInfo, DeviceKind, Listing};
 pub use run::{Device, Options};
 
+/// Why no OpenCL library loads. A statically linked musl binary (the release binary of
+/// scripts/dist.sh) builds and runs, but musl's static `dlopen` loads nothing.
+#[cfg(all(target_env = "musl", target_feature = "crt-static"))]
+const NO_LIBRARY: &str = "this meshvol is statically linked (the release binary), which cannot load the OpenCL library: for OpenCL, build meshvol with cargo (cargo install --path crates/meshvol-cli) or use --backend cpu";
+#[cfg(not(all(target_env = "musl", target_feature = "crt-static")))]
+const NO_LIBRARY: &str = "no OpenCL library (libOpenCL.so.1) could be loaded: install an OpenCL driver (on Debian or Ubuntu, for the CPU: apt-get install pocl-opencl-icd ocl-icd-libopencl1), or use --backend cpu";
+
 /// Why the OpenCL grid could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    #[error("no OpenCL library (libOpenCL.so.1) could be loaded: install an OpenCL driver (on Debian or Ubuntu, for the CPU: apt-get install pocl-opencl-icd ocl-icd-libopencl1), or use --backend cpu")]
+    #[error("{NO_LIBRARY}")]
     NoLibrary,
     #[error("no OpenCL device {index}: {count} found (meshvol devices lists them)")]
     NoDevice { index: usize, count: usize },
