@@ -3,7 +3,7 @@
 
 use crate::devices::{call, devices, DeviceInfo, Listing};
 use crate::Error;
-use meshvol::grid::{tile_work, Grid, Region, TileWork};
+use meshvol::grid::{tile_work, Grid, GridError, Region, TileWork};
 use meshvol::Surface;
 use opencl3::command_queue::CommandQueue;
 use opencl3::context::Context;
@@ -61,13 +61,10 @@ impl Device {
         Ok(Device { info, units: units.max(1), context, queue, kernel })
     }
 
-    pub fn info(&self) -> &DeviceInfo {
-        &self.info
-    }
-
-    /// `meshvol::grid::cell_volumes` on this device: the same bits.
+    /// `meshvol::grid::cell_volumes` on this device: the same bits. `&mut`: a grid sets
+    /// the kernel's arguments, so one grid at a time runs on a `Device`.
     pub fn cell_volumes<S: Surface + ?Sized>(
-        &self,
+        &mut self,
         surface: &S,
         grid: &Grid,
         options: Options,
@@ -77,7 +74,7 @@ impl Device {
 
     /// `meshvol::grid::cell_volumes_region` on this device: the same bits.
     pub fn cell_volumes_region<S: Surface + ?Sized>(
-        &self,
+        &mut self,
         surface: &S,
         grid: &Grid,
         region: &Region,
@@ -90,7 +87,7 @@ impl Device {
         self.run(&work, options.work_group)
     }
 
-    fn run(&self, work: &TileWork, work_group: Option<usize>) -> Result<Vec<f64>, Error> {
+    fn run(&mut self, work: &TileWork, work_group: Option<usize>) -> Result<Vec<f64>, Error> {
         let name = &self.info.name;
         let named = |call_name| on(name, call_name);
         let [nx, ny, nz] = work.counts;
@@ -117,17 +114,17 @@ impl Device {
         fits("the triangles", work.triangles.len() * 9, 8)?;
         fits("the tiles' triangle lists", work.entries.len(), 4)?;
         // An empty buffer is invalid in OpenCL: an unused entry stands in for none.
-        let triangles: Vec<f64> = match work.triangles.is_empty() {
-            true => vec![0.0; 9],
-            false => work.triangles.iter().flatten().copied().collect(),
+        let triangles: &[f64] = match work.triangles.is_empty() {
+            true => &[0.0; 9],
+            false => work.triangles.as_flattened(),
         };
-        let entries = match work.entries.is_empty() {
-            true => vec![0],
-            false => work.entries.clone(),
+        let entries: &[u32] = match work.entries.is_empty() {
+            true => &[0],
+            false => &work.entries,
         };
-        let triangles = input(&self.context, &triangles, name, "clCreateBuffer (triangles)")?;
+        let triangles = input(&self.context, triangles, name, "clCreateBuffer (triangles)")?;
         let offsets = input(&self.context, &work.offsets, name, "clCreateBuffer (tile offsets)")?;
-        let entries = input(&self.context, &entries, name, "clCreateBuffer (tile triangles)")?;
+        let entries = input(&self.context, entries, name, "clCreateBuffer (tile triangles)")?;
         let scratch = |len: usize, what| {
             // SAFETY: no host pointer; the device allocates `len` doubles.
             unsafe { Buffer::<f64>::create(&self.context, CL_MEM_READ_WRITE, len, ptr::null_mut()) }
@@ -181,7 +178,10 @@ impl Device {
             )
         }
         .map_err(named("clEnqueueNDRangeKernel"))?;
-        let mut volumes = vec![0.0; cells];
+        let mut volumes = Vec::new();
+        let bytes = cells as u128 * 8;
+        volumes.try_reserve_exact(cells).map_err(|_| GridError::OutOfMemory { bytes })?;
+        volumes.resize(cells, 0.0);
         // SAFETY: `volumes` has the buffer's length; the read blocks until done.
         unsafe { self.queue.enqueue_read_buffer(&out, CL_BLOCKING, 0, &mut volumes, &[]) }
             .map_err(named("clEnqueueReadBuffer (cells)"))?;

@@ -16,7 +16,7 @@ use meshvol_opencl::{devices, Device, Listing, Options};
 fn device() -> Option<Device> {
     let listed = match devices().expect("listing the OpenCL devices") {
         Listing::NoLibrary => {
-            eprintln!("skipped: no OpenCL library (libOpenCL.so.1) is installed");
+            eprintln!("skipped: no OpenCL library (libOpenCL.so.1) could be loaded");
             return None;
         }
         Listing::Devices(d) => d,
@@ -43,7 +43,7 @@ fn bits(v: &[f64]) -> Vec<u64> {
 
 /// `surface` on `region` of `grid` (the whole grid with `None`) is the CPU's bits.
 fn same_bits<S: Surface + ?Sized>(
-    device: &Device,
+    device: &mut Device,
     what: &str,
     surface: &S,
     grid: &Grid,
@@ -77,30 +77,42 @@ fn around(mesh: &Mesh, counts: [usize; 3], margin: f64) -> Grid {
 
 #[test]
 fn spheres_and_tori_match_the_cpu() {
-    let Some(device) = device() else { return };
+    let Some(mut device) = device() else { return };
     let sphere = uv_sphere(1.0, 48, 25);
-    same_bits(&device, "sphere 17×23×19", &sphere, &around(&sphere, [17, 23, 19], 0.05), None);
-    same_bits(&device, "sphere 1×1×1", &sphere, &around(&sphere, [1, 1, 1], 0.0), None);
-    same_bits(&device, "sphere 40×3×29", &sphere, &around(&sphere, [40, 3, 29], 0.1), None);
+    same_bits(&mut device, "sphere 17×23×19", &sphere, &around(&sphere, [17, 23, 19], 0.05), None);
+    same_bits(&mut device, "sphere 1×1×1", &sphere, &around(&sphere, [1, 1, 1], 0.0), None);
+    same_bits(&mut device, "sphere 40×3×29", &sphere, &around(&sphere, [40, 3, 29], 0.1), None);
     let mut rng = XorShift::new(50);
     let r = rotation(&mut rng);
     let turned = mapped(&torus(2.0, 0.7, 40, 18), |p| {
         [0, 1, 2].map(|a| r[a][0] * p[0] + r[a][1] * p[1] + r[a][2] * p[2] + 0.3)
     });
-    same_bits(&device, "turned torus 31×27×13", &turned, &around(&turned, [31, 27, 13], 0.2), None);
+    same_bits(
+        &mut device,
+        "turned torus 31×27×13",
+        &turned,
+        &around(&turned, [31, 27, 13], 0.2),
+        None,
+    );
     let bumpy = bumpy_sphere(&[1.0, 0.7, 1.3, 0.9], 2.0, [0.1, -0.2, 0.3]);
-    same_bits(&device, "bumpy sphere 12×12×12", &bumpy, &around(&bumpy, [12, 12, 12], 0.0), None);
+    same_bits(
+        &mut device,
+        "bumpy sphere 12×12×12",
+        &bumpy,
+        &around(&bumpy, [12, 12, 12], 0.0),
+        None,
+    );
 }
 
 #[test]
 fn faces_on_grid_planes_polygons_and_inward_surfaces_match_the_cpu() {
-    let Some(device) = device() else { return };
+    let Some(mut device) = device() else { return };
     // Every face on a plane of the grid: the degenerate and horizontal pieces.
     let cube = cuboid([1.0, 1.0, 1.0], [3.0, 4.0, 2.0]);
     let grid = Grid::new([0.0; 3], [1.0; 3], [5, 5, 5]).unwrap();
-    same_bits(&device, "box on grid planes", &cube, &grid, None);
+    same_bits(&mut device, "box on grid planes", &cube, &grid, None);
     // Polygon faces (fans of several triangles each), and an inward-wound surface.
-    same_bits(&device, "box, quads", &cuboid([0.3, 0.2, 0.1], [2.7, 3.9, 4.4]), &grid, None);
+    same_bits(&mut device, "box, quads", &cuboid([0.3, 0.2, 0.1], [2.7, 3.9, 4.4]), &grid, None);
     let sphere = uv_sphere(2.0, 20, 11);
     let inward = Mesh::from_polygons(
         sphere.positions().to_vec(),
@@ -111,14 +123,14 @@ fn faces_on_grid_planes_polygons_and_inward_surfaces_match_the_cpu() {
             .map(|f| &f[..]),
     )
     .unwrap();
-    same_bits(&device, "inward sphere", &inward, &around(&inward, [9, 10, 11], 0.3), None);
+    same_bits(&mut device, "inward sphere", &inward, &around(&inward, [9, 10, 11], 0.3), None);
 }
 
 #[test]
 fn open_and_dirty_surfaces_match_the_cpu() {
-    let Some(device) = device() else { return };
+    let Some(mut device) = device() else { return };
     let open = open_box([0.2, 0.1, 0.3], [2.9, 1.7, 2.2]);
-    same_bits(&device, "open box", &open, &around(&open, [7, 6, 9], 0.4), None);
+    same_bits(&mut device, "open box", &open, &around(&open, [7, 6, 9], 0.4), None);
     // A sphere with faces missing, some doubled and some degenerate, vertices jittered.
     let sphere = uv_sphere(1.5, 30, 16).triangulated();
     let mut rng = XorShift::new(7);
@@ -135,17 +147,17 @@ fn open_and_dirty_surfaces_match_the_cpu() {
         }
     }
     let dirty = Mesh::from_triangles(positions, triangles).unwrap();
-    same_bits(&device, "dirty sphere", &dirty, &around(&dirty, [13, 11, 15], 0.1), None);
+    same_bits(&mut device, "dirty sphere", &dirty, &around(&dirty, [13, 11, 15], 0.1), None);
 }
 
 #[test]
 fn bounds_partly_outside_and_blocks_match_the_cpu() {
-    let Some(device) = device() else { return };
+    let Some(mut device) = device() else { return };
     let sphere = uv_sphere(1.0, 36, 19);
     // The grid covers part of the sphere: the rest is above, below and beside it.
     let grid = Grid::from_bounds([-0.4, -1.3, -0.55], [1.3, 0.6, 0.45], [11, 9, 7]).unwrap();
-    same_bits(&device, "bounds partly outside", &sphere, &grid, None);
+    same_bits(&mut device, "bounds partly outside", &sphere, &grid, None);
     let grid = around(&sphere, [14, 15, 16], 0.1);
-    same_bits(&device, "block", &sphere, &grid, Some([3..9, 0..15, 5..11]));
-    same_bits(&device, "one column", &sphere, &grid, Some([7..8, 7..8, 0..16]));
+    same_bits(&mut device, "block", &sphere, &grid, Some([3..9, 0..15, 5..11]));
+    same_bits(&mut device, "one column", &sphere, &grid, Some([7..8, 7..8, 0..16]));
 }

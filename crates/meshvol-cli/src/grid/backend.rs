@@ -68,7 +68,7 @@ impl BackendArgs {
         };
         progress.stage_all("computing cell volumes (OpenCL)");
         let gpu = Device::open(index)
-            .and_then(|device| device.cell_volumes(surface, grid, Options::default()));
+            .and_then(|mut device| device.cell_volumes(surface, grid, Options::default()));
         match (gpu, self.backend) {
             (Ok(volumes), _) => Ok(volumes),
             (Err(e), Backend::Auto) => {
