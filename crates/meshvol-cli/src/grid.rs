@@ -6,8 +6,8 @@ use crate::input::Progress;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol::grid::{
-    cell_volumes_with, cut_cells_extras, union_boundary_with, union_cell_volumes_with, CutCells,
-    Extras, Grid, UnionBoundary,
+    cut_cells_extras, union_boundary_with, union_cell_volumes_with, CutCells, Extras, Grid,
+    UnionBoundary,
 };
 use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point, Surface};
@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+mod backend;
 mod zarr;
 
 #[derive(Args)]
@@ -89,6 +90,8 @@ pub struct GridArgs {
     /// file): overlaps count once.
     #[arg(long)]
     union: bool,
+    #[command(flatten)]
+    backend: backend::BackendArgs,
     #[command(flatten)]
     units: crate::units::UnitArgs,
     #[command(flatten)]
@@ -273,6 +276,16 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
                     cells.zarr"
             .into());
     }
+    // The OpenCL grid computes the cell volumes alone, into memory.
+    for (cpu_only, what) in [
+        (args.moments, "--moments"),
+        (args.union, "--union"),
+        (out_kind.as_deref() == Some("zarr"), "a .zarr output"),
+    ] {
+        if cpu_only {
+            args.backend.cpu_only(what)?;
+        }
+    }
     let extras =
         Extras { second_moments: args.second_moments, face_centroids: args.face_centroids };
     let zarr = args.out.as_deref().filter(|out| extension(out).as_deref() == Some("zarr"));
@@ -328,8 +341,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         cut = Some(cut_cells_of(&together, &grid, extras, progress)?);
         (Vec::new(), 0)
     } else {
-        let hook = progress.kernel("computing cell volumes".to_string());
-        (cell_volumes_with(&together, &grid, &hook).map_err(|e| e.to_string())?, 0)
+        (args.backend.cell_volumes(&together, &grid, progress)?, 0)
     };
     run.seconds = start.elapsed().as_secs_f64();
     run.columns_unresolved = columns_unresolved;

@@ -8,6 +8,7 @@ mod area;
 mod below;
 mod check;
 mod cutfill;
+mod devices;
 mod driver;
 mod grid;
 mod hull;
@@ -106,6 +107,10 @@ enum Command {
     /// problems), and its HTTP API: `POST /api/check` answers `check --json`'s object.
     #[command(after_help = EXAMPLES_SERVE)]
     Serve(serve::ServeArgs),
+    /// The OpenCL devices `grid --backend` can use (name, type, f64, memory), and the one
+    /// `--backend auto` takes.
+    #[command(after_help = EXAMPLES_DEVICES)]
+    Devices(devices::DevicesArgs),
     /// Print a completion script for a shell to stdout (`meshvol completions bash >
     /// ~/.local/share/bash-completion/completions/meshvol`).
     #[command(after_help = EXAMPLES_COMPLETIONS)]
@@ -131,7 +136,8 @@ const EXAMPLES_REPAIR: &str = "Examples:\n  meshvol repair samples/flanged-bushi
 const EXAMPLES_AREA: &str = "Examples:\n  meshvol area parcel.wkt lots.geojson\n  meshvol area parcels/ --glob '*.wkt' --json\n  cat lots.wkt | meshvol area -";
 const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt";
 const EXAMPLES_HULL: &str = "Examples:\n  meshvol hull samples/flanged-bushing.stl\n  meshvol hull scan.xyz --out hull.stl --json";
-const EXAMPLES_GRID: &str = "Examples:\n  meshvol grid samples/flanged-bushing.stl --cells 60,60,30 --out cells.npy\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png z.png --slice z=12.5\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png mid.png --slice k=15 --json";
+const EXAMPLES_GRID: &str = "Examples:\n  meshvol grid samples/flanged-bushing.stl --cells 60,60,30 --out cells.npy\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png z.png --slice z=12.5\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png mid.png --slice k=15 --json\n  meshvol grid samples/flanged-bushing.stl --pitch 0.5 --backend opencl --out cells.npy";
+const EXAMPLES_DEVICES: &str = "Examples:\n  meshvol devices\n  meshvol devices --json";
 const EXAMPLES_PROFILE: &str = "Examples:\n  meshvol profile samples/flanged-bushing.stl --levels 10\n  meshvol profile samples/flanged-bushing.stl --step 0.5 --units mm:mL --csv";
 const EXAMPLES_UNION: &str = "Examples:\n  meshvol union a.stl b.stl c.stl --json\n  meshvol union samples/flanged-bushing.stl       # one file: its shells are the bodies";
 const EXAMPLES_INTERSECT: &str =
@@ -353,6 +359,7 @@ fn main() -> ExitCode {
         Command::Below(args) => below::run(args, cli.quiet),
         Command::Cutfill(args) => cutfill::run(args, cli.quiet),
         Command::Serve(args) => serve::run(args, cli.quiet),
+        Command::Devices(args) => devices::run(args),
         Command::Completions { shell } => completions(shell),
         Command::Man { command } => man(command.as_deref()),
     }

@@ -36,6 +36,7 @@ mod clip;
 mod cut_cells;
 pub(crate) mod intersect;
 mod profile;
+mod tile_work;
 mod union;
 
 pub use cut_cells::{
@@ -47,6 +48,7 @@ pub use intersect::{
     Intersection, Method, Moments,
 };
 pub use profile::{profile, Axis, Levels, Profile, ProfileError, MAX_LEVELS};
+pub use tile_work::{tile_work, TileWork};
 pub use union::{
     union, union_boundary, union_boundary_with, union_cell_volumes, union_cell_volumes_with,
     union_with, UnionBoundary, UnionError, UnionVolume, COPLANAR_TOLERANCE, MAX_DEPTH, STALL,
@@ -84,6 +86,8 @@ pub enum GridError {
     OutOfMemory { bytes: u128 },
     #[error("a pitch of {pitch:e} along {axis} across {extent:e} gives about {:.1e} cells on that axis alone: use a larger pitch", extent / pitch)]
     PitchTooFine { axis: char, pitch: f64, extent: f64 },
+    #[error("{triangles} triangles are more than a device's 32-bit triangle index can number: use the CPU (--backend cpu)")]
+    TooManyTriangles { triangles: usize },
     #[error("the region is empty along {axis} (cells {start}..{end}): give start < end")]
     EmptyRegion { axis: char, start: usize, end: usize },
     #[error("the region's cells {start}..{end} along {axis} reach beyond the grid's {cells} cells on that axis")]

@@ -1,0 +1,110 @@
+//! `meshvol grid --backend opencl` against `--backend cpu`: the same file, byte for
+//! byte, where an OpenCL device with f64 is installed (PoCL in CI; otherwise the
+//! comparisons say they skipped); `meshvol devices`; what only the CPU computes.
+
+mod common;
+use common::{box_obj, meshvol, p, write};
+use serde_json::Value;
+
+fn devices() -> Value {
+    let out = meshvol(&["devices", "--json"]);
+    assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Whether a device with f64 is listed (said on stderr when not).
+fn have_device() -> bool {
+    let listed = devices();
+    let found = listed["devices"].as_array().unwrap().iter().any(|d| d["fp64"] == true);
+    if !found {
+        eprintln!("skipped: no OpenCL device with f64 ({listed})");
+    }
+    found
+}
+
+#[test]
+fn devices_lists_and_names_what_auto_takes() {
+    let listed = devices();
+    let list = listed["devices"].as_array().unwrap();
+    assert_eq!(listed["opencl"].as_bool().unwrap(), listed["opencl"] == true);
+    for (index, d) in list.iter().enumerate() {
+        assert_eq!(d["index"], index);
+        assert!(["GPU", "CPU", "accelerator", "other"].contains(&d["type"].as_str().unwrap()));
+        assert!(d["memory_bytes"].as_u64().unwrap() >= d["max_alloc_bytes"].as_u64().unwrap());
+    }
+    // auto takes a GPU with f64, never a CPU device: the CPU path is meshvol's own.
+    if let Some(auto) = listed["auto"].as_u64() {
+        assert_eq!(list[auto as usize]["type"], "GPU");
+        assert_eq!(list[auto as usize]["fp64"], true);
+    }
+    let text = meshvol(&["devices"]);
+    assert!(text.status.success());
+}
+
+#[test]
+fn opencl_files_are_the_cpu_files_byte_for_byte() {
+    if !have_device() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/../../samples/flanged-bushing.stl");
+    let open =
+        write(dir.path(), "open.obj", box_obj([0.1, 0.2, 0.3], [2.3, 1.9, 2.8], 1, true, true));
+    let cases: [(&str, &[&str]); 5] = [
+        (sample, &["--cells", "31,29,17"]),
+        (sample, &["--cells", "20,21,22", "--fraction"]),
+        // Bounds cutting through the part: the rest is beside, above and below.
+        (sample, &["--cells", "13,9,11", "--bounds", "-10,-35,5,40,10,20"]),
+        (sample, &["--pitch", "2.5", "--no-check"]),
+        (p(&open), &["--cells", "7,6,5", "--no-check", "--bounds", "0,0,0,3,3,3"]),
+    ];
+    for (k, (file, extra)) in cases.iter().enumerate() {
+        for ext in ["npy", "csv", "vti"] {
+            let run = |backend: &str| {
+                let out = dir.path().join(format!("{k}-{backend}.{ext}"));
+                let mut args = vec!["grid", file, "--out", p(&out), "--backend", backend];
+                args.extend_from_slice(extra);
+                let run = meshvol(&args);
+                assert!(run.status.success(), "{args:?}: {}", String::from_utf8_lossy(&run.stderr));
+                std::fs::read(out).unwrap()
+            };
+            assert!(run("cpu") == run("opencl"), "case {k} {extra:?}, .{ext}: the files differ");
+        }
+    }
+}
+
+#[test]
+fn what_only_the_cpu_computes_refuses_opencl() {
+    let dir = tempfile::tempdir().unwrap();
+    let cube = write(dir.path(), "cube.obj", box_obj([0.0; 3], [1.0; 3], 1, true, false));
+    let npz = dir.path().join("cells.npz");
+    let zarr = dir.path().join("cells.zarr");
+    for (args, what) in [
+        (vec!["--out", p(&npz), "--moments"], "--moments"),
+        (vec!["--union"], "--union"),
+        (vec!["--out", p(&zarr)], ".zarr"),
+    ] {
+        let mut all = vec!["grid", p(&cube), "--cells", "4,4,4", "--backend", "opencl"];
+        all.extend(args.iter().copied());
+        let out = meshvol(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && stderr.contains(what), "{all:?}: {stderr}");
+        assert!(stderr.contains("CPU only"), "{stderr}");
+        // auto computes them on the CPU.
+        all[5] = "auto";
+        let out = meshvol(&all);
+        assert!(out.status.success(), "{all:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    let out = meshvol(&[
+        "grid",
+        p(&cube),
+        "--cells",
+        "4,4,4",
+        "--backend",
+        "opencl",
+        "--opencl-device",
+        "999",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("OpenCL"), "{stderr}");
+}

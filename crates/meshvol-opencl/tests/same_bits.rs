@@ -1,0 +1,163 @@
+//! The OpenCL grid against the CPU kernel (itself tested against closed forms in
+//! crates/meshvol/tests/grid.rs): the same bits, cell for cell, on any OpenCL device
+//! with f64 (PoCL's CPU device in CI), for several tilings and work-group sizes. Without
+//! an OpenCL library or such a device, each test says it skipped.
+
+#[path = "../../meshvol/tests/common/mod.rs"]
+mod common;
+
+use common::{bumpy_sphere, mapped, open_box, rotation, XorShift};
+use meshvol::grid::{cell_volumes, cell_volumes_region, Grid, Region};
+use meshvol::shapes::{cuboid, torus, uv_sphere};
+use meshvol::{Mesh, Surface};
+use meshvol_opencl::{devices, Device, Listing, Options};
+
+/// The first device with f64, or `None` (said on stderr) where there is none.
+fn device() -> Option<Device> {
+    let listed = match devices().expect("listing the OpenCL devices") {
+        Listing::NoLibrary => {
+            eprintln!("skipped: no OpenCL library (libOpenCL.so.1) could be loaded");
+            return None;
+        }
+        Listing::Devices(d) => d,
+    };
+    let Some(index) = listed.iter().position(|d| d.fp64) else {
+        eprintln!("skipped: no OpenCL device with f64 among {}", listed.len());
+        return None;
+    };
+    Some(Device::open(index).expect("opening the OpenCL device"))
+}
+
+/// The tilings and work groups each grid runs with: none may change a bit.
+const OPTIONS: [Options; 5] = [
+    Options { columns_per_item: None, work_group: None },
+    Options { columns_per_item: Some(1), work_group: None },
+    Options { columns_per_item: Some(1), work_group: Some(1) },
+    Options { columns_per_item: Some(3), work_group: Some(8) },
+    Options { columns_per_item: Some(1000), work_group: Some(64) },
+];
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+/// `surface` on `region` of `grid` (the whole grid with `None`) is the CPU's bits.
+fn same_bits<S: Surface + ?Sized>(
+    device: &mut Device,
+    what: &str,
+    surface: &S,
+    grid: &Grid,
+    region: Option<Region>,
+) {
+    let cpu = match &region {
+        Some(r) => cell_volumes_region(surface, grid, r).unwrap(),
+        None => cell_volumes(surface, grid).unwrap(),
+    };
+    assert!(cpu.iter().any(|&v| v != 0.0), "{what}: the grid misses the solid");
+    for options in OPTIONS {
+        let gpu = match &region {
+            Some(r) => device.cell_volumes_region(surface, grid, r, options).unwrap(),
+            None => device.cell_volumes(surface, grid, options).unwrap(),
+        };
+        assert_eq!(gpu.len(), cpu.len(), "{what}, {options:?}");
+        if bits(&gpu) != bits(&cpu) {
+            let k = (0..cpu.len()).find(|&k| gpu[k].to_bits() != cpu[k].to_bits()).unwrap();
+            panic!(
+                "{what}, {options:?}: cell {k} is {:e} on OpenCL, {:e} on the CPU",
+                gpu[k], cpu[k]
+            );
+        }
+    }
+}
+
+fn around(mesh: &Mesh, counts: [usize; 3], margin: f64) -> Grid {
+    let b = meshvol::mass_properties(mesh).bounds.unwrap();
+    Grid::from_bounds(b.min.map(|x| x - margin), b.max.map(|x| x + margin), counts).unwrap()
+}
+
+#[test]
+fn spheres_and_tori_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    let sphere = uv_sphere(1.0, 48, 25);
+    same_bits(&mut device, "sphere 17×23×19", &sphere, &around(&sphere, [17, 23, 19], 0.05), None);
+    same_bits(&mut device, "sphere 1×1×1", &sphere, &around(&sphere, [1, 1, 1], 0.0), None);
+    same_bits(&mut device, "sphere 40×3×29", &sphere, &around(&sphere, [40, 3, 29], 0.1), None);
+    let mut rng = XorShift::new(50);
+    let r = rotation(&mut rng);
+    let turned = mapped(&torus(2.0, 0.7, 40, 18), |p| {
+        [0, 1, 2].map(|a| r[a][0] * p[0] + r[a][1] * p[1] + r[a][2] * p[2] + 0.3)
+    });
+    same_bits(
+        &mut device,
+        "turned torus 31×27×13",
+        &turned,
+        &around(&turned, [31, 27, 13], 0.2),
+        None,
+    );
+    let bumpy = bumpy_sphere(&[1.0, 0.7, 1.3, 0.9], 2.0, [0.1, -0.2, 0.3]);
+    same_bits(
+        &mut device,
+        "bumpy sphere 12×12×12",
+        &bumpy,
+        &around(&bumpy, [12, 12, 12], 0.0),
+        None,
+    );
+}
+
+#[test]
+fn faces_on_grid_planes_polygons_and_inward_surfaces_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    // Every face on a plane of the grid: the degenerate and horizontal pieces.
+    let cube = cuboid([1.0, 1.0, 1.0], [3.0, 4.0, 2.0]);
+    let grid = Grid::new([0.0; 3], [1.0; 3], [5, 5, 5]).unwrap();
+    same_bits(&mut device, "box on grid planes", &cube, &grid, None);
+    // Polygon faces (fans of several triangles each), and an inward-wound surface.
+    same_bits(&mut device, "box, quads", &cuboid([0.3, 0.2, 0.1], [2.7, 3.9, 4.4]), &grid, None);
+    let sphere = uv_sphere(2.0, 20, 11);
+    let inward = Mesh::from_polygons(
+        sphere.positions().to_vec(),
+        (0..sphere.face_count())
+            .map(|f| sphere.face(f).iter().rev().copied().collect::<Vec<_>>())
+            .collect::<Vec<_>>()
+            .iter()
+            .map(|f| &f[..]),
+    )
+    .unwrap();
+    same_bits(&mut device, "inward sphere", &inward, &around(&inward, [9, 10, 11], 0.3), None);
+}
+
+#[test]
+fn open_and_dirty_surfaces_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    let open = open_box([0.2, 0.1, 0.3], [2.9, 1.7, 2.2]);
+    same_bits(&mut device, "open box", &open, &around(&open, [7, 6, 9], 0.4), None);
+    // A sphere with faces missing, some doubled and some degenerate, vertices jittered.
+    let sphere = uv_sphere(1.5, 30, 16).triangulated();
+    let mut rng = XorShift::new(7);
+    let positions: Vec<_> =
+        sphere.positions().iter().map(|p| p.map(|x| x + 0.02 * (rng.unit() - 0.5))).collect();
+    let mut triangles = Vec::new();
+    for f in 0..sphere.face_count() {
+        let t = sphere.face(f);
+        match f % 11 {
+            0 => {}
+            3 => triangles.extend([[t[0], t[1], t[2]]; 2]),
+            5 => triangles.push([t[0], t[0], t[1]]),
+            _ => triangles.push([t[0], t[1], t[2]]),
+        }
+    }
+    let dirty = Mesh::from_triangles(positions, triangles).unwrap();
+    same_bits(&mut device, "dirty sphere", &dirty, &around(&dirty, [13, 11, 15], 0.1), None);
+}
+
+#[test]
+fn bounds_partly_outside_and_blocks_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    let sphere = uv_sphere(1.0, 36, 19);
+    // The grid covers part of the sphere: the rest is above, below and beside it.
+    let grid = Grid::from_bounds([-0.4, -1.3, -0.55], [1.3, 0.6, 0.45], [11, 9, 7]).unwrap();
+    same_bits(&mut device, "bounds partly outside", &sphere, &grid, None);
+    let grid = around(&sphere, [14, 15, 16], 0.1);
+    same_bits(&mut device, "block", &sphere, &grid, Some([3..9, 0..15, 5..11]));
+    same_bits(&mut device, "one column", &sphere, &grid, Some([7..8, 7..8, 0..16]));
+}
