@@ -402,6 +402,32 @@ fn the_page_shows_the_commands_numbers_and_draws_the_part_and_its_hole() {
     assert_eq!(shown["state"], "failed", "{shown}");
     assert_eq!(shown["error"], expected["error"], "{shown}");
 
+    // Eight boxes each overlapping every other: 28 pairs, listed as the first five and a
+    // count, the rest one click away.
+    let mut boxes = String::new();
+    for k in 0..8 {
+        let lo = 0.1 * k as f64;
+        boxes += &box_obj([lo; 3], [lo + 1.0; 3], 8 * k + 1, true, false);
+    }
+    let boxes = write(dir.path(), "boxes.obj", boxes);
+    browser.upload(&boxes);
+    let shown = card(&browser, "boxes.obj");
+    assert_eq!(shown["state"], "done", "{shown}");
+    let overlaps = |browser: &Browser| {
+        browser.run(
+            "return [...document.querySelectorAll('.card[data-file=\"boxes.obj\"] \
+             li[data-kind=\"overlap\"]')].length;",
+        )
+    };
+    assert_eq!(overlaps(&browser), 5);
+    let more = browser.run(
+        "const m = document.querySelector('.card[data-file=\"boxes.obj\"] \
+         li[data-more=\"overlapping pairs\"]'); if (!m) return null; \
+         const text = m.textContent; m.click(); return text;",
+    );
+    assert!(more.as_str().unwrap().contains("23 more overlapping pairs (28 in all)"), "{more}");
+    assert_eq!(overlaps(&browser), 28);
+
     // A material with a file that declares no unit: the card asks for it, and measured in
     // the unit chosen, the mass is the command's.
     browser.run(

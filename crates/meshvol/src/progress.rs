@@ -175,13 +175,13 @@ mod tests {
         let whole = check(&cube, &options).unwrap();
         // Never cancelled: the plain check's facts.
         let never = CancelAfter { after: usize::MAX, started: Mutex::new(Vec::new()) };
-        let c = check_in_stages(&cube, &options, &never).unwrap();
+        let c = check_in_stages(&cube, &[], &options, &never).unwrap();
         assert_eq!((c.volume, c.closed, c.faces), (whole.volume, whole.closed, whole.faces));
         let stages = never.started.into_inner().unwrap();
         // Cancelled after each number of stages: the error, and no stage after it.
         for after in 0..stages.len() {
             let hook = CancelAfter { after, started: Mutex::new(Vec::new()) };
-            let e = check_in_stages(&cube, &options, &hook).map(|_| ());
+            let e = check_in_stages(&cube, &[], &options, &hook).map(|_| ());
             assert_eq!(e, Err(CheckError::Cancelled));
             assert_eq!(hook.started.into_inner().unwrap(), stages[..after]);
         }

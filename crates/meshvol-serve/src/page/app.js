@@ -132,22 +132,34 @@ function fillCard(card, r) {
   select(index, card);
 }
 
-// The problems, each a click away from its place in the view.
+// The problems, each a click away from its place in the view: of each kind the first
+// few and a count, the rest one click away ("show all"), so that a file with a thousand
+// overlapping pairs gives a short list. The marks are characters every font has.
+const FIRST_FEW = 5;
 function problemList(page, index) {
   const list = el("ul", { class: "problems" });
   const view = page.view;
-  const add = (text, kind, target) => {
+  const item = (text, kind, target) => {
     const li = el("li", { "data-kind": kind }, text);
     li.addEventListener("click", (e) => { e.stopPropagation(); selectIndex(index); viewer.frame(target); });
-    list.append(li);
+    return li;
   };
-  loops(view).forEach((l, i) => add(`⭘ hole ${i + 1}: ${l.length} rim edges`, "hole", { edges: l }));
-  for (let i = 0; i + 1 < view.non_manifold_edges.length && i < 40; i += 2) {
-    add(`✕ non-manifold edge ${i / 2 + 1}`, "non-manifold", { edges: [[view.non_manifold_edges[i], view.non_manifold_edges[i + 1]]] });
+  const kind = (items, name) => {
+    list.append(...items.slice(0, FIRST_FEW));
+    if (items.length <= FIRST_FEW) return;
+    const more = el("li", { class: "more", "data-more": name }, `… ${items.length - FIRST_FEW} more ${name} (${items.length} in all): show all`);
+    more.addEventListener("click", (e) => { e.stopPropagation(); more.replaceWith(...items.slice(FIRST_FEW)); });
+    list.append(more);
+  };
+  kind(loops(view).map((l, i) => item(`○ hole ${i + 1}: ${l.length} rim edges`, "hole", { edges: l })), "holes");
+  const nm = [];
+  for (let i = 0; i + 1 < view.non_manifold_edges.length; i += 2) {
+    nm.push(item(`× non-manifold edge ${i / 2 + 1}`, "non-manifold", { edges: [[view.non_manifold_edges[i], view.non_manifold_edges[i + 1]]] }));
   }
-  view.crossings.forEach((x) => add(`✕ faces ${x.faces[0]} and ${x.faces[1]} cross`, "crossing", { coords: x.triangles[0].concat(x.triangles[1]) }));
-  view.overlapping_shells.forEach((p) => add(`◐ shells ${p[0]} and ${p[1]} overlap`, "overlap", { shells: p }));
-  view.cavities.forEach((s) => add(`◌ cavity: shell ${s}`, "cavity", { shells: [s], clip: true }));
+  kind(nm, "non-manifold edges");
+  kind(view.crossings.map((x) => item(`× faces ${x.faces[0]} and ${x.faces[1]} cross`, "crossing", { coords: x.triangles[0].concat(x.triangles[1]) })), "crossings");
+  kind(view.overlapping_shells.map((p) => item(`∩ shells ${p[0]} and ${p[1]} overlap`, "overlap", { shells: p })), "overlapping pairs");
+  kind(view.cavities.map((c) => item(`◦ cavity: shell ${c}`, "cavity", { shells: [c], clip: true })), "cavities");
   if (view.omitted) list.append(el("li", {}, "no view: " + view.omitted));
   return list;
 }
@@ -207,7 +219,8 @@ const profile = {
     const n = p.levels.length, k = Math.max(0, Math.min(n - 1, Math.round(f * (n - 1))));
     const u = p.units, total = p.volume_below[n - 1];
     const share = total ? ` (${fmt((100 * p.volume_below[k]) / total, 3)} %)` : "";
-    label.textContent = `${p.axis} = ${fmt(p.levels[k], 6)}${u ? " " + u.length : ""}: section ${fmt(p.section_area[k], 6)}${u ? " " + u.area : ""}, volume below ${fmt(p.volume_below[k], 6)}${u ? " " + u.volume : ""}${share}`;
+    // The words of the section's own label (`slices.label`): one wording for the level.
+    label.textContent = `section at ${p.axis} = ${fmt(p.levels[k], 6)}${u ? " " + u.length : ""}: area ${fmt(p.section_area[k], 6)}${u ? " " + u.area : ""}, volume below ${fmt(p.volume_below[k], 6)}${u ? " " + u.volume : ""}${share}`;
     label.setAttribute("data-level", String(k));
     const marker = document.getElementById("profile-level");
     if (marker) { const xk = n > 1 ? (600 * k) / (n - 1) : 0; marker.setAttribute("x1", xk); marker.setAttribute("x2", xk); }
