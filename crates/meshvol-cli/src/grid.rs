@@ -216,6 +216,17 @@ fn extension(path: &Path) -> Option<String> {
 
 /// Runs the command: one summary for all the files.
 pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
+    // An OpenCL device asked for that is not there (no OpenCL library, no such device,
+    // no f64) is a usage error, before any file is read (what runs on the CPU only is
+    // refused as such, later).
+    let zarr = args.out.as_deref().and_then(extension).as_deref() == Some("zarr");
+    let on_cpu_only = args.moments || args.union || zarr;
+    if args.backend.forces_opencl() && !on_cpu_only {
+        if let Err(e) = args.backend.choice().device() {
+            eprintln!("meshvol: error: --backend opencl: {e}");
+            return ExitCode::from(2);
+        }
+    }
     let output = Output { json: args.json, quiet, csv: false };
     let files = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
     driver::once(&files, output, |progress| measure(&args, &files.files, progress))

@@ -106,5 +106,7 @@ fn what_only_the_cpu_computes_refuses_opencl() {
         "999",
     ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && stderr.contains("OpenCL"), "{stderr}");
+    // A usage error, before any file is read: exit 2, naming OpenCL.
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("OpenCL"), "{stderr}");
 }

@@ -488,7 +488,7 @@ fn small(x: f64, bound: f64) -> bool {
 
 /// The cut cells of a real file (`grid --moments` over its box) against `volume` and
 /// `grid`: the same total as `grid`, the divergence theorem on every cell, Σ
-/// `boundary_area` = the solid's area, Σ `volume · centroid` = its first moment, Σ
+/// `boundary_area` = the solid's area (the surface's and its caps'), Σ `volume · centroid` = its first moment, Σ
 /// `boundary_vector` = 0 (the checked solid is closed), and the cells' `inertia` moved to
 /// the solid's centroid (parallel axis theorem) sum to its `inertia`.
 fn cut_cells_disagree(path: &str, volume: &Value, grid: &Value) -> Option<String> {
@@ -533,9 +533,11 @@ fn cut_cells_disagree(path: &str, volume: &Value, grid: &Value) -> Option<String
             }
         }
     }
+    // The solid's boundary: the surface's own area and the caps over its holes.
     let total_area: f64 = a["boundary_area"].1.iter().sum();
+    let area = area + f(&volume["cap_area"]);
     if !small(total_area - area, tolerance) {
-        return Some(format!("Σ boundary_area {total_area} vs area {area}"));
+        return Some(format!("Σ boundary_area {total_area} vs area and caps {area}"));
     }
     let net: Vec<f64> =
         (0..3).map(|d| a["boundary_vector"].1.iter().skip(d).step_by(3).sum()).collect();

@@ -211,6 +211,17 @@ fn gzip(bytes: &[u8]) -> Vec<u8> {
     encoder.finish().unwrap()
 }
 
+/// `bytes` as the one member `name` of a deflated zip.
+fn zipped(name: &str, bytes: &[u8]) -> Vec<u8> {
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .compression_level(Some(9));
+    zip.start_file(name, options).unwrap();
+    zip.write_all(bytes).unwrap();
+    zip.finish().unwrap().into_inner()
+}
+
 /// Asserts a 413 naming `budget` (the flag), in its key and its message.
 fn over(answer: (u16, String), budget: &str) {
     let (status, body) = answer;
@@ -247,6 +258,13 @@ fn uploads_past_a_budget_are_413_naming_it() {
     assert!(bomb.len() < (1 << 19), "{}", bomb.len());
     over(server.post("/api/check?name=bomb.obj.gz", &bomb), "--max-inflated");
     let (status, body) = server.post("/api/check?name=part.obj.gz", &gzip(part().as_bytes()));
+    assert_eq!((status, json(&body)["solid_volume"].as_f64()), (200, Some(24.0)), "{body}");
+    // A zip bomb, the same 256 MiB as the one member of a zip; a small zip is measured.
+    let bomb = zipped("bomb.obj", &vec![b'#'; 256 << 20]);
+    assert!(bomb.len() < (1 << 19), "{}", bomb.len());
+    over(server.post("/api/check?name=bomb.zip", &bomb), "--max-inflated");
+    let (status, body) =
+        server.post("/api/check?name=part.zip", &zipped("part.obj", part().as_bytes()));
     assert_eq!((status, json(&body)["solid_volume"].as_f64()), (200, Some(24.0)), "{body}");
     // 10,000 boxes in a row: 60,000 faces, past the budget of 50,000.
     let mut many = String::new();

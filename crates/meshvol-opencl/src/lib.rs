@@ -23,9 +23,11 @@
 //!
 //! No global state: [`Device`] is a handle the caller opens and passes in.
 
+mod backend;
 mod devices;
 mod run;
 
+pub use backend::{Backend, Where};
 pub use devices::{auto_choice, devices, DeviceInfo, DeviceKind, Listing};
 pub use run::{Device, Options};
 

@@ -172,6 +172,21 @@ pub fn cut_cells<'py, S: Surface>(
     class.call1((dict, origin, g.cell))
 }
 
+/// `backend=` and `opencl_device=` as `grid --backend` and `--opencl-device` take them.
+pub fn backend(backend: &str, device: Option<usize>) -> PyResult<meshvol_opencl::Where> {
+    let backend = backend.parse().map_err(bad_argument)?;
+    Ok(meshvol_opencl::Where { backend, device })
+}
+
+/// Where `Mesh.grid` measures: `cells`, `bounds`, `fraction`, `pitch`, `region`.
+pub type GridPlace<'a, 'py> = (
+    Option<&'a Bound<'py, PyAny>>,
+    Option<&'a Bound<'py, PyAny>>,
+    bool,
+    Option<&'a Bound<'py, PyAny>>,
+    Option<&'a Bound<'py, PyAny>>,
+);
+
 /// The cell volumes of `mesh` (a checked solid, or a surface as wound) on the grid the
 /// arguments describe, or of the block `region` of it, as a `meshvol.Grid`; the kernel's
 /// stages timed on `clock` when given.
@@ -179,33 +194,32 @@ pub fn cut_cells<'py, S: Surface>(
 pub fn cell_volumes<'py, S: Surface>(
     py: Python<'py>,
     mesh: &S,
-    cells: Option<&Bound<'py, PyAny>>,
-    bounds: Option<&Bound<'py, PyAny>>,
-    fraction: bool,
-    pitch: Option<&Bound<'py, PyAny>>,
-    region: Option<&Bound<'py, PyAny>>,
+    (cells, bounds, fraction, pitch, region): GridPlace<'_, 'py>,
     scale: &meshvol_report::units::Scale,
+    on: &meshvol_opencl::Where,
     clock: Option<&crate::timings::Clock>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let grid = grid_of(py, mesh, cells, bounds, pitch)?;
-    let region = region.map(region_of).transpose()?;
-    let start = region.as_ref().map_or([0; 3], |r| [r[0].start, r[1].start, r[2].start]);
-    let (mut volumes, shape) = match region {
-        None => {
-            check_memory(grid.counts, 1, "grid").map_err(mesh_error)?;
-            let volumes = py.detach(|| match clock {
-                Some(clock) => grid::cell_volumes_with(mesh, &grid, clock),
-                None => grid::cell_volumes(mesh, &grid),
-            });
-            (volumes.map_err(mesh_error)?, grid.counts)
+    let block = region.map(region_of).transpose()?;
+    let start = block.as_ref().map_or([0; 3], |r| [r[0].start, r[1].start, r[2].start]);
+    let region = block.clone().unwrap_or_else(|| grid.counts.map(|n| 0..n));
+    let shape = region.clone().map(|r| r.len());
+    check_memory(shape, 1, if block.is_some() { "block" } else { "grid" }).map_err(mesh_error)?;
+    // On the CPU or an OpenCL device (the same bits), as `grid --backend` chooses.
+    let fell_back = std::sync::Mutex::new(Vec::new());
+    let cpu = || {
+        match (&block, clock) {
+            (None, Some(clock)) => grid::cell_volumes_with(mesh, &grid, clock),
+            (None, None) => grid::cell_volumes(mesh, &grid),
+            (Some(block), _) => grid::cell_volumes_region(mesh, &grid, block),
         }
-        Some(region) => {
-            let shape = region.clone().map(|r| r.len());
-            check_memory(shape, 1, "block").map_err(mesh_error)?;
-            let volumes = py.detach(|| grid::cell_volumes_region(mesh, &grid, &region));
-            (volumes.map_err(mesh_error)?, shape)
-        }
+        .map_err(|e| e.to_string())
     };
+    let warn = |w: &str| fell_back.lock().unwrap_or_else(|e| e.into_inner()).push(w.to_string());
+    let volumes = py.detach(|| on.cell_volumes(mesh, &grid, &region, cpu, warn));
+    let fell_back = fell_back.into_inner().unwrap_or_else(|e| e.into_inner());
+    crate::errors::warn_all(py, &fell_back)?;
+    let mut volumes = volumes.map_err(mesh_error)?;
     // In the report's units (the one conversion every grid sink takes), then what the
     // array holds, as the command's .npy: fractions, masses with a density, or volumes.
     let reported = reported_cells::grid(scale, &grid).map_err(mesh_error)?;

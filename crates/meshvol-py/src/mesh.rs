@@ -423,7 +423,11 @@ impl PyMesh {
     ///
     /// timings=True adds `timings` to the Grid: the check's stages, then the kernel's, as
     /// in mass_properties.
-    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None, units = None, density = None, timings = false))]
+    ///
+    /// backend as the command's --backend: 'auto' (an OpenCL GPU with f64 when there is
+    /// one, else the CPU), 'cpu', or 'opencl' (any OpenCL device; opencl_device=N picks
+    /// one of `meshvol devices`): the same bits on each.
+    #[pyo3(signature = (cells = None, bounds = None, fraction = false, pitch = None, check = true, region = None, units = None, density = None, timings = false, backend = "auto", opencl_device = None))]
     #[allow(clippy::too_many_arguments)]
     fn grid<'py>(
         &self,
@@ -437,8 +441,11 @@ impl PyMesh {
         units: Option<&str>,
         density: Option<&Bound<'py, PyAny>>,
         timings: bool,
+        backend: &str,
+        opencl_device: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
         properties::require_faces(&self.mesh)?;
+        let on = grid::backend(backend, opencl_device)?;
         let options = crate::units::options(units, density)?;
         if fraction && options.density.is_some() {
             return Err(crate::errors::bad_argument("give density or fraction=True, not both"));
@@ -452,7 +459,8 @@ impl PyMesh {
             self.warn(py, &warnings)?;
             let measured = subject.measured();
             let c = clock.as_ref();
-            grid::cell_volumes(py, &measured, cells, bounds, fraction, pitch, region, &scale, c)
+            let place = (cells, bounds, fraction, pitch, region);
+            grid::cell_volumes(py, &measured, place, &scale, &on, c)
         })?;
         if let Some(clock) = clock {
             grid.setattr("_timings", crate::timings::to_python(py, &clock.finish())?)?;
@@ -475,7 +483,9 @@ impl PyMesh {
     /// solid, NaN where the aperture is 0. docs/cells.md has the definitions.
     /// moments=True (the default) is what it computes, named as meshvol.dask.grid
     /// names it; moments=False is a ValueError pointing to Mesh.grid, the volumes alone.
-    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None, second_moments = false, face_centroids = false, moments = true))]
+    /// backend as Mesh.grid's: the cut cells run on the CPU ('opencl' is refused, 'auto'
+    /// takes the CPU).
+    #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None, second_moments = false, face_centroids = false, moments = true, backend = "auto", opencl_device = None))]
     #[allow(clippy::too_many_arguments)]
     fn cells<'py>(
         &self,
@@ -489,7 +499,12 @@ impl PyMesh {
         second_moments: bool,
         face_centroids: bool,
         moments: bool,
+        backend: &str,
+        opencl_device: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        grid::backend(backend, opencl_device)?
+            .cpu_only("the cut cells (Mesh.cells)")
+            .map_err(crate::errors::bad_argument)?;
         if !moments {
             return Err(crate::errors::bad_argument(
                 "Mesh.cells computes the cut cells (moments=True); for the cells' volumes alone use Mesh.grid",

@@ -144,17 +144,17 @@ def test_flat_surface_has_no_centroid():
 def test_to_dict_has_the_volume_report_keys():
     mp = meshvol.Mesh(*box()).mass_properties(density=3.0)
     d = mp.to_dict()
-    assert list(d)[:24] == [
+    assert list(d)[:25] == [
         "file", "format", "format_source", "vertices",
         "faces", "triangles", "volume", "signed_volume", "volume_error_bound", "exact",
-        "area", "centroid", "inertia", "principal_moments", "principal_axes", "density",
+        "area", "cap_area", "centroid", "inertia", "principal_moments", "principal_axes", "density",
         "density_unit", "mass", "mass_unit", "bounds", "units", "warnings", "bounds_a_volume",
         "verdict",
     ]
     assert (d["file"], d["format"], d["vertices"], d["units"]) == (None, None, 8, None)
     # Unchecked, the check's facts are absent, as with `meshvol volume --no-check`.
     unchecked = meshvol.Mesh(*box()).mass_properties(check=False).to_dict()
-    assert list(unchecked) == list(d)[:22]
+    assert list(unchecked) == list(d)[:23]
     assert d["mass"] == 3.0 and d["centroid"] == [0.5, 0.5, 0.5]
     assert d["bounds"] == {"min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 1.0]}
     assert d["inertia"] == mp.inertia.tolist()

@@ -55,7 +55,11 @@ pub struct VolumeReport {
     pub volume_error_bound: f64,
     /// True when `signed_volume` is the correctly rounded exact value.
     pub exact: bool,
+    /// The surface's own area (caps over holes left out).
     pub area: f64,
+    /// The area of the caps the check put over holes (0 without): with `area`, the
+    /// area of the solid's boundary, which `volume`, the centroid and the grid measure.
+    pub cap_area: f64,
     pub centroid: Option<[f64; 3]>,
     pub inertia: [[f64; 3]; 3],
     pub principal_moments: [f64; 3],
@@ -164,13 +168,17 @@ pub fn volume<S: Surface>(
     };
     warnings.extend(meshvol::topology::volume_warnings(subject.check, &as_wound, &mp));
     // The area is the surface's own: caps close its holes for the volume, but are no
-    // part of it (a flat open sheet has its own area, not twice it).
-    let area = match subject.check {
+    // part of it (a flat open sheet has its own area, not twice it). Their area is
+    // reported beside it: the solid's boundary, which the grid's cut cells integrate,
+    // is both.
+    let (area, cap_area) = match subject.check {
         Some(checked) if checked.repairs().2 > 0 => {
             let solid = checked.solid(subject.surface);
-            mass_properties(&FaceRange::new(&solid, 0..solid.surface_faces())).area
+            let kept = solid.surface_faces();
+            let part = |faces| mass_properties(&FaceRange::new(&solid, faces)).area;
+            (part(0..kept), part(kept..solid.face_count()))
         }
-        _ => mp.area,
+        _ => (mp.area, 0.0),
     };
 
     let f = scale.length(1.0);
@@ -211,6 +219,7 @@ pub fn volume<S: Surface>(
         volume_error_bound: scale.volume(mp.volume_error_bound) + conversion,
         exact,
         area: scale.area(area),
+        cap_area: scale.area(cap_area),
         centroid: mp.centroid.map(|c| c.map(|x| x * f)),
         inertia,
         principal_moments,

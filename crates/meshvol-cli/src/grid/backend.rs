@@ -5,7 +5,7 @@ use crate::input::Progress;
 use clap::{Args, ValueEnum};
 use meshvol::grid::{cell_volumes_with, Grid};
 use meshvol::Surface;
-use meshvol_opencl::{auto_choice, devices, Device, Listing, Options};
+use meshvol_opencl::Where;
 
 #[derive(Args)]
 pub struct BackendArgs {
@@ -29,17 +29,28 @@ pub enum Backend {
 }
 
 impl BackendArgs {
+    /// The choice the OpenCL crate makes of these flags (the one Python's `backend=`
+    /// makes too).
+    pub fn choice(&self) -> Where {
+        let backend = match self.backend {
+            Backend::Cpu => meshvol_opencl::Backend::Cpu,
+            Backend::Opencl => meshvol_opencl::Backend::Opencl,
+            Backend::Auto => meshvol_opencl::Backend::Auto,
+        };
+        Where { backend, device: self.opencl_device }
+    }
+
+    /// Whether `--backend opencl` was asked for.
+    pub fn forces_opencl(&self) -> bool {
+        self.backend == Backend::Opencl
+    }
+
     /// Refuses `--backend opencl` (or `--opencl-device`) for what only the CPU computes:
     /// `what` names it (`"--moments"`).
     pub fn cpu_only(&self, what: &str) -> Result<(), String> {
-        if self.backend == Backend::Opencl || self.opencl_device.is_some() {
-            return Err(format!(
-                "{what} runs on the CPU only: leave out --backend opencl and --opencl-device \
-                 (the OpenCL grid computes cell volumes and fractions into .npy, .npz, .vti \
-                 or .csv)"
-            ));
-        }
-        Ok(())
+        self.choice().cpu_only(what).map_err(|e| {
+            e.replace("ask for the CPU backend", "leave out --backend opencl and --opencl-device")
+        })
     }
 
     /// The cell volumes of `surface` on `grid`, where the backend says. `auto` falls back
@@ -54,50 +65,11 @@ impl BackendArgs {
             let hook = progress.kernel("computing cell volumes".to_string());
             cell_volumes_with(surface, grid, &hook).map_err(|e| e.to_string())
         };
-        let index = match self.backend {
-            Backend::Cpu => return on_cpu(),
-            Backend::Opencl => self.opencl_device.map_or_else(first_with_f64, Ok)?,
-            Backend::Auto => match self.opencl_device.map_or_else(auto_device, |n| Ok(Some(n))) {
-                Ok(Some(index)) => index,
-                Ok(None) => return on_cpu(),
-                Err(e) => {
-                    progress.warn("--backend auto", &format!("{e}; computing on the CPU"));
-                    return on_cpu();
-                }
-            },
-        };
-        progress.stage_all("computing cell volumes (OpenCL)");
-        let gpu = Device::open(index)
-            .and_then(|mut device| device.cell_volumes(surface, grid, Options::default()));
-        match (gpu, self.backend) {
-            (Ok(volumes), _) => Ok(volumes),
-            (Err(e), Backend::Auto) => {
-                progress.warn("--backend auto", &format!("{e}; computing on the CPU"));
-                on_cpu()
-            }
-            (Err(e), _) => Err(e.to_string()),
+        if self.backend != Backend::Cpu {
+            progress.stage_all("computing cell volumes (OpenCL)");
         }
-    }
-}
-
-/// `--backend opencl` without `--opencl-device`: the first device with f64.
-fn first_with_f64() -> Result<usize, String> {
-    match devices().map_err(|e| e.to_string())? {
-        Listing::NoLibrary => Err(meshvol_opencl::Error::NoLibrary.to_string()),
-        Listing::Devices(list) => list.iter().position(|d| d.fp64).ok_or_else(|| {
-            format!(
-                "no OpenCL device with 64-bit floating point (cl_khr_fp64) among the {} found \
-                 (meshvol devices lists them): use --backend cpu",
-                list.len()
-            )
-        }),
-    }
-}
-
-/// `--backend auto`: the device `auto_choice` takes, or none.
-fn auto_device() -> Result<Option<usize>, String> {
-    match devices().map_err(|e| e.to_string())? {
-        Listing::NoLibrary => Ok(None),
-        Listing::Devices(list) => Ok(auto_choice(&list)),
+        let whole = grid.counts.map(|n| 0..n);
+        let warn = |e: &str| progress.warn("--backend auto", e);
+        self.choice().cell_volumes(surface, grid, &whole, on_cpu, warn)
     }
 }

@@ -133,6 +133,8 @@ class Mesh:
         units: Optional[str] = None,
         density: Optional[_Density] = None,
         timings: bool = False,
+        backend: Literal["auto", "cpu", "opencl"] = "auto",
+        opencl_device: Optional[int] = None,
     ) -> Grid:
         """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
         grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
@@ -148,6 +150,8 @@ class Mesh:
         second_moments: bool = False,
         face_centroids: bool = False,
         moments: Literal[True] = True,
+        backend: Literal["auto", "cpu", "opencl"] = "auto",
+        opencl_device: Optional[int] = None,
     ) -> CutCells:
         """The cut-cell geometry on a grid (`meshvol grid --moments`): volume, fraction,
         centroid, boundary_area, boundary_vector, boundary_centroid, aperture_x/_y/_z;

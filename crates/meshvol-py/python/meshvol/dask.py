@@ -82,13 +82,14 @@ def _block(
     fraction: bool,
     check: bool,
     region: Tuple[Tuple[int, int], ...],
+    backend: str = "auto",
 ) -> np.ndarray:
-    """One chunk, on a worker."""
+    """One chunk, on a worker (on its OpenCL device with backend='opencl' or 'auto')."""
     mesh = source if isinstance(source, Mesh) else _mesh_at(*source)
     with warnings.catch_warnings():
         # The client issued the mesh's warnings once, when it fixed the bounds.
         warnings.simplefilter("ignore", MeshWarning)
-        block = mesh.grid(cells=cells, bounds=bounds, fraction=fraction, check=check, region=region)
+        block = mesh.grid(cells=cells, bounds=bounds, fraction=fraction, check=check, region=region, backend=backend)
         return block.values
 
 
@@ -184,6 +185,8 @@ def grid(
     check: bool = ...,
     fraction: bool = ...,
     moments: Literal[False] = ...,
+    *,
+    backend: str = ...,
 ) -> da.Array: ...
 
 
@@ -199,6 +202,7 @@ def grid(
     moments: Literal[True],
     second_moments: bool = ...,
     face_centroids: bool = ...,
+    backend: str = ...,
 ) -> Dict[str, da.Array]: ...
 
 
@@ -212,6 +216,8 @@ def grid(
     moments: bool = False,
     second_moments: bool = False,
     face_centroids: bool = False,
+    *,
+    backend: str = "auto",
 ) -> Union[da.Array, Dict[str, da.Array]]:
     """The volume of the solid in each cell of a grid as a lazy (nx, ny, nz) float64
     dask.array: Mesh.grid(cells, bounds, fraction=fraction, check=check), bit for bit,
@@ -234,7 +240,11 @@ def grid(
     chunks: as dask.array takes them. The default spans the whole height, since a chunk
     cuts its columns' faces through every layer anyway (the layers above it hand their
     areas down): chunks split along z repeat that work.
+    backend: as Mesh.grid's ('auto', 'cpu', 'opencl'), on each worker: the same bits;
+    the cut cells (moments=True) run on the CPU ('opencl' is refused).
     """
+    if backend not in ("auto", "cpu", "opencl"):
+        raise ValueError(f"backend '{backend}': one of cpu, opencl, auto")
     counts = tuple(int(n) for n in cells)
     if len(counts) != 3 or min(counts) < 1:
         raise ValueError(f"cells must be three positive whole numbers; got {cells}")
@@ -261,6 +271,8 @@ def grid(
     if moments:
         if fraction:
             raise ValueError("moments=True gives fraction among its arrays: leave fraction=False")
+        if backend == "opencl":
+            raise ValueError("the cut cells (moments=True) run on the CPU only: leave backend='auto' or give 'cpu'")
         return _moments(where, counts, fixed, check, chunks, (second_moments, face_centroids))
 
     # One graph key holds the mesh (or its path): each worker receives it once.
@@ -274,7 +286,7 @@ def grid(
             line = []
             for k0, bz in zip(starts[2], chunks[2]):
                 region = ((i0, i0 + bx), (j0, j0 + by), (k0, k0 + bz))
-                values = block(source_key, counts, fixed, fraction, check, region)
+                values = block(source_key, counts, fixed, fraction, check, region, backend)
                 line.append(da.from_delayed(values, (bx, by, bz), dtype=np.float64))
             plane.append(line)
         rows.append(plane)

@@ -1,0 +1,119 @@
+//! Where a grid's cell volumes run, as `grid --backend` and Python's `backend=` ask:
+//! the one choice both make (`cpu`, `opencl`, `auto`), and the run with `auto`'s
+//! fallback to the CPU.
+
+use crate::{auto_choice, devices, Device, Error, Listing, Options};
+use meshvol::grid::{Grid, Region};
+use meshvol::Surface;
+
+/// Where the cell volumes are computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// The CPU kernel.
+    Cpu,
+    /// An OpenCL device, of any kind (PoCL's CPU device included).
+    Opencl,
+    /// An OpenCL GPU with f64 when there is one, else the CPU; a device that fails
+    /// falls back to the CPU with a warning.
+    Auto,
+}
+
+impl std::str::FromStr for Backend {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Backend, String> {
+        match s {
+            "cpu" => Ok(Backend::Cpu),
+            "opencl" => Ok(Backend::Opencl),
+            "auto" => Ok(Backend::Auto),
+            _ => Err(format!("backend '{s}': one of cpu, opencl, auto")),
+        }
+    }
+}
+
+/// A backend and the device asked for (`--opencl-device`, `opencl_device=`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Where {
+    pub backend: Backend,
+    pub device: Option<usize>,
+}
+
+impl Where {
+    /// Refuses an OpenCL device for `what` (`"--moments"`), which only the CPU computes;
+    /// `auto` takes the CPU for it.
+    pub fn cpu_only(&self, what: &str) -> Result<(), String> {
+        if self.backend == Backend::Opencl || self.device.is_some() {
+            return Err(format!(
+                "{what} runs on the CPU only: ask for the CPU backend (the OpenCL grid \
+                 computes cell volumes and fractions)"
+            ));
+        }
+        Ok(())
+    }
+
+    /// The device the cell volumes run on (`None`: the CPU), before any work: `opencl`
+    /// without an OpenCL library or an f64 device is an error naming what is missing;
+    /// `auto` without one is the CPU.
+    pub fn device(&self) -> Result<Option<usize>, String> {
+        let listing = || devices().map_err(|e| e.to_string());
+        match (self.backend, self.device) {
+            (Backend::Cpu, _) => Ok(None),
+            (Backend::Opencl, Some(n)) => match listing()? {
+                Listing::NoLibrary => Err(Error::NoLibrary.to_string()),
+                Listing::Devices(list) => match list.get(n) {
+                    None => Err(Error::NoDevice { index: n, count: list.len() }.to_string()),
+                    Some(d) if !d.fp64 => {
+                        Err(Error::NoFp64 { index: n, name: d.name.clone() }.to_string())
+                    }
+                    Some(_) => Ok(Some(n)),
+                },
+            },
+            (Backend::Opencl, None) => match listing()? {
+                Listing::NoLibrary => Err(Error::NoLibrary.to_string()),
+                Listing::Devices(list) => match list.iter().position(|d| d.fp64) {
+                    Some(n) => Ok(Some(n)),
+                    None => Err(format!(
+                        "no OpenCL device with 64-bit floating point (cl_khr_fp64) among the {} \
+                         found (meshvol devices lists them): use the CPU backend",
+                        list.len()
+                    )),
+                },
+            },
+            (Backend::Auto, Some(n)) => Ok(Some(n)),
+            (Backend::Auto, None) => match listing()? {
+                Listing::NoLibrary => Ok(None),
+                Listing::Devices(list) => Ok(auto_choice(&list)),
+            },
+        }
+    }
+
+    /// The cell volumes of `surface` on `region` of `grid` where this says: on the CPU
+    /// by `cpu`, or on the device (the same bits). With `auto`, a device that cannot be
+    /// listed or fails gives `warn` the reason and the CPU computes.
+    pub fn cell_volumes<S: Surface + ?Sized>(
+        &self,
+        surface: &S,
+        grid: &Grid,
+        region: &Region,
+        cpu: impl FnOnce() -> Result<Vec<f64>, String>,
+        warn: impl Fn(&str),
+    ) -> Result<Vec<f64>, String> {
+        let fallback = |e: String, cpu: Box<dyn FnOnce() -> Result<Vec<f64>, String> + '_>| {
+            warn(&format!("{e}; computing on the CPU"));
+            cpu()
+        };
+        let index = match (self.device(), self.backend) {
+            (Ok(Some(index)), _) => index,
+            (Ok(None), _) => return cpu(),
+            (Err(e), Backend::Auto) => return fallback(e, Box::new(cpu)),
+            (Err(e), _) => return Err(e),
+        };
+        let gpu = Device::open(index).and_then(|mut device| {
+            device.cell_volumes_region(surface, grid, region, Options::default())
+        });
+        match (gpu, self.backend) {
+            (Ok(volumes), _) => Ok(volumes),
+            (Err(e), Backend::Auto) => fallback(e.to_string(), Box::new(cpu)),
+            (Err(e), _) => Err(e.to_string()),
+        }
+    }
+}
