@@ -256,6 +256,9 @@ class MassProperties(_CheckFacts):
     volume_error_bound: float
     exact: bool
     area: float
+    """The surface's own area (caps over holes left out)."""
+    cap_area: float
+    """The area of the caps over holes: with area, the solid's boundary."""
     density: float
     density_unit: Optional[str]
     """The density's unit (None: mass in the file's units cubed times the density)."""
