@@ -136,7 +136,7 @@ const EXAMPLES_REPAIR: &str = "Examples:\n  meshvol repair samples/flanged-bushi
 const EXAMPLES_AREA: &str = "Examples:\n  meshvol area parcel.wkt lots.geojson\n  meshvol area parcels/ --glob '*.wkt' --json\n  cat lots.wkt | meshvol area -";
 const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt";
 const EXAMPLES_HULL: &str = "Examples:\n  meshvol hull samples/flanged-bushing.stl\n  meshvol hull scan.xyz --out hull.stl --json";
-const EXAMPLES_GRID: &str = "Examples:\n  meshvol grid samples/flanged-bushing.stl --cells 60,60,30 --out cells.npy\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png z.png --slice z=12.5\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png mid.png --slice k=15 --json\n  meshvol grid samples/flanged-bushing.stl --pitch 0.5 --backend opencl --out cells.npy";
+const EXAMPLES_GRID: &str = "Examples:\n  meshvol grid samples/flanged-bushing.stl --cells 60,60,30 --out cells.npy\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png z.png --slice z=12.5\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png mid.png --slice k=15 --json\n  meshvol grid samples/flanged-bushing.stl --pitch 0.5 --backend auto --out cells.npy";
 const EXAMPLES_DEVICES: &str = "Examples:\n  meshvol devices\n  meshvol devices --json";
 const EXAMPLES_PROFILE: &str = "Examples:\n  meshvol profile samples/flanged-bushing.stl --levels 10\n  meshvol profile samples/flanged-bushing.stl --step 0.5 --units mm:mL --csv";
 const EXAMPLES_UNION: &str = "Examples:\n  meshvol union a.stl b.stl c.stl --json\n  meshvol union samples/flanged-bushing.stl       # one file: its shells are the bodies";
