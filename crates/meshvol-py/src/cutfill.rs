@@ -3,7 +3,8 @@
 
 use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error, warn_all};
-use crate::mesh::{load, mesh_of, PyMesh};
+use crate::load::load;
+use crate::mesh::{mesh_of, PyMesh};
 use meshvol::cutfill::CellCutFill;
 use meshvol_report::cutfill::{cutfill as report, cutfill_with, Against, CutFillReport, Spacing};
 use meshvol_report::quantities::Quantities;

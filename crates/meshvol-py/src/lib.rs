@@ -25,6 +25,7 @@ mod errors;
 mod grid;
 mod hull;
 mod intersect;
+mod load;
 mod mesh;
 mod polygon;
 mod properties;
@@ -56,7 +57,7 @@ fn _meshvol(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<cutfill::PyCutFill>()?;
     m.add_class::<intersect::PyIntersection>()?;
     m.add_class::<section::PySection>()?;
-    m.add_function(wrap_pyfunction!(mesh::load, m)?)?;
+    m.add_function(wrap_pyfunction!(load::load, m)?)?;
     m.add_function(wrap_pyfunction!(grid::union, m)?)?;
     m.add_function(wrap_pyfunction!(intersect::intersection, m)?)?;
     m.add_function(wrap_pyfunction!(intersect::intersections, m)?)?;
