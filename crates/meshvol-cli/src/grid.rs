@@ -319,7 +319,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         } else if args.moments {
             write.cut_cells(&together, extras, run, progress)?
         } else {
-            write.cells(&together, cell_values(args.fraction, density), run, progress)?
+            write.cells(&together, CellValues::asked(args.fraction, density), run, progress)?
         };
         report.run.mass = scale.mass(report.cells.total);
         return Ok(report);
@@ -368,7 +368,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         let file = std::fs::File::create(out)
             .map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
         let mut w = BufWriter::new(file);
-        let values = cell_values(args.fraction, density);
+        let values = CellValues::asked(args.fraction, density);
         let written = match (out_kind.as_deref(), &cut) {
             (Some("npz"), Some(cells)) => grid_out::npz_cut_cells(&mut w, cells, density),
             (Some("npz"), None) => grid_out::npz(&mut w, &reported, volumes, density),
@@ -388,16 +388,6 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         std::fs::write(png, bytes).map_err(|e| format!("{}: cannot write: {e}", png.display()))?;
     }
     Ok(reported_summary(&scale, &reported, volumes, run))
-}
-
-/// What a one-array file holds: fractions with --fraction, masses with --density, else
-/// volumes.
-fn cell_values(fraction: bool, density: Option<f64>) -> CellValues {
-    match (fraction, density) {
-        (true, _) => CellValues::Fraction,
-        (false, Some(rho)) => CellValues::Mass(rho),
-        (false, None) => CellValues::Volume,
-    }
 }
 
 /// The cut cells of `surface` on the whole of `grid`.

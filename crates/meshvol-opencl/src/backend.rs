@@ -38,13 +38,13 @@ pub struct Where {
 }
 
 impl Where {
-    /// Refuses an OpenCL device for `what` (`"--moments"`), which only the CPU computes;
-    /// `auto` takes the CPU for it.
-    pub fn cpu_only(&self, what: &str) -> Result<(), String> {
+    /// Refuses an OpenCL device for `what` (`"--moments"`), which only the CPU computes,
+    /// saying `instead` (how the caller asks for the CPU); `auto` takes the CPU for it.
+    pub fn cpu_only(&self, what: &str, instead: &str) -> Result<(), String> {
         if self.backend == Backend::Opencl || self.device.is_some() {
             return Err(format!(
-                "{what} runs on the CPU only: ask for the CPU backend (the OpenCL grid \
-                 computes cell volumes and fractions)"
+                "{what} runs on the CPU only: {instead} (the OpenCL grid computes cell \
+                 volumes and fractions)"
             ));
         }
         Ok(())

@@ -223,15 +223,13 @@ pub fn cell_volumes<'py, S: Surface>(
     // In the report's units (the one conversion every grid sink takes), then what the
     // array holds, as the command's .npy: fractions, masses with a density, or volumes.
     let reported = reported_cells::grid(scale, &grid).map_err(mesh_error)?;
-    let values = match (fraction, scale.mass_per_volume()) {
-        (true, _) => CellValues::Fraction,
-        (false, Some(rho)) => CellValues::Mass(rho),
-        (false, None) => CellValues::Volume,
-    };
+    let values = CellValues::asked(fraction, scale.mass_per_volume());
     let cell = reported.cell_volume();
     py.detach(|| {
         reported_cells::volumes(scale, &mut volumes);
-        volumes.par_iter_mut().for_each(|v| *v = values.of(*v, cell));
+        if values != CellValues::Volume {
+            volumes.par_iter_mut().for_each(|v| *v = values.of(*v, cell));
+        }
     });
     let array = Array3::from_shape_vec(shape, volumes).map_err(mesh_error)?;
     let g = reported;

@@ -503,7 +503,7 @@ impl PyMesh {
         opencl_device: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
         grid::backend(backend, opencl_device)?
-            .cpu_only("the cut cells (Mesh.cells)")
+            .cpu_only("the cut cells (Mesh.cells)", "leave backend='auto' or give 'cpu'")
             .map_err(crate::errors::bad_argument)?;
         if !moments {
             return Err(crate::errors::bad_argument(

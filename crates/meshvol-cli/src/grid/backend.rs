@@ -48,9 +48,7 @@ impl BackendArgs {
     /// Refuses `--backend opencl` (or `--opencl-device`) for what only the CPU computes:
     /// `what` names it (`"--moments"`).
     pub fn cpu_only(&self, what: &str) -> Result<(), String> {
-        self.choice().cpu_only(what).map_err(|e| {
-            e.replace("ask for the CPU backend", "leave out --backend opencl and --opencl-device")
-        })
+        self.choice().cpu_only(what, "leave out --backend opencl and --opencl-device")
     }
 
     /// The cell volumes of `surface` on `grid`, where the backend says. `auto` falls back

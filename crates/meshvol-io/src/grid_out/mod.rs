@@ -78,6 +78,16 @@ pub enum CellValues {
 }
 
 impl CellValues {
+    /// What a one-array file of a grid holds: fractions when asked for, else masses given
+    /// a density (mass per volume unit), else volumes.
+    pub fn asked(fraction: bool, density: Option<f64>) -> CellValues {
+        match (fraction, density) {
+            (true, _) => CellValues::Fraction,
+            (false, Some(rho)) => CellValues::Mass(rho),
+            (false, None) => CellValues::Volume,
+        }
+    }
+
     /// The value written for a cell of `volume` in a cell of volume `cell`.
     pub fn of(self, volume: f64, cell: f64) -> f64 {
         match self {
