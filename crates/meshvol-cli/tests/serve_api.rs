@@ -269,12 +269,16 @@ fn two_hundred_uploads_from_eight_clients_are_all_answered_correctly() {
     let warm = peak_memory_kib(server.pid());
     let answered = answered + eight_clients(&server, &uploads, 15);
     assert_eq!(answered, 200);
-    // The 120 later uploads carry 120 MiB of padded files: kept, the peak would grow by
-    // as much; served, it stays about where serving 80 the same way took it (a little
-    // more where the largest happen to meet as they had not yet).
+    // The 120 later uploads carry 120 MiB of padded files (48 of 2 and 3 MiB): kept, the
+    // peak would grow by as much. Served, it grows only where the largest uploads happen
+    // to meet as they had not in the first 80: at most the eight clients' 3 MiB bodies
+    // and their copies at once, 48 MiB (measured on the 2-core machine: 110 MiB after 80
+    // uploads, 123 after 160, 138 after 960, the resident size flat at 115 to 128 MiB,
+    // and 36 MiB of growth in one CI run under load). Half of what keeping would add
+    // tells the two apart.
     if let (Some(warm), Some(peak)) = (warm, peak_memory_kib(server.pid())) {
         eprintln!("server peak memory: {warm} KiB after 80 uploads, {peak} KiB after 200");
-        assert!(peak < warm + 32 * 1024, "peak {peak} KiB, {warm} KiB after 80 uploads");
+        assert!(peak < warm + 60 * 1024, "peak {peak} KiB, {warm} KiB after 80 uploads");
     }
 }
 
