@@ -83,6 +83,10 @@ impl CompensatedSum {
     }
 }
 
+/// Faces per chunk of the deterministic parallel reductions over a surface's faces (the
+/// volume, the mass properties, the exact sum, sections, grids).
+pub(crate) const CHUNK_FACES: usize = 1 << 14;
+
 /// Maps fixed chunks of `0..len` in parallel and combines the results in index order.
 ///
 /// `map` receives a chunk's index range; `combine` folds results left to right. The

@@ -5,9 +5,16 @@
 //! taken from nalgebra's `SymmetricEigen` because nalgebra would be the largest
 //! dependency of the library by far (compile time) for this one 3×3 use.
 
-use crate::properties::Principal;
 use crate::vector::{cross, norm, scale};
 use crate::Point;
+
+/// The principal moments of inertia (ascending) and their axes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Principal {
+    pub moments: [f64; 3],
+    /// `axes[k]` is the unit axis of `moments[k]`; the three form a right-handed frame.
+    pub axes: [Point; 3],
+}
 
 /// Eigen-decomposition of the symmetric `m`: eigenvalues ascending, unit eigenvectors.
 ///

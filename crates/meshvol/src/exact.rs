@@ -17,8 +17,8 @@
 //! About 24 exact additions per triangle: 3–5× the time of [`crate::mass_properties`]
 //! (see the `exact` criterion bench), still well above the speed of reading the file.
 
+use crate::accumulate::CHUNK_FACES;
 use crate::accumulate::{ordered_reduce, ExactSum};
-use crate::properties::CHUNK_FACES;
 use crate::{Point, Surface};
 
 /// Why an exact volume could not be computed.

@@ -49,6 +49,7 @@ pub mod topology;
 mod union_find;
 mod vector;
 pub mod volume;
+mod volume_sums;
 
 pub use exact::{exact_signed_volume, ExactError};
 pub use mesh::{Faces, Mesh, MeshError, Surface};

@@ -42,8 +42,8 @@
 use std::collections::HashMap;
 
 use crate::accumulate::ordered_reduce;
+use crate::accumulate::CHUNK_FACES;
 use crate::polygon::{point_in_ring, signed_area, Point2, Polygon};
-use crate::properties::CHUNK_FACES;
 use crate::vector::{cross, dot, norm, scale, sub};
 use crate::{Point, Surface};
 

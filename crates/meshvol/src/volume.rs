@@ -12,7 +12,7 @@
 //! summed compensated over faces, with Σ M. The faces are cut into the same
 //! fixed chunks as [`crate::mass_properties`]; within a chunk, triangle k (and face k)
 //! goes to the (k mod 4)-th of four interleaved sums, merged in order at the chunk's
-//! end ([`LaneSums`]), and the chunks are combined left to right: the same bits at any
+//! end (`volume_sums::LaneSums`), and the chunks are combined left to right: the same bits at any
 //! thread count, and the same bits as `mass_properties(surface).signed_volume` and
 //! `.volume_error_bound`.
 //!
@@ -48,7 +48,7 @@
 //! value crosses lanes until the chunk's end. The lanes are `wide::f64x4`, which this
 //! crate's baseline target (x86-64 without AVX) builds as two 128-bit halves; on a CPU
 //! with AVX2 the pass runs a copy compiled for it, its lanes one 256-bit register
-//! ([`Avx`]), and on one with AVX-512VL a third copy, the same 256-bit operations with
+//! (`lanes::Avx`), and on one with AVX-512VL a third copy, the same 256-bit operations with
 //! 32 registers instead of 16, which holds every running sum in a register (the AVX2
 //! copy spills and reloads a quarter of its instructions' operands). None uses fused
 //! multiply-adds, so all give the same bits; the tests compare them. The corners'
@@ -67,10 +67,11 @@
 //! From [`PARALLEL_TRIANGLES`] (two chunks) the chunks run on the caller's rayon pool;
 //! below, on the caller's thread.
 
+use crate::accumulate::CHUNK_FACES;
 use crate::accumulate::{ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
 use crate::lanes::{dispatch, Lanes, OnLanes};
 use crate::mesh::MeshError;
-use crate::properties::{VolumeSums, CHUNK_FACES};
+use crate::volume_sums::{LaneSums, VolumeSums};
 use crate::{Point, Surface};
 use wide::f64x4;
 
@@ -414,25 +415,6 @@ impl<L: Lanes> VolumeLanes<L> {
             vector_area_fan_excess: [0.0; 3],
             triangles: self.triangles / 4,
         }))
-    }
-}
-
-/// A chunk's volume sums as four interleaved sums: the chunk's `k`-th triangle (and for
-/// the per-face sums its `k`-th face) goes to sum `k mod 4`, and the four are merged in
-/// order at the chunk's end. This is the summation order of every path, scalar or SIMD
-/// ([`VolumeLanes`]), so all give the same bits; the error bound is that of a
-/// compensated sum cut into parts merged in order, as the chunks already are.
-#[derive(Clone, Copy, Default)]
-pub(crate) struct LaneSums(pub(crate) [VolumeSums; 4]);
-
-impl LaneSums {
-    /// The four sums merged in order.
-    pub(crate) fn merged(&self) -> VolumeSums {
-        let mut total = self.0[0];
-        for lane in &self.0[1..] {
-            total.merge(lane);
-        }
-        total
     }
 }
 

@@ -37,8 +37,8 @@
 use super::clip::Polygon;
 use super::{Grid, GridError};
 use crate::accumulate::two_sum;
+use crate::accumulate::CHUNK_FACES;
 use crate::progress::{Counter, Progress};
-use crate::properties::CHUNK_FACES;
 use crate::{Point, Surface};
 use rayon::prelude::*;
 use std::mem::MaybeUninit;

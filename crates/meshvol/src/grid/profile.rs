@@ -19,8 +19,8 @@
 //! z = 0 to 1 thus reports its footprint at 0 and at 1.
 
 use super::cells::{sweep_layers, ColumnSink, Piece};
+use crate::accumulate::CHUNK_FACES;
 use crate::accumulate::{ordered_reduce, two_sum};
-use crate::properties::CHUNK_FACES;
 use crate::{Point, Surface};
 
 /// A coordinate axis.
