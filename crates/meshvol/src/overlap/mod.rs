@@ -41,7 +41,7 @@ pub use pairs::Degenerate;
 
 use crate::accumulate::{gamma, UNIT_ROUNDOFF};
 use crate::assembly::Affine;
-use crate::grid::intersect::moments::finish;
+use crate::grid::piece_moments::finish;
 use crate::topology::predicates::OBLIQUE;
 use crate::vector::{norm, scale};
 use crate::{Bounds, MassProperties, Point};

@@ -35,7 +35,7 @@
 //! # Moments
 //! The kept pieces of every column of the grid are ∂(A∩B) (its vertical faces aside,
 //! which add nothing below): so the same resolution run over every column, with the
-//! vertical fields of [`moments`] integrated over the kept pieces, gives the volume,
+//! vertical fields of [`super::piece_moments`] integrated over the kept pieces, gives the volume,
 //! the centroid and the inertia of A∩B by the divergence theorem. Their volume must lie
 //! in the interval (within 10⁻⁹ of it); otherwise, or if a column fails to resolve, no
 //! moments are given.
@@ -57,11 +57,11 @@
 //! volumes' rounding bounds.
 
 pub(crate) mod contact;
-pub(crate) mod moments;
 
 pub use contact::Contact;
 
 use super::union::{boundary_in_frame, combine, Rule, UnionError};
+use super::union::{counted_in, Frame, Interface};
 use super::Grid;
 use crate::assembly::Affine;
 use crate::overlap::{overlap, Body, Overlap};
@@ -69,7 +69,6 @@ use crate::progress::Progress;
 use crate::surface::Moved;
 use crate::vector::{cross, sub};
 use crate::{mass_properties, Bounds, MassProperties, Point, Surface};
-use contact::{Frame, Interface};
 
 /// The intersection of two bodies: the certified interval of its volume, the bodies'
 /// volumes, and how the interval was found.
@@ -98,7 +97,7 @@ pub struct Intersection {
     /// Bodies found not to be closed solids ([`super::UnionVolume::bodies_not_solid`]):
     /// the interval is then ordered, not certified.
     pub bodies_not_solid: Vec<usize>,
-    /// The moments of A∩B from its boundary (module docs, [`moments`]); `None` for no
+    /// The moments of A∩B from its boundary (module docs, `grid::piece_moments`); `None` for no
     /// volume, or where a column could not be resolved.
     pub moments: Option<Moments>,
     /// The interface of A and B ([`contact`]): zero when the boxes are apart or touch;
@@ -358,7 +357,7 @@ fn by_grid<S: Surface>(
     let (u, sums) = combine(&[a, b], &[pa, pb], Rule::Intersection, tolerance, true, progress)?;
     let interface_z = sums.as_ref().map(|(_, total)| total.interface());
     let moments = sums
-        .and_then(|(origin, sums)| moments::finish(&sums.moments(), origin))
+        .and_then(|(origin, sums)| super::piece_moments::finish(&sums.moments(), origin))
         .and_then(|(volume, centroid, inertia)| {
             // The same pieces' volume: it must agree with the interval, else the
             // classification went wrong somewhere and the moments are not given.
@@ -426,7 +425,7 @@ pub(crate) fn turned_properties(p: &MassProperties, frame: Frame) -> MassPropert
 }
 
 /// Whether some triangle of `body` whose box meets the common box of `boxes` is counted
-/// in `frame` ([`contact::counted_in`]).
+/// in `frame` ([`counted_in`]).
 fn counts_in<S: Surface>(body: &S, frame: Frame, boxes: (Option<Bounds>, Option<Bounds>)) -> bool {
     let (Some(p), Some(q)) = boxes else { return false };
     let lo = [0, 1, 2].map(|k| p.min[k].max(q.min[k]));
@@ -437,7 +436,7 @@ fn counts_in<S: Surface>(body: &S, frame: Frame, boxes: (Option<Bounds>, Option<
             let meets = (0..3)
                 .all(|k| a[k].min(b[k]).min(c[k]) <= hi[k] && a[k].max(b[k]).max(c[k]) >= lo[k]);
             if meets && !found {
-                found = contact::counted_in(cross(sub(b, a), sub(c, a))) == frame;
+                found = counted_in(cross(sub(b, a), sub(c, a))) == frame;
             }
         });
         if found {

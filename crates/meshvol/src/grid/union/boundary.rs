@@ -34,8 +34,9 @@
 //! bounds: bodies that are not solids) has no boundary to give, so then the whole is
 //! refused ([`UnionError::Unresolved`]): never a boundary with a hole in it.
 
-use super::{counted_columns, setup, Bodies, Grid, GridError, Rule, UnionError};
-use crate::grid::intersect::contact::Frame;
+use super::frames::counted_columns;
+use super::frames::Frame;
+use super::{setup, Bodies, Grid, GridError, Rule, UnionError};
 use crate::grid::intersect::turned_properties;
 use crate::grid::union::KeptPieces;
 use crate::progress::{Counter, Progress};

@@ -90,8 +90,10 @@
 //! | refinement of open cells | `refine.rs` |
 //! | bins in plan over a column, for rays and cuts | `plan.rs` |
 //! | exact resolution of open columns | `resolve.rs` |
+//! | the frames a triangle is counted in, a column's kept pieces summed in a frame, every column resolved in one | `frames.rs` |
 //! | the union's boundary: every column's kept pieces, in three frames ([`union_boundary`]) | `boundary.rs` |
-//! | the driver: base grid, levels, the interval, progress; [`union_cell_volumes`] | `mod.rs` |
+//! | the union's volume in every cell of a given grid ([`union_cell_volumes`]) | `cells.rs` |
+//! | the driver: base grid, levels, the interval, progress | `mod.rs` |
 //!
 //! # Honesty
 //! The interval adds up exact columns, exact cells and the bounds of open leaves, and is
@@ -101,24 +103,28 @@
 
 mod boundary;
 mod bounds;
+mod cells;
 mod column;
+mod frames;
 mod plan;
 mod policy;
 mod refine;
 mod resolve;
 
 pub use boundary::{union_boundary, union_boundary_with, UnionBoundary};
+pub use cells::{union_cell_volumes, union_cell_volumes_with};
+pub(crate) use frames::{counted_in, BoundaryTotal, Frame, Interface};
 pub(crate) use resolve::KeptPieces;
 pub use resolve::COPLANAR_TOLERANCE;
 
 use super::{Grid, GridError};
 use crate::accumulate::CompensatedSum;
-use crate::grid::intersect::contact::{BoundarySums, BoundaryTotal, Frame};
 use crate::progress::{Counter, Progress};
 use crate::surface::Oriented;
 use crate::{mass_properties, MassProperties, Point, Surface};
 pub(crate) use bounds::Rule;
 use bounds::{Bodies, Cell};
+use frames::{boundary_pass, counted_columns, resolve_every_column};
 use rayon::prelude::*;
 use refine::{refine, OpenCell, Refined};
 
@@ -303,7 +309,7 @@ impl<S> Setup<'_, S> {
 
 /// The union's or the intersection's volume (module docs; `intersect` for the
 /// intersection's bounds and grid) and, with `boundary`, the sums of its boundary's
-/// pieces kept in every column (moments and interface, [`BoundarySums`]; `None` where a
+/// pieces kept in every column (moments and interface, `frames::BoundarySums`; `None` where a
 /// column fails to resolve, and for no volume: then the volume is 0).
 pub(crate) fn combine<S: Surface>(
     bodies: &[S],
@@ -541,67 +547,6 @@ pub(crate) fn combine<S: Surface>(
     Ok((volume, sums.map(|s| (grid.origin, s))))
 }
 
-/// The sums of the kept pieces of every column ([`BoundarySums`] in `frame`; moments
-/// about the grid's origin), added in column order; `None` when some column cannot be
-/// resolved.
-fn boundary_pass<S: Surface>(
-    model: &Bodies<'_, S>,
-    frame: Frame,
-    progress: &dyn Progress,
-) -> Option<BoundaryTotal> {
-    resolve_every_column(model, frame, progress).map(|(_, total)| total)
-}
-
-/// One column resolved exactly: its cells' volumes and how many open cells that resolved
-/// ([`Bodies::exact_column`]).
-type ResolvedColumn = (Vec<f64>, usize);
-
-/// Every column resolved exactly ([`Bodies::exact_column_with`]): per column its cells'
-/// volumes and how many open cells that resolved (empty for a column a turned frame
-/// skips), and the sums of the kept pieces ([`BoundarySums`] in `frame`; moments about
-/// the grid's origin) added in column order; `None` when some column cannot be resolved.
-fn resolve_every_column<S: Surface>(
-    model: &Bodies<'_, S>,
-    frame: Frame,
-    progress: &dyn Progress,
-) -> Option<(Vec<ResolvedColumn>, BoundaryTotal)> {
-    let columns = model.grid.counts[0] * model.grid.counts[1];
-    progress.stage(if frame == Frame::Identity { "moments" } else { "contact" });
-    let done = Counter::new(progress, columns);
-    // A turned frame counts only the steep faces: columns without one add nothing.
-    let counts_here = |c: usize| {
-        frame == Frame::Identity
-            || model.bodies.iter().zip(&model.bins).any(|(body, bins)| {
-                bins.column(c).iter().any(|&f| {
-                    let mut counted = false;
-                    body.fan(f as usize, |p, q, r| counted |= frame.counts(p, q, r));
-                    counted
-                })
-            })
-    };
-    let per_column: Vec<Option<(ResolvedColumn, BoundarySums)>> = (0..columns)
-        .into_par_iter()
-        .map(|c| {
-            let mut sums = BoundarySums::new(frame);
-            let resolved = if counts_here(c) {
-                model.exact_column_with(c, Some(&mut sums)).map(|cells| (cells, sums))
-            } else {
-                Some(((Vec::new(), 0), sums))
-            };
-            done.add(1);
-            resolved
-        })
-        .collect();
-    let mut total = BoundaryTotal::default();
-    let mut cells = Vec::with_capacity(columns);
-    for column in per_column {
-        let (volumes, sums) = column?;
-        total.add(&sums);
-        cells.push(volumes);
-    }
-    Some((cells, total))
-}
-
 /// [`boundary_pass`] over the combination of `bodies` (already turned into `frame`) on
 /// their own base grid, without the volume's refinement: `None` for no volume or where
 /// a column fails to resolve.
@@ -621,112 +566,4 @@ pub(crate) fn boundary_in_frame<S: Surface>(
     };
     let model = Bodies::new(setup.oriented, rule, grid, progress)?;
     Ok(boundary_pass(&model, frame, progress))
-}
-
-/// The columns of `full` that a turned `frame` needs: a turned pass adds up only the
-/// faces counted in it (a few steep ones), and a column's kept pieces depend on its own
-/// faces alone (the column–clamp method), so its grid is the block of `full`'s columns
-/// (all its layers) that covers the plan boxes of those faces, clipped to `full`;
-/// `None` when no such face meets `full`.
-fn counted_columns<S: Surface>(
-    bodies: &[S],
-    frame: Frame,
-    full: &Grid,
-) -> Result<Option<Grid>, GridError> {
-    let (min, max) = (full.origin, full.max());
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for body in bodies {
-        for f in 0..body.face_count() {
-            body.fan(f, |p, q, r| {
-                let (a, b) = (
-                    [0, 1, 2].map(|k| p[k].min(q[k]).min(r[k])),
-                    [0, 1, 2].map(|k| p[k].max(q[k]).max(r[k])),
-                );
-                if (0..3).all(|k| a[k] <= max[k] && b[k] >= min[k]) && frame.counts(p, q, r) {
-                    for k in 0..2 {
-                        lo[k] = lo[k].min(a[k]);
-                        hi[k] = hi[k].max(b[k]);
-                    }
-                }
-            });
-        }
-    }
-    if lo[0] > hi[0] {
-        return Ok(None);
-    }
-    // The full grid's column lines, one column of room for rounding either side.
-    let span = |k: usize| {
-        let cell = |v: f64| ((v - min[k]) / full.cell[k]).floor();
-        let first = (cell(lo[k]) - 1.0).max(0.0) as usize;
-        let end = ((cell(hi[k]) + 2.0).max(0.0) as usize).min(full.counts[k]);
-        (first, end.max(first + 1))
-    };
-    let ((i0, i1), (j0, j1)) = (span(0), span(1));
-    let origin = [min[0] + i0 as f64 * full.cell[0], min[1] + j0 as f64 * full.cell[1], min[2]];
-    Grid::new(origin, full.cell, [i1 - i0, j1 - j0, full.counts[2]]).map(Some)
-}
-
-/// The union's volume in every cell of `grid`: exact where at most one body touches a
-/// cell, resolved exactly (module docs) in the columns of cells that two or more touch.
-/// Returns the cell volumes and the number of columns that could not be resolved (their
-/// open cells hold the lower bound, `max_i v_i`).
-pub fn union_cell_volumes<S: Surface>(
-    bodies: &[S],
-    grid: &Grid,
-) -> Result<(Vec<f64>, usize), GridError> {
-    union_cell_volumes_with(bodies, grid, &())
-}
-
-/// [`union_cell_volumes`], telling `progress` its stages (`bounds`, `resolving
-/// columns`) and, in each, the bodies or columns done.
-pub fn union_cell_volumes_with<S: Surface>(
-    bodies: &[S],
-    grid: &Grid,
-    progress: &dyn Progress,
-) -> Result<(Vec<f64>, usize), GridError> {
-    let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
-    let oriented =
-        bodies.iter().map(|b| Oriented::new(b, mass_properties(b).signed_volume < 0.0)).collect();
-    let model = Bodies::new(oriented, Rule::Union, grid, progress)?;
-    let [nx, ny, nz] = grid.counts;
-    let mut out = super::cells::zeroed(grid.cell_count())?;
-    progress.stage("resolving columns");
-    let done = Counter::new(progress, nx * ny);
-    let unresolved: usize = out
-        .par_chunks_mut(nz)
-        .enumerate()
-        .map(|(c, cells)| {
-            let unresolved = cell_column(&model, c, cells);
-            done.add(1);
-            unresolved
-        })
-        .sum();
-    Ok((out, unresolved))
-}
-
-/// Fills one column's cells (column `c` of the grid) with the union's volume: 1 when
-/// the column holds open cells that could not be resolved (they keep their lower
-/// bound), else 0.
-fn cell_column<S: Surface>(model: &Bodies<'_, S>, c: usize, cells: &mut [f64]) -> usize {
-    let nz = cells.len();
-    let mut open = false;
-    for (k, v) in cells.iter_mut().enumerate() {
-        *v = match model.cell(c * nz + k) {
-            Cell::Exact(x) => x,
-            Cell::Open { lower, .. } => {
-                open = true;
-                lower
-            }
-        };
-    }
-    if !open {
-        return 0;
-    }
-    match model.exact_column(c) {
-        Some((exact, _)) => {
-            cells.copy_from_slice(&exact);
-            0
-        }
-        None => 1,
-    }
 }

@@ -164,7 +164,7 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
 
 /// Receives the pieces a column's resolution keeps: what the boundary passes add up
 /// (the intersection's moments and interface,
-/// [`BoundarySums`](crate::grid::intersect::contact::BoundarySums)) or keep (the
+/// [`BoundarySums`](super::frames::BoundarySums)) or keep (the
 /// union's boundary, [`super::boundary`]).
 pub(crate) trait KeptPieces {
     /// A kept piece (`vertices` in grid units, in its triangle's winding; `cell` the
