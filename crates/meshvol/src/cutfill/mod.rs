@@ -47,6 +47,7 @@ mod cells;
 mod overlaps;
 mod pairs;
 mod piece;
+mod plan;
 mod sectors;
 mod terrain;
 #[cfg(test)]
@@ -59,10 +60,10 @@ pub use terrain::{Terrain, TerrainError};
 
 use crate::accumulate::ordered_reduce;
 use crate::progress::{Counter, Progress};
-use pairs::{box_union, Pairs, PlanBox};
+use pairs::Pairs;
 use piece::{amounts, Piece, Sums};
+use plan::{box_union, Facet, PlanBox};
 use std::ops::Range;
-use terrain::Facet;
 
 /// What the existing surface is compared with.
 #[derive(Clone, Copy, Debug)]

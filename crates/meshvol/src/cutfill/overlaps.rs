@@ -16,8 +16,7 @@
 //!   all share a corner are never walked (the slivers of a fan all overlap near their
 //!   apex), and each is decided by separating edge lines, exactly.
 
-use super::pairs::facet_box;
-use super::terrain::Facet;
+use super::plan::{facet_box, Facet};
 use crate::bvh::Bvh;
 use crate::vector::orient2d;
 use crate::Bounds;

@@ -53,29 +53,12 @@
 //! any thread count.
 
 use super::overlaps::interiors_overlap;
+use super::plan::{facet_box, Facet, PlanBox};
 use super::sectors::{Corners, Sector};
-use super::terrain::Facet;
 use crate::bvh::{Bvh, NO_TAG};
 use crate::vector::orient2d;
 use crate::Bounds;
 use std::ops::Range;
-
-/// A box in plan: [min, max].
-pub(crate) type PlanBox = [[f64; 2]; 2];
-
-/// The box of a triangle.
-pub(crate) fn facet_box(f: &Facet) -> PlanBox {
-    let [a, b, c] = f.xy;
-    [
-        [a[0].min(b[0]).min(c[0]), a[1].min(b[1]).min(c[1])],
-        [a[0].max(b[0]).max(c[0]), a[1].max(b[1]).max(c[1])],
-    ]
-}
-
-/// The box holding both.
-pub(crate) fn box_union(a: &PlanBox, b: &PlanBox) -> PlanBox {
-    [[a[0][0].min(b[0][0]), a[0][1].min(b[0][1])], [a[1][0].max(b[1][0]), a[1][1].max(b[1][1])]]
-}
 
 /// A triangle whose box is more than this many times its area is a sliver (a box is at
 /// least twice its triangle, and exactly twice for a right triangle along the axes).

@@ -21,7 +21,7 @@
 //! smallest number only.
 
 use super::overlaps::{by_angle, first_half};
-use super::terrain::Facet;
+use super::plan::Facet;
 use crate::bvh::NO_TAG;
 use crate::vector::orient2d;
 use rayon::prelude::*;

@@ -12,20 +12,11 @@
 //! are wound: [`super::overlaps`] finds the first such pair, exactly and in
 //! n log n time.
 
-use super::pairs::{box_union, facet_box, PlanBox};
+use super::plan::{box_union, facet_box, Facet, PlanBox};
 use crate::accumulate::CompensatedSum;
 use crate::vector::{cross, norm, orient2d, sub};
 use crate::{Point, Surface};
 use rayon::prelude::*;
-
-/// One triangle of a terrain: its corners in plan, counter-clockwise, their heights,
-/// and the face it comes from.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Facet {
-    pub xy: [[f64; 2]; 3],
-    pub z: [f64; 3],
-    pub face: usize,
-}
 
 /// Why a surface is not a height field.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
