@@ -5,9 +5,17 @@
 //! (0-based, like the face indices of [`meshvol::Mesh`]), a line of one part of a 3MF
 //! archive, or the JSON path of a glTF item.
 
-use crate::limits::Budget;
 use std::fmt;
 use std::path::PathBuf;
+
+/// Which limit a read went past (a [`ReadError`]'s `budget`; the limits are
+/// [`crate::Limits`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Budget {
+    InflatedBytes,
+    Placements,
+    Faces,
+}
 
 /// Where in a file a [`ReadError`] was found.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]

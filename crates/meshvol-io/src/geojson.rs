@@ -21,7 +21,7 @@ use meshvol::polygon::{Point2, Polygon};
 use serde_json::Value;
 
 use crate::error::{Location, ParseError};
-use crate::polygons::PolygonFeature;
+use crate::polygon_feature::PolygonFeature;
 
 /// Nesting deeper than this is refused (GeometryCollections inside each other).
 const MAX_DEPTH: u32 = 64;
@@ -249,7 +249,7 @@ mod tests {
     use super::*;
 
     fn parse(s: &str) -> Result<(Vec<PolygonFeature>, Vec<String>), ParseError> {
-        crate::polygons::with_warnings(read, s)
+        crate::polygon_feature::with_warnings(read, s)
     }
 
     #[test]

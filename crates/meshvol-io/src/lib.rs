@@ -73,6 +73,7 @@ pub mod obj;
 pub mod off;
 pub mod ply;
 pub mod points;
+mod polygon_feature;
 pub mod polygons;
 mod source;
 pub mod stl;

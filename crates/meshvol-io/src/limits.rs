@@ -4,6 +4,7 @@
 //! [`Limits::from_env`]; a server reading uploads sets its own per request
 //! ([`crate::read_bytes_within`]), and an error past one names it ([`Budget`]).
 
+pub use crate::error::Budget;
 use crate::error::ParseError;
 use crate::source::stream_limit;
 
@@ -17,14 +18,6 @@ pub struct Limits {
     pub placements: u64,
     /// The most triangles the placed copies expand to.
     pub faces: u64,
-}
-
-/// Which limit a read went past (a [`crate::ReadError`]'s `budget`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Budget {
-    InflatedBytes,
-    Placements,
-    Faces,
 }
 
 /// The placed copies read without another limit: a 6 KB 3MF can place a part this

@@ -25,6 +25,8 @@ use std::path::{Path, PathBuf};
 
 use meshvol::polygon::{Point2, Polygon};
 
+pub use crate::polygon_feature::PolygonFeature;
+
 use crate::error::ParseError;
 use crate::source::Bytes;
 use crate::{text, ReadError};
@@ -47,14 +49,6 @@ impl PolygonFormat {
             PolygonFormat::TextRing => "text",
         }
     }
-}
-
-/// One feature of a file: a WKT geometry, a GeoJSON feature, or the whole file.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PolygonFeature {
-    /// A GeoJSON feature's `properties.name` or `id`.
-    pub name: Option<String>,
-    pub polygons: Vec<Polygon>,
 }
 
 /// A polygon file read: its format, its features in file order, and what was read but
@@ -228,20 +222,6 @@ fn read_text_ring(bytes: &[u8]) -> Result<Vec<Polygon>, ParseError> {
         return Err(ParseError::new(None, "no vertices: expected lines of x y"));
     };
     Ok(vec![Polygon::new(exterior, rings.collect())])
-}
-
-/// A polygon reader: [`crate::wkt`]'s or [`crate::geojson`]'s.
-#[cfg(test)]
-type Reader = fn(&[u8], &mut Vec<String>) -> Result<Vec<PolygonFeature>, ParseError>;
-
-/// A polygon reader's features and warnings for `text`, for the readers' unit tests.
-#[cfg(test)]
-pub(crate) fn with_warnings(
-    read: Reader,
-    text: &str,
-) -> Result<(Vec<PolygonFeature>, Vec<String>), ParseError> {
-    let mut warnings = Vec::new();
-    read(text.as_bytes(), &mut warnings).map(|f| (f, warnings))
 }
 
 #[cfg(test)]

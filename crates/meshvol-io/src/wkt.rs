@@ -22,7 +22,7 @@ use std::io::{self, Write};
 use meshvol::polygon::{Point2, Polygon};
 
 use crate::error::ParseError;
-use crate::polygons::PolygonFeature;
+use crate::polygon_feature::PolygonFeature;
 use crate::text;
 
 /// Nesting deeper than this is refused (GEOMETRYCOLLECTIONs inside each other), so
@@ -336,7 +336,7 @@ mod tests {
     use super::*;
 
     fn parse(s: &str) -> Result<(Vec<PolygonFeature>, Vec<String>), ParseError> {
-        crate::polygons::with_warnings(read, s)
+        crate::polygon_feature::with_warnings(read, s)
     }
 
     #[test]

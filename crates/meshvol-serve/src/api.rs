@@ -12,12 +12,13 @@
 
 use crate::guard::{self, Hosts};
 use crate::measure::{self, Failure};
+use crate::respond::{error, json, json_bytes, not_found, over_budget};
 use crate::upload::{self, Params};
 use crate::{page, size_words, Config};
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{Query, Request, State};
-use axum::http::{header, HeaderValue, StatusCode};
-use axum::response::{IntoResponse, Response};
+use axum::http::{header, StatusCode};
+use axum::response::Response;
 use axum::routing::{get, post};
 use axum::Router;
 use meshvol::progress::Progress;
@@ -94,41 +95,6 @@ async fn limits(State(shared): State<Arc<Shared>>) -> Response {
         "max_answer": c.budgets.answer_bytes,
     });
     json(StatusCode::OK, body.to_string())
-}
-
-/// A JSON answer.
-fn json(status: StatusCode, body: String) -> Response {
-    (status, [(header::CONTENT_TYPE, HeaderValue::from_static("application/json"))], body)
-        .into_response()
-}
-
-/// A JSON error: `{"file": ..., "error": ...}` (the command's error line) when a file is
-/// named, `{"error": ...}` otherwise.
-pub(crate) fn error(status: StatusCode, file: Option<&str>, message: &str) -> Response {
-    let body = match file {
-        Some(file) => meshvol_report::error_line(file, message),
-        None => serde_json::json!({ "error": message }).to_string(),
-    };
-    json(status, body)
-}
-
-/// 404 for a path that is neither the page's nor the API's.
-pub(crate) fn not_found() -> Response {
-    error(
-        StatusCode::NOT_FOUND,
-        None,
-        "no such page: the page is /, the API /api/check, /api/view and /api/limits",
-    )
-}
-
-/// 413 naming the budget (its flag) that `file` went past.
-fn over_budget(file: &str, budget: &str, message: &str) -> Response {
-    let body = serde_json::json!({
-        "file": file,
-        "error": format!("{message} (the budget {budget}: raise it to allow more)"),
-        "budget": budget,
-    });
-    json(StatusCode::PAYLOAD_TOO_LARGE, body.to_string())
 }
 
 /// The cancellation hook a check is run with: its request's deadline passed, or the
@@ -248,12 +214,6 @@ async fn handle(
             error(StatusCode::SERVICE_UNAVAILABLE, Some(&shown), &message)
         }
     }
-}
-
-/// A JSON answer already written.
-fn json_bytes(body: Vec<u8>) -> Response {
-    (StatusCode::OK, [(header::CONTENT_TYPE, HeaderValue::from_static("application/json"))], body)
-        .into_response()
 }
 
 /// An answer written up to `limit` bytes: past it, the write fails (and serializing

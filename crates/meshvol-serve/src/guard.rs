@@ -10,7 +10,7 @@
 //!   may rewrite `Host`). A form or script on any other page (cross-site request
 //!   forgery) is refused, and so is the `null` origin of sandboxed pages and files.
 
-use crate::api::error;
+use crate::respond::error;
 use axum::extract::{Request, State};
 use axum::http::{header, StatusCode};
 use axum::middleware::Next;

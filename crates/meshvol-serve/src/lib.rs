@@ -21,6 +21,7 @@ mod conn;
 mod guard;
 mod measure;
 mod page;
+mod respond;
 mod upload;
 
 pub use measure::{page as page_content, Page};

@@ -28,7 +28,7 @@ pub fn asset(path: &str) -> Response {
         "vendor/three.min.js" => (THREE, "text/javascript; charset=utf-8"),
         "vendor/OrbitControls.js" => (ORBIT, "text/javascript; charset=utf-8"),
         "vendor/LICENSE-three.txt" => (THREE_LICENSE, "text/plain; charset=utf-8"),
-        _ => return crate::api::not_found(),
+        _ => return crate::respond::not_found(),
     };
     (
         [

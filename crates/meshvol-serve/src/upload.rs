@@ -2,8 +2,8 @@
 //! requests may hold, then its file and options (the raw body named by `?name=` or
 //! `X-File-Name`, or a `multipart/form-data` form's `file` field and option fields).
 
-use crate::api::error;
 use crate::measure::{self, Options};
+use crate::respond::error;
 use crate::{size_words, Config};
 use axum::body::Body;
 use axum::extract::{FromRequest, Multipart, Request};
