@@ -5,6 +5,7 @@ use crate::driver::{self, Output};
 use crate::input;
 use clap::Args;
 use meshvol_report::check::{check, CheckReport};
+use meshvol_report::checked::check_loaded;
 use meshvol_report::quantities::Quantities;
 use meshvol_report::subject::Source;
 use meshvol_report::units::UnitOptions;
@@ -61,14 +62,8 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
         progress.stage("reading", path);
         let loaded = input::load(path)?;
         progress.stage("checking", path);
-        let c = meshvol::topology::check_assembled(
-            &loaded.surface,
-            loaded.assembly.as_ref(),
-            &loaded.body_faces(),
-            &options,
-            &progress.kernel(format!("checking {}", path.display())),
-        )
-        .map_err(|e| format!("{name}: {e}"))?;
+        let kernel = progress.kernel(format!("checking {name}"));
+        let c = check_loaded(&name, &loaded, &options, &kernel).map_err(|e| e.to_string())?;
         let source = Source::of(&name, &loaded);
         let report = check(&source, &c).in_units(&args.units.options(), loaded.unit)?;
         if let Some(html) = &args.html {

@@ -7,9 +7,10 @@
 
 use crate::input::{self, Progress};
 use clap::Args;
-use meshvol::topology::{self, Check, CheckOptions};
+use meshvol::topology::CheckOptions;
 use meshvol_io::LoadedSurface;
-use meshvol_report::subject::{Source, Subject};
+use meshvol_report::checked::{refuse_empty, Checked};
+use meshvol_report::subject::Subject;
 use std::path::Path;
 
 /// How a measuring command forms its solid; shared by every command that measures one.
@@ -41,54 +42,25 @@ impl SolidArgs {
 /// Check options from the weld tolerance flag and whether to search for crossings.
 pub use meshvol_report::subject::check_options;
 
-/// One input, read and (unless `--no-check`) checked.
-pub struct Input {
-    pub source: Source,
-    pub surface: LoadedSurface,
-    /// The check the solid comes from; `None` with `--no-check`.
-    pub check: Option<Check>,
-}
-
-impl Input {
-    /// The input as the report layer takes it.
-    pub fn subject(&self) -> Subject<'_, LoadedSurface> {
-        Subject { source: &self.source, surface: &self.surface, check: self.check.as_ref() }
-    }
-}
-
-/// Reads `path` and, with `options`, checks it. A file without faces is an error: there
-/// is nothing to measure.
+/// Reads `path` and, with `options`, checks it ([`Checked::of`], as the server and
+/// Python do). A file without faces is an error: there is nothing to measure.
 pub fn read(
     path: &Path,
     options: Option<CheckOptions>,
     progress: &Progress,
-) -> Result<Input, String> {
-    let name = path.display().to_string();
+) -> Result<Checked, String> {
     progress.stage("reading", path);
+    let name = path.display().to_string();
     let loaded = input::load(path)?;
-    if loaded.face_count() == 0 {
-        return Err(format!("{name}: {}", meshvol_report::volume::NO_FACES));
+    refuse_empty(&name, &loaded)?;
+    if options.is_some() {
+        progress.stage("checking", path);
     }
-    let source = Source::of(&name, &loaded);
-    let check = match options {
-        None => None,
-        Some(options) => {
-            progress.stage("checking", path);
-            let check = topology::check_assembled(
-                &loaded.surface,
-                loaded.assembly.as_ref(),
-                &loaded.body_faces(),
-                &options,
-                &progress.kernel(format!("checking {}", path.display())),
-            )
-            .map_err(|e| format!("{name}: {e}"))?;
-            Some(check)
-        }
-    };
-    Ok(Input { source, surface: loaded.surface, check })
+    let kernel = progress.kernel(format!("checking {name}"));
+    Checked::of(&name, loaded, options.as_ref(), &kernel).map_err(|e| e.to_string())
 }
 
 /// The subjects of several inputs.
-pub fn subjects(inputs: &[Input]) -> Vec<Subject<'_, LoadedSurface>> {
-    inputs.iter().map(Input::subject).collect()
+pub fn subjects(inputs: &[Checked]) -> Vec<Subject<'_, LoadedSurface>> {
+    inputs.iter().map(Checked::subject).collect()
 }

@@ -49,6 +49,7 @@ pub(crate) use unit_slots;
 pub mod area;
 pub mod below;
 pub mod check;
+pub mod checked;
 pub mod cutfill;
 pub mod grid;
 pub mod hull;

@@ -7,6 +7,7 @@ use meshvol::progress::Progress;
 use meshvol::topology::{self, CheckError, CheckOptions};
 use meshvol_io::{Budget, Limits};
 use meshvol_report::check::{check, CheckReport};
+use meshvol_report::checked::check_loaded;
 use meshvol_report::profile::{profile, ProfileReport};
 use meshvol_report::quantities::Quantities;
 use meshvol_report::subject::{Source, Subject};
@@ -109,12 +110,10 @@ pub fn measure(
         let message = format!("{name}: {faces} faces; more than {} are not checked", budgets.faces);
         return Err(Failure::Over { budget: "--max-faces", message });
     }
-    let (assembly, bodies) = (loaded.assembly.as_ref(), loaded.body_faces());
-    let c = topology::check_assembled(&loaded.surface, assembly, &bodies, &options.check, hook)
-        .map_err(|e| match e {
-            CheckError::Cancelled => Failure::Cancelled,
-            e => Failure::Unreadable(format!("{name}: {e}")),
-        })?;
+    let c = check_loaded(name, &loaded, &options.check, hook).map_err(|e| match e.error {
+        CheckError::Cancelled => Failure::Cancelled,
+        _ => Failure::Unreadable(e.to_string()),
+    })?;
     let source = Source::of(name, &loaded);
     let report =
         check(&source, &c).in_units(&options.units, loaded.unit).map_err(Failure::Unreadable)?;
