@@ -216,7 +216,7 @@ pub fn cell_volumes<'py, S: Surface>(
         .map_err(|e| e.to_string())
     };
     let warn = |w: &str| fell_back.lock().unwrap_or_else(|e| e.into_inner()).push(w.to_string());
-    let volumes = py.detach(|| on.cell_volumes(mesh, &grid, &region, cpu, warn));
+    let volumes = py.detach(|| on.cell_volumes(mesh, &grid, &region, &(), cpu, warn));
     let fell_back = fell_back.into_inner().unwrap_or_else(|e| e.into_inner());
     crate::errors::warn_all(py, &fell_back)?;
     let mut volumes = volumes.map_err(mesh_error)?;
