@@ -188,7 +188,8 @@ fn in_slabs<S: Surface + ?Sized>(
                 laid_out.fetch_add(1, Ordering::Relaxed);
             }
         };
-        let options = Options { columns_per_item: Some(2), work_group: None, slab_bytes: Some(budget) };
+        let options =
+            Options { columns_per_item: Some(2), work_group: None, slab_bytes: Some(budget) };
         let gpu = device.cell_volumes_region_with(surface, grid, &region, options, &count).unwrap();
         assert_eq!(laid_out.into_inner(), x.len().div_ceil(rows), "{what}: slabs of {rows}");
         if bits(&gpu) != bits(&cpu) {
