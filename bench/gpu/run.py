@@ -2,11 +2,19 @@
 """The grid on an OpenCL device against the CPU path on the same host (issue 50):
 `meshvol grid` of UV spheres of 1M, 5M and 20M triangles at 256³, 512³ and 1024³, with
 `--backend opencl` and `--backend cpu`, alternated, the median of RUNS each. Prints a
-Markdown table: the cell volumes' time each run reports (`seconds`), the device kernel
-alone (the `OpenCL: the kernel` stage of `--timings`), the whole command's wall time,
-and where the OpenCL run's time went (opening the device and building the kernel, laying
-out the tiles on the CPU, uploading, the kernel, reading back, writing the file). Every
-pair of files is compared byte for byte: a difference stops the run.
+Markdown table, from each run's `--timings` and `seconds`:
+
+- the kernel: the CPU's stage of cutting faces into cells (the sweeps and the sums, on
+  all its threads) against the device's (`OpenCL: the kernel`), `kernel ×` their
+  ratio; both after the faces are sorted into tiles, which the CPU does for both
+  (`CPU sorting s`; inside `OpenCL layout (CPU)` for the device);
+- the cell volumes as the run reports them (`seconds`: for OpenCL, from opening the
+  device to the cells read back), and their ratio;
+- the whole command's wall time (reading, the check, the cells, writing the .npy);
+- where the OpenCL run's time went: opening the device and building the kernel, laying
+  out the tiles on the CPU, uploading, the kernel, reading back, writing the file.
+
+Every pair of files is compared byte for byte: a difference stops the run.
 
     cargo build --release -p meshvol-cli -p meshvol-io --example sphere
     python3 bench/gpu/run.py [--runs 3] [--opencl-device N] [--raw runs.jsonl]
@@ -46,7 +54,7 @@ def run(meshvol, stl, n, backend, device, out):
     digest."""
     args = [meshvol, "grid", stl, "--cells", f"{n},{n},{n}", "--out", out, "--backend", backend,
             "--json", "--timings", "-q"]
-    if backend == "opencl" and device is not None:
+    if backend == "opencl":
         args += ["--opencl-device", str(device)]
     start = time.perf_counter()
     result = subprocess.run(args, capture_output=True, text=True)
@@ -64,6 +72,30 @@ def run(meshvol, stl, n, backend, device, out):
     os.remove(out)
     return {"backend": backend, "cells": n, "wall_s": wall, "seconds": report["seconds"],
             "stages": stages, "sha256": digest.hexdigest()}
+
+
+NO_GPU = """no OpenCL GPU with f64 is listed (meshvol devices). On an NVIDIA host the
+driver ships the OpenCL library, libnvidia-opencl.so.1; what may be missing is the
+loader and the file that names it:
+    apt-get install ocl-icd-libopencl1        # the loader, libOpenCL.so.1
+    echo libnvidia-opencl.so.1 > /etc/OpenCL/vendors/nvidia.icd
+Or name a device: --opencl-device N."""
+
+
+def device_to_use(meshvol, asked, smoke):
+    """The device number to pass as --opencl-device: the one asked for; else the GPU
+    `auto` takes; with --smoke, else the first device with f64 (PoCL's included)."""
+    if asked is not None:
+        return asked
+    listed = json.loads(subprocess.run([meshvol, "devices", "--json"], check=True,
+                                       capture_output=True, text=True).stdout)
+    if listed["auto"] is not None:
+        return listed["auto"]
+    if smoke:
+        for d in listed["devices"]:
+            if d["fp64"]:
+                return d["index"]
+    sys.exit(NO_GPU)
 
 
 def describe(meshvol):
@@ -90,12 +122,15 @@ def main():
         a.triangles, a.sizes, a.runs = "2000,8000", "8,20", 1
     triangles = [int(t) for t in a.triangles.split(",")]
     sizes = [int(n) for n in a.sizes.split(",")]
+    device = device_to_use(a.meshvol, a.opencl_device, a.smoke)
     print(describe(a.meshvol))
+    print(f"OpenCL runs on device {device}")
     print()
     stage_heads = " | ".join(f"OpenCL {name} s" for name, _ in STAGES)
-    print(f"| triangles | grid | CPU cell volumes s | OpenCL cell volumes s | OpenCL kernel s | "
-          f"kernel × | cell volumes × | CPU command s | OpenCL command s | command × | {stage_heads} |")
-    print("|" + "---|" * (10 + len(STAGES)))
+    print(f"| triangles | grid | CPU sorting s | CPU cutting s | kernel × | CPU cell volumes s | "
+          f"OpenCL cell volumes s | cell volumes × | CPU command s | OpenCL command s | command × | "
+          f"{stage_heads} |")
+    print("|" + "---|" * (11 + len(STAGES)))
     raw = open(a.raw, "a") if a.raw else None
     with tempfile.TemporaryDirectory(dir=a.tmp) as tmp:
         for count in triangles:
@@ -109,7 +144,7 @@ def main():
                     order = ["cpu", "opencl"] if r % 2 == 0 else ["opencl", "cpu"]
                     for backend in order:
                         out = os.path.join(tmp, f"{backend}.npy")
-                        one = run(a.meshvol, stl, n, backend, a.opencl_device, out)
+                        one = run(a.meshvol, stl, n, backend, device, out)
                         one["triangles"] = count
                         runs[backend].append(one)
                         if raw:
@@ -120,12 +155,14 @@ def main():
                 med = lambda backend, f: statistics.median(f(x) for x in runs[backend])
                 cpu_s, gpu_s = med("cpu", lambda x: x["seconds"]), med("opencl", lambda x: x["seconds"])
                 kernel = med("opencl", lambda x: x["stages"].get("OpenCL: the kernel", 0.0))
+                sorting = med("cpu", lambda x: x["stages"].get("sorting faces into tiles of columns", 0.0))
+                cutting = med("cpu", lambda x: x["stages"].get("cutting faces into cells", 0.0))
                 cpu_wall, gpu_wall = med("cpu", lambda x: x["wall_s"]), med("opencl", lambda x: x["wall_s"])
                 stages = " | ".join(f"{med('opencl', lambda x, s=s: x['stages'].get(s, 0.0)):.3f}"
                                     for _, s in STAGES)
                 ratio = lambda p, q: f"{p / q:.1f}" if q > 0 else "–"
-                print(f"| {count:,} | {n}³ | {cpu_s:.3f} | {gpu_s:.3f} | {kernel:.3f} | "
-                      f"{ratio(cpu_s, kernel)} | {ratio(cpu_s, gpu_s)} | {cpu_wall:.3f} | {gpu_wall:.3f} | "
+                print(f"| {count:,} | {n}³ | {sorting:.3f} | {cutting:.3f} | {ratio(cutting, kernel)} | "
+                      f"{cpu_s:.3f} | {gpu_s:.3f} | {ratio(cpu_s, gpu_s)} | {cpu_wall:.3f} | {gpu_wall:.3f} | "
                       f"{ratio(cpu_wall, gpu_wall)} | {stages} |", flush=True)
             os.remove(stl)
     if raw:
