@@ -5,8 +5,18 @@
 //! `MESHVOL_OPENCL_FAULT`).
 
 mod common;
-use common::{box_obj, meshvol, p, write};
+use common::{box_obj, p, write};
 use serde_json::Value;
+use std::process::{Command, Output};
+
+/// The command cargo built for these tests, even where `MESHVOL_BIN` names another: CI
+/// names its static release binary, which cannot load the OpenCL library (docs/gpu.md),
+/// so every comparison here would skip there.
+const BIN: &str = env!("CARGO_BIN_EXE_meshvol");
+
+fn meshvol(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().expect("meshvol runs")
+}
 
 fn devices() -> Value {
     let out = meshvol(&["devices", "--json"]);
@@ -128,7 +138,7 @@ fn a_failing_device_is_an_error_naming_it_and_auto_falls_back_to_the_cpu_bits() 
     let device = index.to_string();
     let run = |backend: &str, fault: Option<&str>| {
         let out = dir.path().join(format!("{backend}-{}.npy", fault.unwrap_or("none")));
-        let mut command = std::process::Command::new(common::bin());
+        let mut command = Command::new(BIN);
         command.args(["grid", sample, "--cells", "21,19,13", "--out", p(&out)]);
         command.args(["--backend", backend]);
         if backend != "cpu" {
