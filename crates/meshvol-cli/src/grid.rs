@@ -216,12 +216,20 @@ fn extension(path: &Path) -> Option<String> {
 
 /// Runs the command: one summary for all the files.
 pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
-    // An OpenCL device asked for that is not there (no OpenCL library, no such device,
-    // no f64) is a usage error, before any file is read (what runs on the CPU only is
-    // refused as such, later).
+    // Usage errors, before any file is read: an OpenCL device asked for (--backend
+    // opencl, --opencl-device) with what only the CPU computes (the cut cells, the
+    // union, a .zarr written row by row); an OpenCL device asked for that is not there
+    // (no OpenCL library, no such device, no f64).
     let zarr = args.out.as_deref().and_then(extension).as_deref() == Some("zarr");
-    let on_cpu_only = args.moments || args.union || zarr;
-    if args.backend.forces_opencl() && !on_cpu_only {
+    for (cpu_only, what) in
+        [(args.moments, "--moments"), (args.union, "--union"), (zarr, "a .zarr output")]
+    {
+        if let (true, Err(e)) = (cpu_only, args.backend.cpu_only(what)) {
+            eprintln!("meshvol: error: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    if args.backend.forces_opencl() {
         if let Err(e) = args.backend.choice().device() {
             eprintln!("meshvol: error: --backend opencl: {e}");
             return ExitCode::from(2);
@@ -286,16 +294,6 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         return Err("--moments writes several arrays: give --out cells.npz, cells.vti or \
                     cells.zarr"
             .into());
-    }
-    // The OpenCL grid computes the cell volumes alone, into memory.
-    for (cpu_only, what) in [
-        (args.moments, "--moments"),
-        (args.union, "--union"),
-        (out_kind.as_deref() == Some("zarr"), "a .zarr output"),
-    ] {
-        if cpu_only {
-            args.backend.cpu_only(what)?;
-        }
     }
     let extras =
         Extras { second_moments: args.second_moments, face_centroids: args.face_centroids };

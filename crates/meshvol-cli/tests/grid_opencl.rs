@@ -1,10 +1,22 @@
 //! `meshvol grid --backend opencl` against `--backend cpu`: the same file, byte for
 //! byte, where an OpenCL device with f64 is installed (PoCL in CI; otherwise the
-//! comparisons say they skipped); `meshvol devices`; what only the CPU computes.
+//! comparisons say they skipped); `meshvol devices`; what only the CPU computes; a
+//! device that fails (a build or an allocation the driver refuses, provoked through
+//! `MESHVOL_OPENCL_FAULT`).
 
 mod common;
-use common::{box_obj, meshvol, p, write};
+use common::{box_obj, p, write};
 use serde_json::Value;
+use std::process::{Command, Output};
+
+/// The command cargo built for these tests, even where `MESHVOL_BIN` names another: CI
+/// names its static release binary, which cannot load the OpenCL library (docs/gpu.md),
+/// so every comparison here would skip there.
+const BIN: &str = env!("CARGO_BIN_EXE_meshvol");
+
+fn meshvol(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().expect("meshvol runs")
+}
 
 fn devices() -> Value {
     let out = meshvol(&["devices", "--json"]);
@@ -88,8 +100,9 @@ fn what_only_the_cpu_computes_refuses_opencl() {
         all.extend(args.iter().copied());
         let out = meshvol(&all);
         let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(!out.status.success() && stderr.contains(what), "{all:?}: {stderr}");
-        assert!(stderr.contains("CPU only"), "{stderr}");
+        // A usage error, before any file is read: exit 2, saying it runs on the CPU.
+        assert_eq!(out.status.code(), Some(2), "{all:?}: {stderr}");
+        assert!(stderr.contains(what) && stderr.contains("CPU only"), "{all:?}: {stderr}");
         // auto computes them on the CPU.
         all[5] = "auto";
         let out = meshvol(&all);
@@ -109,4 +122,48 @@ fn what_only_the_cpu_computes_refuses_opencl() {
     // A usage error, before any file is read: exit 2, naming OpenCL.
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("OpenCL"), "{stderr}");
+}
+
+#[test]
+fn a_failing_device_is_an_error_naming_it_and_auto_falls_back_to_the_cpu_bits() {
+    let listed = devices();
+    let Some(index) = listed["devices"].as_array().unwrap().iter().position(|d| d["fp64"] == true)
+    else {
+        eprintln!("skipped: no OpenCL device with f64 ({listed})");
+        return;
+    };
+    let name = listed["devices"][index]["name"].as_str().unwrap().to_string();
+    let dir = tempfile::tempdir().unwrap();
+    let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/../../samples/flanged-bushing.stl");
+    let device = index.to_string();
+    let run = |backend: &str, fault: Option<&str>| {
+        let out = dir.path().join(format!("{backend}-{}.npy", fault.unwrap_or("none")));
+        let mut command = Command::new(BIN);
+        command.args(["grid", sample, "--cells", "21,19,13", "--out", p(&out)]);
+        command.args(["--backend", backend]);
+        if backend != "cpu" {
+            command.args(["--opencl-device", &device]);
+        }
+        if let Some(fault) = fault {
+            command.env("MESHVOL_OPENCL_FAULT", fault);
+        }
+        let output = command.output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+        (output.status, stderr, std::fs::read(out).ok())
+    };
+    let (status, _, cpu) = run("cpu", None);
+    assert!(status.success());
+    for (fault, says) in [("build", "did not build"), ("alloc", "clCreateBuffer (cells)")] {
+        // --backend opencl: an error naming the device and what OpenCL said, no file.
+        let (status, stderr, file) = run("opencl", Some(fault));
+        assert_eq!(status.code(), Some(1), "{fault}: {stderr}");
+        assert!(stderr.contains(&name) && stderr.contains(says), "{fault}: {stderr}");
+        assert!(file.is_none(), "{fault}: a file was written");
+        // --backend auto: a warning saying the same, and the CPU's file, byte for byte.
+        let (status, stderr, file) = run("auto", Some(fault));
+        assert!(status.success(), "{fault}: {stderr}");
+        assert!(stderr.contains("warning") && stderr.contains(&name), "{fault}: {stderr}");
+        assert!(stderr.contains(says) && stderr.contains("on the CPU"), "{fault}: {stderr}");
+        assert!(file == cpu, "{fault}: auto's file is not the CPU's");
+    }
 }

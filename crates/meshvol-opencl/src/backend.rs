@@ -4,6 +4,7 @@
 
 use crate::{auto_choice, devices, Device, Error, Listing, Options};
 use meshvol::grid::{Grid, Region};
+use meshvol::progress::Progress;
 use meshvol::Surface;
 
 /// Where the cell volumes are computed.
@@ -87,13 +88,16 @@ impl Where {
     }
 
     /// The cell volumes of `surface` on `region` of `grid` where this says: on the CPU
-    /// by `cpu`, or on the device (the same bits). With `auto`, a device that cannot be
-    /// listed or fails gives `warn` the reason and the CPU computes.
+    /// by `cpu`, or on the device (the same bits; its stages told to `progress`). With
+    /// `auto`, a device that cannot be listed or fails, at any stage of any slab, gives
+    /// `warn` the reason and the CPU computes the whole region again: no cell of a
+    /// failed run is kept.
     pub fn cell_volumes<S: Surface + ?Sized>(
         &self,
         surface: &S,
         grid: &Grid,
         region: &Region,
+        progress: &dyn Progress,
         cpu: impl FnOnce() -> Result<Vec<f64>, String>,
         warn: impl Fn(&str),
     ) -> Result<Vec<f64>, String> {
@@ -107,8 +111,9 @@ impl Where {
             (Err(e), Backend::Auto) => return fallback(e, Box::new(cpu)),
             (Err(e), _) => return Err(e),
         };
+        progress.stage("OpenCL: opening the device, building the kernel");
         let gpu = Device::open(index).and_then(|mut device| {
-            device.cell_volumes_region(surface, grid, region, Options::default())
+            device.cell_volumes_region_with(surface, grid, region, Options::default(), progress)
         });
         match (gpu, self.backend) {
             (Ok(volumes), _) => Ok(volumes),

@@ -9,12 +9,13 @@
 //!
 //! | stage | where | file |
 //! |---|---|---|
+//! | cut the region into slabs of x layers that fit the device (each slab below, in turn) | host | `slabs.rs` |
 //! | map to grid units, drop triangles with no projected area | CPU, the core's own code | `meshvol/src/grid/tile_work.rs` (`Units`) |
 //! | bin faces by tile, in face order | CPU, the core's own code | `tile_work.rs` (`cells::Bins`) |
 //! | upload triangles, bins; one work item a tile | host | `run.rs` |
 //! | strip, column and layer sweeps; the sink's sums | device | `grid.cl` (`cells.rs`, `clip.rs` ported) |
 //! | compensated suffix sum per column, times dx·dy·dz | device | `grid.cl` (`finish_column`) |
-//! | read the cells back | host | `run.rs` |
+//! | read each slab's cells back into its place | host | `run.rs` |
 //!
 //! `grid.cl` is compiled with `#pragma OPENCL FP_CONTRACT OFF` (the CPU code never
 //! fuses, and uses no `mul_add`), f64 throughout (a device without `cl_khr_fp64` is
@@ -25,7 +26,9 @@
 
 mod backend;
 mod devices;
+mod fault;
 mod run;
+mod slabs;
 
 pub use backend::{Backend, Where};
 pub use devices::{auto_choice, devices, DeviceInfo, DeviceKind, Listing};
@@ -53,6 +56,8 @@ pub enum Error {
     Build { device: String, log: String },
     #[error("{what} needs {bytes} bytes on OpenCL device {device}, which allocates at most {limit} at once: use a coarser grid, a block of it, or --backend cpu")]
     TooLarge { device: String, what: &'static str, bytes: u128, limit: u64 },
+    #[error("one x layer of the grid's cells, with their column sums, needs {bytes} bytes on OpenCL device {device}, over what a slab may take ({budget} bytes, at most {max_alloc} a buffer): use fewer cells along y or z, or --backend cpu")]
+    SlabTooLarge { device: String, bytes: u128, budget: u64, max_alloc: u64 },
     #[error(transparent)]
     Grid(#[from] meshvol::grid::GridError),
 }

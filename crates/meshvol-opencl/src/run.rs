@@ -1,9 +1,13 @@
-//! The host side: a device opened with the grid kernel built, the buffers of one grid,
-//! one work item a tile, the cells read back.
+//! The host side: a device opened with the grid kernel built, a region's cells a slab
+//! at a time (`slabs.rs`), one work item a tile, each slab's cells read back into their
+//! place in the region's array.
 
 use crate::devices::{call, devices, DeviceInfo, Listing};
+use crate::fault::{self, Fault};
+use crate::slabs::{rows_per_slab, slabs, Budget};
 use crate::Error;
-use meshvol::grid::{tile_work, Grid, GridError, Region, TileWork};
+use meshvol::grid::{check_region, tile_work, Grid, GridError, Region, TileWork};
+use meshvol::progress::Progress;
 use meshvol::Surface;
 use opencl3::command_queue::CommandQueue;
 use opencl3::context::Context;
@@ -16,13 +20,17 @@ use std::ptr;
 
 const SOURCE: &str = include_str!("grid.cl");
 
-/// How the grid is cut into work: neither changes a bit of the result.
+/// How the grid is cut into work: none of these changes a bit of the result.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Options {
     /// Columns per work item; `None`: enough tiles for 64 work items per compute unit.
     pub columns_per_item: Option<usize>,
     /// Work items per work group; `None`: the driver's choice.
     pub work_group: Option<usize>,
+    /// The most bytes one slab's cells and column area sums may take on the device
+    /// (each buffer also within the device's largest allocation); `None`: half the
+    /// device's global memory, the rest left for the triangles and their tile lists.
+    pub slab_bytes: Option<u64>,
 }
 
 /// An OpenCL device with the grid kernel built for it.
@@ -32,6 +40,12 @@ pub struct Device {
     context: Context,
     queue: CommandQueue,
     kernel: Kernel,
+}
+
+/// The device buffers that hold a slab's results, allocated once for the largest slab.
+struct Results {
+    cells: Buffer<f64>,
+    areas: Buffer<f64>,
 }
 
 impl Device {
@@ -53,12 +67,21 @@ impl Device {
         let context = Context::from_device(&device).map_err(named("clCreateContext"))?;
         let queue = CommandQueue::create_default_with_properties(&context, 0, 0)
             .map_err(named("clCreateCommandQueueWithProperties"))?;
+        let source = match fault::asked() {
+            Some(Fault::Build) => format!("{SOURCE}\n#error MESHVOL_OPENCL_FAULT=build\n"),
+            _ => SOURCE.to_string(),
+        };
         // No -cl-fast-relaxed-math, -cl-mad-enable or -cl-unsafe-math-optimizations: the
         // pragma in the source turns contraction off and IEEE rules hold.
-        let program = Program::create_and_build_from_source(&context, SOURCE, "")
+        let program = Program::create_and_build_from_source(&context, &source, "")
             .map_err(|log| Error::Build { device: name.clone(), log })?;
         let kernel = Kernel::create(&program, "tile_volumes").map_err(named("clCreateKernel"))?;
         Ok(Device { info, units: units.max(1), context, queue, kernel })
+    }
+
+    /// The device's name, as errors give it.
+    pub fn name(&self) -> &str {
+        &self.info.name
     }
 
     /// `meshvol::grid::cell_volumes` on this device: the same bits. `&mut`: a grid sets
@@ -80,58 +103,127 @@ impl Device {
         region: &Region,
         options: Options,
     ) -> Result<Vec<f64>, Error> {
-        let columns = region[0].len() * region[1].len();
-        let per_item =
-            options.columns_per_item.unwrap_or_else(|| columns.div_ceil(64 * self.units)).max(1);
-        let work = tile_work(surface, grid, region, per_item)?;
-        self.run(&work, options.work_group)
+        self.cell_volumes_region_with(surface, grid, region, options, &())
     }
 
-    fn run(&mut self, work: &TileWork, work_group: Option<usize>) -> Result<Vec<f64>, Error> {
-        let name = &self.info.name;
-        let named = |call_name| on(name, call_name);
-        let [nx, ny, nz] = work.counts;
-        let depth = work.shape[2];
-        let columns = work.columns();
-        let cells = columns * depth;
-        let tiles = work.tiles();
-        // The buffers' sizes, each checked against the device's largest allocation: a
-        // clear refusal instead of a driver's error code.
-        let fits = |what, len: usize, size: usize| {
-            let bytes = len as u128 * size as u128;
-            if bytes > self.info.max_alloc as u128 {
-                return Err(Error::TooLarge {
-                    device: name.clone(),
-                    what,
-                    bytes,
-                    limit: self.info.max_alloc,
-                });
-            }
-            Ok(())
+    /// [`Device::cell_volumes_region`], telling `progress` its stages (laying out each
+    /// slab's tiles on the CPU, uploading, the kernel, reading back), so that a run's
+    /// timings say where its time went.
+    pub fn cell_volumes_region_with<S: Surface + ?Sized>(
+        &mut self,
+        surface: &S,
+        grid: &Grid,
+        region: &Region,
+        options: Options,
+        progress: &dyn Progress,
+    ) -> Result<Vec<f64>, Error> {
+        let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
+        check_region(&grid, region)?;
+        let [x, y, z] = region.clone();
+        let (width, depth, areas) = (y.len(), z.len(), grid.counts[2] + 1 - z.start);
+        let budget = Budget {
+            bytes: options.slab_bytes.unwrap_or(self.info.memory / 2),
+            max_alloc: self.info.max_alloc,
         };
-        fits("the cell volumes", cells, 8)?;
-        fits("the column area sums", columns * work.areas, 8)?;
-        fits("the triangles", work.triangles.len() * 9, 8)?;
-        fits("the tiles' triangle lists", work.entries.len(), 4)?;
+        let rows = rows_per_slab(&x, width, depth, areas, budget, &self.info.name)?;
+        let len = x.len() * width * depth;
+        let mut volumes = bytemuck::allocation::try_zeroed_vec::<f64>(len)
+            .map_err(|_| GridError::OutOfMemory { bytes: len as u128 * 8 })?;
+        let results = self.results(rows * width * depth, rows * width * areas)?;
+        let mut triangles = None;
+        for slab in slabs(&x, rows) {
+            progress.stage("laying out the tiles (CPU)");
+            let columns = slab.len() * width;
+            let per_item = options
+                .columns_per_item
+                .unwrap_or_else(|| columns.div_ceil(64 * self.units))
+                .max(1);
+            let at = (slab.start - x.start) * width * depth;
+            let out = &mut volumes[at..at + columns * depth];
+            let work = tile_work(surface, &grid, &[slab, y.clone(), z.clone()], per_item)?;
+            progress.stage("OpenCL: uploading");
+            // Every slab's triangles are the same (the whole surface in grid units):
+            // uploaded with the first.
+            let triangles = match &triangles {
+                Some(t) => t,
+                None => triangles.insert(self.triangles(&work)?),
+            };
+            self.run(&work, triangles, &results, options.work_group, out, progress)?;
+        }
+        Ok(volumes)
+    }
+
+    /// The buffers of a slab's `cells` and area sums `areas` (each at least one value:
+    /// an empty buffer is invalid in OpenCL).
+    fn results(&self, cells: usize, areas: usize) -> Result<Results, Error> {
+        let name = &self.info.name;
+        let cells = match fault::asked() {
+            Some(Fault::Alloc) => (self.info.max_alloc / 8 + 1) as usize,
+            _ => cells,
+        };
+        let scratch = |len: usize, what| {
+            // SAFETY: no host pointer; the device allocates `len` doubles.
+            unsafe {
+                Buffer::<f64>::create(&self.context, CL_MEM_READ_WRITE, len.max(1), ptr::null_mut())
+            }
+            .map_err(|e| call(name, what, e))
+        };
+        Ok(Results {
+            cells: scratch(cells, "clCreateBuffer (cells)")?,
+            areas: scratch(areas, "clCreateBuffer (column areas)")?,
+        })
+    }
+
+    /// The triangles of `work` on the device, checked against its largest allocation.
+    fn triangles(&self, work: &TileWork) -> Result<Buffer<f64>, Error> {
+        let name = &self.info.name;
+        self.fits("the triangles", work.triangles.len() * 9, 8)?;
         // An empty buffer is invalid in OpenCL: an unused entry stands in for none.
         let triangles: &[f64] = match work.triangles.is_empty() {
             true => &[0.0; 9],
             false => work.triangles.as_flattened(),
         };
+        input(&self.context, triangles, name, "clCreateBuffer (triangles)")
+    }
+
+    /// A clear refusal of a buffer over the device's largest allocation, instead of a
+    /// driver's error code.
+    fn fits(&self, what: &'static str, len: usize, size: usize) -> Result<(), Error> {
+        let bytes = len as u128 * size as u128;
+        if bytes > self.info.max_alloc as u128 {
+            return Err(Error::TooLarge {
+                device: self.info.name.clone(),
+                what,
+                bytes,
+                limit: self.info.max_alloc,
+            });
+        }
+        Ok(())
+    }
+
+    /// One slab: its tile lists uploaded, one work item a tile, its cells read into `out`.
+    fn run(
+        &mut self,
+        work: &TileWork,
+        triangles: &Buffer<f64>,
+        results: &Results,
+        work_group: Option<usize>,
+        out: &mut [f64],
+        progress: &dyn Progress,
+    ) -> Result<(), Error> {
+        let name = &self.info.name;
+        let named = |call_name| on(name, call_name);
+        let [nx, ny, nz] = work.counts;
+        let depth = work.shape[2];
+        let columns = work.columns();
+        let tiles = work.tiles();
+        self.fits("the tiles' triangle lists", work.entries.len(), 4)?;
         let entries: &[u32] = match work.entries.is_empty() {
             true => &[0],
             false => &work.entries,
         };
-        let triangles = input(&self.context, triangles, name, "clCreateBuffer (triangles)")?;
         let offsets = input(&self.context, &work.offsets, name, "clCreateBuffer (tile offsets)")?;
         let entries = input(&self.context, entries, name, "clCreateBuffer (tile triangles)")?;
-        let scratch = |len: usize, what| {
-            // SAFETY: no host pointer; the device allocates `len` doubles.
-            unsafe { Buffer::<f64>::create(&self.context, CL_MEM_READ_WRITE, len, ptr::null_mut()) }
-                .map_err(|e| call(name, what, e))
-        };
-        let out = scratch(cells, "clCreateBuffer (cells)")?;
-        let areas = scratch(columns * work.areas, "clCreateBuffer (column areas)")?;
         let u = |x: usize| x as cl_ulong;
         let scalars = [
             u(tiles),
@@ -153,8 +245,8 @@ impl Device {
             set(self.kernel.set_arg(0, &triangles.get()))?;
             set(self.kernel.set_arg(1, &offsets.get()))?;
             set(self.kernel.set_arg(2, &entries.get()))?;
-            set(self.kernel.set_arg(3, &out.get()))?;
-            set(self.kernel.set_arg(4, &areas.get()))?;
+            set(self.kernel.set_arg(3, &results.cells.get()))?;
+            set(self.kernel.set_arg(4, &results.areas.get()))?;
             for (k, value) in scalars.iter().enumerate() {
                 set(self.kernel.set_arg(5 + k as u32, value))?;
             }
@@ -166,6 +258,7 @@ impl Device {
             None => tiles,
         };
         let local = work_group.map(|g| [g.max(1)]);
+        progress.stage("OpenCL: the kernel");
         // SAFETY: the arguments are set; the sizes are one-dimensional.
         unsafe {
             self.queue.enqueue_nd_range_kernel(
@@ -178,14 +271,14 @@ impl Device {
             )
         }
         .map_err(named("clEnqueueNDRangeKernel"))?;
-        let mut volumes = Vec::new();
-        let bytes = cells as u128 * 8;
-        volumes.try_reserve_exact(cells).map_err(|_| GridError::OutOfMemory { bytes })?;
-        volumes.resize(cells, 0.0);
-        // SAFETY: `volumes` has the buffer's length; the read blocks until done.
-        unsafe { self.queue.enqueue_read_buffer(&out, CL_BLOCKING, 0, &mut volumes, &[]) }
+        // Waited for here, not in the read, so that the kernel's time is its own stage.
+        self.queue.finish().map_err(named("clFinish"))?;
+        progress.stage("OpenCL: reading back");
+        // SAFETY: `out` is the slab's cells, no more than the buffer holds; the read
+        // blocks until done.
+        unsafe { self.queue.enqueue_read_buffer(&results.cells, CL_BLOCKING, 0, out, &[]) }
             .map_err(named("clEnqueueReadBuffer (cells)"))?;
-        Ok(volumes)
+        Ok(())
     }
 }
 

@@ -1,6 +1,7 @@
 //! The OpenCL grid against the CPU kernel (itself tested against closed forms in
 //! crates/meshvol/tests/grid.rs): the same bits, cell for cell, on any OpenCL device
-//! with f64 (PoCL's CPU device in CI), for several tilings and work-group sizes. Without
+//! with f64 (PoCL's CPU device in CI), for several tilings and work-group sizes, and a
+//! slab at a time. Without
 //! an OpenCL library or such a device, each test says it skipped.
 
 #[path = "../../meshvol/tests/common/mod.rs"]
@@ -11,6 +12,7 @@ use meshvol::grid::{cell_volumes, cell_volumes_region, Grid, Region};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
 use meshvol::{Mesh, Surface};
 use meshvol_opencl::{devices, Device, Listing, Options};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The first device with f64, or `None` (said on stderr) where there is none.
 fn device() -> Option<Device> {
@@ -30,11 +32,11 @@ fn device() -> Option<Device> {
 
 /// The tilings and work groups each grid runs with: none may change a bit.
 const OPTIONS: [Options; 5] = [
-    Options { columns_per_item: None, work_group: None },
-    Options { columns_per_item: Some(1), work_group: None },
-    Options { columns_per_item: Some(1), work_group: Some(1) },
-    Options { columns_per_item: Some(3), work_group: Some(8) },
-    Options { columns_per_item: Some(1000), work_group: Some(64) },
+    Options { columns_per_item: None, work_group: None, slab_bytes: None },
+    Options { columns_per_item: Some(1), work_group: None, slab_bytes: None },
+    Options { columns_per_item: Some(1), work_group: Some(1), slab_bytes: None },
+    Options { columns_per_item: Some(3), work_group: Some(8), slab_bytes: None },
+    Options { columns_per_item: Some(1000), work_group: Some(64), slab_bytes: None },
 ];
 
 fn bits(v: &[f64]) -> Vec<u64> {
@@ -160,4 +162,83 @@ fn bounds_partly_outside_and_blocks_match_the_cpu() {
     let grid = around(&sphere, [14, 15, 16], 0.1);
     same_bits(&mut device, "block", &sphere, &grid, Some([3..9, 0..15, 5..11]));
     same_bits(&mut device, "one column", &sphere, &grid, Some([7..8, 7..8, 0..16]));
+}
+
+/// `surface` on `region` of `grid` a slab of `rows` x layers at a time (the budget of
+/// exactly that many layers, and of that many and most of one more): the CPU's bits, in
+/// as many slabs as the region has runs of `rows` layers.
+fn in_slabs<S: Surface + ?Sized>(
+    device: &mut Device,
+    what: &str,
+    surface: &S,
+    grid: &Grid,
+    region: Region,
+    rows: usize,
+) {
+    let cpu = cell_volumes_region(surface, grid, &region).unwrap();
+    assert!(cpu.iter().any(|&v| v != 0.0), "{what}: the grid misses the solid");
+    // A slab's device bytes: its cells, and the area sums of each column from the
+    // region's first layer to above the grid's top.
+    let [x, y, z] = region.clone();
+    let layer = (y.len() * (z.len() + grid.counts[2] + 1 - z.start) * 8) as u64;
+    for budget in [rows as u64 * layer, (rows as u64 + 1) * layer - 1] {
+        let laid_out = AtomicUsize::new(0);
+        let count = |stage: &'static str| {
+            if stage.starts_with("laying out") {
+                laid_out.fetch_add(1, Ordering::Relaxed);
+            }
+        };
+        let options =
+            Options { columns_per_item: Some(2), work_group: None, slab_bytes: Some(budget) };
+        let gpu = device.cell_volumes_region_with(surface, grid, &region, options, &count).unwrap();
+        assert_eq!(laid_out.into_inner(), x.len().div_ceil(rows), "{what}: slabs of {rows}");
+        if bits(&gpu) != bits(&cpu) {
+            let k = (0..cpu.len()).find(|&k| gpu[k].to_bits() != cpu[k].to_bits()).unwrap();
+            panic!("{what}, slabs of {rows}: cell {k} is {:e}, {:e} on the CPU", gpu[k], cpu[k]);
+        }
+    }
+}
+
+#[test]
+fn slabs_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    let sphere = uv_sphere(1.0, 40, 21);
+    let grid = around(&sphere, [17, 23, 19], 0.05);
+    let whole = grid.counts.map(|n| 0..n);
+    // Slabs of one layer, of a few that do not divide 17 (the last slab shorter), and of
+    // more than the grid: every boundary cuts through the sphere.
+    for rows in [1, 2, 5, 16, 40] {
+        in_slabs(&mut device, "sphere", &sphere, &grid, whole.clone(), rows);
+    }
+    // A block of the grid in slabs: its own first layer, and columns not from y = 0.
+    in_slabs(&mut device, "block", &sphere, &grid, [3..14, 4..20, 6..13], 3);
+    // A box over x cells 2..8 of 10 in slabs of 5: the mesh spans exactly one slab
+    // boundary (x = 5); in slabs of 2, its x faces lie on slab boundaries (x = 2, 8).
+    let cube = cuboid([2.0, 0.5, 0.25], [8.0, 3.5, 2.75]);
+    let grid = Grid::new([0.0; 3], [1.0; 3], [10, 4, 3]).unwrap();
+    in_slabs(&mut device, "box across x = 5", &cube, &grid, [0..10, 0..4, 0..3], 5);
+    in_slabs(&mut device, "box on slab planes", &cube, &grid, [0..10, 0..4, 0..3], 2);
+    // A turned torus, its triangles crossing many slabs each.
+    let mut rng = XorShift::new(51);
+    let r = rotation(&mut rng);
+    let turned = mapped(&torus(2.0, 0.7, 30, 14), |p| {
+        [0, 1, 2].map(|a| r[a][0] * p[0] + r[a][1] * p[1] + r[a][2] * p[2])
+    });
+    let grid = around(&turned, [21, 9, 12], 0.1);
+    in_slabs(&mut device, "turned torus", &turned, &grid, grid.counts.map(|n| 0..n), 4);
+}
+
+#[test]
+fn a_layer_over_the_slab_budget_is_refused_naming_the_device() {
+    let Some(mut device) = device() else { return };
+    let sphere = uv_sphere(1.0, 16, 9);
+    let grid = around(&sphere, [6, 7, 8], 0.1);
+    let layer = (7 * (8 + 8 + 1) * 8) as u64;
+    let options = Options { slab_bytes: Some(layer - 1), ..Options::default() };
+    let e = device.cell_volumes(&sphere, &grid, options).unwrap_err().to_string();
+    assert!(e.contains(device.name()) && e.contains(&layer.to_string()), "{e}");
+    // An empty region is the CPU's error, not an empty result.
+    let e = device.cell_volumes_region(&sphere, &grid, &[2..2, 0..7, 0..8], options);
+    let cpu = cell_volumes_region(&sphere, &grid, &[2..2, 0..7, 0..8]).unwrap_err();
+    assert_eq!(e.unwrap_err().to_string(), cpu.to_string());
 }

@@ -216,7 +216,13 @@ pub fn cell_volumes<'py, S: Surface>(
         .map_err(|e| e.to_string())
     };
     let warn = |w: &str| fell_back.lock().unwrap_or_else(|e| e.into_inner()).push(w.to_string());
-    let volumes = py.detach(|| on.cell_volumes(mesh, &grid, &region, cpu, warn));
+    // With timings=True, a device's stages (building the kernel, laying out the slabs,
+    // uploading, the kernel, reading back) are timed as the CPU kernel's are.
+    let device: &dyn meshvol::progress::Progress = match clock {
+        Some(clock) => clock,
+        None => &(),
+    };
+    let volumes = py.detach(|| on.cell_volumes(mesh, &grid, &region, device, cpu, warn));
     let fell_back = fell_back.into_inner().unwrap_or_else(|e| e.into_inner());
     crate::errors::warn_all(py, &fell_back)?;
     let mut volumes = volumes.map_err(mesh_error)?;

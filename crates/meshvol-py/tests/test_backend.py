@@ -1,6 +1,8 @@
 """backend= of Mesh.grid, Mesh.cells and meshvol.dask.grid, as the command's --backend:
 on an OpenCL device (PoCL's CPU device in CI) the cells are the CPU's bit for bit."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -57,3 +59,30 @@ def test_dask_grid_takes_the_backend():
     assert np.array_equal(lazy.compute(), np.asarray(mesh.grid(cells=(6, 6, 6), backend="cpu")))
     with pytest.raises(ValueError, match="CPU only"):
         meshvol.dask.grid(mesh, cells=(6, 6, 6), moments=True, backend="opencl")
+
+
+def test_a_failing_device_is_an_error_and_auto_warns_and_takes_the_cpu(monkeypatch):
+    """A kernel build or an allocation the driver refuses (provoked through
+    MESHVOL_OPENCL_FAULT, read when the device opens): backend="opencl" raises naming the
+    device; backend="auto" on that device warns and gives the CPU's cells, bit for bit."""
+    mesh = sphere()
+    opencl_grid(mesh, cells=(2, 2, 2))  # skips where there is no device
+    cpu = np.asarray(mesh.grid(cells=(9, 7, 11), backend="cpu"))
+    # The number of the device backend="opencl" took (the first with f64), for auto,
+    # which takes a CPU device only when named.
+    device = None
+    for n in range(64):
+        try:
+            mesh.grid(cells=(2, 2, 2), backend="opencl", opencl_device=n)
+            device = n
+            break
+        except (meshvol.MeshError, ValueError):
+            continue
+    assert device is not None, "backend='opencl' ran, yet no device number runs it"
+    for fault, says in [("build", "did not build"), ("alloc", "clCreateBuffer (cells)")]:
+        monkeypatch.setenv("MESHVOL_OPENCL_FAULT", fault)
+        with pytest.raises((meshvol.MeshError, ValueError), match=re.escape(says)):
+            mesh.grid(cells=(9, 7, 11), backend="opencl", opencl_device=device)
+        with pytest.warns(meshvol.MeshWarning, match=re.escape(says)):
+            auto = np.asarray(mesh.grid(cells=(9, 7, 11), backend="auto", opencl_device=device))
+        assert np.array_equal(auto.view(np.uint64), cpu.view(np.uint64)), fault

@@ -63,11 +63,16 @@ impl BackendArgs {
             let hook = progress.kernel("computing cell volumes".to_string());
             cell_volumes_with(surface, grid, &hook).map_err(|e| e.to_string())
         };
-        if self.backend != Backend::Cpu {
-            progress.stage_all("computing cell volumes (OpenCL)");
-        }
         let whole = grid.counts.map(|n| 0..n);
         let warn = |e: &str| progress.warn("--backend auto", e);
-        self.choice().cell_volumes(surface, grid, &whole, on_cpu, warn)
+        // The device's stages (slabs laid out, uploads, the kernel, reading back) are the
+        // run's --timings.
+        let device = (self.backend != Backend::Cpu)
+            .then(|| progress.kernel("computing cell volumes (OpenCL)".to_string()));
+        let hook: &dyn meshvol::progress::Progress = match &device {
+            Some(device) => device,
+            None => &(),
+        };
+        self.choice().cell_volumes(surface, grid, &whole, hook, on_cpu, warn)
     }
 }

@@ -284,8 +284,10 @@ pub fn cell_volumes_region<S: crate::Surface + ?Sized>(
     cells::cell_volumes(surface, &grid, &block, None)
 }
 
-/// A region inside the grid with at least one cell along each axis.
-fn check_region(grid: &Grid, region: &Region) -> Result<(), GridError> {
+/// Refuses a region that is not inside the grid with at least one cell along each
+/// axis, as [`cell_volumes_region`] does (a device that splits a region checks it first:
+/// an empty one would otherwise split into nothing and give no error).
+pub fn check_region(grid: &Grid, region: &Region) -> Result<(), GridError> {
     for (a, range) in region.iter().enumerate() {
         let (axis, start, end, cells) = (AXES[a], range.start, range.end, grid.counts[a]);
         if start >= end {
