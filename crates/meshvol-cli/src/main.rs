@@ -147,11 +147,11 @@ const EXAMPLES_DEVICES: &str = "Examples:\n  meshvol devices\n  meshvol devices 
 const EXAMPLES_PROFILE: &str = "Examples:\n  meshvol profile samples/flanged-bushing.stl --levels 10\n  meshvol profile samples/flanged-bushing.stl --step 0.5 --units mm:mL --csv";
 const EXAMPLES_UNION: &str = "Examples:\n  meshvol union a.stl b.stl c.stl --json\n  meshvol union samples/flanged-bushing.stl       # one file: its shells are the bodies";
 const EXAMPLES_INTERSECT: &str =
-    "Examples:\n  meshvol intersect a.stl b.stl --json\n  meshvol intersect parts/ --pairs";
-const EXAMPLES_BELOW: &str = "Examples:\n  meshvol below samples/flanged-bushing.stl --plane 0,0,1,10\n  meshvol below samples/flanged-bushing.stl --volume 10000 --units mm:mL\n  meshvol below hulls/ --volume 4 --heel 10 --format csv";
+    "Examples:\n  meshvol intersect a.stl b.stl --json\n  meshvol intersect parts/ --pairs --format csv > overlaps.csv";
+const EXAMPLES_BELOW: &str = "Examples:\n  meshvol below samples/flanged-bushing.stl --plane z=10\n  meshvol below samples/flanged-bushing.stl --plane 0,0,1,10\n  meshvol below samples/flanged-bushing.stl --volume 10000 --units mm:mL\n  meshvol below hulls/ --volume 4 --heel 10 --format csv";
 const EXAMPLES_CUTFILL: &str = "Examples:\n  meshvol cutfill terrain.obj --level 5\n  meshvol cutfill existing.stl --design design.stl --pitch 10 --out cells.npy";
 const EXAMPLES_SERVE: &str = "Examples:\n  meshvol serve                       # http://127.0.0.1:8765/\n  meshvol serve --port 8080 --max-upload 1GiB\n  meshvol serve --bind 0.0.0.0 --max-concurrent 4   # answers the network: put it behind a proxy";
-const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish\n  meshvol completions elvish > ~/.config/elvish/lib/meshvol.elv\n  meshvol completions powershell >> $PROFILE\n\nInstall lines for each shell: docs/formats.md#shell-completions-and-manual-pages.";
+const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish\n  meshvol completions elvish > ~/.config/elvish/lib/meshvol.elv\n  meshvol completions powershell >> $PROFILE";
 const EXAMPLES_MAN: &str = "Examples:\n  meshvol man > meshvol.1 && man ./meshvol.1\n  meshvol man volume > meshvol-volume.1\n  meshvol man --all ~/.local/share/man/man1";
 
 fn non_negative_finite(s: &str) -> Result<f64, String> {
