@@ -130,7 +130,7 @@ enum Command {
         command: Option<String>,
         /// Write every page into DIR (made if missing): meshvol.1 and meshvol-COMMAND.1
         /// for each subcommand; prints the paths written.
-        #[arg(long, value_name = "DIR")]
+        #[arg(long, value_name = "DIR", value_hint = clap::ValueHint::DirPath)]
         all: Option<std::path::PathBuf>,
     },
 }
@@ -140,7 +140,7 @@ const EXAMPLES_VOLUME: &str = "Examples:\n  meshvol volume samples/flanged-bushi
 const EXAMPLES_CHECK: &str = "Examples:\n  meshvol check samples/flanged-bushing.stl\n  meshvol check samples/ -r --format csv\n  meshvol check part.stl.gz --no-intersections --json\n  meshvol check samples/flanged-bushing.stl --html report.html";
 const EXAMPLES_REPAIR: &str = "Examples:\n  meshvol repair samples/flanged-bushing.stl -o bushing.ply\n  meshvol repair scan.obj --cap -o closed.obj --json";
 const EXAMPLES_AREA: &str = "Examples:\n  meshvol area parcel.wkt lots.geojson\n  meshvol area parcels/ --glob '*.wkt' --json\n  cat lots.wkt | meshvol area -";
-const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt";
+const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt\n  meshvol section samples/flanged-bushing.stl --plane 0,1,1,10 --json";
 const EXAMPLES_HULL: &str = "Examples:\n  meshvol hull samples/flanged-bushing.stl\n  meshvol hull scan.xyz --out hull.stl --json";
 const EXAMPLES_GRID: &str = "Examples:\n  meshvol grid samples/flanged-bushing.stl --cells 60,60,30 --out cells.npy\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png z.png --slice z=12.5\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png mid.png --slice k=15 --json\n  meshvol grid samples/flanged-bushing.stl --pitch 0.5 --backend auto --out cells.npy";
 const EXAMPLES_DEVICES: &str = "Examples:\n  meshvol devices\n  meshvol devices --json";

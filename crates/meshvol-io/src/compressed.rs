@@ -86,10 +86,6 @@ impl Compression {
     }
 }
 
-fn error(path: &Path, message: String) -> ReadError {
-    ReadError { path: path.to_path_buf(), location: None, message, budget: None }
-}
-
 /// The decompressed content of `bytes` (read from `path`, compressed by `compression`),
 /// inflated up to `limit` bytes, and the name it is read under: `part.stl` for
 /// `part.stl.gz`, `archive.zip/member.stl` for a zip's one member that `wanted` accepts
@@ -101,8 +97,9 @@ pub(crate) fn decompress(
     wanted: impl Fn(&Path) -> bool,
     limit: u64,
 ) -> Result<(PathBuf, Vec<u8>), ReadError> {
-    let damaged =
-        |e: std::io::Error| error(path, format!("not a readable {} file: {e}", compression.name()));
+    let damaged = |e: std::io::Error| {
+        ReadError::of_file(path, format!("not a readable {} file: {e}", compression.name()))
+    };
     let inner = path.with_extension("");
     match compression {
         Compression::Gzip => {
@@ -139,7 +136,10 @@ fn bounded(
             "decompresses to more than {limit} bytes: refused (a compressed input is read \
              up to {STREAM_LIMIT_VARIABLE} bytes, 2 GiB unless it says otherwise)"
         );
-        return Ok(Err(ReadError { budget: Some(Budget::InflatedBytes), ..error(path, message) }));
+        return Ok(Err(ReadError {
+            budget: Some(Budget::InflatedBytes),
+            ..ReadError::of_file(path, message)
+        }));
     }
     Ok(Ok(data))
 }
@@ -198,7 +198,7 @@ fn unzip(
     wanted: impl Fn(&Path) -> bool,
     limit: u64,
 ) -> Result<(PathBuf, Vec<u8>), ReadError> {
-    let damaged = |e: String| error(path, format!("not a readable zip archive: {e}"));
+    let damaged = |e: String| ReadError::of_file(path, format!("not a readable zip archive: {e}"));
     let mut archive =
         zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| damaged(e.to_string()))?;
     let names: Vec<String> = archive.file_names().map(str::to_string).collect();
@@ -227,7 +227,7 @@ fn unzip(
         }
         [] => {
             let all: Vec<&String> = names.iter().filter(|n| !n.ends_with('/')).collect();
-            return Err(error(
+            return Err(ReadError::of_file(
                 path,
                 format!(
                     "the archive holds no file meshvol reads here (its files: {}): a .zip must \
@@ -237,7 +237,7 @@ fn unzip(
             ));
         }
         several => {
-            return Err(error(
+            return Err(ReadError::of_file(
                 path,
                 format!(
                     "the archive holds {} files meshvol reads ({}): a .zip must hold exactly \
@@ -251,9 +251,9 @@ fn unzip(
     let inner = path.join(&member);
     let file = archive
         .by_name(&member)
-        .map_err(|e| error(&inner, format!("cannot read the archive member: {e}")))?;
+        .map_err(|e| ReadError::of_file(&inner, format!("cannot read the archive member: {e}")))?;
     let data = bounded(&inner, file, limit)
-        .map_err(|e| error(&inner, format!("cannot read the archive member: {e}")))?;
+        .map_err(|e| ReadError::of_file(&inner, format!("cannot read the archive member: {e}")))?;
     Ok((inner, data?))
 }
 

@@ -335,12 +335,7 @@ impl Loaded {
 /// (`.gz`, `.bz2`, `.zst`, `.zip`; without an extension, by its first bytes) is
 /// decompressed first, within the stream limit ([`compressed`]).
 pub fn read(path: &Path) -> Result<Loaded, ReadError> {
-    let bytes = Bytes::open(path).map_err(|e| ReadError {
-        path: path.to_path_buf(),
-        location: None,
-        message: e.to_string(),
-        budget: None,
-    })?;
+    let bytes = Bytes::open(path).map_err(|e| ReadError::of_file(path, e.to_string()))?;
     read_within(path, bytes, &Limits::from_env())
 }
 
@@ -391,16 +386,7 @@ fn read_within(path: &Path, bytes: Bytes, limits: &Limits) -> Result<Loaded, Rea
             load(&inner, data, limits, None)
         }
     };
-    loaded.map_err(|e| named(e, path, &inner))
-}
-
-/// An error about the decompressed `inner` named as the file given (`part.stl.gz`); a zip
-/// member keeps its name (`parts.zip/part.stl`), which names the archive.
-fn named(mut e: ReadError, given: &Path, inner: &Path) -> ReadError {
-    if e.path == inner && !inner.starts_with(given) {
-        e.path = given.to_path_buf();
-    }
-    e
+    loaded.map_err(|e| e.named_as(path, &inner))
 }
 
 /// The format families an extension or a sniff can name.
@@ -520,12 +506,7 @@ fn load(
             } else {
                 format!("{what}, and the content looks like none of STL, OBJ, OFF, PLY, 3MF, glTF")
             };
-            return Err(ReadError {
-                path: path.to_path_buf(),
-                location: None,
-                message: what,
-                budget: None,
-            });
+            return Err(ReadError::of_file(path, what));
         }
     };
     let mut objects = Vec::new();

@@ -72,12 +72,7 @@ fn is_text_points(path: &Path) -> bool {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_points(path: &Path) -> Result<PointCloud, ReadError> {
-    let bytes = Bytes::open(path).map_err(|e| ReadError {
-        path: path.to_path_buf(),
-        location: None,
-        message: e.to_string(),
-        budget: None,
-    })?;
+    let bytes = Bytes::open(path).map_err(|e| ReadError::of_file(path, e.to_string()))?;
     decompressed_points(path, bytes)
 }
 
@@ -105,7 +100,7 @@ fn decompressed_points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadErro
     let limit = crate::Limits::from_env().inflated_bytes;
     let (inner, data) = crate::compressed::decompress(path, &bytes, compression, wanted, limit)?;
     drop(bytes);
-    points(&inner, Bytes::Owned(data)).map_err(|e| crate::named(e, path, &inner))
+    points(&inner, Bytes::Owned(data)).map_err(|e| e.named_as(path, &inner))
 }
 
 /// Text points for a text extension; else a mesh file for a mesh extension or content
@@ -125,12 +120,7 @@ fn points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadError> {
         LoadedSurface::Mesh(mesh) => mesh.positions().to_vec(),
         other => other
             .into_mesh()
-            .map_err(|e| ReadError {
-                path: path.to_path_buf(),
-                location: None,
-                message: e.to_string(),
-                budget: None,
-            })?
+            .map_err(|e| ReadError::of_file(path, e.to_string()))?
             .positions()
             .to_vec(),
     };

@@ -78,12 +78,7 @@ pub struct PolygonFile {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_polygons(path: &Path) -> Result<PolygonFile, ReadError> {
-    let bytes = Bytes::open(path).map_err(|e| ReadError {
-        path: path.to_path_buf(),
-        location: None,
-        message: e.to_string(),
-        budget: None,
-    })?;
+    let bytes = Bytes::open(path).map_err(|e| ReadError::of_file(path, e.to_string()))?;
     read_polygons_bytes(path, &bytes)
 }
 
@@ -98,7 +93,7 @@ pub fn read_polygons_bytes(path: &Path, bytes: &[u8]) -> Result<PolygonFile, Rea
         let wanted = |p: &Path| crate::InputKind::Polygons.accepts(p);
         let limit = crate::Limits::from_env().inflated_bytes;
         let (inner, data) = crate::compressed::decompress(path, bytes, compression, wanted, limit)?;
-        return polygons(&inner, &data).map_err(|e| crate::named(e, path, &inner));
+        return polygons(&inner, &data).map_err(|e| e.named_as(path, &inner));
     }
     polygons(path, bytes)
 }
