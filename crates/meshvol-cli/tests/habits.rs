@@ -1,7 +1,8 @@
 //! CLI habits: a typo of a subcommand is not a file to measure; required arguments name
 //! their alternatives; a warning names its file once; `±` says what it bounds; every
 //! manual page at once, and a typo of a page's name suggests it; `intersect` prints CSV
-//! as every command that prints one report per input does.
+//! as every command that prints one report per input does; bash completes with the
+//! completion script.
 
 mod common;
 use common::{box_obj, f, meshvol, p, write};
@@ -180,4 +181,26 @@ fn intersect_prints_csv_for_a_pair_and_for_pairs() {
         meshvol(&["intersect", p(&a), p(&b), "--format", "csv", "--json"]).status.code(),
         Some(2)
     );
+}
+
+/// bash loads the completion script and completes with it: a subcommand from its first
+/// letters, and `man`'s `--all`.
+#[test]
+fn bash_completes_with_the_script() {
+    let script = meshvol(&["completions", "bash"]).stdout;
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "meshvol.bash", script);
+    let complete = |words: &str| {
+        let run = format!(
+            "source {}; COMP_WORDS=({words}); COMP_CWORD=$((${{#COMP_WORDS[@]}} - 1)); \
+             COMP_LINE='{words}'; COMP_POINT=${{#COMP_LINE}}; _meshvol meshvol; \
+             printf '%s\\n' \"${{COMPREPLY[@]}}\"",
+            p(&path)
+        );
+        let out = std::process::Command::new("bash").args(["-c", &run]).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout).lines().map(str::to_string).collect::<Vec<_>>()
+    };
+    assert!(complete("meshvol inter").contains(&"intersect".to_string()));
+    assert!(complete("meshvol man --a").contains(&"--all".to_string()));
 }
