@@ -1,5 +1,6 @@
 //! A glTF file's bytes: the GLB container's chunks, buffers (the `BIN` chunk, `data:`
-//! URIs, files beside the document or in its zip archive), buffer views, and accessors decoded from them.
+//! URIs, files beside the document or in its zip archive), buffer views, and accessors
+//! decoded from them.
 
 use std::borrow::Cow;
 use std::io::Read;
@@ -159,8 +160,8 @@ fn relative_name(uri: &str) -> Result<PathBuf, String> {
 fn confined_file(gltf: &Path, uri: &str, relative: &Path) -> Result<PathBuf, String> {
     if gltf.as_os_str() == "-" {
         return Err(format!(
-            "'{uri}' names a file, but a glTF from standard input has no folder: use a GLB \
-             or data: URIs"
+            "'{uri}' names a file, but a glTF from standard input has no folder: send a GLB, \
+             data: URIs, or a zip of the .gltf and its buffers"
         ));
     }
     let folder = gltf.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
