@@ -5,6 +5,7 @@ use crate::driver::{self, Output};
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol_report::below::{below, BelowOptions, Waterline};
+use meshvol_report::plane::PlaneArg;
 use meshvol_report::quantities::Quantities;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -18,9 +19,11 @@ pub struct BelowArgs {
     files: Vec<PathBuf>,
     #[command(flatten)]
     walk: crate::walk::WalkArgs,
-    /// The plane n·x = D: the part where n·x ≤ D is measured.
-    #[arg(long, value_name = "NX,NY,NZ,D", value_parser = parse_numbers::<4>, allow_hyphen_values = true)]
-    plane: Option<[f64; 4]>,
+    /// The plane: `NX,NY,NZ,D` (n·x = D), `z=H` (`x=H`, `y=H`: the normal along the
+    /// axis), or a point and a normal `PX,PY,PZ,NX,NY,NZ`. The part where n·x ≤ D (on
+    /// the side the normal points away from) is measured.
+    #[arg(long, value_name = "PLANE", allow_hyphen_values = true)]
+    plane: Option<PlaneArg>,
     /// The volume to hold below: finds the level D along --direction (a draft).
     #[arg(long, value_name = "V", value_parser = crate::positive_finite, allow_hyphen_values = true)]
     volume: Option<f64>,
@@ -58,12 +61,15 @@ fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
 /// Runs the command.
 pub fn run(args: BelowArgs, quiet: bool) -> ExitCode {
     let waterline = match (args.plane, args.volume) {
-        (Some([nx, ny, nz, d]), _) => Waterline::Plane { normal: [nx, ny, nz], d },
+        (Some(plane), _) => {
+            let (normal, d) = plane.normal_offset();
+            Waterline::Plane { normal, d }
+        }
         (None, Some(volume)) => {
             Waterline::Volume { direction: args.direction.unwrap_or([0.0, 0.0, 1.0]), volume }
         }
         (None, None) => {
-            eprintln!("meshvol: error: give --plane NX,NY,NZ,D or --volume V");
+            eprintln!("meshvol: error: give --plane PLANE or --volume V");
             return ExitCode::from(2);
         }
     };

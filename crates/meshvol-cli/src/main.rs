@@ -14,6 +14,7 @@ mod grid;
 mod hull;
 mod input;
 mod intersect;
+mod manual;
 mod profile;
 mod repair;
 mod section;
@@ -120,12 +121,17 @@ enum Command {
         shell: clap_complete::Shell,
     },
     /// Print the manual page (roff) to stdout: the command's, or with COMMAND that
-    /// subcommand's (`meshvol man > meshvol.1 && man ./meshvol.1`).
+    /// subcommand's (`meshvol man > meshvol.1 && man ./meshvol.1`); with --all DIR, write
+    /// every page into DIR.
     #[command(after_help = EXAMPLES_MAN)]
     Man {
         /// A subcommand: its own page (`meshvol-volume(1)`).
-        #[arg(value_name = "COMMAND")]
+        #[arg(value_name = "COMMAND", conflicts_with = "all")]
         command: Option<String>,
+        /// Write every page into DIR (made if missing): meshvol.1 and meshvol-COMMAND.1
+        /// for each subcommand; prints the paths written.
+        #[arg(long, value_name = "DIR", value_hint = clap::ValueHint::DirPath)]
+        all: Option<std::path::PathBuf>,
     },
 }
 
@@ -134,61 +140,19 @@ const EXAMPLES_VOLUME: &str = "Examples:\n  meshvol volume samples/flanged-bushi
 const EXAMPLES_CHECK: &str = "Examples:\n  meshvol check samples/flanged-bushing.stl\n  meshvol check samples/ -r --format csv\n  meshvol check part.stl.gz --no-intersections --json\n  meshvol check samples/flanged-bushing.stl --html report.html";
 const EXAMPLES_REPAIR: &str = "Examples:\n  meshvol repair samples/flanged-bushing.stl -o bushing.ply\n  meshvol repair scan.obj --cap -o closed.obj --json";
 const EXAMPLES_AREA: &str = "Examples:\n  meshvol area parcel.wkt lots.geojson\n  meshvol area parcels/ --glob '*.wkt' --json\n  cat lots.wkt | meshvol area -";
-const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt";
+const EXAMPLES_SECTION: &str = "Examples:\n  meshvol section samples/flanged-bushing.stl --plane z=10\n  meshvol section samples/flanged-bushing.stl --plane z=12.5 --wkt\n  meshvol section samples/flanged-bushing.stl --plane 0,1,1,10 --json";
 const EXAMPLES_HULL: &str = "Examples:\n  meshvol hull samples/flanged-bushing.stl\n  meshvol hull scan.xyz --out hull.stl --json";
 const EXAMPLES_GRID: &str = "Examples:\n  meshvol grid samples/flanged-bushing.stl --cells 60,60,30 --out cells.npy\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png z.png --slice z=12.5\n  meshvol grid samples/flanged-bushing.stl --pitch 1 --png mid.png --slice k=15 --json\n  meshvol grid samples/flanged-bushing.stl --pitch 0.5 --backend auto --out cells.npy";
 const EXAMPLES_DEVICES: &str = "Examples:\n  meshvol devices\n  meshvol devices --json";
 const EXAMPLES_PROFILE: &str = "Examples:\n  meshvol profile samples/flanged-bushing.stl --levels 10\n  meshvol profile samples/flanged-bushing.stl --step 0.5 --units mm:mL --csv";
 const EXAMPLES_UNION: &str = "Examples:\n  meshvol union a.stl b.stl c.stl --json\n  meshvol union samples/flanged-bushing.stl       # one file: its shells are the bodies";
 const EXAMPLES_INTERSECT: &str =
-    "Examples:\n  meshvol intersect a.stl b.stl --json\n  meshvol intersect parts/ --pairs";
-const EXAMPLES_BELOW: &str = "Examples:\n  meshvol below samples/flanged-bushing.stl --plane 0,0,1,10\n  meshvol below samples/flanged-bushing.stl --volume 10000 --units mm:mL\n  meshvol below hulls/ --volume 4 --heel 10 --format csv";
+    "Examples:\n  meshvol intersect a.stl b.stl --json\n  meshvol intersect parts/ --pairs --format csv > overlaps.csv";
+const EXAMPLES_BELOW: &str = "Examples:\n  meshvol below samples/flanged-bushing.stl --plane z=10\n  meshvol below samples/flanged-bushing.stl --plane 0,0,1,10\n  meshvol below samples/flanged-bushing.stl --volume 10000 --units mm:mL\n  meshvol below hulls/ --volume 4 --heel 10 --format csv";
 const EXAMPLES_CUTFILL: &str = "Examples:\n  meshvol cutfill terrain.obj --level 5\n  meshvol cutfill existing.stl --design design.stl --pitch 10 --out cells.npy";
 const EXAMPLES_SERVE: &str = "Examples:\n  meshvol serve                       # http://127.0.0.1:8765/\n  meshvol serve --port 8080 --max-upload 1GiB\n  meshvol serve --bind 0.0.0.0 --max-concurrent 4   # answers the network: put it behind a proxy";
-const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish";
-const EXAMPLES_MAN: &str = "Examples:\n  meshvol man > meshvol.1 && man ./meshvol.1\n  meshvol man volume > meshvol-volume.1";
-
-/// Writes the completion script for `shell` to stdout.
-fn completions(shell: clap_complete::Shell) -> ExitCode {
-    let mut out = Vec::new();
-    clap_complete::generate(shell, &mut Cli::command(), "meshvol", &mut out);
-    emit(&out)
-}
-
-/// Writes the manual page of the command, or of its subcommand `name`, to stdout.
-fn man(name: Option<&str>) -> ExitCode {
-    let mut command = Cli::command();
-    command.build();
-    let page = match name {
-        None => command,
-        Some(name) => match command.find_subcommand(name) {
-            // The page is printed once by a process that then ends: its name may live as long.
-            Some(sub) => sub.clone().name(&*format!("meshvol-{name}").leak()),
-            None => {
-                let names: Vec<&str> = command.get_subcommands().map(|c| c.get_name()).collect();
-                eprintln!(
-                    "meshvol: error: '{name}' is not a subcommand: one of {}",
-                    names.join(", ")
-                );
-                return ExitCode::from(2);
-            }
-        },
-    };
-    let mut out = Vec::new();
-    if let Err(e) = clap_mangen::Man::new(page).render(&mut out) {
-        eprintln!("meshvol: error: cannot write the manual page: {e}");
-        return ExitCode::FAILURE;
-    }
-    emit(&out)
-}
-
-/// Writes `bytes` to stdout; a closed stdout (piped into `head`) ends quietly.
-fn emit(bytes: &[u8]) -> ExitCode {
-    use std::io::Write;
-    let mut stdout = std::io::stdout().lock();
-    let _ = stdout.write_all(bytes).and_then(|()| stdout.flush());
-    ExitCode::SUCCESS
-}
+const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish\n  meshvol completions elvish > ~/.config/elvish/lib/meshvol.elv\n  meshvol completions powershell >> $PROFILE";
+const EXAMPLES_MAN: &str = "Examples:\n  meshvol man > meshvol.1 && man ./meshvol.1\n  meshvol man volume > meshvol-volume.1\n  meshvol man --all ~/.local/share/man/man1";
 
 fn non_negative_finite(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
@@ -236,8 +200,7 @@ fn first_argument(args: &[std::ffi::OsString]) -> usize {
     i
 }
 
-/// The subcommand `arg` was probably meant to be, when it is not a file: one at most two
-/// edits away (`chek` → `check`), or one it begins (`vol` → `volume`).
+/// The subcommand `arg` was probably meant to be, when it is not a file ([`nearest`]).
 fn misspelt_command(arg: &std::ffi::OsStr) -> Option<String> {
     let a = arg.to_str()?;
     if a.len() < 2
@@ -251,13 +214,17 @@ fn misspelt_command(arg: &std::ffi::OsStr) -> Option<String> {
     if a == "help" || command.get_subcommands().any(|c| c.get_name() == a) {
         return None;
     }
-    command
-        .get_subcommands()
-        .map(|c| c.get_name().to_string())
-        .map(|name| (edits(a, &name), name))
-        .filter(|(d, name)| *d <= 2 || (a.len() >= 3 && name.starts_with(a)))
+    nearest(a, command.get_subcommands().map(|c| c.get_name()))
+}
+
+/// The name of `names` that `typed` was probably meant to be: one at most two edits
+/// away (`chek` → `check`), or one it begins (`vol` → `volume`); the nearest first.
+fn nearest<'a>(typed: &str, names: impl Iterator<Item = &'a str>) -> Option<String> {
+    names
+        .map(|name| (edits(typed, name), name))
+        .filter(|(d, name)| *d <= 2 || (typed.len() >= 3 && name.starts_with(typed)))
         .min()
-        .map(|(_, name)| name)
+        .map(|(_, name)| name.to_string())
 }
 
 /// Levenshtein distance.
@@ -360,7 +327,8 @@ fn main() -> ExitCode {
         Command::Cutfill(args) => cutfill::run(args, cli.quiet),
         Command::Serve(args) => serve::run(args, cli.quiet),
         Command::Devices(args) => devices::run(args),
-        Command::Completions { shell } => completions(shell),
-        Command::Man { command } => man(command.as_deref()),
+        Command::Completions { shell } => manual::completions(shell, Cli::command()),
+        Command::Man { all: Some(dir), .. } => manual::man_all(Cli::command(), &dir),
+        Command::Man { command, all: None } => manual::man(Cli::command(), command.as_deref()),
     }
 }

@@ -8,7 +8,7 @@ use crate::driver::{Driver, Output};
 use crate::input::Progress;
 use clap::Args;
 use meshvol::polygon::Polygon;
-use meshvol::section::Plane;
+use meshvol_report::plane::PlaneArg;
 use meshvol_report::quantities::Quantities;
 use meshvol_report::section::{section, SectionReport};
 use meshvol_report::units::Scale;
@@ -18,10 +18,10 @@ pub struct SectionArgs {
     /// The mesh to cut: STL, OBJ, OFF, PLY, 3MF, glTF/GLB.
     #[arg(value_name = "FILE")]
     file: PathBuf,
-    /// The plane: `z=H`, `x=H`, `y=H` (2D coordinates (x, y), (y, z), (x, z)), or a
-    /// point and a normal `PX,PY,PZ,NX,NY,NZ`.
-    #[arg(long, value_name = "PLANE", value_parser = parse_plane, allow_hyphen_values = true)]
-    plane: Plane,
+    /// The plane: `z=H`, `x=H`, `y=H` (2D coordinates (x, y), (y, z), (x, z)), a point
+    /// and a normal `PX,PY,PZ,NX,NY,NZ`, or a normal and an offset `NX,NY,NZ,D` (n·x = D).
+    #[arg(long, value_name = "PLANE", allow_hyphen_values = true)]
+    plane: PlaneArg,
     /// Print the report as one JSON object.
     #[arg(long, conflicts_with_all = ["wkt", "geojson"])]
     json: bool,
@@ -38,34 +38,6 @@ pub struct SectionArgs {
     units: crate::units::AreaUnitArgs,
     #[command(flatten)]
     solid: crate::solid::SolidArgs,
-}
-
-/// Parses `z=H`, `x=H`, `y=H` or `PX,PY,PZ,NX,NY,NZ`.
-fn parse_plane(s: &str) -> Result<Plane, String> {
-    let number = |t: &str| -> Result<f64, String> {
-        t.trim()
-            .parse::<f64>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .ok_or_else(|| format!("'{t}' is not a finite number"))
-    };
-    if let Some((axis, value)) = s.split_once('=') {
-        let axis = match axis.trim().to_ascii_lowercase().as_str() {
-            "x" => 0,
-            "y" => 1,
-            "z" => 2,
-            other => return Err(format!("'{other}' is not an axis: use x=H, y=H or z=H")),
-        };
-        return Plane::axis(axis, number(value)?).map_err(|e| e.to_string());
-    }
-    let values: Vec<f64> = s.split(',').map(number).collect::<Result<_, _>>()?;
-    let [px, py, pz, nx, ny, nz] = values[..] else {
-        return Err(format!(
-            "expected z=H, x=H, y=H or six numbers PX,PY,PZ,NX,NY,NZ; found {} number(s)",
-            values.len()
-        ));
-    };
-    Plane::new([px, py, pz], [nx, ny, nz]).map_err(|e| e.to_string())
 }
 
 /// The section as WKT or GeoJSON, by `geojson`.
@@ -114,7 +86,9 @@ fn measure(
     let out_geojson = args.out.as_deref().map(out_is_geojson).transpose()?;
     let input = crate::solid::read(&args.file, args.solid.check(), progress)?;
     progress.stage("cutting", &args.file);
-    let (report, mut polygons) = section(&input.subject(), &args.plane);
+    // The parser has refused a plane that cannot be made.
+    let plane = args.plane.plane().map_err(|e| e.to_string())?;
+    let (report, mut polygons) = section(&input.subject(), &plane);
     // The report and the outline (WKT, GeoJSON) in the units asked for: the outline's
     // coordinates in the plane scale as lengths, so its area is the report's.
     let options = args.units.options();
@@ -136,21 +110,4 @@ fn measure(
         None
     };
     Ok((report, printed))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::parse_plane;
-
-    #[test]
-    fn planes_parse() {
-        assert_eq!(parse_plane("z=1.5").unwrap().frame().origin, [0.0, 0.0, 1.5]);
-        assert_eq!(parse_plane("X = -2").unwrap().frame().normal, [1.0, 0.0, 0.0]);
-        let p = parse_plane("1,2,3,0,0,2").unwrap().frame();
-        assert_eq!((p.origin, p.normal), ([1.0, 2.0, 3.0], [0.0, 0.0, 1.0]));
-        assert!(parse_plane("w=1").unwrap_err().contains("not an axis"));
-        assert!(parse_plane("z=abc").unwrap_err().contains("'abc'"));
-        assert!(parse_plane("1,2,3").unwrap_err().contains("found 3"));
-        assert!(parse_plane("0,0,0,0,0,0").unwrap_err().contains("zero"));
-    }
 }

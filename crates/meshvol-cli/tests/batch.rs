@@ -174,8 +174,9 @@ fn folders_give_their_mesh_files_sorted() {
         let alone = json_lines(&meshvol(&["volume", "--json", line["file"].as_str().unwrap()]));
         assert_eq!(line, alone[0]);
     }
+    // Globs match in any case, as the extensions do: `*.obj` keeps `a.OBJ`.
     let globbed = run(&["-r", "--glob", "*.obj", "--glob", "!c*"]);
-    assert_eq!(files(&globbed), [name("b.obj"), name("sub/deeper/d.obj")]);
+    assert_eq!(files(&globbed), [name("a.OBJ"), name("b.obj"), name("sub/deeper/d.obj")]);
     let by_path = run(&["-r", "-g", "sub/**/*.obj"]);
     assert_eq!(files(&by_path), [name("sub/c.obj"), name("sub/deeper/d.obj")]);
     // Files named as arguments are read whatever the globs.

@@ -211,3 +211,57 @@ fn hull_and_area_read_standard_input() {
     assert_eq!((v["file"].as_str(), v["format"].as_str()), (Some("-"), Some("wkt")));
     assert_eq!(f(&v["area"]), 5.5);
 }
+
+/// A gzip on standard input is read as the mesh it holds (standard input has no name:
+/// its first bytes say it is compressed), and a glTF zipped with its `.bin` reads the
+/// buffer from the archive.
+#[test]
+fn compressed_standard_input_and_a_zipped_gltf_are_read() {
+    let obj = common::box_obj([0.0; 3], [1.0, 2.0, 3.0], 1, true, false);
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    gz.write_all(obj.as_bytes()).unwrap();
+    let v = json(&meshvol_stdin(&["--json", "-"], &gz.finish().unwrap()));
+    assert_eq!((v["file"].as_str(), v["format"].as_str()), (Some("-"), Some("obj")));
+    assert!((f(&v["volume"]) - 6.0).abs() < 1e-12, "{v}");
+    // The unit cube's eight corners (f32) and twelve triangles (u16), in a .bin beside
+    // the .gltf inside the zip.
+    let mut bin = Vec::new();
+    for k in 0..8u8 {
+        for axis in 0..3 {
+            bin.extend_from_slice(&f32::from((k >> axis) & 1).to_le_bytes());
+        }
+    }
+    let faces: [[u16; 3]; 12] = [
+        [0, 2, 1],
+        [1, 2, 3],
+        [4, 5, 6],
+        [5, 7, 6],
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7],
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5],
+    ];
+    faces.iter().flatten().for_each(|i| bin.extend_from_slice(&i.to_le_bytes()));
+    let gltf = r#"{"asset":{"version":"2.0"},"nodes":[{"mesh":0}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3"},
+                     {"bufferView":1,"componentType":5123,"count":36,"type":"SCALAR"}],
+        "bufferViews":[{"buffer":0,"byteLength":96},{"buffer":0,"byteOffset":96,"byteLength":72}],
+        "buffers":[{"byteLength":168,"uri":"cube.bin"}]}"#;
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    for (name, bytes) in [("cube/cube.gltf", gltf.as_bytes()), ("cube/cube.bin", &bin)] {
+        zip.start_file(name, zip::write::SimpleFileOptions::default()).unwrap();
+        zip.write_all(bytes).unwrap();
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "cube.zip", zip.finish().unwrap().into_inner());
+    let out = meshvol(&["volume", "--json", path.to_str().unwrap()]);
+    let v = json(&out);
+    // glTF lengths are metres; the cube is 1 m³ and closed.
+    assert!((f(&v["volume"]) - 1.0).abs() < 1e-15, "{v}");
+    assert!(!stderr(&out).contains("os error"), "{}", stderr(&out));
+}

@@ -7,8 +7,12 @@
 //! file the reader reads (by extension: for meshes `.stl`, `.obj`, `.off`, `.ply`,
 //! `.3mf`, `.gltf`, `.glb`; hidden members and macOS's `__MACOSX/` folder are passed
 //! over), which is read as `archive.zip/member.stl`: a zip with none, or with several, is
-//! an error listing its members. (A glTF's external buffers are looked for beside the
-//! archive's name, not inside it: zip a `.glb`.)
+//! an error listing its members. A `.gltf` member's external buffers (`scene.bin`) are
+//! read from the same archive ([`Archive`]).
+//!
+//! An input without an extension (standard input, `-`) has no name to say it is
+//! compressed: its first bytes do ([`Compression::of_input`]: the gzip, bzip2, Zstandard
+//! and zip signatures), and it is decompressed as a file of that kind is.
 //!
 //! Decompression is bounded as streams are: a file that inflates past
 //! [`stream_limit`](crate::stream_limit) bytes (2 GiB, `MESHVOL_MAX_STREAM_BYTES`) is
@@ -18,8 +22,8 @@
 use std::io::{Cursor, Read};
 use std::path::{Path, PathBuf};
 
-use crate::limits::{Budget, Limits};
-use crate::source::{Bytes, STREAM_LIMIT_VARIABLE};
+use crate::limits::Budget;
+use crate::source::STREAM_LIMIT_VARIABLE;
 use crate::ReadError;
 
 /// The extensions of the compressed forms read, without the dot.
@@ -47,6 +51,31 @@ impl Compression {
         })
     }
 
+    /// The compression of an input: the one its name's last extension names or, for a
+    /// name without an extension (standard input, `-`), the one its first bytes show.
+    pub fn of_input(path: &Path, bytes: &[u8]) -> Option<Compression> {
+        if path.extension().is_some() {
+            return Compression::of_path(path);
+        }
+        Compression::of_content(bytes)
+    }
+
+    /// The compression whose signature the bytes start with (RFC 1952's gzip, bzip2's
+    /// `BZh` and block size, RFC 8878's Zstandard frame, a zip's local file header).
+    pub fn of_content(bytes: &[u8]) -> Option<Compression> {
+        if bytes.starts_with(&[0x1f, 0x8b]) {
+            Some(Compression::Gzip)
+        } else if bytes.starts_with(b"BZh") && bytes.get(3).is_some_and(u8::is_ascii_digit) {
+            Some(Compression::Bzip2)
+        } else if bytes.starts_with(&[0x28, 0xb5, 0x2f, 0xfd]) {
+            Some(Compression::Zstd)
+        } else if bytes.starts_with(b"PK\x03\x04") {
+            Some(Compression::Zip)
+        } else {
+            None
+        }
+    }
+
     fn name(self) -> &'static str {
         match self {
             Compression::Gzip => "gzip",
@@ -57,23 +86,10 @@ impl Compression {
     }
 }
 
-fn error(path: &Path, message: String) -> ReadError {
-    ReadError { path: path.to_path_buf(), location: None, message, budget: None }
-}
-
-/// The decompressed content of the file at `path` (compressed as its extension says) and
-/// the name it is read under: `part.stl` for `part.stl.gz`, `archive.zip/member.stl` for
-/// a zip's one member that `wanted` accepts (by its name).
-pub(crate) fn open(
-    path: &Path,
-    compression: Compression,
-    wanted: impl Fn(&Path) -> bool,
-) -> Result<(PathBuf, Vec<u8>), ReadError> {
-    let bytes = Bytes::open(path).map_err(|e| error(path, e.to_string()))?;
-    decompress(path, &bytes, compression, wanted, Limits::from_env().inflated_bytes)
-}
-
-/// [`open`] of bytes already read, inflated up to `limit` bytes.
+/// The decompressed content of `bytes` (read from `path`, compressed by `compression`),
+/// inflated up to `limit` bytes, and the name it is read under: `part.stl` for
+/// `part.stl.gz`, `archive.zip/member.stl` for a zip's one member that `wanted` accepts
+/// (by its name).
 pub(crate) fn decompress(
     path: &Path,
     bytes: &[u8],
@@ -81,8 +97,9 @@ pub(crate) fn decompress(
     wanted: impl Fn(&Path) -> bool,
     limit: u64,
 ) -> Result<(PathBuf, Vec<u8>), ReadError> {
-    let damaged =
-        |e: std::io::Error| error(path, format!("not a readable {} file: {e}", compression.name()));
+    let damaged = |e: std::io::Error| {
+        ReadError::of_file(path, format!("not a readable {} file: {e}", compression.name()))
+    };
     let inner = path.with_extension("");
     match compression {
         Compression::Gzip => {
@@ -119,9 +136,53 @@ fn bounded(
             "decompresses to more than {limit} bytes: refused (a compressed input is read \
              up to {STREAM_LIMIT_VARIABLE} bytes, 2 GiB unless it says otherwise)"
         );
-        return Ok(Err(ReadError { budget: Some(Budget::InflatedBytes), ..error(path, message) }));
+        return Ok(Err(ReadError {
+            budget: Some(Budget::InflatedBytes),
+            ..ReadError::of_file(path, message)
+        }));
     }
     Ok(Ok(data))
+}
+
+/// The zip archive a file was read from (`parts.zip/scene.gltf`): a glTF's external
+/// buffers are the archive's members, named relative to the glTF's folder in it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Archive<'a> {
+    /// The archive's bytes.
+    pub(crate) bytes: &'a [u8],
+    /// The file read, as a member name (`models/scene.gltf`).
+    pub(crate) member: &'a Path,
+    /// The most bytes a member is inflated to.
+    pub(crate) limit: u64,
+}
+
+impl Archive<'_> {
+    /// The first `length` bytes (at most; fewer if the member is shorter) of the member
+    /// at `relative` (a relative path without `..`) from the folder of [`Archive::member`].
+    pub(crate) fn read(&self, relative: &Path, length: u64) -> Result<Vec<u8>, String> {
+        let folder = self.member.parent().unwrap_or(Path::new(""));
+        let parts: Vec<String> = folder
+            .join(relative)
+            .components()
+            .filter(|c| matches!(c, std::path::Component::Normal(_)))
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+            .collect();
+        let name = parts.join("/");
+        let mut archive = zip::ZipArchive::new(Cursor::new(self.bytes))
+            .map_err(|e| format!("not a readable zip archive: {e}"))?;
+        let file = archive.by_name(&name).map_err(|_| {
+            format!(
+                "'{name}' is not in the zip archive the glTF is in: zip the .glb, or the \
+                 folder with the .gltf and its buffers"
+            )
+        })?;
+        let mut data = Vec::new();
+        let limit = length.min(self.limit);
+        file.take(limit)
+            .read_to_end(&mut data)
+            .map_err(|e| format!("cannot read '{name}' from the zip archive: {e}"))?;
+        Ok(data)
+    }
 }
 
 /// Whether a zip member is hidden or an archiver's own: a name starting with `.` in any
@@ -137,7 +198,7 @@ fn unzip(
     wanted: impl Fn(&Path) -> bool,
     limit: u64,
 ) -> Result<(PathBuf, Vec<u8>), ReadError> {
-    let damaged = |e: String| error(path, format!("not a readable zip archive: {e}"));
+    let damaged = |e: String| ReadError::of_file(path, format!("not a readable zip archive: {e}"));
     let mut archive =
         zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| damaged(e.to_string()))?;
     let names: Vec<String> = archive.file_names().map(str::to_string).collect();
@@ -166,7 +227,7 @@ fn unzip(
         }
         [] => {
             let all: Vec<&String> = names.iter().filter(|n| !n.ends_with('/')).collect();
-            return Err(error(
+            return Err(ReadError::of_file(
                 path,
                 format!(
                     "the archive holds no file meshvol reads here (its files: {}): a .zip must \
@@ -176,7 +237,7 @@ fn unzip(
             ));
         }
         several => {
-            return Err(error(
+            return Err(ReadError::of_file(
                 path,
                 format!(
                     "the archive holds {} files meshvol reads ({}): a .zip must hold exactly \
@@ -190,9 +251,9 @@ fn unzip(
     let inner = path.join(&member);
     let file = archive
         .by_name(&member)
-        .map_err(|e| error(&inner, format!("cannot read the archive member: {e}")))?;
+        .map_err(|e| ReadError::of_file(&inner, format!("cannot read the archive member: {e}")))?;
     let data = bounded(&inner, file, limit)
-        .map_err(|e| error(&inner, format!("cannot read the archive member: {e}")))?;
+        .map_err(|e| ReadError::of_file(&inner, format!("cannot read the archive member: {e}")))?;
     Ok((inner, data?))
 }
 

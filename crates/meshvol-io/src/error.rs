@@ -6,7 +6,7 @@
 //! archive, or the JSON path of a glTF item.
 
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Which limit a read went past (a [`ReadError`]'s `budget`; the limits are
 /// [`crate::Limits`]).
@@ -70,6 +70,28 @@ impl fmt::Display for ReadError {
 }
 
 impl std::error::Error for ReadError {}
+
+impl ReadError {
+    /// An error about the whole file at `path` (no place in it, no limit passed).
+    pub(crate) fn of_file(path: &Path, message: impl Into<String>) -> ReadError {
+        ReadError {
+            path: path.to_path_buf(),
+            location: None,
+            message: message.into(),
+            budget: None,
+        }
+    }
+
+    /// This error about the decompressed `inner`, named as the file given
+    /// (`part.stl.gz`); a zip member keeps its name (`parts.zip/part.stl`), which names
+    /// the archive.
+    pub(crate) fn named_as(mut self, given: &Path, inner: &Path) -> ReadError {
+        if self.path == inner && !inner.starts_with(given) {
+            self.path = given.to_path_buf();
+        }
+        self
+    }
+}
 
 /// A problem found while parsing bytes, before the file's path is attached.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -92,6 +92,7 @@ pub use polygons::{
 pub use stl::StlSoup;
 pub use walk::InputKind;
 
+use compressed::Compression;
 use error::ParseError;
 pub use limits::{Budget, Limits};
 use source::Bytes;
@@ -332,29 +333,19 @@ impl Loaded {
 }
 
 /// Reads a mesh file, choosing the format by extension and content. A compressed file
-/// (`.gz`, `.bz2`, `.zst`, `.zip`) is decompressed first, within the stream limit
-/// ([`compressed`]).
+/// (`.gz`, `.bz2`, `.zst`, `.zip`; without an extension, by its first bytes) is
+/// decompressed first, within the stream limit ([`compressed`]).
 pub fn read(path: &Path) -> Result<Loaded, ReadError> {
-    if let Some(compression) = compressed::Compression::of_path(path) {
-        let (inner, data) = compressed::open(path, compression, has_mesh_extension)?;
-        return load(&inner, Bytes::Owned(data), &Limits::from_env())
-            .map_err(|e| named(e, path, &inner));
-    }
-    let bytes = Bytes::open(path).map_err(|e| ReadError {
-        path: path.to_path_buf(),
-        location: None,
-        message: e.to_string(),
-        budget: None,
-    })?;
-    load(path, bytes, &Limits::from_env())
+    let bytes = Bytes::open(path).map_err(|e| ReadError::of_file(path, e.to_string()))?;
+    read_within(path, bytes, &Limits::from_env())
 }
 
 /// Reads a mesh from bytes already in memory, as [`read`] would read a file at `path`
 /// with these contents (`path` gives the extension, names the file in errors, and is
 /// where a `.gltf` file's external buffers are looked for). Standard input is read with
-/// a path such as `-`: no extension, so the content decides. A path ending in `.gz`,
-/// `.bz2`, `.zst` or `.zip` is decompressed first, as [`read`] does (an upload named
-/// `part.stl.gz`).
+/// a path such as `-`: no extension, so the content decides, compressed (gzip, bzip2,
+/// Zstandard, zip) or not. A path ending in `.gz`, `.bz2`, `.zst` or `.zip` is
+/// decompressed first, as [`read`] does (an upload named `part.stl.gz`).
 pub fn read_bytes(path: &Path, bytes: Vec<u8>) -> Result<Loaded, ReadError> {
     read_bytes_within(path, bytes, &Limits::from_env())
 }
@@ -366,27 +357,37 @@ pub fn read_bytes_within(
     bytes: Vec<u8>,
     limits: &Limits,
 ) -> Result<Loaded, ReadError> {
-    if let Some(compression) = compressed::Compression::of_path(path) {
-        let (inner, data) = compressed::decompress(
-            path,
-            &bytes,
-            compression,
-            has_mesh_extension,
-            limits.inflated_bytes,
-        )?;
-        drop(bytes);
-        return load(&inner, Bytes::Owned(data), limits).map_err(|e| named(e, path, &inner));
-    }
-    load(path, Bytes::Owned(bytes), limits)
+    read_within(path, Bytes::Owned(bytes), limits)
 }
 
-/// An error about the decompressed `inner` named as the file given (`part.stl.gz`); a zip
-/// member keeps its name (`parts.zip/part.stl`), which names the archive.
-fn named(mut e: ReadError, given: &Path, inner: &Path) -> ReadError {
-    if e.path == inner && !inner.starts_with(given) {
-        e.path = given.to_path_buf();
-    }
-    e
+/// [`read_bytes_within`] of bytes owned or mapped.
+fn read_within(path: &Path, bytes: Bytes, limits: &Limits) -> Result<Loaded, ReadError> {
+    let Some(compression) = Compression::of_input(path, &bytes) else {
+        return load(path, bytes, limits, None);
+    };
+    let (inner, data) = compressed::decompress(
+        path,
+        &bytes,
+        compression,
+        has_mesh_extension,
+        limits.inflated_bytes,
+    )?;
+    let data = Bytes::Owned(data);
+    // A zip's member (`parts.zip/scene.gltf`, not a 3MF package read whole) keeps the
+    // archive: a glTF's external buffers are its other members.
+    let member = inner.strip_prefix(path).ok().filter(|_| compression == Compression::Zip);
+    let loaded = match member {
+        Some(member) => {
+            let archive =
+                compressed::Archive { bytes: &bytes, member, limit: limits.inflated_bytes };
+            load(&inner, data, limits, Some(archive))
+        }
+        None => {
+            drop(bytes);
+            load(&inner, data, limits, None)
+        }
+    };
+    loaded.map_err(|e| e.named_as(path, &inner))
 }
 
 /// The format families an extension or a sniff can name.
@@ -463,7 +464,12 @@ fn objects_if_several(objects: Vec<Object>) -> Vec<Object> {
     }
 }
 
-fn load(path: &Path, bytes: Bytes, limits: &Limits) -> Result<Loaded, ReadError> {
+fn load(
+    path: &Path,
+    bytes: Bytes,
+    limits: &Limits,
+    archive: Option<compressed::Archive<'_>>,
+) -> Result<Loaded, ReadError> {
     let with_path = |e: ParseError| e.with_path(PathBuf::from(path));
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let mut warnings = Vec::new();
@@ -501,12 +507,7 @@ fn load(path: &Path, bytes: Bytes, limits: &Limits) -> Result<Loaded, ReadError>
             } else {
                 format!("{what}, and the content looks like none of STL, OBJ, OFF, PLY, 3MF, glTF")
             };
-            return Err(ReadError {
-                path: path.to_path_buf(),
-                location: None,
-                message: what,
-                budget: None,
-            });
+            return Err(ReadError::of_file(path, what));
         }
     };
     let mut objects = Vec::new();
@@ -555,7 +556,8 @@ fn load(path: &Path, bytes: Bytes, limits: &Limits) -> Result<Loaded, ReadError>
             (Format::ThreeMf, LoadedSurface::Mesh(model.mesh))
         }
         Family::Gltf => {
-            let scene = gltf::read(path, &bytes, &mut warnings, limits).map_err(with_path)?;
+            let scene =
+                gltf::read(path, archive, &bytes, &mut warnings, limits).map_err(with_path)?;
             objects = scene.objects;
             bodies = scene.bodies;
             unit = Some(LengthUnit::Metre);

@@ -72,23 +72,14 @@ fn is_text_points(path: &Path) -> bool {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_points(path: &Path) -> Result<PointCloud, ReadError> {
-    if let Some(compression) = crate::compressed::Compression::of_path(path) {
-        let wanted = |p: &Path| crate::InputKind::Points.accepts(p);
-        let (inner, data) = crate::compressed::open(path, compression, wanted)?;
-        return points(&inner, Bytes::Owned(data)).map_err(|e| crate::named(e, path, &inner));
-    }
-    let bytes = Bytes::open(path).map_err(|e| ReadError {
-        path: path.to_path_buf(),
-        location: None,
-        message: e.to_string(),
-        budget: None,
-    })?;
-    points(path, bytes)
+    let bytes = Bytes::open(path).map_err(|e| ReadError::of_file(path, e.to_string()))?;
+    decompressed_points(path, bytes)
 }
 
 /// Reads points from bytes already in memory, as [`read_points`] would read a file at
 /// `path` with this content (`path` gives the extension and names the file in errors).
-/// Standard input is read with a path such as `-`: no extension, so the content decides.
+/// Standard input is read with a path such as `-`: no extension, so the content decides
+/// (compressed or not).
 ///
 /// ```
 /// let cloud = meshvol_io::read_points_bytes(std::path::Path::new("-"), b"0 0 0\n1 2 3\n".to_vec())?;
@@ -96,7 +87,20 @@ pub fn read_points(path: &Path) -> Result<PointCloud, ReadError> {
 /// # Ok::<(), meshvol_io::ReadError>(())
 /// ```
 pub fn read_points_bytes(path: &Path, bytes: Vec<u8>) -> Result<PointCloud, ReadError> {
-    points(path, Bytes::Owned(bytes))
+    decompressed_points(path, Bytes::Owned(bytes))
+}
+
+/// The points of `bytes`, decompressed first when compressed (by the name's extension,
+/// or without one by their first bytes), within the stream limit.
+fn decompressed_points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadError> {
+    let Some(compression) = crate::compressed::Compression::of_input(path, &bytes) else {
+        return points(path, bytes);
+    };
+    let wanted = |p: &Path| crate::InputKind::Points.accepts(p);
+    let limit = crate::Limits::from_env().inflated_bytes;
+    let (inner, data) = crate::compressed::decompress(path, &bytes, compression, wanted, limit)?;
+    drop(bytes);
+    points(&inner, Bytes::Owned(data)).map_err(|e| e.named_as(path, &inner))
 }
 
 /// Text points for a text extension; else a mesh file for a mesh extension or content
@@ -111,17 +115,12 @@ fn points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadError> {
             .map_err(|e| e.with_path(PathBuf::from(path)))?;
         return Ok(PointCloud { source: PointSource::Text, points, warnings: Vec::new() });
     }
-    let loaded = crate::load(path, bytes, &crate::Limits::from_env())?;
+    let loaded = crate::load(path, bytes, &crate::Limits::from_env(), None)?;
     let points = match loaded.surface {
         LoadedSurface::Mesh(mesh) => mesh.positions().to_vec(),
         other => other
             .into_mesh()
-            .map_err(|e| ReadError {
-                path: path.to_path_buf(),
-                location: None,
-                message: e.to_string(),
-                budget: None,
-            })?
+            .map_err(|e| ReadError::of_file(path, e.to_string()))?
             .positions()
             .to_vec(),
     };

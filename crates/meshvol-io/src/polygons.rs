@@ -72,25 +72,28 @@ pub struct PolygonFile {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_polygons(path: &Path) -> Result<PolygonFile, ReadError> {
-    if let Some(compression) = crate::compressed::Compression::of_path(path) {
-        let wanted = |p: &Path| crate::InputKind::Polygons.accepts(p);
-        let (inner, data) = crate::compressed::open(path, compression, wanted)?;
-        return read_polygons_bytes(&inner, &data).map_err(|e| crate::named(e, path, &inner));
-    }
-    let bytes = Bytes::open(path).map_err(|e| ReadError {
-        path: path.to_path_buf(),
-        location: None,
-        message: e.to_string(),
-        budget: None,
-    })?;
+    let bytes = Bytes::open(path).map_err(|e| ReadError::of_file(path, e.to_string()))?;
     read_polygons_bytes(path, &bytes)
 }
 
 /// Reads polygons from bytes as [`read_polygons`] would read a file at `path` with this
-/// content (`path` gives the extension and names the file in errors).
+/// content (`path` gives the extension and names the file in errors). Compressed bytes
+/// (by the name's extension, or without one by their first bytes) are decompressed
+/// first, within the stream limit.
 ///
 /// Standard input is read with a path such as `-`: no extension, so the content decides.
 pub fn read_polygons_bytes(path: &Path, bytes: &[u8]) -> Result<PolygonFile, ReadError> {
+    if let Some(compression) = crate::compressed::Compression::of_input(path, bytes) {
+        let wanted = |p: &Path| crate::InputKind::Polygons.accepts(p);
+        let limit = crate::Limits::from_env().inflated_bytes;
+        let (inner, data) = crate::compressed::decompress(path, bytes, compression, wanted, limit)?;
+        return polygons(&inner, &data).map_err(|e| e.named_as(path, &inner));
+    }
+    polygons(path, bytes)
+}
+
+/// [`read_polygons_bytes`] of bytes not compressed.
+fn polygons(path: &Path, bytes: &[u8]) -> Result<PolygonFile, ReadError> {
     let with_path = |e: ParseError| e.with_path(PathBuf::from(path));
     // Old Mac files end lines with CR alone; every reader here counts lines at LF.
     let lf = text::lf_line_ends(bytes);

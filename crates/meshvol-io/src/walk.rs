@@ -7,8 +7,8 @@
 //! files in it that the command reads ([`InputKind::accepts`]: by extension, any case,
 //! compressed forms included), sorted by path; [`Walk::recursive`] also takes its
 //! subfolders' files, and [`Walk::filters`] (`--glob`) keep only the files whose name
-//! matches (a pattern with a `/` is matched against the path below the folder, as
-//! ripgrep's `-g` does; `!PATTERN` leaves files out). Hidden files and folders (names
+//! matches, in any case (a pattern with a `/` is matched against the path below the
+//! folder, as ripgrep's `-g` does; `!PATTERN` leaves files out). Hidden files and folders (names
 //! starting with `.`: `.git/` among them) are passed over, as fd and ripgrep do.
 //!
 //! With [`Walk::patterns`] (Python, whose callers have no shell to expand
@@ -23,7 +23,7 @@
 //! as a row with an `error`.
 
 use crate::compressed::{self, Compression};
-use globset::{Glob, GlobBuilder, GlobMatcher};
+use globset::{GlobBuilder, GlobMatcher};
 use std::path::{Path, PathBuf};
 
 /// What a command reads, for choosing the files in a folder by their names
@@ -97,7 +97,8 @@ impl InputKind {
     }
 }
 
-/// A `--glob` pattern: which files of a folder are read.
+/// A `--glob` pattern: which files of a folder are read. It matches in any case, as the
+/// extensions that choose a folder's files do (`*.stl` keeps `PART.STL`).
 #[derive(Clone, Debug)]
 pub struct Filter {
     text: String,
@@ -118,7 +119,10 @@ impl Filter {
         if body.is_empty() {
             return Err(format!("'{s}': an empty pattern"));
         }
-        let glob = Glob::new(body).map_err(|e| format!("'{s}': {e}"))?;
+        let glob = GlobBuilder::new(body)
+            .case_insensitive(true)
+            .build()
+            .map_err(|e| format!("'{s}': {e}"))?;
         Ok(Filter {
             text: s.to_string(),
             matcher: glob.compile_matcher(),

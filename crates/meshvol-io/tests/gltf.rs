@@ -333,6 +333,47 @@ fn buffers_are_read_from_the_gltf_folder_only() {
     assert!(e.message.contains("standard input"), "{e}");
 }
 
+/// A `.gltf` in a zip archive reads its external buffers from the archive, beside it
+/// there: from a file, from bytes named `.zip` (an upload), and from standard input.
+#[test]
+fn buffers_of_a_gltf_in_a_zip_are_read_from_the_zip() {
+    let dir = tempfile::tempdir().unwrap();
+    let (bin, _) = cube_buffer();
+    let gltf = cube_gltf_with_file("cube%20data.bin");
+    // A cube.bin at the top holds other bytes: only the one beside the glTF is its buffer.
+    let archive = zip_of(&[
+        ("models/cube.gltf", gltf.as_bytes()),
+        ("models/cube data.bin", &bin),
+        ("cube data.bin", &[0u8; 96]),
+        ("readme.txt", b"a cube"),
+    ]);
+    let path = write_temp(dir.path(), "cube.zip", &archive);
+    // The unit cube, as the same glTF with its buffer in a data: URI reads.
+    let plain = read_as("cube.gltf", cube_gltf(r#"[{"mesh":0}]"#, "")).unwrap();
+    assert_eq!(volume(&plain.surface), 1.0);
+    for loaded in [
+        meshvol_io::read(&path).unwrap(),
+        read_as("cube.zip", archive.clone()).unwrap(),
+        read_as("-", archive).unwrap(),
+    ] {
+        assert_eq!(loaded.format, Format::Gltf);
+        assert_eq!(triangles(&loaded.surface), triangles(&plain.surface));
+    }
+    // A buffer the archive lacks, or one outside the glTF's folder in it, is an error at
+    // the buffer that says what to do: never the system's "Not a directory".
+    for (uri, says) in [("cube.bin", "zip the .glb"), ("../cube%20data.bin", "folder")] {
+        let archive = zip_of(&[
+            ("models/cube.gltf", cube_gltf_with_file(uri).as_bytes()),
+            ("cube data.bin", &bin),
+        ]);
+        let path = write_temp(dir.path(), "broken.zip", &archive);
+        let e = meshvol_io::read(&path).unwrap_err();
+        assert_eq!(e.location, Some(Location::Json("buffers[0]".into())), "{uri}: {e}");
+        assert!(e.message.contains(says) && !e.message.contains("os error"), "{uri}: {e}");
+        assert!(e.to_string().contains("broken.zip/models/cube.gltf"), "{e}");
+    }
+}
+
 #[test]
 fn a_mesh_placed_by_many_nodes_is_decoded_once() {
     // 10⁴ nodes place the unit cube side by side: volume 10⁴ exactly, one object each.

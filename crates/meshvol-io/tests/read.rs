@@ -189,3 +189,58 @@ fn obj_objects_from_o_or_g() {
         read_as("g.obj", format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\ng a\n{tetra}")).unwrap();
     assert!(one.objects.is_empty());
 }
+
+fn gz(data: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+    e.write_all(data).unwrap();
+    e.finish().unwrap()
+}
+
+fn bz2(data: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut e = bzip2::write::BzEncoder::new(Vec::new(), bzip2::Compression::fast());
+    e.write_all(data).unwrap();
+    e.finish().unwrap()
+}
+
+/// Standard input has no name to say it is compressed: its first bytes do, and it is
+/// read as the file it holds, as a compressed file is.
+#[test]
+fn standard_input_is_decompressed_by_its_signature() {
+    let obj = obj_tetra();
+    let zstd = ruzstd::encoding::compress_to_vec(
+        obj.as_bytes(),
+        ruzstd::encoding::CompressionLevel::Fastest,
+    );
+    for packed in
+        [gz(obj.as_bytes()), bz2(obj.as_bytes()), zstd, zip_of(&[("part.obj", obj.as_bytes())])]
+    {
+        let loaded = read_as("-", packed).unwrap();
+        assert_eq!(loaded.format, Format::Obj);
+        assert_close(volume(&loaded.surface), 1.0 / 6.0, 1e-15);
+    }
+    // A 3MF package is a zip too: read as the 3MF it is.
+    let box_3mf = three_mf(&format!(
+        r#"<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources><object id="1" type="model">{}</object></resources><build><item objectid="1"/></build></model>"#,
+        three_mf_box_mesh([0.0; 3], [1.0, 2.0, 3.0])
+    ));
+    let loaded = read_as("-", box_3mf).unwrap();
+    assert_eq!(loaded.format, Format::ThreeMf);
+    assert_close(volume(&loaded.surface), 6.0, 1e-12);
+    // A damaged stream says so and names standard input, not "looks like none of STL".
+    let mut cut = gz(obj.as_bytes());
+    cut.truncate(cut.len() / 2);
+    let e = read_as("-", cut).unwrap_err();
+    assert_eq!(e.path, Path::new("-"));
+    assert!(e.message.contains("gzip") && !e.message.contains("looks like"), "{e}");
+    // Polygons and points on standard input too: a 3 × 2 rectangle, four points.
+    let wkt = b"POLYGON ((0 0, 3 0, 3 2, 0 2, 0 0))";
+    let file = meshvol_io::read_polygons_bytes(Path::new("-"), &gz(wkt)).unwrap();
+    assert_eq!(meshvol::polygon::area_properties(&file.features[0].polygons).area, 6.0);
+    let cloud = meshvol_io::read_points_bytes(Path::new("-"), bz2(b"0 0 0\n1 0 0\n0 1 0\n0 0 1\n"));
+    assert_eq!(
+        cloud.unwrap().points,
+        [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    );
+}

@@ -72,10 +72,11 @@ fn globs_keep_names_or_paths_and_leave_out_with_a_bang() {
     let found = |globs: &[&str]| {
         below(dir.path(), &walk(true, globs, false).expand(&root, InputKind::Mesh))
     };
-    // Globs match names as written: case-sensitive, as ripgrep's `-g`.
-    assert_eq!(found(&["*.stl"]), ["b.stl", "sub/bad.stl"]);
-    assert_eq!(found(&["*.stl", "!bad*"]), ["b.stl"]);
-    assert_eq!(found(&["*.stl", "*.ply"]), ["b.stl", "sub/bad.stl", "sub/h.ply"]);
+    // Globs match names in any case, as the extensions that choose the files do.
+    assert_eq!(found(&["*.stl"]), ["A.STL", "b.stl", "sub/bad.stl"]);
+    assert_eq!(found(&["*.STL", "!BAD*"]), ["A.STL", "b.stl"]);
+    assert_eq!(found(&["a.*"]), ["A.STL"]);
+    assert_eq!(found(&["*.stl", "*.ply"]), ["A.STL", "b.stl", "sub/bad.stl", "sub/h.ply"]);
     assert_eq!(found(&["sub/**"]), ["sub/bad.stl", "sub/deeper/i.glb", "sub/h.ply"]);
     assert_eq!(found(&["!sub/**", "!*.zip"]), ["A.STL", "b.stl", "c.stl.gz", "e.OBJ.BZ2"]);
     let none = walk(true, &["*.3mf"], false).expand(&root, InputKind::Mesh);

@@ -8,6 +8,7 @@ use crate::properties::require_faces;
 use meshvol::polygon::Polygon;
 use meshvol::section::Plane;
 use meshvol::{Faces, Mesh, Surface};
+use meshvol_report::plane::PlaneArg;
 use meshvol_report::quantities::Quantities;
 use meshvol_report::section::{section, SectionReport};
 use numpy::ndarray::{arr2, Array2};
@@ -110,45 +111,30 @@ impl PySection {
 
 crate::dict::report_methods!(PySection, "Section");
 
-/// A plane argument: 'z=H' ('x=H', 'y=H'), a (2, 3) array-like (a point, a normal), or
-/// four numbers (nx, ny, nz, d) for n·x = d.
+/// A plane argument: text in any form the command's `--plane` takes ('z=H', 'x=H',
+/// 'y=H', 'nx,ny,nz,d', 'px,py,pz,nx,ny,nz', read by its parser), a (2, 3) array-like (a
+/// point, a normal), or four numbers (nx, ny, nz, d) for n·x = d.
 fn plane_of(plane: &Bound<'_, PyAny>) -> PyResult<Plane> {
     const FORM: &str =
         "plane must be 'z=H' ('x=H', 'y=H'), [point, normal] (a (2, 3) array-like), \
                         or (nx, ny, nz, d)";
-    if let Ok(text) = plane.extract::<String>() {
-        let Some((axis, value)) = text.split_once('=') else {
-            return Err(bad_argument(format!("{FORM}; got '{text}'")));
-        };
-        let axis = match axis.trim().to_ascii_lowercase().as_str() {
-            "x" => 0,
-            "y" => 1,
-            "z" => 2,
-            other => return Err(bad_argument(format!("'{other}' is not an axis: {FORM}"))),
-        };
-        let value: f64 = value
-            .trim()
-            .parse()
-            .map_err(|_| bad_argument(format!("'{}' is not a number: {FORM}", value.trim())))?;
-        return Plane::axis(axis, value).map_err(bad_argument);
-    }
-    let numpy = plane.py().import("numpy")?;
-    let size: usize = numpy
-        .call_method1("size", (plane,))
-        .and_then(|s| s.extract())
-        .map_err(|_| bad_argument(FORM))?;
-    if size == 4 {
-        let v = crate::convert::float_argument(plane, "plane", &[4], "(nx, ny, nz, d)")?;
-        let n = [v[0], v[1], v[2]];
-        let squared = n.iter().map(|x| x * x).sum::<f64>();
-        if !(squared > 0.0 && squared.is_finite()) {
-            return Err(bad_argument("plane: the normal (nx, ny, nz) must be non-zero and finite"));
+    let arg = if let Ok(text) = plane.extract::<String>() {
+        text.parse::<PlaneArg>().map_err(bad_argument)?
+    } else {
+        let numpy = plane.py().import("numpy")?;
+        let size: usize = numpy
+            .call_method1("size", (plane,))
+            .and_then(|s| s.extract())
+            .map_err(|_| bad_argument(FORM))?;
+        if size == 4 {
+            let v = crate::convert::float_argument(plane, "plane", &[4], "(nx, ny, nz, d)")?;
+            PlaneArg::NormalOffset { normal: [v[0], v[1], v[2]], d: v[3] }
+        } else {
+            let v = crate::convert::float_argument(plane, "plane", &[2, 3], "[point, normal]")?;
+            PlaneArg::PointNormal { point: [v[0], v[1], v[2]], normal: [v[3], v[4], v[5]] }
         }
-        let point = n.map(|x| x * v[3] / squared);
-        return Plane::new(point, n).map_err(bad_argument);
-    }
-    let v = crate::convert::float_argument(plane, "plane", &[2, 3], "[point, normal]")?;
-    Plane::new([v[0], v[1], v[2]], [v[3], v[4], v[5]]).map_err(bad_argument)
+    };
+    arg.plane().map_err(|e| bad_argument(format!("plane: {e}")))
 }
 
 /// The mesh of one body: its faces' fans, vertices shared where positions are equal.
@@ -177,8 +163,9 @@ impl PyMesh {
     /// perimeter, centroid and second moments, and its outline.
     ///
     /// plane: 'z=H' (or 'x=H', 'y=H': 2D coordinates (x, y), (y, z), (x, z), as the
-    /// command's --plane z=H), [point, normal] (any (2, 3) array-like), or (nx, ny, nz,
-    /// d) for the plane n·x = d (as Mesh.below takes it). check=True (the default) cuts
+    /// command's --plane z=H; any text the command's --plane takes), [point, normal] (any
+    /// (2, 3) array-like), or (nx, ny, nz, d) for the plane n·x = d (as Mesh.below takes
+    /// it). check=True (the default) cuts
     /// the checked solid, as the command does; check=False the surface as wound. units
     /// as in mass_properties ('mm:cm'; the outline stays in the file's coordinates).
     /// density as the command's --density: a mass per area ('62.8kg/m2', or a number

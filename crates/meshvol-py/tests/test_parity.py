@@ -72,8 +72,13 @@ def test_section_units_and_bad_planes():
     mesh = meshvol.Mesh(*box((0, 0, 0), (20, 30, 40)))
     s = mesh.section("z=10", units="mm:cm")
     assert s.area == pytest.approx(6.0) and s.units["length"] == "cm"
+    # Every text form of `meshvol section --plane` (one parser): 20 × 30 mm at z = 10.
+    for text in ["z=10", "0,0,1,10", "0,0,-2,-20", "5,5,10,0,0,1"]:
+        assert mesh.section(text).area == pytest.approx(600.0, rel=1e-14), text
     with pytest.raises(ValueError, match="'w' is not an axis"):
         mesh.section("w=1")
+    with pytest.raises(ValueError, match="found 3 number"):
+        mesh.section("0,0,1")
     with pytest.raises(ValueError, match=r"plane must be \[point, normal\].*shape \(2, 3\); got shape \(3,\)"):
         mesh.section((0, 0, 1))
     with pytest.raises(ValueError, match="normal"):

@@ -56,6 +56,7 @@ pub mod hull;
 pub mod inertial;
 pub mod intersect;
 pub mod number;
+pub mod plane;
 pub mod profile;
 pub mod quantities;
 pub mod repair;

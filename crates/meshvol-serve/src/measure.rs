@@ -79,9 +79,10 @@ fn flag(budget: Budget) -> &'static str {
 
 /// Reads `bytes`, uploaded as `name` (a plain file name), as if it were a file of that
 /// name in `folder` (an empty folder of the server's own: a glTF's external buffers are
-/// looked for there, and found nowhere), within `budgets`; checks it and reports, with
-/// `view` the page's geometry too. The check, and each step after it, first asks
-/// `hook` whether it is still wanted. Errors name the file as uploaded.
+/// looked for there, and found nowhere, unless the upload is a zip that holds them),
+/// within `budgets`; checks it and reports, with `view` the page's geometry too. The
+/// check, and each step after it, first asks `hook` whether it is still wanted. Errors
+/// name the file as uploaded.
 pub fn measure(
     folder: &Path,
     name: &str,

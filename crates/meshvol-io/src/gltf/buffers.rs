@@ -1,5 +1,6 @@
 //! A glTF file's bytes: the GLB container's chunks, buffers (the `BIN` chunk, `data:`
-//! URIs, files beside the document), buffer views, and accessors decoded from them.
+//! URIs, files beside the document or in its zip archive), buffer views, and accessors
+//! decoded from them.
 
 use std::borrow::Cow;
 use std::io::Read;
@@ -10,6 +11,7 @@ use rayon::prelude::*;
 
 use super::at;
 use super::schema::Document;
+use crate::compressed::Archive;
 use crate::error::{Location, ParseError};
 
 /// An accessor component type.
@@ -133,15 +135,12 @@ pub(super) fn glb_chunks<'a>(
     let json = json.ok_or_else(|| byte(12, "the GLB has no JSON chunk".into()))?;
     Ok((json, bin))
 }
-/// The file a buffer's `uri` names, confined to the glTF's own folder: a relative path
-/// (percent-decoded) without `..`, that resolves (symbolic links followed) inside the
-/// folder, to a regular file. A glTF read from standard input has no folder: its
-/// buffers must be in the file (GLB) or in `data:` URIs. Anything else is refused, so a
-/// file cannot make meshvol read another file's bytes (`../../secret`, `%2e%2e/`) or a
-/// device (`/dev/zero`).
-fn confined_file(gltf: &Path, uri: &str) -> Result<PathBuf, String> {
+/// The relative path a buffer's `uri` names (percent-decoded), refused unless it stays
+/// in the glTF's folder: no `..`, no root, no scheme. So a file cannot make meshvol read
+/// another file's bytes (`../../secret`, `%2e%2e/`).
+fn relative_name(uri: &str) -> Result<PathBuf, String> {
     let name = percent_decode(uri);
-    let relative = Path::new(&name);
+    let relative = PathBuf::from(&name);
     let plain = relative
         .components()
         .all(|c| matches!(c, path::Component::Normal(_) | path::Component::CurDir));
@@ -150,10 +149,19 @@ fn confined_file(gltf: &Path, uri: &str) -> Result<PathBuf, String> {
             "'{uri}' is not a file in the glTF's folder (buffers are read from there only)"
         ));
     }
+    Ok(relative)
+}
+
+/// The file at `relative` beside the glTF at `gltf`, confined to its folder: it must
+/// resolve (symbolic links followed) inside the folder, to a regular file, so a link
+/// cannot lead out of it or to a device (`/dev/zero`). A glTF read from standard input
+/// has no folder: its buffers must be in the file (GLB), in `data:` URIs, or in the zip
+/// archive it came in.
+fn confined_file(gltf: &Path, uri: &str, relative: &Path) -> Result<PathBuf, String> {
     if gltf.as_os_str() == "-" {
         return Err(format!(
-            "'{uri}' names a file, but a glTF from standard input has no folder: use a GLB \
-             or data: URIs"
+            "'{uri}' names a file, but a glTF from standard input has no folder: send a GLB, \
+             data: URIs, or a zip of the .gltf and its buffers"
         ));
     }
     let folder = gltf.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
@@ -170,10 +178,33 @@ fn confined_file(gltf: &Path, uri: &str) -> Result<PathBuf, String> {
     Ok(resolved)
 }
 
+/// The first `length` bytes (at most) of the buffer file `uri`: a member of the zip
+/// archive the glTF came in, else a file beside it ([`confined_file`]).
+fn external(
+    gltf: &Path,
+    archive: Option<Archive<'_>>,
+    uri: &str,
+    length: u64,
+) -> Result<Vec<u8>, String> {
+    let relative = relative_name(uri)?;
+    if let Some(archive) = archive {
+        return archive.read(&relative, length);
+    }
+    let file = confined_file(gltf, uri, &relative)?;
+    let mut data = Vec::new();
+    // Never more than byteLength bytes, whatever the file holds.
+    std::fs::File::open(&file)
+        .and_then(|f| f.take(length).read_to_end(&mut data))
+        .map_err(|e| format!("cannot read '{}': {e}", file.display()))?;
+    Ok(data)
+}
+
 /// The buffers' bytes, loaded on first use.
 pub(super) struct Buffers<'a> {
     pub(super) doc: &'a Document,
     pub(super) path: &'a Path,
+    /// The zip archive the glTF came in, whose members its external buffers are.
+    pub(super) archive: Option<Archive<'a>>,
     pub(super) bin: Option<&'a [u8]>,
     pub(super) loaded: Vec<Option<Cow<'a, [u8]>>>,
     pub(super) file_bytes: usize,
@@ -207,17 +238,10 @@ impl<'a> Buffers<'a> {
                         at(item.clone(), format!("invalid base64 in its data: URI: {e}"))
                     })?)
                 }
-                Some(uri) => {
-                    let file = confined_file(self.path, uri).map_err(|e| at(item.clone(), e))?;
-                    let mut data = Vec::new();
-                    // Never more than byteLength bytes, whatever the file holds.
-                    std::fs::File::open(&file)
-                        .and_then(|f| f.take(buffer.byte_length).read_to_end(&mut data))
-                        .map_err(|e| {
-                            at(item.clone(), format!("cannot read '{}': {e}", file.display()))
-                        })?;
-                    Cow::Owned(data)
-                }
+                Some(uri) => Cow::Owned(
+                    external(self.path, self.archive, uri, buffer.byte_length)
+                        .map_err(|e| at(item.clone(), e))?,
+                ),
             };
             let length = usize::try_from(buffer.byte_length).unwrap_or(usize::MAX);
             if data.len() < length {

@@ -16,7 +16,7 @@
 //! `KHR_draco_mesh_compression` or `EXT_meshopt_compression` are errors (not read).
 //!
 //! Buffers: the GLB `BIN` chunk, `data:` URIs (base64), or files named by a relative URI
-//! beside the `.gltf` file (in the current directory for standard input). Units:
+//! beside the `.gltf` file, or beside it in the zip archive it was read from. Units:
 //! glTF lengths are metres (specification, §3.4), so [`crate::Loaded::unit`] is metres.
 //!
 //! Nothing is trusted: every index is checked, every accessor must lie inside its buffer
@@ -40,6 +40,7 @@ use std::path::Path;
 
 use meshvol::Mesh;
 
+use crate::compressed::Archive;
 use crate::error::{Location, ParseError};
 use crate::limits::Limits;
 use crate::Object;
@@ -75,9 +76,11 @@ fn at(item: impl Into<String>, message: impl Into<String>) -> ParseError {
     ParseError::new(Some(Location::Json(item.into())), message)
 }
 
-/// Reads a `.gltf` or `.glb` file within `limits`; `path` locates external buffers.
+/// Reads a `.gltf` or `.glb` file within `limits`; `path`, or the zip `archive` it was
+/// read from, holds its external buffers.
 pub(crate) fn read(
     path: &Path,
+    archive: Option<Archive<'_>>,
     bytes: &[u8],
     warnings: &mut Vec<String>,
     limits: &Limits,
@@ -110,7 +113,8 @@ pub(crate) fn read(
             ));
         }
     }
-    let buffers = Buffers { doc: &doc, path, bin, loaded: Vec::new(), file_bytes: bytes.len() };
+    let buffers =
+        Buffers { doc: &doc, path, archive, bin, loaded: Vec::new(), file_bytes: bytes.len() };
     let g = place(&doc, buffers, warnings, limits)?;
     Ok(Scene { mesh: g.mesh, objects: g.objects, bodies: g.bodies, binary, assembly: g.assembly })
 }
