@@ -68,14 +68,16 @@ fn named_paths(code: &str, module: &[String]) -> Vec<Vec<String>> {
             from = at + start.len();
             // Part of a longer name, or the second `super` of `super::super::`.
             let before = &bytes[..at];
-            if before.last().is_some_and(|&c| c.is_ascii_alphanumeric() || c == b'_' || c == b':')
-            {
+            if before.last().is_some_and(|&c| c.is_ascii_alphanumeric() || c == b'_' || c == b':') {
                 continue;
             }
             // `super` is the module holding this one (a `mod.rs`'s module path has no
             // `mod` in it, so that is one up for every file).
-            let base: Vec<String> =
-                if prefix == 0 { Vec::new() } else { module[..module.len().saturating_sub(1)].to_vec() };
+            let base: Vec<String> = if prefix == 0 {
+                Vec::new()
+            } else {
+                module[..module.len().saturating_sub(1)].to_vec()
+            };
             let rest = &code[from..];
             let end = rest
                 .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':' || c == '{'))
@@ -136,8 +138,7 @@ fn circles(edges: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
         if done.contains(v) {
             continue;
         }
-        let both: Vec<String> =
-            reach(v, true).intersection(&reach(v, false)).cloned().collect();
+        let both: Vec<String> = reach(v, true).intersection(&reach(v, false)).cloned().collect();
         done.extend(both.iter().cloned());
         if both.len() > 1 {
             out.push(both);

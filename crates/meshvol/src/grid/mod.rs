@@ -35,6 +35,7 @@ mod cells;
 mod clip;
 mod cut_cells;
 pub(crate) mod intersect;
+mod layout;
 pub(crate) mod piece_moments;
 mod profile;
 mod tile_work;
