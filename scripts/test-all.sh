@@ -15,5 +15,7 @@ if [ -n "${MESHVOL_BIN:-}" ]; then
     export MESHVOL_BIN
 fi
 cd "$(dirname "$0")/.."
+# On a fresh machine: the Rust toolchain, a C compiler and Python's venv first.
+. scripts/toolchain.sh
 cargo test --locked
 scripts/test-python.sh
