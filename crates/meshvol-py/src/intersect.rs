@@ -3,7 +3,7 @@
 
 use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
-use crate::mesh::{mesh_of, PyMesh};
+use crate::load::{warn_for, MeshArg};
 use meshvol::assembly::Affine;
 use meshvol_report::intersect::{intersect_poses, intersect_prepared, rigid_pose, IntersectReport};
 use meshvol_report::quantities::Quantities;
@@ -126,8 +126,9 @@ fn rigid(m: &[[f64; 4]; 4], what: &str) -> PyResult<Affine> {
 /// Dice, the differences, and the centroid and inertia of the overlap, without a boolean
 /// mesh (the report of `meshvol intersect`).
 ///
-/// a and b are meshes (meshvol.Mesh, or objects with .vertices and .faces such as
-/// trimesh.Trimesh), each one body (every shell). pose_a and pose_b, when given, are
+/// a and b are meshes (meshvol.Mesh, objects with .vertices and .faces such as
+/// trimesh.Trimesh, or paths read as meshvol.load reads them), each one body (every
+/// shell). pose_a and pose_b, when given, are
 /// 4×4 rigid transforms (rotation and translation, last row 0 0 0 1) that place each
 /// body: its checked solid, checked once and kept by the Mesh, is moved, so a loop over
 /// poses checks nothing again. A pose that is not rigid (a scale, a shear, a mirror, a
@@ -156,7 +157,8 @@ pub fn intersection(
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
     let poses = [pose_of(pose_a, "pose_a")?, pose_of(pose_b, "pose_b")?];
-    let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
+    let given = [MeshArg::of(a)?, MeshArg::of(b)?];
+    let (a, b) = (&given[0].mesh, &given[1].mesh);
     let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
     let clock = timings.then(crate::timings::Clock::new);
     let timed = match (&clock, check) {
@@ -173,7 +175,7 @@ pub fn intersection(
         .map_err(mesh_error)?;
     let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
     let report = report.in_units(&options, &files).map_err(mesh_error)?;
-    a.get().warn(py, &report.warnings)?;
+    warn_for(py, &given, &report.warnings)?;
     let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
     Ok(PyIntersection { fields, report })
 }
@@ -219,7 +221,8 @@ pub fn intersections(
     }
     let pick = |p: &Option<Vec<Affine>>, k: usize| p.as_ref().map(|v| v[k.min(v.len() - 1)]);
     let pairs: Vec<[Option<Affine>; 2]> = (0..n).map(|k| [pick(&pa, k), pick(&pb, k)]).collect();
-    let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
+    let given = [MeshArg::of(a)?, MeshArg::of(b)?];
+    let (a, b) = (&given[0].mesh, &given[1].mesh);
     let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
     let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
     let reports =
@@ -236,7 +239,7 @@ pub fn intersections(
             warnings.push(w.clone());
         }
     }
-    a.get().warn(py, &warnings)?;
+    warn_for(py, &given, &warnings)?;
     reports
         .into_iter()
         .map(|report| Ok(PyIntersection { fields: Fields::new(&report)?, report }))

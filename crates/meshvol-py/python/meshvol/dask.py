@@ -13,7 +13,7 @@ computes the same array as load("part.stl").grid(cells=(1024, 1024, 1024)) on an
 scheduler: threads, processes, or a dask.distributed cluster. The grid's bounds are
 fixed once, on the client, so every chunk belongs to the same grid.
 
-Needs the `dask` extra: pip install "meshvol[dask]" (dask[array], distributed, zarr).
+Needs the `dask` extra: pip install "meshvol[dask]" (dask[array,dataframe,distributed], zarr).
 
 Many files, one table: meshvol.dask.measure("parts/**/*.stl") is meshvol.measure over a
 cluster, a dask DataFrame with one row a file (each file read once, by one worker),
@@ -298,17 +298,20 @@ _TEXT = {"file", "format", "format_source", "density_unit", "mass_unit", "units.
          "orientation", "winding", "error"}
 
 
-def _schema(check: bool, density: float, units: Optional[str], exact: bool) -> "pandas.DataFrame":
+def _schema(check: bool, density: Union[float, str], units: Optional[str], exact: bool,
+            timings: bool) -> "pandas.DataFrame":
     """The columns of meshvol.measure's frame for these options, as an empty frame with
     one dtype per column: a report of a tetrahedron (with units, so that the units'
-    columns exist), flattened, plus 'objects' (files with named parts) and 'error'.
+    columns exist; with timings, 'timings'), flattened, plus 'objects' (files with named
+    parts) and 'error'.
     Integers are Int64 and booleans boolean (nullable: a failed file has neither)."""
     import pandas
 
     tetra = Mesh([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        sample = tetra.mass_properties(density=density, check=check, units=units or "m", exact=exact).to_dict()
+        sample = tetra.mass_properties(density=density, check=check, units=units or "m", exact=exact,
+                                      timings=timings).to_dict()
     flat = pandas.json_normalize([sample], sep=".").iloc[0].to_dict()
     columns: Dict[str, Any] = {}
     for key, value in flat.items():
@@ -339,13 +342,14 @@ def _measure_partition(
     density: float,
     units: Optional[str],
     exact: bool,
+    timings: bool,
     failed: Sequence[Dict[str, Any]] = (),
 ) -> "pandas.DataFrame":
     """One partition, on a worker: meshvol.measure's rows (the `failed` rows of the
     directories and patterns that gave no file first), in meta's columns and dtypes."""
     import pandas
 
-    rows = list(failed) + (_reports(files, threads, check, density, units, exact) if files else [])
+    rows = list(failed) + (_reports(files, threads, check, density, units, exact, timings) if files else [])
     if not rows:
         return meta
     frame = pandas.json_normalize(rows, sep=".")
@@ -358,12 +362,13 @@ def measure(
     files_per_partition: int = 1000,
     threads: Optional[int] = None,
     check: bool = True,
-    density: float = 1.0,
+    density: Union[float, str] = 1.0,
     units: Optional[str] = None,
     exact: bool = False,
     *,
     recursive: bool = True,
     glob: GlobArg = None,
+    timings: bool = False,
 ) -> "dd.DataFrame":
     """meshvol.measure as a lazy dask DataFrame: one row a file, in the order of the
     files found, each partition `files_per_partition` files measured by one task (one
@@ -380,7 +385,9 @@ def measure(
     meshvol.measure. The columns are meshvol.measure's for these options, fixed
     whatever the files hold: the volume report's keys flattened ('bounds.min',
     'units.volume', ...), 'objects' and 'error'; counts are Int64 and facts boolean
-    (nullable, for failed files). An empty list: an empty frame and a MeshWarning.
+    (nullable, for failed files). timings=True adds meshvol.measure's 'timings' column
+    (each file's stages, timed on the worker that measured it). An empty list: an empty
+    frame and a MeshWarning.
     """
     import dask.dataframe as ddf
     import pandas
@@ -388,15 +395,19 @@ def measure(
     if files_per_partition < 1:
         raise ValueError(f"files_per_partition must be at least 1; got {files_per_partition}")
     files, failed = _inputs(paths_or_glob, recursive, glob)
-    meta = _schema(check, density, units, exact)
-    if not files and not failed:
-        warnings.warn(f"no mesh files in {paths_or_glob!r}: the DataFrame is empty", MeshWarning, stacklevel=2)
-        return ddf.from_pandas(meta, npartitions=1)
-    chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)] or [[]]
-    frames = [
-        dask.delayed(_measure_partition, pure=True)(
-            chunk, meta, threads, check, density, units, exact, failed if k == 0 else []
-        )
-        for k, chunk in enumerate(chunks)
-    ]
-    return ddf.from_delayed(frames, meta=meta, verify_meta=False)
+    meta = _schema(check, density, units, exact, timings)
+    # Lists stay lists (centroid, warnings, timings): dask's default turns object columns
+    # into strings, a list into its repr.
+    with dask.config.set({"dataframe.convert-string": False}):
+        if not files and not failed:
+            warnings.warn(f"no mesh files in {paths_or_glob!r}: the DataFrame is empty", MeshWarning,
+                          stacklevel=2)
+            return ddf.from_pandas(meta, npartitions=1)
+        chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)] or [[]]
+        frames = [
+            dask.delayed(_measure_partition, pure=True)(
+                chunk, meta, threads, check, density, units, exact, timings, failed if k == 0 else []
+            )
+            for k, chunk in enumerate(chunks)
+        ]
+        return ddf.from_delayed(frames, meta=meta, verify_meta=False)
