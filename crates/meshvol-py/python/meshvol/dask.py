@@ -58,6 +58,7 @@ if TYPE_CHECKING:
 __all__ = ["grid", "measure"]
 
 Bounds = Tuple[Sequence[float], Sequence[float]]
+Backend = Literal["auto", "cpu", "opencl"]
 
 
 @functools.lru_cache(maxsize=4)
@@ -82,7 +83,7 @@ def _block(
     fraction: bool,
     check: bool,
     region: Tuple[Tuple[int, int], ...],
-    backend: str = "auto",
+    backend: Backend = "auto",
 ) -> np.ndarray:
     """One chunk, on a worker (on its OpenCL device with backend='opencl' or 'auto')."""
     mesh = source if isinstance(source, Mesh) else _mesh_at(*source)
@@ -186,7 +187,7 @@ def grid(
     fraction: bool = ...,
     moments: Literal[False] = ...,
     *,
-    backend: str = ...,
+    backend: Backend = ...,
 ) -> da.Array: ...
 
 
@@ -202,7 +203,7 @@ def grid(
     moments: Literal[True],
     second_moments: bool = ...,
     face_centroids: bool = ...,
-    backend: str = ...,
+    backend: Backend = ...,
 ) -> Dict[str, da.Array]: ...
 
 
@@ -217,7 +218,7 @@ def grid(
     second_moments: bool = False,
     face_centroids: bool = False,
     *,
-    backend: str = "auto",
+    backend: Backend = "auto",
 ) -> Union[da.Array, Dict[str, da.Array]]:
     """The volume of the solid in each cell of a grid as a lazy (nx, ny, nz) float64
     dask.array: Mesh.grid(cells, bounds, fraction=fraction, check=check), bit for bit,
@@ -257,15 +258,15 @@ def grid(
         stamp = (info.st_mtime_ns, info.st_size)
         mesh = _load(path, *stamp) if bounds is None else None
         where = (path, stamp)
-    if bounds is None:
+    box: Any = bounds
+    if box is None:
         assert mesh is not None
         # The measured solid's box: the bounds Mesh.grid takes by default.
-        found = mesh.mass_properties(check=check).bounds
-        if found is None:
+        box = mesh.mass_properties(check=check).bounds
+        if box is None:
             raise MeshError("no vertices: there is no surface to measure")
-        bounds = found
-    fixed = (tuple(map(float, bounds[0])), tuple(map(float, bounds[1])))
-    chunks = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
+    fixed = (tuple(map(float, box[0])), tuple(map(float, box[1])))
+    blocks: Tuple[Tuple[int, ...], ...] = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
     if (second_moments or face_centroids) and not moments:
         raise ValueError("second_moments and face_centroids are cut-cell arrays: give moments=True")
     if moments:
@@ -273,18 +274,18 @@ def grid(
             raise ValueError("moments=True gives fraction among its arrays: leave fraction=False")
         if backend == "opencl":
             raise ValueError("the cut cells (moments=True) run on the CPU only: leave backend='auto' or give 'cpu'")
-        return _moments(where, counts, fixed, check, chunks, (second_moments, face_centroids))
+        return _moments(where, counts, fixed, check, blocks, (second_moments, face_centroids))
 
     # One graph key holds the mesh (or its path): each worker receives it once.
     source_key = dask.delayed(where, pure=True, traverse=False)
     block = dask.delayed(_block, pure=True)
-    starts = [np.cumsum((0,) + c)[:-1].tolist() for c in chunks]
+    starts = [np.cumsum((0,) + c)[:-1].tolist() for c in blocks]
     rows = []
-    for i0, bx in zip(starts[0], chunks[0]):
+    for i0, bx in zip(starts[0], blocks[0]):
         plane = []
-        for j0, by in zip(starts[1], chunks[1]):
+        for j0, by in zip(starts[1], blocks[1]):
             line = []
-            for k0, bz in zip(starts[2], chunks[2]):
+            for k0, bz in zip(starts[2], blocks[2]):
                 region = ((i0, i0 + bx), (j0, j0 + by), (k0, k0 + bz))
                 values = block(source_key, counts, fixed, fraction, check, region, backend)
                 line.append(da.from_delayed(values, (bx, by, bz), dtype=np.float64))
