@@ -38,7 +38,8 @@ fn group_meta(store: &std::path::Path, members: &[&str]) -> Value {
     let listed = consolidated["metadata"].as_object().unwrap();
     let mut names: Vec<&str> = listed.keys().map(String::as_str).collect();
     let mut want = members.to_vec();
-    (names.sort(), want.sort());
+    names.sort();
+    want.sort();
     assert_eq!(names, want);
     for name in members {
         assert_eq!(listed[*name], read(&store.join(name)), "{name}");

@@ -9,9 +9,9 @@ use meshvol::topology::{self, CheckOptions};
 use meshvol_io::walk::{Filter, Walk};
 use meshvol_io::InputKind;
 use meshvol_report::subject::{Source, Subject};
+use meshvol_report::timings::with_timings;
 use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions, NO_FACES};
-use meshvol_report::timings::with_timings;
 use meshvol_report::{error_line, json_line};
 use pyo3::prelude::*;
 use rayon::prelude::*;
@@ -69,6 +69,7 @@ fn measure_one(path: &Path, check: bool, options: &VolumeOptions, timings: bool)
 /// error line has none, as the command's).
 #[pyfunction]
 #[pyo3(signature = (paths, workers = None, check = true, density = None, units = None, exact = false, timings = false), text_signature = "(paths, workers=None, check=True, density=1.0, units=None, exact=False, timings=False)")]
+#[allow(clippy::too_many_arguments)]
 pub fn _measure_files(
     py: Python<'_>,
     paths: Vec<PathBuf>,
@@ -85,8 +86,9 @@ pub fn _measure_files(
     if workers == Some(0) {
         return Err(bad_argument("workers must be at least 1 (or None: one per core)"));
     }
-    let run =
-        || -> Vec<String> { paths.par_iter().map(|p| measure_one(p, check, &options, timings)).collect() };
+    let run = || -> Vec<String> {
+        paths.par_iter().map(|p| measure_one(p, check, &options, timings)).collect()
+    };
     // Threads are OS threads: at most one a file and 8 a core (workers=10**6 must not
     // start a million).
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());

@@ -10,7 +10,6 @@ use meshvol_report::quantities::Quantities;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;
-use std::path::PathBuf;
 
 /// Cut and fill between two surfaces: the report of `meshvol cutfill --json`, whose keys
 /// are its attributes and the keys of to_dict(): design and level, cut, fill, net,

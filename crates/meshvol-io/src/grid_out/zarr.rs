@@ -135,11 +135,7 @@ fn create_group(store: &Arc<FilesystemStore>, attributes: serde_json::Value) -> 
 
 /// Writes the coordinate arrays of `grid` (module docs): `x`, `y`, `z`, and with
 /// `faces` `x_face`, `y_face`, `z_face`; returns their names.
-fn coordinates(
-    store: &Arc<FilesystemStore>,
-    grid: &Grid,
-    faces: bool,
-) -> io::Result<Vec<String>> {
+fn coordinates(store: &Arc<FilesystemStore>, grid: &Grid, faces: bool) -> io::Result<Vec<String>> {
     let mut names = Vec::new();
     for a in 0..3 {
         let axis = ["x", "y", "z"][a];
@@ -302,8 +298,14 @@ impl ZarrCells {
         create_group(&store, attributes)?;
         let names = ["x", "y", "z"].map(String::from).to_vec();
         let at = format!("/{}", values.name());
-        let array =
-            RowArray::create(store.clone(), &at, &grid.counts, chunks, names, serde_json::json!({}))?;
+        let array = RowArray::create(
+            store.clone(),
+            &at,
+            &grid.counts,
+            chunks,
+            names,
+            serde_json::json!({}),
+        )?;
         let members = coordinates(&store, grid, false)?;
         consolidate(path, members.iter().map(String::as_str).chain([values.name()]))?;
         Ok(ZarrCells { array, rows, values, cell: grid.cell_volume() })

@@ -164,8 +164,25 @@ class Mesh:
         units: Optional[str] = None,
         timings: bool = False,
     ) -> MassProperties:
-        """Mass properties of the checked solid (`meshvol volume`); check=False: as wound;
-        units: as --units ('mm:cm', ':in', ...); density: 2.5 or '7.85g/cm3'."""
+        """Volume, area, centroid and inertia of the checked solid (`meshvol volume`).
+
+        Parameters
+        ----------
+        density : float or str
+            2.5, or with a unit: '7.85g/cm3' (--density).
+        exact : bool
+            The volume in exact arithmetic, rounded once (--exact).
+        check : bool
+            True: the checked solid; False: the surface as wound (--no-check).
+        units : str, optional
+            As --units: 'mm:cm', ':in', 'm'.
+        timings : bool
+            Add `timings`, the stages with wall and CPU seconds (--timings).
+
+        Returns
+        -------
+        MassProperties
+        """
     def check(
         self,
         weld_tolerance: Optional[float] = None,
@@ -174,7 +191,23 @@ class Mesh:
         density: Optional[_Density] = None,
         timings: bool = False,
     ) -> Check:
-        """Topology facts (`meshvol check`)."""
+        """Topology facts (`meshvol check`).
+
+        Parameters
+        ----------
+        weld_tolerance : float, optional
+            Weld vertices this close (--weld-tolerance); None: equal ones only.
+        intersections : bool
+            Search for crossing faces (False: --no-intersections).
+        units, density : str, optional
+            As --units and --density.
+        timings : bool
+            Add `timings`.
+
+        Returns
+        -------
+        Check
+        """
     def grid(
         self,
         cells: Optional[_ArrayLike] = None,
@@ -189,9 +222,35 @@ class Mesh:
         backend: Literal["auto", "cpu", "opencl"] = "auto",
         opencl_device: Optional[int] = None,
     ) -> Grid:
-        """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
-        grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
-        number or 3; region: (3, 2) cell ranges; any array-like."""
+        """The solid's volume in each cell of a grid (`meshvol grid`).
+
+        Parameters
+        ----------
+        cells : array_like of 3 int, optional
+            Cells along x, y, z (or give pitch).
+        bounds : array_like (2, 3), optional
+            The grid's box; default the solid's bounding box.
+        fraction : bool
+            Each cell's filled fraction instead of its volume.
+        pitch : float or array_like of 3, optional
+            The cells' size (whole cells covering bounds).
+        check : bool
+            True: the checked solid; False: the surface as wound.
+        region : array_like (3, 2), optional
+            Only the block ((i0, i1), (j0, j1), (k0, k1)): the same bits as the whole's.
+        units, density : str, optional
+            As --units and --density (density: the cells hold masses).
+        timings : bool
+            Add `timings`.
+        backend : {'auto', 'cpu', 'opencl'}
+            As --backend: the same bits.
+        opencl_device : int, optional
+            As --opencl-device.
+
+        Returns
+        -------
+        Grid
+        """
     def cells(
         self,
         cells: Optional[_ArrayLike] = None,
@@ -206,10 +265,25 @@ class Mesh:
         backend: Literal["auto", "cpu", "opencl"] = "auto",
         opencl_device: Optional[int] = None,
     ) -> CutCells:
-        """The cut-cell geometry on a grid (`meshvol grid --moments`): volume, fraction,
-        centroid, boundary_area, boundary_vector, boundary_centroid, aperture_x/_y/_z;
-        with second_moments, inertia; with face_centroids, aperture_x/_y/_z_centroid.
-        moments=False is a ValueError: Mesh.grid gives the volumes alone."""
+        """The cut-cell geometry on a grid (`meshvol grid --moments`).
+
+        Parameters
+        ----------
+        cells, bounds, pitch, check, region, units, backend, opencl_device
+            As for grid.
+        second_moments : bool
+            Add `inertia`, each cell's solid's inertia about its centroid.
+        face_centroids : bool
+            Add aperture_x_centroid, aperture_y_centroid, aperture_z_centroid.
+        moments : True
+            False is a ValueError: grid gives the volumes alone.
+
+        Returns
+        -------
+        CutCells
+            volume, fraction, centroid, boundary_area, boundary_vector,
+            boundary_centroid, aperture_x, aperture_y, aperture_z (and the extras).
+        """
     def profile(
         self,
         axis: str = "z",
@@ -242,8 +316,25 @@ class Mesh:
         density: Optional[_Density] = None,
         timings: bool = False,
     ) -> Section:
-        """The cross-section by a plane: 'z=H', [point, normal] or (nx, ny, nz, d)
-        (`meshvol section`); density: a mass per area ('62.8kg/m2'), mass a sheet's."""
+        """The cross-section by a plane (`meshvol section`).
+
+        Parameters
+        ----------
+        plane : str or array_like
+            'z=H' ('x=H', 'y=H'), [point, normal], or (nx, ny, nz, d).
+        check : bool
+            True: the checked solid; False: the surface as wound.
+        units : str, optional
+            As --units.
+        density : float or str, optional
+            A mass per area ('62.8kg/m2'): `mass`, a sheet's with this outline.
+        timings : bool
+            Add `timings`.
+
+        Returns
+        -------
+        Section
+        """
     def bodies(self, check: bool = True) -> list[Mesh]:
         """The solid's bodies as meshes (each outermost shell with its cavities)."""
     def triangulated(self) -> Mesh:

@@ -433,6 +433,7 @@ def intersections(
     check: bool = True,
     units: Optional[str] = None,
     density: Optional[_Density] = None,
+    timings: bool = False,
 ) -> list[Intersection]:
     """`intersection` for many poses, in parallel, each result bit for bit the pose's alone.
 
@@ -444,6 +445,9 @@ def intersections(
         None, one 4×4 rigid transform, or an (N, 4, 4) array (two arrays: the same N).
     tolerance, check, units, density
         As for intersection.
+    timings : bool
+        Give each result the call's `timings`: each check (run again), then measuring
+        every pose.
 
     Returns
     -------

@@ -387,8 +387,9 @@ def measure(
     whatever the files hold: the volume report's keys flattened ('bounds.min',
     'units.volume', ...), 'objects' and 'error'; counts are Int64 and facts boolean
     (nullable, for failed files). timings=True adds meshvol.measure's 'timings' column
-    (each file's stages, timed on the worker that measured it). An empty list: an empty
-    frame and a MeshWarning.
+    (each file's stages, timed on the worker that measured it; as the other list
+    columns, text under dask's default `dataframe.convert-string`, which lets
+    to_parquet infer one schema). An empty list: an empty frame and a MeshWarning.
     """
     import dask.dataframe as ddf
     import pandas
@@ -397,18 +398,14 @@ def measure(
         raise ValueError(f"files_per_partition must be at least 1; got {files_per_partition}")
     files, failed = _inputs(paths_or_glob, recursive, glob)
     meta = _schema(check, density, units, exact, timings)
-    # Lists stay lists (centroid, warnings, timings): dask's default turns object columns
-    # into strings, a list into its repr.
-    with dask.config.set({"dataframe.convert-string": False}):
-        if not files and not failed:
-            warnings.warn(f"no mesh files in {paths_or_glob!r}: the DataFrame is empty", MeshWarning,
-                          stacklevel=2)
-            return ddf.from_pandas(meta, npartitions=1)
-        chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)] or [[]]
-        frames = [
-            dask.delayed(_measure_partition, pure=True)(
-                chunk, meta, threads, check, density, units, exact, timings, failed if k == 0 else []
-            )
-            for k, chunk in enumerate(chunks)
-        ]
-        return ddf.from_delayed(frames, meta=meta, verify_meta=False)
+    if not files and not failed:
+        warnings.warn(f"no mesh files in {paths_or_glob!r}: the DataFrame is empty", MeshWarning, stacklevel=2)
+        return ddf.from_pandas(meta, npartitions=1)
+    chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)] or [[]]
+    frames = [
+        dask.delayed(_measure_partition, pure=True)(
+            chunk, meta, threads, check, density, units, exact, timings, failed if k == 0 else []
+        )
+        for k, chunk in enumerate(chunks)
+    ]
+    return ddf.from_delayed(frames, meta=meta, verify_meta=False)
