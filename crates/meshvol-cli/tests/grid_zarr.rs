@@ -1,6 +1,7 @@
-//! `meshvol grid --out cells.zarr`: the Zarr v3 array read here by hand (its zarr.json
-//! and raw little-endian chunks) against the `.npy` the command writes for the same
-//! grid, and against a box's closed-form volume.
+//! `meshvol grid --out cells.zarr`: the Zarr v3 group read here by hand (its zarr.json
+//! files, consolidated metadata and raw little-endian chunks) against the `.npy` the
+//! command writes for the same grid, against a box's closed-form volume, and its
+//! coordinate arrays against the cells' centres computed from the bounds.
 
 mod common;
 use common::{box_obj, f, meshvol, numbers, p, read_npy, read_npz, read_zarr, write};
