@@ -47,9 +47,9 @@ pub struct GridArgs {
     /// Where to write the cell values: .npy (float64, shape (NX, NY, NZ), C order), .npz
     /// (NumPy arrays `volume`, `fraction`, `origin`, `cell_size`; with --moments the
     /// cut-cell arrays too), .vti (VTK image data, cell arrays `volume` and `fraction`, and
-    /// with --moments the rest), .csv (non-empty cells), or .zarr (a Zarr v3 array, written
-    /// chunk by chunk: for grids larger than memory; with --moments a group of the
-    /// cut-cell arrays). Values, origin and cell sizes in the reported units (--units);
+    /// with --moments the rest), .csv (non-empty cells), or .zarr (a Zarr v3 group of the
+    /// array and its cells' centres, for xarray.open_zarr; written chunk by chunk: for
+    /// grids larger than memory; with --moments the cut-cell arrays). Values, origin and cell sizes in the reported units (--units);
     /// with --density, masses (alone in .npy and .zarr, a `mass` array or column beside
     /// `volume` in the others).
     #[arg(long, short, value_name = "OUT", value_parser = parse_out)]

@@ -1,6 +1,7 @@
-//! `meshvol grid --out cells.zarr`: the Zarr v3 array read here by hand (its zarr.json
-//! and raw little-endian chunks) against the `.npy` the command writes for the same
-//! grid, and against a box's closed-form volume.
+//! `meshvol grid --out cells.zarr`: the Zarr v3 group read here by hand (its zarr.json
+//! files, consolidated metadata and raw little-endian chunks) against the `.npy` the
+//! command writes for the same grid, against a box's closed-form volume, and its
+//! coordinate arrays against the cells' centres computed from the bounds.
 
 mod common;
 use common::{box_obj, f, meshvol, numbers, p, read_npy, read_npz, read_zarr, write};
@@ -25,6 +26,31 @@ fn octahedron(c: [f64; 3], r: f64) -> String {
     s
 }
 
+/// The group's `zarr.json`, checked to consolidate exactly `members`' metadata (each
+/// member's own `zarr.json`).
+fn group_meta(store: &std::path::Path, members: &[&str]) -> Value {
+    let read = |at: &std::path::Path| -> Value {
+        serde_json::from_slice(&std::fs::read(at.join("zarr.json")).unwrap()).unwrap()
+    };
+    let group = read(store);
+    assert_eq!(group["node_type"], "group");
+    let consolidated = &group["consolidated_metadata"];
+    assert_eq!(consolidated["kind"], "inline");
+    let listed = consolidated["metadata"].as_object().unwrap();
+    let mut names: Vec<&str> = listed.keys().map(String::as_str).collect();
+    let mut want = members.to_vec();
+    names.sort();
+    want.sort();
+    assert_eq!(names, want);
+    for name in members {
+        assert_eq!(listed[*name], read(&store.join(name)), "{name}");
+    }
+    group
+}
+
+/// The coordinate arrays beside the cut cells: the cells' centres and the faces' planes.
+const COORDINATES: [&str; 6] = ["x", "y", "z", "x_face", "y_face", "z_face"];
+
 fn json(args: &[&str]) -> Value {
     let out = meshvol(args);
     assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
@@ -42,12 +68,22 @@ fn zarr_chunks_hold_the_npy_cells() {
     let from_npy = json(&[&grid[..], &["--out", p(&npy)]].concat());
     let from_zarr = json(&[&grid[..], &["--out", p(&store), "--chunks", "4,5,6"]].concat());
 
-    let (meta, cells) = read_zarr(&store);
+    let (meta, cells) = read_zarr(&store.join("volume"));
     assert_eq!(numbers(&meta["shape"]), [11, 9, 13]);
     assert_eq!(numbers(&meta["chunk_grid"]["configuration"]["chunk_shape"]), [4, 5, 6]);
     assert_eq!(meta["dimension_names"], serde_json::json!(["x", "y", "z"]));
-    assert_eq!(meta["attributes"]["origin"], serde_json::json!([-1.2, -1.4, -1.1]));
-    assert_eq!(meta["attributes"]["values"], "volume");
+    let group = group_meta(&store, &["volume", "x", "y", "z"]);
+    assert_eq!(group["attributes"]["origin"], serde_json::json!([-1.2, -1.4, -1.1]));
+    assert_eq!(group["attributes"]["values"], "volume");
+    // The cells' centres, from the bounds and the summary's cell size.
+    for (a, (lo, n)) in [(-1.2, 11), (-1.4, 9), (-1.1, 13)].into_iter().enumerate() {
+        let name = ["x", "y", "z"][a];
+        let (meta, centres) = read_zarr(&store.join(name));
+        assert_eq!(meta["dimension_names"], serde_json::json!([name]));
+        let cell = f(&from_zarr["cell_size"][a]);
+        let want: Vec<f64> = (0..n).map(|i| lo + (i as f64 + 0.5) * cell).collect();
+        assert_eq!(centres, want);
+    }
     let (shape, values) = read_npy(&npy);
     assert_eq!(shape, [11, 9, 13]);
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
@@ -62,12 +98,14 @@ fn zarr_chunks_hold_the_npy_cells() {
     assert_eq!(from_npy["chunks"], Value::Null);
     // A corner chunk wholly outside the octahedron (its nearest corner (0.84, 0.1, 1.3)
     // is 1.87 from the centre in the 1-norm) holds only zeros and is not stored.
-    assert!(!store.join("c/2/1/2").exists() && store.join("c/1/1/1").exists());
+    assert!(!store.join("volume/c/2/1/2").exists() && store.join("volume/c/1/1/1").exists());
 
     // Written again over itself with other chunks and as fractions: nothing stale.
     json(&[&grid[..], &["--out", p(&store), "--chunks", "11,2,13", "--fraction"]].concat());
-    let (meta, fractions) = read_zarr(&store);
-    assert_eq!(meta["attributes"]["values"], "fraction");
+    let (_, fractions) = read_zarr(&store.join("fraction"));
+    let group = group_meta(&store, &["fraction", "x", "y", "z"]);
+    assert_eq!(group["attributes"]["values"], "fraction");
+    assert!(!store.join("volume").exists());
     let cell = (2.8 / 11.0) * (2.7 / 9.0) * (2.6 / 13.0);
     for (fraction, v) in fractions.iter().zip(&values) {
         assert!((fraction - v / cell).abs() <= 1e-15, "{fraction} vs {}", v / cell);
@@ -124,9 +162,10 @@ fn zarr_moments_group_holds_the_npz_arrays_bit_for_bit() {
         // their own) and that do not, one cell thick, and the whole grid.
         for chunks in ["4,5,6", "3,2,13", "5,4,4", "1,3,2", &format!("{nx},64,64")] {
             let from_zarr = json(&[&args[..], &["--out", p(&store), "--chunks", chunks]].concat());
-            let group: Value =
-                serde_json::from_slice(&std::fs::read(store.join("zarr.json")).unwrap()).unwrap();
-            assert_eq!(group["node_type"], "group");
+            let mut members: Vec<&str> = arrays.keys().map(String::as_str).collect();
+            members.retain(|n| *n != "origin" && *n != "cell_size");
+            members.extend(COORDINATES);
+            let group = group_meta(&store, &members);
             for (key, name) in [("origin", "origin"), ("cell_size", "cell_size")] {
                 let want = &arrays[name].1;
                 let got: Vec<f64> =
@@ -143,7 +182,9 @@ fn zarr_moments_group_holds_the_npz_arrays_bit_for_bit() {
                 assert_eq!(bits(&stored), bits(values), "{name} in chunks {chunks}");
                 names.push(name.clone());
             }
-            // Every cut-cell array, no other.
+            // Every cut-cell array and the coordinates, no other.
+            names.extend(COORDINATES.map(String::from));
+            names.sort();
             let mut held: Vec<String> = std::fs::read_dir(&store)
                 .unwrap()
                 .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -152,7 +193,7 @@ fn zarr_moments_group_holds_the_npz_arrays_bit_for_bit() {
             held.sort();
             assert_eq!(held, names);
             // The 9 arrays, and with the extras `inertia` and the 3 face centroids.
-            assert_eq!(names.len(), 9 + 4 * usize::from(!flags.is_empty()), "{names:?}");
+            assert_eq!(names.len(), 15 + 4 * usize::from(!flags.is_empty()), "{names:?}");
             if !flags.is_empty() {
                 let (meta, _) = read_zarr(&store.join("inertia"));
                 let dims = serde_json::json!(["x", "y", "z", "row", "column"]);
@@ -222,14 +263,16 @@ fn a_moments_group_and_a_volumes_array_over_each_other_leave_nothing_behind() {
     let mesh = write(dir.path(), "o.obj", octahedron([0.0; 3], 1.0));
     let store = dir.path().join("c.zarr");
     let grid = ["grid", p(&mesh), "--cells", "4,4,4", "--out", p(&store), "--chunks", "2,2,2"];
-    json(&[&grid[..], &["--json"]].concat());
-    assert!(store.join("c/0/0/0").exists());
+    json(&[&grid[..], &["--json", "--density", "2"]].concat());
+    assert!(store.join("mass/c/0/0/0").exists());
     json(&[&grid[..], &["--json", "--moments"]].concat());
-    assert!(!store.join("c/0/0/0").exists() && store.join("volume/c/0/0/0").exists());
-    // And back: the volumes alone over the group leave none of its arrays, and a file of
-    // the user's in the folder is not touched.
+    assert!(!store.join("mass").exists() && store.join("volume/c/0/0/0").exists());
+    assert!(store.join("x_face").exists());
+    // And back: the volumes alone over the group leave none of its other arrays, and a
+    // file of the user's in the folder is not touched.
     std::fs::write(store.join("notes.txt"), "mine").unwrap();
     json(&[&grid[..], &["--json"]].concat());
-    assert!(store.join("c/0/0/0").exists() && !store.join("volume").exists());
+    assert!(store.join("volume/c/0/0/0").exists() && !store.join("x_face").exists());
     assert!(!store.join("centroid").exists() && store.join("notes.txt").exists());
+    group_meta(&store, &["volume", "x", "y", "z"]);
 }

@@ -195,8 +195,11 @@ fn grid_file(path: &Path, name: &str) -> (f64, [f64; 3], [f64; 3]) {
             (v.array(name).iter().sum(), three(&v.origin), three(&v.spacing))
         }
         "zarr" => {
-            let (meta, values) = read_zarr(path);
-            let attrs = &meta["attributes"];
+            let group: serde_json::Value =
+                serde_json::from_slice(&std::fs::read(path.join("zarr.json")).unwrap()).unwrap();
+            let attrs = &group["attributes"];
+            // The one array, named after what it holds (`volume`, or `mass` alone).
+            let (_, values) = read_zarr(&path.join(attrs["values"].as_str().unwrap()));
             let at = |k: &str| [0, 1, 2].map(|a| f(&attrs[k][a]));
             (values.iter().sum(), at("origin"), at("cell_size"))
         }

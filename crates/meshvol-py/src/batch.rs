@@ -4,10 +4,12 @@
 //! `meshvol volume --json` line (or `{"file", "error"}`) returned in the input's order.
 
 use crate::errors::bad_argument;
+use crate::timings::Clock;
 use meshvol::topology::{self, CheckOptions};
 use meshvol_io::walk::{Filter, Walk};
 use meshvol_io::InputKind;
 use meshvol_report::subject::{Source, Subject};
+use meshvol_report::timings::with_timings;
 use meshvol_report::units::UnitsArg;
 use meshvol_report::volume::{volume, VolumeOptions, NO_FACES};
 use meshvol_report::{error_line, json_line};
@@ -16,31 +18,44 @@ use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// One file's line, as `meshvol volume --json FILE` prints it (the same reading, check
-/// and report: the CLI's `solid::read` then `volume`).
-fn measure_one(path: &Path, check: bool, options: &VolumeOptions) -> String {
+/// and report: the CLI's `solid::read` then `volume`); with `timings`, as `--timings`
+/// adds them: the stages reading, checking (and the check's own), measuring.
+fn measure_one(path: &Path, check: bool, options: &VolumeOptions, timings: bool) -> String {
     let name = path.display().to_string();
+    let clock = timings.then(Clock::new);
     let report = (|| -> Result<String, String> {
+        crate::timings::stage(clock.as_ref(), "reading");
         let loaded = meshvol_io::read(path).map_err(|e| e.to_string())?;
         if loaded.face_count() == 0 {
             return Err(format!("{name}: {NO_FACES}"));
         }
         let source = Source::of(&name, &loaded);
         let checked = if check {
+            crate::timings::stage(clock.as_ref(), "checking");
+            let stages: &dyn meshvol::progress::Progress = match &clock {
+                Some(clock) => clock,
+                None => &(),
+            };
             let c = topology::check_assembled(
                 &loaded.surface,
                 loaded.assembly.as_ref(),
                 &loaded.body_faces(),
                 &CheckOptions::default(),
-                &(),
+                stages,
             )
             .map_err(|e| format!("{name}: {e}"))?;
             Some(c)
         } else {
             None
         };
+        crate::timings::stage(clock.as_ref(), "measuring");
         let subject =
             Subject { source: &source, surface: &loaded.surface, check: checked.as_ref() };
-        json_line(&volume(&subject, options)?)
+        let line = json_line(&volume(&subject, options)?)?;
+        match &clock {
+            Some(clock) => with_timings(&line, &clock.finish()),
+            None => Ok(line),
+        }
     })();
     match report {
         Ok(line) => line,
@@ -50,9 +65,11 @@ fn measure_one(path: &Path, check: bool, options: &VolumeOptions) -> String {
 
 /// Each file's JSON line, in order: files measured `workers` at a time (None: one per
 /// core; at most one a file and 8 a core), on the threads of a rayon pool, the GIL
-/// released throughout.
+/// released throughout. With `timings`, each line has the command's `timings` list (an
+/// error line has none, as the command's).
 #[pyfunction]
-#[pyo3(signature = (paths, workers = None, check = true, density = None, units = None, exact = false), text_signature = "(paths, workers=None, check=True, density=1.0, units=None, exact=False)")]
+#[pyo3(signature = (paths, workers = None, check = true, density = None, units = None, exact = false, timings = false), text_signature = "(paths, workers=None, check=True, density=1.0, units=None, exact=False, timings=False)")]
+#[allow(clippy::too_many_arguments)]
 pub fn _measure_files(
     py: Python<'_>,
     paths: Vec<PathBuf>,
@@ -61,6 +78,7 @@ pub fn _measure_files(
     density: Option<&Bound<'_, PyAny>>,
     units: Option<&str>,
     exact: bool,
+    timings: bool,
 ) -> PyResult<Vec<String>> {
     let density = crate::units::density_or_one(density)?;
     let units = units.map(str::parse::<UnitsArg>).transpose().map_err(bad_argument)?;
@@ -68,8 +86,9 @@ pub fn _measure_files(
     if workers == Some(0) {
         return Err(bad_argument("workers must be at least 1 (or None: one per core)"));
     }
-    let run =
-        || -> Vec<String> { paths.par_iter().map(|p| measure_one(p, check, &options)).collect() };
+    let run = || -> Vec<String> {
+        paths.par_iter().map(|p| measure_one(p, check, &options, timings)).collect()
+    };
     // Threads are OS threads: at most one a file and 8 a core (workers=10**6 must not
     // start a million).
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());

@@ -2,16 +2,14 @@
 //! level (what `meshvol cutfill` reports), with per-cell arrays on request.
 
 use crate::dict::Fields;
-use crate::errors::{bad_argument, mesh_error, warn_all};
-use crate::load::load;
-use crate::mesh::{mesh_of, PyMesh};
+use crate::errors::{bad_argument, mesh_error};
+use crate::load::{warn_for, MeshArg};
 use meshvol::cutfill::CellCutFill;
 use meshvol_report::cutfill::{cutfill as report, cutfill_with, Against, CutFillReport, Spacing};
 use meshvol_report::quantities::Quantities;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;
-use std::path::PathBuf;
 
 /// Cut and fill between two surfaces: the report of `meshvol cutfill --json`, whose keys
 /// are its attributes and the keys of to_dict(): design and level, cut, fill, net,
@@ -70,15 +68,6 @@ impl PyCutFill {
 
 crate::dict::report_methods!(PyCutFill, "CutFill");
 
-/// A surface given as a path (read, as `meshvol.load` does) or as a mesh; whether it was
-/// read here (its reader's warnings not yet given).
-fn surface<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyMesh>, bool)> {
-    if obj.cast::<PyMesh>().is_err() && obj.extract::<PathBuf>().is_ok() {
-        return Ok((Bound::new(obj.py(), load(obj.py(), obj, None)?)?, true));
-    }
-    Ok((mesh_of(obj)?, false))
-}
-
 /// Cut and fill between an existing surface and a design (`meshvol cutfill`).
 ///
 /// existing and design are height fields z = f(x, y) (terrains), each a path or a mesh
@@ -125,10 +114,12 @@ pub fn cutfill(
         (None, Some(p)) => Some(Spacing::Pitch(p)),
         (None, None) => None,
     };
-    let (existing, read_here) = surface(existing)?;
-    let design = design.map(surface).transpose()?;
-    let existing = existing.get();
-    let design_mesh = design.as_ref().map(|(d, _)| d.get());
+    let mut given = vec![MeshArg::of(existing)?];
+    if let Some(d) = design {
+        given.push(MeshArg::of(d)?);
+    }
+    let existing = given[0].mesh.get();
+    let design_mesh = given.get(1).map(|d| d.mesh.get());
     let against = match (design_mesh, level) {
         (Some(d), None) => Against::Surface { source: &d.source, surface: &d.mesh },
         (None, Some(z)) => Against::Level(z),
@@ -151,13 +142,7 @@ pub fn cutfill(
         meshvol_report::reported_cells::volumes(&scale, &mut c.cut);
         meshvol_report::reported_cells::volumes(&scale, &mut c.fill);
     }
-    // The reader's warnings of a mesh loaded before were given then.
-    let new: Vec<String> = if read_here {
-        report.warnings.clone()
-    } else {
-        report.warnings.iter().filter(|w| !existing.source.warnings.contains(w)).cloned().collect()
-    };
-    warn_all(py, &new)?;
+    warn_for(py, &given, &report.warnings)?;
     let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
     Ok(PyCutFill { fields, report, cells })
 }

@@ -3,7 +3,8 @@
 
 use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
-use crate::mesh::{mesh_of, PyMesh};
+use crate::load::MeshArg;
+use crate::mesh::PyMesh;
 use meshvol::grid::{self, Axis, Levels, Region};
 use meshvol::{mass_properties, Mesh, Surface};
 use meshvol_io::grid_out::CellValues;
@@ -360,8 +361,9 @@ impl PyUnion {
 /// The volume of the union of closed bodies, as a certified interval, without a
 /// boolean mesh (the report of `meshvol union`).
 ///
-/// meshes is a list of meshes (meshvol.Mesh or objects with .vertices and .faces, such
-/// as trimesh.Trimesh); a single mesh, or a list of one, stands for its bodies (each
+/// meshes is a list of meshes (meshvol.Mesh, objects with .vertices and .faces, such as
+/// trimesh.Trimesh, or paths read as meshvol.load reads them); a single mesh or path,
+/// or a list of one, stands for its bodies (each
 /// outermost shell with its cavities), as a single file does for the command.
 /// Refinement stops once upper - lower <= tolerance * lower. check=True (the default)
 /// measures each mesh's checked solid, with holes capped and the caps' uncertainty
@@ -383,12 +385,15 @@ pub fn union(
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
-    let single = meshes.cast::<PyMesh>().is_ok() || crate::convert::mesh_like(meshes)?.is_some();
-    let meshes: Vec<Bound<'_, PyMesh>> = if single {
-        vec![mesh_of(meshes)?]
+    let single = meshes.cast::<PyMesh>().is_ok()
+        || crate::convert::mesh_like(meshes)?.is_some()
+        || crate::load::is_path(meshes)?;
+    let given: Vec<MeshArg<'_>> = if single {
+        vec![MeshArg::of(meshes)?]
     } else {
-        meshes.try_iter()?.map(|item| mesh_of(&item?)).collect::<PyResult<_>>()?
+        meshes.try_iter()?.map(|item| MeshArg::of(&item?)).collect::<PyResult<_>>()?
     };
+    let meshes: Vec<&Bound<'_, PyMesh>> = given.iter().map(|m| &m.mesh).collect();
     if meshes.is_empty() {
         return Err(mesh_error("no bodies: give at least one mesh"));
     }
@@ -410,7 +415,7 @@ pub fn union(
     let files: Vec<(&str, Option<meshvol_io::LengthUnit>)> =
         subjects.iter().map(|s| (s.source.name(), s.source.unit)).collect();
     let report = report.in_units(&options, &files).map_err(mesh_error)?;
-    meshes[0].get().warn(py, &report.warnings)?;
+    crate::load::warn_for(py, &given, &report.warnings)?;
     let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
     Ok(PyUnion { fields, report })
 }

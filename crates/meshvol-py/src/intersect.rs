@@ -3,8 +3,10 @@
 
 use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
-use crate::mesh::{mesh_of, PyMesh};
+use crate::load::{warn_for, MeshArg};
+use crate::mesh::PyMesh;
 use meshvol::assembly::Affine;
+use meshvol::topology::Check;
 use meshvol_report::intersect::{intersect_poses, intersect_prepared, rigid_pose, IntersectReport};
 use meshvol_report::quantities::Quantities;
 use numpy::ndarray::arr2;
@@ -122,12 +124,29 @@ fn rigid(m: &[[f64; 4]; 4], what: &str) -> PyResult<Affine> {
     rigid_pose(m).map_err(|why| bad_argument(format!("{what} is not rigid: {why}")))
 }
 
+/// With a clock (`timings=True`) and `check`, each body's check run again, its stages
+/// timed; then `measuring` starts.
+fn timed_checks(
+    py: Python<'_>,
+    [a, b]: [&Bound<'_, PyMesh>; 2],
+    check: bool,
+    clock: Option<&crate::timings::Clock>,
+) -> PyResult<Option<(Check, Check)>> {
+    let timed = match (clock, check) {
+        (Some(c), true) => Some((a.get().timed_check(py, c)?, b.get().timed_check(py, c)?)),
+        _ => None,
+    };
+    crate::timings::stage(clock, "measuring");
+    Ok(timed)
+}
+
 /// The volume of the intersection of two bodies as a certified interval, with IoU,
 /// Dice, the differences, and the centroid and inertia of the overlap, without a boolean
 /// mesh (the report of `meshvol intersect`).
 ///
-/// a and b are meshes (meshvol.Mesh, or objects with .vertices and .faces such as
-/// trimesh.Trimesh), each one body (every shell). pose_a and pose_b, when given, are
+/// a and b are meshes (meshvol.Mesh, objects with .vertices and .faces such as
+/// trimesh.Trimesh, or paths read as meshvol.load reads them), each one body (every
+/// shell). pose_a and pose_b, when given, are
 /// 4×4 rigid transforms (rotation and translation, last row 0 0 0 1) that place each
 /// body: its checked solid, checked once and kept by the Mesh, is moved, so a loop over
 /// poses checks nothing again. A pose that is not rigid (a scale, a shear, a mirror, a
@@ -156,24 +175,21 @@ pub fn intersection(
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
     let poses = [pose_of(pose_a, "pose_a")?, pose_of(pose_b, "pose_b")?];
-    let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
+    let given = [MeshArg::of(a)?, MeshArg::of(b)?];
+    let (a, b) = (&given[0].mesh, &given[1].mesh);
     let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
     let clock = timings.then(crate::timings::Clock::new);
-    let timed = match (&clock, check) {
-        (Some(c), true) => Some((a.get().timed_check(py, c)?, b.get().timed_check(py, c)?)),
-        _ => None,
-    };
+    let timed = timed_checks(py, [a, b], check, clock.as_ref())?;
     if let Some((ca, cb)) = &timed {
         (sa.check, sb.check) = (Some(ca), Some(cb));
     }
-    crate::timings::stage(clock.as_ref(), "measuring");
     let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
     let report = py
         .detach(|| intersect_prepared(&sa, &sb, bodies, poses, tolerance, &()))
         .map_err(mesh_error)?;
     let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
     let report = report.in_units(&options, &files).map_err(mesh_error)?;
-    a.get().warn(py, &report.warnings)?;
+    warn_for(py, &given, &report.warnings)?;
     let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
     Ok(PyIntersection { fields, report })
 }
@@ -188,8 +204,10 @@ pub fn intersection(
 /// by each pose; units and density as for intersection. A pose that is not rigid raises
 /// ValueError naming it (poses_b[3]). The
 /// check's warnings, and the intervals' (each once), are issued as MeshWarning.
+/// timings=True gives each result the call's `timings`: each check (run again), then
+/// measuring every pose (the same list on each).
 #[pyfunction]
-#[pyo3(signature = (a, b, poses_a = None, poses_b = None, tolerance = 1e-9, check = true, units = None, density = None))]
+#[pyo3(signature = (a, b, poses_a = None, poses_b = None, tolerance = 1e-9, check = true, units = None, density = None, timings = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn intersections(
     py: Python<'_>,
@@ -201,6 +219,7 @@ pub fn intersections(
     check: bool,
     units: Option<&str>,
     density: Option<&Bound<'_, PyAny>>,
+    timings: bool,
 ) -> PyResult<Vec<PyIntersection>> {
     let options = crate::units::options(units, density)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
@@ -219,8 +238,14 @@ pub fn intersections(
     }
     let pick = |p: &Option<Vec<Affine>>, k: usize| p.as_ref().map(|v| v[k.min(v.len() - 1)]);
     let pairs: Vec<[Option<Affine>; 2]> = (0..n).map(|k| [pick(&pa, k), pick(&pb, k)]).collect();
-    let (a, b): (Bound<'_, PyMesh>, Bound<'_, PyMesh>) = (mesh_of(a)?, mesh_of(b)?);
-    let (sa, sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let given = [MeshArg::of(a)?, MeshArg::of(b)?];
+    let (a, b) = (&given[0].mesh, &given[1].mesh);
+    let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let clock = timings.then(crate::timings::Clock::new);
+    let timed = timed_checks(py, [a, b], check, clock.as_ref())?;
+    if let Some((ca, cb)) = &timed {
+        (sa.check, sb.check) = (Some(ca), Some(cb));
+    }
     let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
     let reports =
         py.detach(|| intersect_poses(&sa, &sb, bodies, &pairs, tolerance)).map_err(mesh_error)?;
@@ -236,10 +261,14 @@ pub fn intersections(
             warnings.push(w.clone());
         }
     }
-    a.get().warn(py, &warnings)?;
+    warn_for(py, &given, &warnings)?;
+    let stages = clock.map(|c| c.finish());
     reports
         .into_iter()
-        .map(|report| Ok(PyIntersection { fields: Fields::new(&report)?, report }))
+        .map(|report| {
+            let fields = Fields::new(&report)?.with_timings(stages.clone())?;
+            Ok(PyIntersection { fields, report })
+        })
         .collect()
 }
 

@@ -1,28 +1,35 @@
 //! `meshvol.load`: a mesh file read as the command reads it, from a path or a binary file
 //! object, into a `Mesh` that keeps where it came from (format, declared unit, objects,
-//! bodies, the reader's warnings).
+//! bodies, the reader's warnings); and every mesh argument, which may be a path.
 
 use crate::errors::read_error;
-use crate::mesh::PyMesh;
+use crate::mesh::{mesh_of, PyMesh};
+use meshvol_io::compressed::COMPRESSED_EXTENSIONS;
+use meshvol_io::InputKind;
 use meshvol_report::subject::Source;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-/// The extensions `file_type` may name.
-const FILE_TYPES: [&str; 7] = ["stl", "obj", "off", "ply", "3mf", "gltf", "glb"];
-
-/// `file_type` checked: an extension, without its dot, lower case.
+/// `file_type` checked: a format's extension, without its dot, lower case ('stl'), or
+/// one compressed ('stl.gz', 'ply.zst'), or a compression alone ('gz', 'zip': the format
+/// then by the content, or the zip member's name): the endings the command reads.
 fn file_type_of(file_type: Option<&str>) -> PyResult<Option<String>> {
     let Some(t) = file_type else { return Ok(None) };
     let t = t.trim().trim_start_matches('.').to_ascii_lowercase();
-    if FILE_TYPES.contains(&t.as_str()) {
+    let formats = InputKind::Mesh.extensions();
+    let endings = InputKind::Mesh.name_endings();
+    let known = endings.iter().any(|e| e.strip_prefix('.') == Some(t.as_str()))
+        || COMPRESSED_EXTENSIONS.contains(&t.as_str());
+    if known {
         Ok(Some(t))
     } else {
         Err(crate::errors::bad_argument(format!(
-            "file_type must be one of {}; got '{t}'",
-            FILE_TYPES.join(", ")
+            "file_type must be one of {}, one of those compressed ('stl.gz', '.bz2', '.zst'), \
+             or a compression alone ({}); got '{t}'",
+            formats.join(", "),
+            COMPRESSED_EXTENSIONS.join(", ")
         )))
     }
 }
@@ -73,8 +80,10 @@ fn load_source(file: &Bound<'_, PyAny>) -> PyResult<LoadSource> {
 ///
 /// file is a path (str, bytes or os.PathLike) or a binary file object (anything with
 /// read() returning bytes: open(path, "rb"), io.BytesIO, a zip member). file_type
-/// ('stl', 'obj', 'off', 'ply', '3mf', 'gltf', 'glb') names the format when the name
-/// does not (a file object without a name is otherwise recognised by its content).
+/// ('stl', 'obj', 'off', 'ply', '3mf', 'gltf', 'glb', each also compressed: 'stl.gz',
+/// 'obj.bz2', 'ply.zst'; or a compression alone: 'gz', 'bz2', 'zst', 'zip') names the
+/// format when the name does not, as the file's ending would (a file object without a
+/// name is otherwise recognised by its content).
 ///
 /// A file that cannot be opened raises the OSError Python raises for it
 /// (FileNotFoundError, PermissionError, IsADirectoryError: meshvol.MeshFileNotFoundError
@@ -136,4 +145,40 @@ pub fn load(py: Python<'_>, file: &Bound<'_, PyAny>, file_type: Option<&str>) ->
         read_error(py, &error)
     })?;
     Ok(PyMesh::of(mesh, source, assembly))
+}
+
+/// A mesh argument as every call that takes meshes takes it: a meshvol.Mesh, an object
+/// with .vertices and .faces (a trimesh.Trimesh), or a path (str, bytes, os.PathLike)
+/// read as [`load`] reads it.
+pub struct MeshArg<'py> {
+    pub mesh: Bound<'py, PyMesh>,
+    /// Read here from a path: its reader's warnings not given yet (a Mesh given keeps
+    /// them in `Mesh.warnings`).
+    pub read_here: bool,
+}
+
+impl<'py> MeshArg<'py> {
+    pub fn of(obj: &Bound<'py, PyAny>) -> PyResult<MeshArg<'py>> {
+        if obj.cast::<PyMesh>().is_err() && is_path(obj)? {
+            let mesh = Bound::new(obj.py(), load(obj.py(), obj, None)?)?;
+            return Ok(MeshArg { mesh, read_here: true });
+        }
+        Ok(MeshArg { mesh: mesh_of(obj)?, read_here: false })
+    }
+}
+
+/// Whether `obj` is a path: str, bytes or os.PathLike.
+pub fn is_path(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
+    Ok(path_of(obj)?.is_some())
+}
+
+/// Issues a report's warnings as MeshWarnings, less the reader's warnings of the meshes
+/// given as meshes (those of a file read here are the report's to give, as the command
+/// gives them).
+pub fn warn_for(py: Python<'_>, meshes: &[MeshArg<'_>], warnings: &[String]) -> PyResult<()> {
+    let given = |w: &String| {
+        meshes.iter().any(|m| !m.read_here && m.mesh.get().source.warnings.contains(w))
+    };
+    let new: Vec<String> = warnings.iter().filter(|w| !given(w)).cloned().collect();
+    crate::errors::warn_all(py, &new)
 }

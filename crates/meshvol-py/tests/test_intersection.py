@@ -200,6 +200,9 @@ def test_other_arguments():
     with pytest.raises(ValueError, match="tolerance"):
         meshvol.intersection(a, a, tolerance=0.0)
     with pytest.raises(TypeError):
+        meshvol.intersection(a, 3.0)
+    # A string is a path, read as meshvol.load reads it.
+    with pytest.raises(FileNotFoundError, match="not a mesh"):
         meshvol.intersection(a, "not a mesh")
 
 

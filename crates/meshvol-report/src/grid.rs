@@ -335,15 +335,21 @@ impl Report for GridReport {
                     format!(
                         "Zarr v3 group of float64 arrays volume, fraction{mass}, centroid, \
                          boundary_area, boundary_vector, boundary_centroid, aperture_x, _y, _z{}{}, \
-                         chunks ({cx}, {cy}, {cz})",
+                         chunks ({cx}, {cy}, {cz}), coordinates x, y, z, x_face, y_face, z_face",
                         if r.second_moments { ", inertia" } else { "" },
                         if r.face_centroids { ", aperture_x_centroid, _y_, _z_" } else { "" }
                     )
                 }
                 Some(e) if e.eq_ignore_ascii_case("zarr") => {
                     let [cx, cy, cz] = r.chunks.unwrap_or(c.cells);
+                    let name = match one {
+                        "fractions" => "fraction",
+                        "masses" => "mass",
+                        _ => "volume",
+                    };
                     format!(
-                        "Zarr v3 float64 {one}, shape ({nx}, {ny}, {nz}), chunks ({cx}, {cy}, {cz})"
+                        "Zarr v3 group: float64 {one} `{name}`, shape ({nx}, {ny}, {nz}), chunks \
+                         ({cx}, {cy}, {cz}), coordinates x, y, z"
                     )
                 }
                 _ => {

@@ -15,8 +15,8 @@
 //! - **`.npz`**, and the cut-cell geometry as `.npz` or `.vti`: the `cut_cells` module.
 //! - **`.csv`**: `i,j,k,volume,fraction` (and `mass` given a density), one row per non-empty cell (|volume| above
 //!   [`OCCUPANCY_TOLERANCE`] of a cell), numbers in shortest round-trip form.
-//! - **`.zarr`** (feature `zarr`): a Zarr v3 array written chunk by chunk, for grids
-//!   larger than memory (the `zarr` module).
+//! - **`.zarr`** (feature `zarr`): a Zarr v3 group (the array, its coordinates)
+//!   written chunk by chunk, for grids larger than memory (the `zarr` module).
 //! - **`.png`**: one slice of fractions, white (empty) to dark blue (full), red for
 //!   negative (inward-wound) fractions, cells drawn to scale with borders where they are
 //!   at least 6 pixels wide and high; a colour legend, the slice's coordinate, and the

@@ -2,32 +2,39 @@
 //! disk one slab of chunks (a *chunk row*: the chunks that share their x cells) at a
 //! time.
 //!
-//! Each array (through the `zarrs` crate, filesystem store): float64, regular chunks,
-//! the `bytes` codec (little-endian, no compression), fill value 0, chunk keys
-//! `c/I/J/K`. What a Zarr array or group written at the same path before left there
+//! Each array of the cells (through the `zarrs` crate, filesystem store): float64,
+//! regular chunks, the `bytes` codec (little-endian, no compression), fill value 0, chunk
+//! keys `c/I/J/K`. What a Zarr array or group written at the same path before left there
 //! (its chunks, its member arrays) is erased first. Chunks whose every value is +0.0 are
 //! not stored (readers return the fill value), which leaves
 //! the empty space around a solid off the disk; a chunk holding -0.0 is stored, so that
 //! every value reads back as the same bits. Edge chunks are stored whole, padded with
 //! zeros, as Zarr's regular grid has them.
 //!
-//! - [`ZarrCells`]: one array of the cells, shape `(nx, ny, nz)`, dimension names `x`,
-//!   `y`, `z`, attributes `origin`, `cell_size` (f64 numbers that read back to the same
-//!   bits) and `values` (`volume`, `fraction` or `mass`: [`CellValues`]).
-//! - [`ZarrGroup`]: a group (attributes `origin` and `cell_size`) of named arrays over
-//!   the cells ([`CellArray`]: the cut-cell geometry), each an array of the group named
-//!   as in the `.npz`: chunks of the cells' chunk shape, and whole along the axes after
-//!   the third (a vector's `component`; a tensor's `row` and `column`: the dimension
-//!   names of Python's `CutCells.to_xarray()`). An
-//!   array on the faces across an axis has one more layer along it (`NX + 1` for the x
-//!   faces), named `x_face`, `y_face` or `z_face`; the chunk row that ends the grid
-//!   writes the far x faces.
+//! Either output is a group (attributes `origin` and `cell_size`: f64 numbers that read
+//! back to the same bits) that `xarray.open_zarr` opens as one Dataset, named as
+//! Python's `Grid.to_xarray()` and `CutCells.to_xarray()` name theirs: the coordinate
+//! arrays `x`, `y`, `z` (the cells' centres, `origin + (i + 0.5) · cell_size`, one chunk
+//! each), and, beside arrays on the faces, `x_face`, `y_face`, `z_face` (the faces'
+//! planes, `origin + i · cell_size`); the members' metadata consolidated into the
+//! group's `zarr.json` (`consolidated_metadata`, as zarr-python's
+//! `consolidate_metadata` writes it), so that readers find every array in one read.
+//!
+//! - [`ZarrCells`]: one array of the cells, named after its values (`volume`, `fraction`
+//!   or `mass`: [`CellValues`], also the group's attribute `values`), shape
+//!   `(nx, ny, nz)`, dimension names `x`, `y`, `z`.
+//! - [`ZarrGroup`]: named arrays over the cells ([`CellArray`]: the cut-cell geometry),
+//!   named as in the `.npz`: chunks of the cells' chunk shape, and whole along the axes
+//!   after the third (a vector's `component`; a tensor's `row` and `column`: the
+//!   dimension names of `CutCells.to_xarray()`). An array on the faces across an axis
+//!   has one more layer along it (`NX + 1` for the x faces), named `x_face`, `y_face` or
+//!   `z_face`; the chunk row that ends the grid writes the far x faces.
 
 use super::{CellArray, CellValues};
 use meshvol::grid::Grid;
 use rayon::prelude::*;
 use std::io;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use zarrs::array::codec::CodecOptions;
 use zarrs::array::{Array, ArrayBuilder, DataType};
@@ -115,6 +122,62 @@ fn erase_earlier(path: &Path, store: &FilesystemStore) -> io::Result<()> {
         }
         _ => Ok(()),
     }
+}
+
+/// Writes the group's metadata (a group at the store's root, with `attributes`).
+fn create_group(store: &Arc<FilesystemStore>, attributes: serde_json::Value) -> io::Result<()> {
+    let group = GroupBuilder::new()
+        .attributes(attributes.as_object().cloned().unwrap_or_default())
+        .build(store.clone(), "/")
+        .map_err(failed)?;
+    group.store_metadata().map_err(failed)
+}
+
+/// Writes the coordinate arrays of `grid` (module docs): `x`, `y`, `z`, and with
+/// `faces` `x_face`, `y_face`, `z_face`; returns their names.
+fn coordinates(store: &Arc<FilesystemStore>, grid: &Grid, faces: bool) -> io::Result<Vec<String>> {
+    let mut names = Vec::new();
+    for a in 0..3 {
+        let axis = ["x", "y", "z"][a];
+        let (origin, cell, n) = (grid.origin[a], grid.cell[a], grid.counts[a]);
+        let centres: Vec<f64> = (0..n).map(|i| origin + (i as f64 + 0.5) * cell).collect();
+        let mut wanted = vec![(axis.to_string(), centres)];
+        if faces {
+            let planes = (0..=n).map(|i| origin + i as f64 * cell).collect();
+            wanted.push((format!("{axis}_face"), planes));
+        }
+        for (name, values) in wanted {
+            let len = values.len() as u64;
+            let array = ArrayBuilder::new(vec![len], vec![len], DataType::Float64, 0.0f64)
+                .dimension_names(Some(vec![name.clone()]))
+                .build(store.clone(), &format!("/{name}"))
+                .map_err(failed)?;
+            array.store_metadata().map_err(failed)?;
+            array.store_chunk_elements(&[0], &values).map_err(failed)?;
+            names.push(name);
+        }
+    }
+    Ok(names)
+}
+
+/// Copies the metadata of the group's `members` into the group's `zarr.json`, as
+/// `consolidated_metadata` (kind `inline`), the form zarr-python and xarray read.
+fn consolidate<'a>(path: &Path, members: impl Iterator<Item = &'a str>) -> io::Result<()> {
+    let read = |at: &Path| -> io::Result<serde_json::Value> {
+        serde_json::from_slice(&std::fs::read(at.join("zarr.json"))?).map_err(failed)
+    };
+    let mut root = read(path)?;
+    let mut metadata = serde_json::Map::new();
+    for name in members {
+        metadata.insert(name.to_string(), read(&path.join(name))?);
+    }
+    root["consolidated_metadata"] = serde_json::json!({
+        "kind": "inline",
+        "must_understand": false,
+        "metadata": metadata,
+    });
+    let text = serde_json::to_vec_pretty(&root).map_err(failed)?;
+    std::fs::write(path.join("zarr.json"), text)
 }
 
 /// One float64 array over the cells (or faces) of a grid, chunked along its first three
@@ -226,14 +289,25 @@ impl ZarrCells {
         values: CellValues,
     ) -> io::Result<ZarrCells> {
         let rows = Rows::new(grid, chunks)?;
-        let store = store_at(path, "array")?;
+        let store = store_at(path, "group")?;
         let attributes = serde_json::json!({
             "origin": grid.origin,
             "cell_size": grid.cell,
             "values": values.name(),
         });
+        create_group(&store, attributes)?;
         let names = ["x", "y", "z"].map(String::from).to_vec();
-        let array = RowArray::create(store, "/", &grid.counts, chunks, names, attributes)?;
+        let at = format!("/{}", values.name());
+        let array = RowArray::create(
+            store.clone(),
+            &at,
+            &grid.counts,
+            chunks,
+            names,
+            serde_json::json!({}),
+        )?;
+        let members = coordinates(&store, grid, false)?;
+        consolidate(path, members.iter().map(String::as_str).chain([values.name()]))?;
         Ok(ZarrCells { array, rows, values, cell: grid.cell_volume() })
     }
 
@@ -259,6 +333,8 @@ impl ZarrCells {
 /// A Zarr group of named arrays over a grid's cells ([module docs](self)), written by
 /// chunk rows in any order; its arrays are made from the first row written.
 pub struct ZarrGroup {
+    path: PathBuf,
+    grid: Grid,
     store: Arc<FilesystemStore>,
     rows: Rows,
     arrays: Vec<(&'static str, RowArray)>,
@@ -272,12 +348,8 @@ impl ZarrGroup {
         let rows = Rows::new(grid, chunks)?;
         let store = store_at(path, "group")?;
         let attributes = serde_json::json!({ "origin": grid.origin, "cell_size": grid.cell });
-        let group = GroupBuilder::new()
-            .attributes(attributes.as_object().cloned().unwrap_or_default())
-            .build(store.clone(), "/")
-            .map_err(failed)?;
-        group.store_metadata().map_err(failed)?;
-        Ok(ZarrGroup { store, rows, arrays: Vec::new() })
+        create_group(&store, attributes)?;
+        Ok(ZarrGroup { path: path.to_path_buf(), grid: *grid, store, rows, arrays: Vec::new() })
     }
 
     /// Cells along x of chunk row `row`: the cells of the arrays [`ZarrGroup::write_row`]
@@ -316,11 +388,11 @@ impl ZarrGroup {
                 cells.len()
             )));
         }
+        let counts = [nx, ny, nz];
         if self.arrays.is_empty() {
             for a in arrays {
                 let mut shape = a.shape.clone();
                 shape[0] += nx - cells.len();
-                let counts = [nx, ny, nz];
                 let mut names: Vec<String> = (0..3)
                     .map(|d| {
                         let axis = ["x", "y", "z"][d];
@@ -349,6 +421,10 @@ impl ZarrGroup {
                 )?;
                 self.arrays.push((a.name, array));
             }
+            let faces = self.arrays.iter().any(|(_, a)| (0..3).any(|d| a.shape[d] != counts[d]));
+            let members = coordinates(&self.store, &self.grid, faces)?;
+            let arrays = self.arrays.iter().map(|(name, _)| *name);
+            consolidate(&self.path, members.iter().map(String::as_str).chain(arrays))?;
         }
         if self.arrays.len() != arrays.len()
             || self.arrays.iter().zip(arrays).any(|((name, _), a)| *name != a.name)

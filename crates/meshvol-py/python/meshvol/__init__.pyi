@@ -1,16 +1,80 @@
-"""Type stubs for meshvol (the runtime objects carry the full docstrings)."""
+"""Type stubs for meshvol (the runtime objects carry the full docstrings): the errors,
+Mesh, MassProperties, Check and Shell of the extension module are written here, its
+other reports and its functions in _meshvol.pyi; measure, Grid, CutCells and the OSError
+classes are typed Python (_batch.py, _grid.py, _errors.py). Checked against the runtime
+by mypy's stubtest (tests/test_typing.py)."""
 
 import os
-from typing import TYPE_CHECKING, Any, BinaryIO, Iterable, Literal, Mapping, Optional, Sequence, Tuple, Union as _Union
+from typing import Any, Literal, Optional, Sequence, Tuple, Union as _Union, final
 
 import numpy as np
 import numpy.typing as npt
 
-if TYPE_CHECKING:
-    import pandas
+from ._batch import measure as measure
+from ._errors import (
+    MeshFileNotFoundError as MeshFileNotFoundError,
+    MeshIsADirectoryError as MeshIsADirectoryError,
+    MeshOSError as MeshOSError,
+    MeshPermissionError as MeshPermissionError,
+)
+from ._grid import CutCells as CutCells, Grid as Grid
+from ._meshvol import (
+    __version__ as __version__,
+    Profile as Profile,
+    Union as Union,
+    AreaProperties as AreaProperties,
+    Hull as Hull,
+    Below as Below,
+    CutFill as CutFill,
+    Intersection as Intersection,
+    Section as Section,
+    load as load,
+    union as union,
+    intersection as intersection,
+    intersections as intersections,
+    polygon_area as polygon_area,
+    convex_hull as convex_hull,
+    hull_volume as hull_volume,
+    cutfill as cutfill,
+    volume as volume,
+)
 
-__version__: str
-__all__: list[str]
+__all__ = [
+    "AreaProperties",
+    "Below",
+    "Check",
+    "CutCells",
+    "CutFill",
+    "Grid",
+    "Hull",
+    "Intersection",
+    "InvalidMeshError",
+    "LossyWriteError",
+    "MassProperties",
+    "Mesh",
+    "MeshError",
+    "MeshFileNotFoundError",
+    "MeshIsADirectoryError",
+    "MeshOSError",
+    "MeshPermissionError",
+    "MeshWarning",
+    "Profile",
+    "ReadError",
+    "Section",
+    "Shell",
+    "Union",
+    "__version__",
+    "convex_hull",
+    "cutfill",
+    "hull_volume",
+    "intersection",
+    "intersections",
+    "load",
+    "measure",
+    "polygon_area",
+    "union",
+    "volume",
+]
 
 _ArrayLike = npt.ArrayLike
 _F64 = npt.NDArray[np.float64]
@@ -38,18 +102,6 @@ class ReadError(MeshError):
     reason: str
     """The message without path and location."""
 
-class MeshOSError(OSError, ReadError):
-    """A mesh file could not be opened: an OSError and a ReadError ('PATH: REASON')."""
-
-class MeshFileNotFoundError(FileNotFoundError, MeshOSError):
-    """The file does not exist."""
-
-class MeshPermissionError(PermissionError, MeshOSError):
-    """The file cannot be read with the permissions given."""
-
-class MeshIsADirectoryError(IsADirectoryError, MeshOSError):
-    """The path is a directory."""
-
 class InvalidMeshError(MeshError):
     """Arrays that cannot be used as given: shape, dtype, non-finite value, index range."""
 
@@ -59,6 +111,7 @@ class LossyWriteError(MeshError):
 class MeshWarning(UserWarning):
     """A measurement of a solid that may not be the one meant (open, overlapping, ...)."""
 
+@final
 class Mesh:
     """A surface mesh: float64 vertices and faces (triangles or polygons) indexing them.
 
@@ -66,7 +119,7 @@ class Mesh:
     obj.faces (a trimesh.Trimesh, another Mesh). A Mesh never changes once built.
     """
 
-    def __init__(self, vertices: Any, faces: Optional[_Faces] = None) -> None: ...
+    def __new__(cls, vertices: Any, faces: Optional[_Faces] = None) -> Mesh: ...
     @property
     def vertices(self) -> _F64:
         """The (n, 3) float64 vertices: a read-only view of the mesh's memory."""
@@ -111,8 +164,25 @@ class Mesh:
         units: Optional[str] = None,
         timings: bool = False,
     ) -> MassProperties:
-        """Mass properties of the checked solid (`meshvol volume`); check=False: as wound;
-        units: as --units ('mm:cm', ':in', ...); density: 2.5 or '7.85g/cm3'."""
+        """Volume, area, centroid and inertia of the checked solid (`meshvol volume`).
+
+        Parameters
+        ----------
+        density : float or str
+            2.5, or with a unit: '7.85g/cm3' (--density).
+        exact : bool
+            The volume in exact arithmetic, rounded once (--exact).
+        check : bool
+            True: the checked solid; False: the surface as wound (--no-check).
+        units : str, optional
+            As --units: 'mm:cm', ':in', 'm'.
+        timings : bool
+            Add `timings`, the stages with wall and CPU seconds (--timings).
+
+        Returns
+        -------
+        MassProperties
+        """
     def check(
         self,
         weld_tolerance: Optional[float] = None,
@@ -121,7 +191,23 @@ class Mesh:
         density: Optional[_Density] = None,
         timings: bool = False,
     ) -> Check:
-        """Topology facts (`meshvol check`)."""
+        """Topology facts (`meshvol check`).
+
+        Parameters
+        ----------
+        weld_tolerance : float, optional
+            Weld vertices this close (--weld-tolerance); None: equal ones only.
+        intersections : bool
+            Search for crossing faces (False: --no-intersections).
+        units, density : str, optional
+            As --units and --density.
+        timings : bool
+            Add `timings`.
+
+        Returns
+        -------
+        Check
+        """
     def grid(
         self,
         cells: Optional[_ArrayLike] = None,
@@ -136,9 +222,35 @@ class Mesh:
         backend: Literal["auto", "cpu", "opencl"] = "auto",
         opencl_device: Optional[int] = None,
     ) -> Grid:
-        """The solid's volume in each cell, a Grid over an (nx, ny, nz) array (`meshvol
-        grid`), or the block `region` of it. cells: 3 ints; bounds: (2, 3); pitch: a
-        number or 3; region: (3, 2) cell ranges; any array-like."""
+        """The solid's volume in each cell of a grid (`meshvol grid`).
+
+        Parameters
+        ----------
+        cells : array_like of 3 int, optional
+            Cells along x, y, z (or give pitch).
+        bounds : array_like (2, 3), optional
+            The grid's box; default the solid's bounding box.
+        fraction : bool
+            Each cell's filled fraction instead of its volume.
+        pitch : float or array_like of 3, optional
+            The cells' size (whole cells covering bounds).
+        check : bool
+            True: the checked solid; False: the surface as wound.
+        region : array_like (3, 2), optional
+            Only the block ((i0, i1), (j0, j1), (k0, k1)): the same bits as the whole's.
+        units, density : str, optional
+            As --units and --density (density: the cells hold masses).
+        timings : bool
+            Add `timings`.
+        backend : {'auto', 'cpu', 'opencl'}
+            As --backend: the same bits.
+        opencl_device : int, optional
+            As --opencl-device.
+
+        Returns
+        -------
+        Grid
+        """
     def cells(
         self,
         cells: Optional[_ArrayLike] = None,
@@ -153,10 +265,25 @@ class Mesh:
         backend: Literal["auto", "cpu", "opencl"] = "auto",
         opencl_device: Optional[int] = None,
     ) -> CutCells:
-        """The cut-cell geometry on a grid (`meshvol grid --moments`): volume, fraction,
-        centroid, boundary_area, boundary_vector, boundary_centroid, aperture_x/_y/_z;
-        with second_moments, inertia; with face_centroids, aperture_x/_y/_z_centroid.
-        moments=False is a ValueError: Mesh.grid gives the volumes alone."""
+        """The cut-cell geometry on a grid (`meshvol grid --moments`).
+
+        Parameters
+        ----------
+        cells, bounds, pitch, check, region, units, backend, opencl_device
+            As for grid.
+        second_moments : bool
+            Add `inertia`, each cell's solid's inertia about its centroid.
+        face_centroids : bool
+            Add aperture_x_centroid, aperture_y_centroid, aperture_z_centroid.
+        moments : True
+            False is a ValueError: grid gives the volumes alone.
+
+        Returns
+        -------
+        CutCells
+            volume, fraction, centroid, boundary_area, boundary_vector,
+            boundary_centroid, aperture_x, aperture_y, aperture_z (and the extras).
+        """
     def profile(
         self,
         axis: str = "z",
@@ -189,8 +316,25 @@ class Mesh:
         density: Optional[_Density] = None,
         timings: bool = False,
     ) -> Section:
-        """The cross-section by a plane: 'z=H', [point, normal] or (nx, ny, nz, d)
-        (`meshvol section`); density: a mass per area ('62.8kg/m2'), mass a sheet's."""
+        """The cross-section by a plane (`meshvol section`).
+
+        Parameters
+        ----------
+        plane : str or array_like
+            'z=H' ('x=H', 'y=H'), [point, normal], or (nx, ny, nz, d).
+        check : bool
+            True: the checked solid; False: the surface as wound.
+        units : str, optional
+            As --units.
+        density : float or str, optional
+            A mass per area ('62.8kg/m2'): `mass`, a sheet's with this outline.
+        timings : bool
+            Add `timings`.
+
+        Returns
+        -------
+        Section
+        """
     def bodies(self, check: bool = True) -> list[Mesh]:
         """The solid's bodies as meshes (each outermost shell with its cavities)."""
     def triangulated(self) -> Mesh:
@@ -232,6 +376,7 @@ class _CheckFacts:
     solid_volume: float
     volume_uncertainty: float
 
+@final
 class MassProperties(_CheckFacts):
     """Volume, area, centroid and inertia, named as `meshvol volume --json`'s keys.
 
@@ -295,6 +440,7 @@ class MassProperties(_CheckFacts):
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol volume --json`."""
 
+@final
 class Shell:
     """One connected component of a checked mesh."""
 
@@ -309,9 +455,10 @@ class Shell:
     boundary_loops: int
     euler_characteristic: int
     genus: Optional[int]
-    def __getitem__(self, key: str) -> Any: ...
+    def __getitem__(self, key: str, /) -> Any: ...
     def to_dict(self) -> dict[str, Any]: ...
 
+@final
 class Check(_CheckFacts):
     """The facts of `meshvol check`, named as its JSON keys."""
 
@@ -337,417 +484,3 @@ class Check(_CheckFacts):
     timings: _Timings
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol check --json`."""
-
-class Profile:
-    """Volume below each level (`meshvol profile --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
-    axis: str
-    file: Optional[str]
-    warnings: list[str]
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol profile --json`."""
-    @property
-    def levels(self) -> _F64: ...
-    @property
-    def volume_below(self) -> _F64: ...
-    @property
-    def slab_volume(self) -> _F64: ...
-    @property
-    def section_area(self) -> _F64: ...
-
-class Union:
-    """The union's volume as a certified interval (`meshvol union --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
-    lower: float
-    upper: float
-    certified: bool
-    """Whether [lower, upper] is proven to hold the union (see uncertified_reason)."""
-    uncertified_reason: Optional[str]
-    """Why the interval is not certified; None when it is."""
-    volume: float
-    bodies: int
-    sum_of_volumes: float
-    cells_refined: int
-    cells_resolved_exactly: int
-    columns_unresolved: int
-    flipped: list[int]
-    volume_uncertainty: float
-    """The caps on holes' uncertainty, included in [lower, upper]."""
-    warnings: list[str]
-    file: str
-    """The meshes' names (their files, or 'mesh'), joined by ', '."""
-    files: list[str]
-    body_names: list[str]
-    grid: list[int]
-    seconds: float
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol union --json`."""
-
-class Intersection:
-    """The intersection of two bodies, certified (`meshvol intersect --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
-    lower: float
-    upper: float
-    certified: bool
-    """Whether [lower, upper] is proven to hold |A∩B| (see uncertified_reason)."""
-    uncertified_reason: Optional[str]
-    """Why the interval is not certified; None when it is."""
-    volume: float
-    """The midpoint of [lower, upper], which holds |A∩B|."""
-    volume_a: float
-    volume_b: float
-    union: float
-    union_lower: float
-    union_upper: float
-    a_minus_b: float
-    b_minus_a: float
-    iou: float
-    iou_lower: float
-    iou_upper: float
-    dice: float
-    contact_area: Optional[float]
-    """Area of A's surface inside B plus B's inside A (0 when apart)."""
-    disjoint: bool
-    """The bodies' boxes (as placed) are apart or only touch: volume is exactly 0."""
-    cells_refined: int
-    cells_resolved_exactly: int
-    columns_unresolved: int
-    flipped: list[int]
-    volume_uncertainty: float
-    """The caps on holes' uncertainty, included in [lower, upper]."""
-    method: str
-    """'boxes' (apart: 0), 'boundary' (each face's part inside the other body) or 'grid'."""
-    warnings: list[str]
-    file: str
-    """The meshes' names (their files, or 'mesh'), joined by ', '."""
-    files: list[str]
-    grid: list[int]
-    seconds: float
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol intersect --json`."""
-    @property
-    def centroid(self) -> Optional[_F64]: ...
-    @property
-    def inertia(self) -> Optional[_F64]: ...
-    @property
-    def contact_vector(self) -> Optional[_F64]:
-        """∫ n dA over B's surface inside A: d|A∩B|/dt = e · contact_vector as B moves by t·e."""
-    @property
-    def contact_normal(self) -> Optional[_F64]:
-        """contact_vector scaled to length 1 (None where it is 0)."""
-
-class AreaProperties:
-    """Area, perimeter, centroid and second moments of plane polygons."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
-    area: float
-    perimeter: float
-    ix: float
-    iy: float
-    ixy: float
-    polar: float
-    principal_angle_degrees: float
-    issues: list[str]
-    file: Optional[str]
-    format: Optional[str]
-    polygons: int
-    inertia: Optional[dict[str, Any]]
-    """The second moments as `meshvol area --json` nests them; None without area."""
-    rings: list[dict[str, Any]]
-    warnings: list[str]
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol area --json`."""
-    @property
-    def centroid(self) -> Optional[_F64]:
-        """Shape (2,); None when the area is zero."""
-    @property
-    def principal_moments(self) -> _F64:
-        """Shape (2,), ascending (as MassProperties')."""
-    @property
-    def principal_axes(self) -> _F64:
-        """Shape (2, 2): row k is the axis of principal_moments[k]."""
-
-class Below:
-    """The part of a solid below a plane (`meshvol below --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
-    file: Optional[str]
-    level: float
-    volume: float
-    wetted_area: float
-    section_area: float
-    warnings: list[str]
-    @property
-    def normal(self) -> _F64:
-        """Shape (3,): the plane's unit normal."""
-    @property
-    def centroid(self) -> Optional[_F64]:
-        """Shape (3,): the centre of buoyancy; None without volume."""
-    @property
-    def section_centroid(self) -> Optional[_F64]:
-        """Shape (3,): the waterplane's centroid; None without a section."""
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol below --json`."""
-
-class CutFill:
-    """Cut and fill between two surfaces (`meshvol cutfill --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
-    file: Optional[str]
-    design: str
-    level: Optional[float]
-    cut: float
-    fill: float
-    net: float
-    area_cut: float
-    area_fill: float
-    footprint_area: float
-    existing_area: float
-    design_area: Optional[float]
-    grid: Optional[dict[str, list[Any]]]
-    warnings: list[str]
-    timings: _Timings
-    @property
-    def footprint_bounds(self) -> Optional[_F64]:
-        """Shape (2, 2): [[x0, y0], [x1, y1]]; None without a footprint."""
-    @property
-    def cut_cells(self) -> Optional[_F64]:
-        """Shape (nx, ny): cut volume per plan cell; None without cells or pitch."""
-    @property
-    def fill_cells(self) -> Optional[_F64]:
-        """Shape (nx, ny): fill volume per plan cell; None without cells or pitch."""
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol cutfill --json`."""
-
-class Hull:
-    """A convex hull (`meshvol hull --json`'s keys) and its mesh."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
-    points: int
-    point_count: int
-    hull_vertices: int
-    hull_vertex_count: int
-    hull_faces: int
-    hull_face_count: int
-    volume: float
-    volume_error_bound: float
-    area: float
-    degenerate: Optional[str]
-    mesh: Optional[Mesh]
-    file: Optional[str]
-    format: Optional[str]
-    warnings: list[str]
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol hull --json`."""
-    @property
-    def centroid(self) -> Optional[_F64]: ...
-
-class Section:
-    """The cross-section of a solid by a plane (`meshvol section --json`'s keys)."""
-
-    file: Optional[str]
-    format: Optional[str]
-    plane: dict[str, list[float]]
-    """origin, normal and the 2D axes u, v: a point (s, t) is origin + s·u + t·v."""
-    area: float
-    signed_area: float
-    perimeter: float
-    inertia: Optional[dict[str, Any]]
-    polygons: int
-    holes: int
-    loops: int
-    segments: int
-    open_chains: int
-    units: Optional[dict[str, Any]]
-    warnings: list[str]
-    @property
-    def centroid(self) -> Optional[_F64]:
-        """Shape (2,), in the plane's coordinates; None without area."""
-    @property
-    def centroid_3d(self) -> Optional[_F64]:
-        """Shape (3,); None without area."""
-    @property
-    def principal_moments(self) -> _F64:
-        """Shape (2,), ascending."""
-    @property
-    def principal_axes(self) -> _F64:
-        """Shape (2, 2): row k is the axis of principal_moments[k], in 2D."""
-    @property
-    def outlines(self) -> list[Tuple[_F64, list[_F64]]]:
-        """(exterior, holes) of each polygon, (n, 2) arrays in the plane's coordinates."""
-    def to_wkt(self) -> str:
-        """A WKT MULTIPOLYGON (`meshvol section --wkt`)."""
-    def to_geojson(self) -> dict[str, Any]:
-        """A GeoJSON Feature (`meshvol section --geojson`)."""
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol section --json`."""
-
-class CutCells(dict[str, _F64]):
-    """The cut-cell geometry of Mesh.cells: a dict of float64 arrays (docs/cells.md)."""
-
-    origin: _F64
-    """Shape (3,): the lower corner of cell (0, 0, 0)."""
-    spacing: _F64
-    """Shape (3,): the cells' size."""
-    def __init__(self, arrays: Mapping[str, _F64], origin: _ArrayLike, spacing: _ArrayLike) -> None: ...
-    @property
-    def shape(self) -> Tuple[int, ...]: ...
-    def to_xarray(self) -> Any:
-        """An xarray.Dataset: dims x, y, z (cells), x_face, y_face, z_face, component."""
-
-class Grid:
-    """Cell volumes (Mesh.grid) and where the cells are; np.asarray(grid) is values."""
-
-    def __init__(
-        self, values: _ArrayLike, origin: _ArrayLike, spacing: _ArrayLike, fraction: bool = False
-    ) -> None: ...
-    @property
-    def values(self) -> _F64:
-        """Shape (nx, ny, nz)."""
-    @property
-    def origin(self) -> _F64:
-        """Shape (3,): the lower corner of cell (0, 0, 0)."""
-    @property
-    def spacing(self) -> _F64:
-        """Shape (3,): the cells' size."""
-    @property
-    def bounds(self) -> _F64:
-        """Shape (2, 3): the box the cells cover."""
-    @property
-    def fraction(self) -> bool: ...
-    @property
-    def timings(self) -> _Timings:
-        """With Mesh.grid(timings=True): the stages (else absent)."""
-    @property
-    def cell_volume(self) -> float: ...
-    @property
-    def shape(self) -> Tuple[int, ...]: ...
-    @property
-    def dtype(self) -> np.dtype[Any]: ...
-    def centers(self) -> Tuple[_F64, _F64, _F64]:
-        """The cells' centres along x, y and z."""
-    def to_xarray(self, name: Optional[str] = None) -> Any:
-        """An xarray.DataArray with dims ('x', 'y', 'z') (needs xarray)."""
-    def __array__(self, dtype: Any = None, copy: Optional[bool] = None) -> _F64: ...
-    def __getitem__(self, key: Any) -> Any: ...
-    def __len__(self) -> int: ...
-    def __getattr__(self, name: str) -> Any: ...
-
-def load(file: _Union[_Path, BinaryIO], file_type: Optional[str] = None) -> Mesh:
-    """Read a mesh file (STL, OBJ, OFF, PLY, 3MF, glTF/GLB) from a path or a binary
-    file object; file_type names the format ('stl', 'obj', ...) when the name does not."""
-
-def measure(
-    paths: _Union[_Path, Iterable[_Path]],
-    workers: Optional[int] = None,
-    check: bool = True,
-    density: _Density = 1.0,
-    units: Optional[str] = None,
-    exact: bool = False,
-    *,
-    recursive: bool = True,
-    glob: _Union[str, Iterable[str], None] = None,
-) -> "pandas.DataFrame":
-    """`meshvol volume --json` of many files as a DataFrame, one row a file, columns
-    flattened as pandas.json_normalize(sep='.'); failed files have 'error'.
-    measure(folder) is `meshvol volume -r folder --json`: the same rows, in order."""
-
-def union(
-    meshes: _Union[Any, Iterable[Any]],
-    tolerance: float = 1e-6,
-    check: bool = True,
-    units: Optional[str] = None,
-    density: Optional[_Density] = None,
-    timings: bool = False,
-) -> Union:
-    """Volume of the union of closed bodies, certified (`meshvol union`)."""
-
-def intersection(
-    a: Any,
-    b: Any,
-    pose_a: Optional[_ArrayLike] = None,
-    pose_b: Optional[_ArrayLike] = None,
-    tolerance: float = 1e-9,
-    check: bool = True,
-    units: Optional[str] = None,
-    density: Optional[_Density] = None,
-    timings: bool = False,
-) -> Intersection:
-    """Volume of the intersection of two bodies, each placed by an optional 4×4 rigid
-    pose, certified, with IoU, Dice and moments (`meshvol intersect`)."""
-
-def intersections(
-    a: Any,
-    b: Any,
-    poses_a: Optional[_ArrayLike] = None,
-    poses_b: Optional[_ArrayLike] = None,
-    tolerance: float = 1e-9,
-    check: bool = True,
-    units: Optional[str] = None,
-    density: Optional[_Density] = None,
-) -> list[Intersection]:
-    """`intersection` for many poses in parallel: poses_a/poses_b each None, one 4×4
-    rigid transform, or an (N, 4, 4) array; one Intersection per pose."""
-
-def polygon_area(
-    exterior: _Union[_ArrayLike, Mapping[str, Any], Any],
-    holes: Optional[Iterable[_ArrayLike]] = None,
-    units: Optional[str] = None,
-    density: Optional[_Density] = None,
-    timings: bool = False,
-) -> AreaProperties:
-    """Area properties of a polygon with holes, or of a GeoJSON (Multi)Polygon."""
-
-def convex_hull(
-    points: _ArrayLike,
-    units: Optional[str] = None,
-    density: Optional[_Density] = None,
-    timings: bool = False,
-) -> Hull:
-    """The convex hull of an (n, 3) point array (`meshvol hull`)."""
-
-def hull_volume(points: _ArrayLike) -> float:
-    """The volume of the convex hull of an (n, 3) point array."""
-
-def volume(vertices: _ArrayLike, faces: _Faces, check: bool = True) -> Tuple[float, float]:
-    """(volume, volume_error_bound) of a mesh given as arrays.
-
-    check=True: the checked solid's (never negative), as Mesh(vertices, faces).mass_properties().
-    check=False: the signed volume of the surface as wound, in one pass; C-contiguous float64 vertices with
-    int32/int64/uint32/uint64 (m, 3) faces are read in place (no copy), with the GIL held.
-
-    >>> import numpy as np, meshvol
-    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
-    >>> f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int32)
-    >>> meshvol.volume(v, f, check=False)[0] == 1 / 6
-    True
-    """
-
-def cutfill(
-    existing: _Union[str, "os.PathLike[str]", Any],
-    design: _Union[str, "os.PathLike[str]", Any, None] = None,
-    level: Optional[float] = None,
-    cells: Optional[_ArrayLike] = None,
-    pitch: Optional[float] = None,
-    units: Optional[str] = None,
-    density: Optional[_Density] = None,
-    timings: bool = False,
-) -> CutFill:
-    """Cut and fill between an existing surface and a design or level (`meshvol cutfill`)."""

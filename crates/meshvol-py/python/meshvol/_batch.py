@@ -78,9 +78,9 @@ def _flatten(report: Dict[str, Any]) -> Dict[str, Any]:
     return flat
 
 
-def _reports(files: Sequence[str], workers: Optional[int], check: bool, density: float,
-             units: Optional[str], exact: bool) -> List[Dict[str, Any]]:
-    lines = _measure_files(list(files), workers, check, density, units, exact)
+def _reports(files: Sequence[str], workers: Optional[int], check: bool, density: Union[float, str],
+             units: Optional[str], exact: bool, timings: bool = False) -> List[Dict[str, Any]]:
+    lines = _measure_files(list(files), workers, check, density, units, exact, timings)
     return [json.loads(line) for line in lines]
 
 
@@ -94,6 +94,7 @@ def measure(
     *,
     recursive: bool = True,
     glob: GlobArg = None,
+    timings: bool = False,
 ) -> "pandas.DataFrame":
     """Measures many mesh files at once: a pandas DataFrame with one row a file, whose
     columns are the keys of `meshvol volume --json` flattened as
@@ -116,6 +117,9 @@ def measure(
     one per core; at most one a file and 8 a core. Each file is read once.
     check, density, units, exact: as Mesh.mass_properties (check=False is `--no-check`).
     recursive, glob: the command's -r and --glob, for directories and patterns.
+    timings: the command's --timings: a 'timings' column, each file's stages
+    (reading, checking and the check's own, measuring) as a list of {stage, wall_s,
+    cpu_s} (a failed file's is NaN, as the command's error line has none).
     The rows' warnings are in the 'warnings' column; none is issued.
     """
     import pandas
@@ -124,5 +128,5 @@ def measure(
     if not files and not failed:
         warnings.warn(f"no mesh files in {paths!r}: the DataFrame is empty", MeshWarning, stacklevel=2)
         return pandas.DataFrame()
-    reports = failed + (_reports(files, workers, check, density, units, exact) if files else [])
+    reports = failed + (_reports(files, workers, check, density, units, exact, timings) if files else [])
     return pandas.json_normalize(reports, sep=".")

@@ -191,6 +191,11 @@ class CutCells(dict):  # type: ignore[type-arg]
     the cells as Grid's do.
     """
 
+    origin: np.ndarray
+    """The lower corner of cell (0, 0, 0), a float64 array of 3."""
+    spacing: np.ndarray
+    """The cells' size along x, y and z, a float64 array of 3."""
+
     def __init__(self, arrays: Any, origin: Any, spacing: Any) -> None:
         super().__init__(arrays)
         self.origin = np.array(origin, dtype=np.float64).reshape(3)

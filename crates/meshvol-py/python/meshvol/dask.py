@@ -13,7 +13,7 @@ computes the same array as load("part.stl").grid(cells=(1024, 1024, 1024)) on an
 scheduler: threads, processes, or a dask.distributed cluster. The grid's bounds are
 fixed once, on the client, so every chunk belongs to the same grid.
 
-Needs the `dask` extra: pip install "meshvol[dask]" (dask[array], distributed, zarr).
+Needs the `dask` extra: pip install "meshvol[dask]" (dask[array,dataframe,distributed], zarr).
 
 Many files, one table: meshvol.dask.measure("parts/**/*.stl") is meshvol.measure over a
 cluster, a dask DataFrame with one row a file (each file read once, by one worker),
@@ -58,6 +58,7 @@ if TYPE_CHECKING:
 __all__ = ["grid", "measure"]
 
 Bounds = Tuple[Sequence[float], Sequence[float]]
+Backend = Literal["auto", "cpu", "opencl"]
 
 
 @functools.lru_cache(maxsize=4)
@@ -82,7 +83,7 @@ def _block(
     fraction: bool,
     check: bool,
     region: Tuple[Tuple[int, int], ...],
-    backend: str = "auto",
+    backend: Backend = "auto",
 ) -> np.ndarray:
     """One chunk, on a worker (on its OpenCL device with backend='opencl' or 'auto')."""
     mesh = source if isinstance(source, Mesh) else _mesh_at(*source)
@@ -186,7 +187,7 @@ def grid(
     fraction: bool = ...,
     moments: Literal[False] = ...,
     *,
-    backend: str = ...,
+    backend: Backend = ...,
 ) -> da.Array: ...
 
 
@@ -202,7 +203,7 @@ def grid(
     moments: Literal[True],
     second_moments: bool = ...,
     face_centroids: bool = ...,
-    backend: str = ...,
+    backend: Backend = ...,
 ) -> Dict[str, da.Array]: ...
 
 
@@ -217,7 +218,7 @@ def grid(
     second_moments: bool = False,
     face_centroids: bool = False,
     *,
-    backend: str = "auto",
+    backend: Backend = "auto",
 ) -> Union[da.Array, Dict[str, da.Array]]:
     """The volume of the solid in each cell of a grid as a lazy (nx, ny, nz) float64
     dask.array: Mesh.grid(cells, bounds, fraction=fraction, check=check), bit for bit,
@@ -257,15 +258,15 @@ def grid(
         stamp = (info.st_mtime_ns, info.st_size)
         mesh = _load(path, *stamp) if bounds is None else None
         where = (path, stamp)
-    if bounds is None:
+    box: Any = bounds
+    if box is None:
         assert mesh is not None
         # The measured solid's box: the bounds Mesh.grid takes by default.
-        found = mesh.mass_properties(check=check).bounds
-        if found is None:
+        box = mesh.mass_properties(check=check).bounds
+        if box is None:
             raise MeshError("no vertices: there is no surface to measure")
-        bounds = found
-    fixed = (tuple(map(float, bounds[0])), tuple(map(float, bounds[1])))
-    chunks = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
+    fixed = (tuple(map(float, box[0])), tuple(map(float, box[1])))
+    blocks: Tuple[Tuple[int, ...], ...] = da.core.normalize_chunks(chunks, counts, dtype=np.float64)
     if (second_moments or face_centroids) and not moments:
         raise ValueError("second_moments and face_centroids are cut-cell arrays: give moments=True")
     if moments:
@@ -273,18 +274,18 @@ def grid(
             raise ValueError("moments=True gives fraction among its arrays: leave fraction=False")
         if backend == "opencl":
             raise ValueError("the cut cells (moments=True) run on the CPU only: leave backend='auto' or give 'cpu'")
-        return _moments(where, counts, fixed, check, chunks, (second_moments, face_centroids))
+        return _moments(where, counts, fixed, check, blocks, (second_moments, face_centroids))
 
     # One graph key holds the mesh (or its path): each worker receives it once.
     source_key = dask.delayed(where, pure=True, traverse=False)
     block = dask.delayed(_block, pure=True)
-    starts = [np.cumsum((0,) + c)[:-1].tolist() for c in chunks]
+    starts = [np.cumsum((0,) + c)[:-1].tolist() for c in blocks]
     rows = []
-    for i0, bx in zip(starts[0], chunks[0]):
+    for i0, bx in zip(starts[0], blocks[0]):
         plane = []
-        for j0, by in zip(starts[1], chunks[1]):
+        for j0, by in zip(starts[1], blocks[1]):
             line = []
-            for k0, bz in zip(starts[2], chunks[2]):
+            for k0, bz in zip(starts[2], blocks[2]):
                 region = ((i0, i0 + bx), (j0, j0 + by), (k0, k0 + bz))
                 values = block(source_key, counts, fixed, fraction, check, region, backend)
                 line.append(da.from_delayed(values, (bx, by, bz), dtype=np.float64))
@@ -298,17 +299,20 @@ _TEXT = {"file", "format", "format_source", "density_unit", "mass_unit", "units.
          "orientation", "winding", "error"}
 
 
-def _schema(check: bool, density: float, units: Optional[str], exact: bool) -> "pandas.DataFrame":
+def _schema(check: bool, density: Union[float, str], units: Optional[str], exact: bool,
+            timings: bool) -> "pandas.DataFrame":
     """The columns of meshvol.measure's frame for these options, as an empty frame with
     one dtype per column: a report of a tetrahedron (with units, so that the units'
-    columns exist), flattened, plus 'objects' (files with named parts) and 'error'.
+    columns exist; with timings, 'timings'), flattened, plus 'objects' (files with named
+    parts) and 'error'.
     Integers are Int64 and booleans boolean (nullable: a failed file has neither)."""
     import pandas
 
     tetra = Mesh([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        sample = tetra.mass_properties(density=density, check=check, units=units or "m", exact=exact).to_dict()
+        sample = tetra.mass_properties(density=density, check=check, units=units or "m", exact=exact,
+                                      timings=timings).to_dict()
     flat = pandas.json_normalize([sample], sep=".").iloc[0].to_dict()
     columns: Dict[str, Any] = {}
     for key, value in flat.items():
@@ -339,13 +343,14 @@ def _measure_partition(
     density: float,
     units: Optional[str],
     exact: bool,
+    timings: bool,
     failed: Sequence[Dict[str, Any]] = (),
 ) -> "pandas.DataFrame":
     """One partition, on a worker: meshvol.measure's rows (the `failed` rows of the
     directories and patterns that gave no file first), in meta's columns and dtypes."""
     import pandas
 
-    rows = list(failed) + (_reports(files, threads, check, density, units, exact) if files else [])
+    rows = list(failed) + (_reports(files, threads, check, density, units, exact, timings) if files else [])
     if not rows:
         return meta
     frame = pandas.json_normalize(rows, sep=".")
@@ -358,12 +363,13 @@ def measure(
     files_per_partition: int = 1000,
     threads: Optional[int] = None,
     check: bool = True,
-    density: float = 1.0,
+    density: Union[float, str] = 1.0,
     units: Optional[str] = None,
     exact: bool = False,
     *,
     recursive: bool = True,
     glob: GlobArg = None,
+    timings: bool = False,
 ) -> "dd.DataFrame":
     """meshvol.measure as a lazy dask DataFrame: one row a file, in the order of the
     files found, each partition `files_per_partition` files measured by one task (one
@@ -380,7 +386,10 @@ def measure(
     meshvol.measure. The columns are meshvol.measure's for these options, fixed
     whatever the files hold: the volume report's keys flattened ('bounds.min',
     'units.volume', ...), 'objects' and 'error'; counts are Int64 and facts boolean
-    (nullable, for failed files). An empty list: an empty frame and a MeshWarning.
+    (nullable, for failed files). timings=True adds meshvol.measure's 'timings' column
+    (each file's stages, timed on the worker that measured it; as the other list
+    columns, text under dask's default `dataframe.convert-string`, which lets
+    to_parquet infer one schema). An empty list: an empty frame and a MeshWarning.
     """
     import dask.dataframe as ddf
     import pandas
@@ -388,14 +397,14 @@ def measure(
     if files_per_partition < 1:
         raise ValueError(f"files_per_partition must be at least 1; got {files_per_partition}")
     files, failed = _inputs(paths_or_glob, recursive, glob)
-    meta = _schema(check, density, units, exact)
+    meta = _schema(check, density, units, exact, timings)
     if not files and not failed:
         warnings.warn(f"no mesh files in {paths_or_glob!r}: the DataFrame is empty", MeshWarning, stacklevel=2)
         return ddf.from_pandas(meta, npartitions=1)
     chunks = [files[i : i + files_per_partition] for i in range(0, len(files), files_per_partition)] or [[]]
     frames = [
         dask.delayed(_measure_partition, pure=True)(
-            chunk, meta, threads, check, density, units, exact, failed if k == 0 else []
+            chunk, meta, threads, check, density, units, exact, timings, failed if k == 0 else []
         )
         for k, chunk in enumerate(chunks)
     ]
