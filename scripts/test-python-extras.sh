@@ -12,7 +12,8 @@
 # set, names the command the results are compared with.
 #
 # Needs the package index on every run: pip resolves the extra against it. What it
-# downloads is kept in target/py-extras-wheels (pip's own HTTP cache keeps nothing from
+# downloads is kept in ${XDG_CACHE_HOME:-~/.cache}/meshvol/py-extras-wheels, outside the
+# checkout so that CI's clean clones share it (pip's own HTTP cache keeps nothing from
 # an index or mirror that sends no caching headers), so a rerun downloads only what
 # changed there (a new dask release) and installs the rest from that folder. Measured
 # on the shared 2-core machine, 2026-12-07, load average 5 to 7 from other builds: 83 s
@@ -22,7 +23,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 venv=$root/target/py-extras-venv
-wheels=$root/target/py-extras-wheels
+wheels=${XDG_CACHE_HOME:-$HOME/.cache}/meshvol/py-extras-wheels
 wheel=${MESHVOL_WHEEL:-$(echo "$root"/target/py-wheels/meshvol-*.whl)}
 if [ ! -f "$wheel" ]; then
     echo "test-python-extras.sh: no wheel at $wheel: run scripts/test-python.sh or scripts/dist.sh wheel first" >&2
