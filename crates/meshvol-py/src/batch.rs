@@ -5,13 +5,13 @@
 
 use crate::errors::bad_argument;
 use crate::timings::Clock;
-use meshvol::topology::{self, CheckOptions};
+use meshvol::topology::CheckOptions;
 use meshvol_io::walk::{Filter, Walk};
 use meshvol_io::InputKind;
-use meshvol_report::subject::{Source, Subject};
+use meshvol_report::checked::{refuse_empty, Checked};
 use meshvol_report::timings::with_timings;
 use meshvol_report::units::UnitsArg;
-use meshvol_report::volume::{volume, VolumeOptions, NO_FACES};
+use meshvol_report::volume::{volume, VolumeOptions};
 use meshvol_report::{error_line, json_line};
 use pyo3::prelude::*;
 use rayon::prelude::*;
@@ -26,31 +26,19 @@ fn measure_one(path: &Path, check: bool, options: &VolumeOptions, timings: bool)
     let report = (|| -> Result<String, String> {
         crate::timings::stage(clock.as_ref(), "reading");
         let loaded = meshvol_io::read(path).map_err(|e| e.to_string())?;
-        if loaded.face_count() == 0 {
-            return Err(format!("{name}: {NO_FACES}"));
-        }
-        let source = Source::of(&name, &loaded);
-        let checked = if check {
+        refuse_empty(&name, &loaded)?;
+        let check_with = check.then(CheckOptions::default);
+        if check {
             crate::timings::stage(clock.as_ref(), "checking");
-            let stages: &dyn meshvol::progress::Progress = match &clock {
-                Some(clock) => clock,
-                None => &(),
-            };
-            let c = topology::check_assembled(
-                &loaded.surface,
-                loaded.assembly.as_ref(),
-                &loaded.body_faces(),
-                &CheckOptions::default(),
-                stages,
-            )
-            .map_err(|e| format!("{name}: {e}"))?;
-            Some(c)
-        } else {
-            None
+        }
+        let stages: &dyn meshvol::progress::Progress = match &clock {
+            Some(clock) => clock,
+            None => &(),
         };
+        let checked =
+            Checked::of(&name, loaded, check_with.as_ref(), stages).map_err(|e| e.to_string())?;
         crate::timings::stage(clock.as_ref(), "measuring");
-        let subject =
-            Subject { source: &source, surface: &loaded.surface, check: checked.as_ref() };
+        let subject = checked.subject();
         let line = json_line(&volume(&subject, options)?)?;
         match &clock {
             Some(clock) => with_timings(&line, &clock.finish()),

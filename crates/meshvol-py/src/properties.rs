@@ -47,15 +47,6 @@ impl PyMassProperties {
     }
 }
 
-/// Checks a density as the command does: positive and finite.
-pub fn check_density(density: f64) -> PyResult<()> {
-    if density.is_finite() && density > 0.0 {
-        Ok(())
-    } else {
-        Err(bad_argument(format!("density must be a positive number; got {density}")))
-    }
-}
-
 /// Refuses a mesh without faces, as the command does.
 pub fn require_faces(mesh: &meshvol::Mesh) -> PyResult<()> {
     if mesh.face_count() == 0 {
@@ -123,9 +114,9 @@ impl PyMassProperties {
     /// Each shell's facts as Shell objects (as Check.shell_details), checked; [] with
     /// check=False.
     #[getter]
-    fn shell_details(&self) -> PyResult<Vec<crate::check::PyShell>> {
+    fn shell_details(&self) -> PyResult<Vec<crate::shell::PyShell>> {
         let Some(facts) = &self.report.check else { return Ok(Vec::new()) };
-        facts.shell_details.iter().map(crate::check::PyShell::new).collect()
+        facts.shell_details.iter().map(crate::shell::PyShell::new).collect()
     }
 
     /// The `<inertial>` element of a URDF link: mass, centre of mass and inertia tensor.

@@ -25,7 +25,7 @@ fn any_density(d: &Bound<'_, PyAny>) -> PyResult<Density> {
             d.get_type().name().map(|n| n.to_string()).unwrap_or_default()
         ))
     })?;
-    crate::properties::check_density(value)?;
+    check_density(value)?;
     Ok(Density::plain(value))
 }
 
@@ -56,5 +56,14 @@ pub fn density_or_one(d: Option<&Bound<'_, PyAny>>) -> PyResult<Density> {
     match d.filter(|d| !d.is_none()) {
         Some(d) => density(d),
         None => Ok(Density::plain(1.0)),
+    }
+}
+
+/// Checks a density as the command does: positive and finite.
+pub fn check_density(density: f64) -> PyResult<()> {
+    if density.is_finite() && density > 0.0 {
+        Ok(())
+    } else {
+        Err(bad_argument(format!("density must be a positive number; got {density}")))
     }
 }
