@@ -1,7 +1,7 @@
 //! `meshvol below`: the part of each file's solid under a plane: displaced volume,
 //! centre of buoyancy, wetted area, waterplane; or the level that holds a volume.
 
-use crate::driver::{self, Output};
+use crate::driver;
 use crate::solid::{self, SolidArgs};
 use clap::Args;
 use meshvol_report::below::{below, BelowOptions, Waterline};
@@ -36,13 +36,8 @@ pub struct BelowArgs {
     /// Trim: the plane's normal turned by DEG degrees about y (after the heel).
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
     trim: f64,
-    /// Print one JSON object per file, one per line (`--format json`).
-    #[arg(long, conflicts_with = "format")]
-    json: bool,
-    /// What to print: `text` (the default), `json` (one object per file), or `csv` (one
-    /// table: a header, then a row per file, the JSON keys as columns).
-    #[arg(long, value_enum)]
-    format: Option<driver::Format>,
+    #[command(flatten)]
+    output: driver::OutputArgs,
     #[command(flatten)]
     units: crate::units::UnitArgs,
     #[command(flatten)]
@@ -77,7 +72,7 @@ pub fn run(args: BelowArgs, quiet: bool) -> ExitCode {
     let check = args.solid.check();
     let units = args.units.options();
     let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
-    driver::each(&inputs, Output::of(args.json, args.format, quiet), |path, progress| {
+    driver::each(&inputs, args.output.output(quiet), |path, progress| {
         let input = solid::read(path, check, progress)?;
         progress.stage("measuring", path);
         below(&input.subject(), &options)?.in_units(&units, input.source.unit)

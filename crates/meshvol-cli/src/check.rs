@@ -1,7 +1,7 @@
 //! `meshvol check`: can the volume be trusted? Exits 1 when a file does not bound a
 //! volume.
 
-use crate::driver::{self, Output};
+use crate::driver;
 use crate::input;
 use clap::Args;
 use meshvol_report::check::{check, CheckReport};
@@ -20,13 +20,8 @@ pub struct CheckArgs {
     files: Vec<PathBuf>,
     #[command(flatten)]
     walk: crate::walk::WalkArgs,
-    /// Print one JSON object per file, one per line (`--format json`).
-    #[arg(long, conflicts_with = "format")]
-    json: bool,
-    /// What to print: `text` (the default), `json` (one object per file), or `csv` (one
-    /// table: a header, then a row per file, the JSON keys as columns).
-    #[arg(long, value_enum)]
-    format: Option<driver::Format>,
+    #[command(flatten)]
+    output: driver::OutputArgs,
     /// Skip the search for crossing triangles (self-intersections; overlapping shells
     /// are then found only by the ray tests).
     #[arg(long)]
@@ -49,7 +44,7 @@ pub struct CheckArgs {
 pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
     let options = crate::solid::check_options(args.weld_tolerance, !args.no_intersections);
     let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
-    let output = Output::of(args.json, args.format, quiet);
+    let output = args.output.output(quiet);
     if args.html.is_some() && (inputs.files.len() != 1 || !inputs.problems.is_empty()) {
         eprintln!(
             "meshvol: error: --html writes the page of one file; {} given",

@@ -34,6 +34,27 @@ pub enum Format {
     Csv,
 }
 
+/// `--json` and `--format`, for the commands that print text, JSON lines or one CSV
+/// table.
+#[derive(clap::Args, Clone, Copy, Debug)]
+pub struct OutputArgs {
+    /// Print one JSON object per file (`intersect`: per pair), one per line (`--format
+    /// json`; the keys: docs/json.md).
+    #[arg(long, conflicts_with = "format")]
+    pub json: bool,
+    /// What to print: `text` (the default), `json` (one object per file or pair), or
+    /// `csv` (one table: a header, then a row per file or pair, the JSON keys as columns).
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+}
+
+impl OutputArgs {
+    /// The output these flags ask for.
+    pub fn output(&self, quiet: bool) -> Output {
+        Output::of(self.json, self.format, quiet)
+    }
+}
+
 impl Output {
     /// The output `--json` or `--format` asks for.
     pub fn of(json: bool, format: Option<Format>, quiet: bool) -> Output {

@@ -33,15 +33,8 @@ pub struct IntersectArgs {
     /// Stop refining once (upper − lower) ≤ REL · lower.
     #[arg(long, value_name = "REL", default_value_t = 1e-9, value_parser = crate::positive_finite, allow_hyphen_values = true)]
     tolerance: f64,
-    /// Print one JSON object per pair: lower, upper, volume, iou, dice, a_minus_b,
-    /// b_minus_a, volume_a, volume_b, union, centroid, inertia, warnings (docs/json.md);
-    /// `--format json`.
-    #[arg(long, conflicts_with = "format")]
-    json: bool,
-    /// What to print: `text` (the default), `json` (one object per pair), or `csv` (one
-    /// table: a header, then a row per pair, the JSON keys as columns).
-    #[arg(long, value_enum)]
-    format: Option<driver::Format>,
+    #[command(flatten)]
+    output: driver::OutputArgs,
     #[command(flatten)]
     units: crate::units::UnitArgs,
     #[command(flatten)]
@@ -50,7 +43,7 @@ pub struct IntersectArgs {
 
 /// Runs the command: one report for the pair, or one per overlapping pair.
 pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
-    let output = Output::of(args.json, args.format, quiet);
+    let output = args.output.output(quiet);
     let files = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
     if args.pairs {
         return pairs(&args, &files, output);

@@ -2,10 +2,10 @@
 //! with the union, the differences, IoU and Dice that follow from it, widened by the
 //! caps' uncertainty, with the warnings that say when it is not certified.
 
-use crate::number::{count, num};
+use crate::number::num;
 use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::{joined_names, Subject};
-use crate::union::{interval_text, uncertified, Interval};
+use crate::union::{footer_text, grid_text, interval_text, uncertified, Interval};
 use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::assembly::Affine;
@@ -322,7 +322,6 @@ impl Report for IntersectReport {
 
     fn text(&self) -> String {
         let mut s = String::new();
-        let [nx, ny, nz] = self.grid;
         let _ = writeln!(s, "intersection of {} and {}", self.files[0], self.files[1]);
         let (bounds, why) = ((self.lower, self.upper), self.uncertified_reason.as_deref());
         interval_text(&mut s, self.volume, bounds, why, self.volume_uncertainty);
@@ -356,15 +355,9 @@ impl Report for IntersectReport {
             let _ =
                 writeln!(s, "  method           boundary (each face's part inside the other body)");
         } else {
-            let _ = writeln!(
-                s,
-                "  grid             {nx}×{ny}×{nz}, {} refined, {} resolved exactly",
-                count(self.cells_refined, "cell", "cells"),
-                self.cells_resolved_exactly
-            );
+            grid_text(&mut s, self.grid, self.cells_refined, self.cells_resolved_exactly);
         }
-        let _ = writeln!(s, "  time             {:.3} s", self.seconds);
-        s.push_str(&crate::units::units_text(&self.units, &self.mass));
+        footer_text(&mut s, self.seconds, &self.units, &self.mass);
         s
     }
 }

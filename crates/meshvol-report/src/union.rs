@@ -267,7 +267,6 @@ impl Report for UnionReport {
 
     fn text(&self) -> String {
         let mut s = String::new();
-        let [nx, ny, nz] = self.grid;
         let _ = writeln!(
             s,
             "union of {}: {}",
@@ -277,16 +276,31 @@ impl Report for UnionReport {
         let (bounds, why) = ((self.lower, self.upper), self.uncertified_reason.as_deref());
         interval_text(&mut s, self.volume, bounds, why, self.volume_uncertainty);
         let _ = writeln!(s, "  sum of volumes   {}", num(self.sum_of_volumes, 15));
-        let _ = writeln!(
-            s,
-            "  grid             {nx}×{ny}×{nz}, {} refined, {} resolved exactly",
-            count(self.cells_refined, "cell", "cells"),
-            self.cells_resolved_exactly
-        );
-        let _ = writeln!(s, "  time             {:.3} s", self.seconds);
-        s.push_str(&crate::units::units_text(&self.units, &self.mass));
+        grid_text(&mut s, self.grid, self.cells_refined, self.cells_resolved_exactly);
+        footer_text(&mut s, self.seconds, &self.units, &self.mass);
         s
     }
+}
+
+/// The grid line of `union`'s and `intersect`'s text: its cells, how many were refined
+/// and how many resolved exactly.
+pub(crate) fn grid_text(s: &mut String, [nx, ny, nz]: [usize; 3], refined: usize, exact: usize) {
+    let refined = count(refined, "cell", "cells");
+    let _ = writeln!(
+        s,
+        "  grid             {nx}×{ny}×{nz}, {refined} refined, {exact} resolved exactly"
+    );
+}
+
+/// The last lines of `union`'s and `intersect`'s text: the time, the units and mass.
+pub(crate) fn footer_text(
+    s: &mut String,
+    seconds: f64,
+    units: &Option<UnitNames>,
+    mass: &Option<Mass>,
+) {
+    let _ = writeln!(s, "  time             {seconds:.3} s");
+    s.push_str(&crate::units::units_text(units, mass));
 }
 
 impl Quantities for UnionReport {
