@@ -107,7 +107,7 @@ fn decompressed_points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadErro
 /// that is a mesh format; else (no extension, or another one) text points.
 fn points(path: &Path, bytes: Bytes) -> Result<PointCloud, ReadError> {
     let mesh = !is_text_points(path)
-        && (crate::has_mesh_extension(path) || crate::is_mesh_content(&bytes));
+        && (crate::family::has_mesh_extension(path) || crate::family::is_mesh_content(&bytes));
     if !mesh {
         // Old Mac files end lines with CR alone; the lines are split at LF.
         let lf = text::lf_line_ends(&bytes);
