@@ -13,7 +13,7 @@ use meshvol::surface::Joined;
 use meshvol::{mass_properties, Point, Surface};
 use meshvol_io::grid_out::{self, CellValues, Slice};
 use meshvol_report::grid::{
-    check_memory, choose, layer_holding, reported_summary, GridReport, GridRun, Spacing,
+    check_memory, choose, layer_holding, reported_summary, GridAsked, GridReport, GridRun, Spacing,
 };
 use meshvol_report::reported_cells;
 use meshvol_report::subject::{union_bodies, Subject};
@@ -270,25 +270,18 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     } else {
         mp.signed_volume
     };
-    let mut run = GridRun {
-        files: files.iter().map(|(name, _)| name.to_string()).collect(),
-        bounds_from,
-        mesh_volume: scale.volume(mesh_volume),
-        union: args.union,
-        bodies: bodies.len(),
-        columns_unresolved: 0,
-        seconds: 0.0,
+    let asked = GridAsked {
+        union: args.union.then_some(bodies.len()),
         out: args.out.as_ref().map(|p| p.display().to_string()),
-        chunks: None,
         fraction: args.fraction,
-        units: scale.names(),
-        mass: None,
         png: args.png.as_ref().map(|p| p.display().to_string()),
         moments: args.moments,
         second_moments: args.second_moments,
         face_centroids: args.face_centroids,
-        warnings: warnings.into_iter().chain(unit_warnings).collect(),
     };
+    let names = files.iter().map(|(name, _)| name.to_string()).collect();
+    let warnings = warnings.into_iter().chain(unit_warnings);
+    let mut run = GridRun::new(names, bounds_from, mesh_volume, asked, &scale, warnings);
     let out_kind = args.out.as_deref().and_then(extension);
     if args.moments && !matches!(out_kind.as_deref(), Some("npz" | "vti" | "zarr")) {
         return Err("--moments writes several arrays: give --out cells.npz, cells.vti or \

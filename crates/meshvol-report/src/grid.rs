@@ -163,6 +163,55 @@ pub struct GridRun {
     pub warnings: Vec<String>,
 }
 
+/// What a grid run was asked to write: the command's output flags (Python's and the
+/// page's arguments).
+#[derive(Clone, Debug, Default)]
+pub struct GridAsked {
+    /// The union's cells, of this many bodies (`--union`).
+    pub union: Option<usize>,
+    pub out: Option<String>,
+    pub fraction: bool,
+    pub png: Option<String>,
+    pub moments: bool,
+    pub second_moments: bool,
+    pub face_centroids: bool,
+}
+
+impl GridRun {
+    /// A run over `files` (each file's name), its grid's bounds from `bounds_from`, of
+    /// meshes whose volume is `mesh_volume` in the files' units: that volume converted
+    /// and its units named by `scale`, the inputs' `warnings` followed by the units'
+    /// own. The time, the mass and the unresolved columns are the run's to fill in.
+    pub fn new(
+        files: Vec<String>,
+        bounds_from: &'static str,
+        mesh_volume: f64,
+        asked: GridAsked,
+        scale: &Scale,
+        warnings: impl IntoIterator<Item = String>,
+    ) -> GridRun {
+        GridRun {
+            files,
+            bounds_from,
+            mesh_volume: scale.volume(mesh_volume),
+            union: asked.union.is_some(),
+            bodies: asked.union.unwrap_or(0),
+            columns_unresolved: 0,
+            seconds: 0.0,
+            out: asked.out,
+            chunks: None,
+            fraction: asked.fraction,
+            units: scale.names(),
+            mass: None,
+            png: asked.png,
+            moments: asked.moments,
+            second_moments: asked.second_moments,
+            face_centroids: asked.face_centroids,
+            warnings: warnings.into_iter().collect(),
+        }
+    }
+}
+
 /// The summary of a grid. Field names are the JSON keys.
 #[derive(Clone, Debug, Serialize)]
 pub struct GridReport {

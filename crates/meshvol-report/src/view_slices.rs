@@ -15,7 +15,7 @@
 //! [`MAX_OUTLINE_POINTS`] points a level, and at most 64³ = 262,144 cells, each an
 //! integer round(255 × fraction) (a few bytes of JSON each; about 1 MiB at most).
 
-use crate::grid::{layer_holding, reported_summary, GridReport, GridRun};
+use crate::grid::{layer_holding, reported_summary, GridAsked, GridReport, GridRun};
 use crate::quantities::Quantities;
 use crate::reported_cells;
 use crate::section::{section, SectionReport};
@@ -81,28 +81,16 @@ pub fn slices<S: Surface>(
     let volumes = cell_volumes(&measured, &grid).map_err(|e| e.to_string())?;
     let name = subject.source.name().to_string();
     let (scale, unit_warnings) = Scale::resolve_all(units, &[(&name, subject.source.unit)])?;
-    let run = GridRun {
-        files: vec![name.clone()],
-        bounds_from: "mesh",
-        mesh_volume: scale.volume(mp.signed_volume),
-        union: false,
-        bodies: 0,
-        columns_unresolved: 0,
-        seconds: start.elapsed().as_secs_f64(),
-        out: None,
-        chunks: None,
-        fraction: false,
-        png: None,
-        moments: false,
-        second_moments: false,
-        face_centroids: false,
-        units: None,
-        mass: None,
-        warnings: input_warnings(std::slice::from_ref(subject))
-            .into_iter()
-            .chain(unit_warnings)
-            .collect(),
-    };
+    let warnings = input_warnings(std::slice::from_ref(subject)).into_iter().chain(unit_warnings);
+    let mut run = GridRun::new(
+        vec![name.clone()],
+        "mesh",
+        mp.signed_volume,
+        GridAsked::default(),
+        &scale,
+        warnings,
+    );
+    run.seconds = start.elapsed().as_secs_f64();
     let full = grid.cell_volume();
     let fractions = volumes.iter().map(|v| (255.0 * (v / full)).round() as i32).collect();
     // The cells converted as the command's grid converts them: the same total.
