@@ -98,6 +98,10 @@ pub fn measure(
         inflated_bytes: budgets.inflated_bytes,
         placements: budgets.placements,
         faces: budgets.faces,
+        // The server's own memory, as the command's: an upload too large for it is
+        // refused before it is parsed, not a server the system kills.
+        memory: meshvol_io::memory::available_memory(),
+        checked: true,
     };
     let loaded = meshvol_io::read_bytes_within(&path, bytes, &limits).map_err(|e| {
         let message = unfold(e.to_string());
