@@ -6,6 +6,7 @@
 //! in for the machine's memory.
 
 mod common;
+use common::server::Server;
 use common::{f, p, write};
 use std::path::Path;
 use std::process::{Command, Output};
@@ -118,4 +119,26 @@ fn a_file_that_fits_is_measured_and_one_byte_less_is_refused() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(stderr.contains("box.stl: ") && stderr.contains("12 triangles"), "{stderr}");
     }
+}
+
+#[test]
+fn the_server_answers_503_for_an_upload_too_large_for_its_memory() {
+    let sample = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples/flanged-bushing.stl");
+    let dir = tempfile::tempdir().unwrap();
+    let stl = write(dir.path(), "box.stl", box_stl());
+    // The box's estimate exactly: the box fits, the sample does not.
+    let limit = estimate(&stl, CHECKED).to_string();
+    let server = Server::start_in_env(&[], &[("MESHVOL_MEMORY_LIMIT", &limit)]);
+    let (status, body) = server.post("/api/check?name=box.stl", &box_stl());
+    assert_eq!(status, 200, "{body}");
+    let report: serde_json::Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(f(&report["solid_volume"]), 24.0);
+    let (status, body) = server.post("/api/check?name=part.stl", &std::fs::read(&sample).unwrap());
+    assert_eq!(status, 503, "{body}");
+    let report: serde_json::Value = serde_json::from_str(&body).unwrap();
+    let error = report["error"].as_str().unwrap();
+    let triangles = declared(&sample);
+    assert!(error.starts_with(&format!("part.stl: reading and checking {triangles} triangles")));
+    let (need, rounding) = figure(between(error, "needs about ", ";"));
+    assert!((need - estimate(&sample, CHECKED) as f64).abs() <= rounding, "{error}");
 }

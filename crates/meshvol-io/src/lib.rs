@@ -454,7 +454,7 @@ fn load(
             return Err(ReadError::of_file(path, what));
         }
     };
-    memory::fits(family, &bytes, limits).map_err(with_path)?;
+    memory::fits(family, &bytes, limits.memory, limits.checked).map_err(with_path)?;
     let mut objects = Vec::new();
     let mut bodies = Vec::new();
     let mut unit = None;

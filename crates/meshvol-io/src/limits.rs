@@ -7,8 +7,7 @@
 
 pub use crate::error::Budget;
 use crate::error::ParseError;
-use crate::memory::available_memory;
-use crate::source::stream_limit;
+use crate::source::{available_memory, stream_limit};
 
 /// The limits of one read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

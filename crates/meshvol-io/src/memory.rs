@@ -18,30 +18,12 @@
 //! nothing is refused. The grid's estimate (`meshvol grid`) compares with the same
 //! figure.
 
-use crate::error::ParseError;
+use crate::error::{Budget, ParseError};
 use crate::family::Family;
-use crate::{gltf, stl, Limits};
+use crate::{gltf, stl};
 use meshvol::grid::bytes_text;
 
-/// The environment variable that sets [`available_memory`], in bytes.
-pub const MEMORY_LIMIT_VARIABLE: &str = "MESHVOL_MEMORY_LIMIT";
-
-/// The memory a read may use: `MESHVOL_MEMORY_LIMIT` bytes when it is set to a number,
-/// else what /proc/meminfo calls available (free memory and the caches the system can
-/// drop), where there is one; `None` elsewhere.
-pub fn available_memory() -> Option<u128> {
-    match std::env::var(MEMORY_LIMIT_VARIABLE).ok().and_then(|v| v.trim().parse().ok()) {
-        Some(limit) => Some(limit),
-        None => meminfo_available(),
-    }
-}
-
-fn meminfo_available() -> Option<u128> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
+pub use crate::source::{available_memory, MEMORY_LIMIT_VARIABLE};
 
 /// What a triangle costs in one layout: the fewest file bytes it takes as exporters
 /// write it, and the heap's bytes at the peak of reading the file, and of reading and
@@ -121,15 +103,21 @@ pub(crate) fn estimate(family: Family, bytes: &[u8], checked: bool) -> Estimate 
     Estimate { triangles, exact, bytes: triangles * per_triangle + len }
 }
 
-/// An error unless reading `bytes` of `family` (and checking it, as `limits` says) fits
-/// in the memory `limits` allows: called before the file is parsed.
-pub(crate) fn fits(family: Family, bytes: &[u8], limits: &Limits) -> Result<(), ParseError> {
-    let Some(available) = limits.memory else { return Ok(()) };
-    let need = estimate(family, bytes, limits.checked);
+/// An error unless reading `bytes` of `family` (and, if `checked`, checking it) fits in
+/// `available` bytes (`None`: unknown, not refused): called before the file is parsed.
+/// (The read's [`crate::Limits`] give both.)
+pub(crate) fn fits(
+    family: Family,
+    bytes: &[u8],
+    available: Option<u128>,
+    checked: bool,
+) -> Result<(), ParseError> {
+    let Some(available) = available else { return Ok(()) };
+    let need = estimate(family, bytes, checked);
     if need.bytes <= available {
         return Ok(());
     }
-    let doing = if limits.checked { "reading and checking" } else { "reading" };
+    let doing = if checked { "reading and checking" } else { "reading" };
     let triangles = if need.exact {
         format!("{} triangles", need.triangles)
     } else {
@@ -145,5 +133,5 @@ pub(crate) fn fits(family: Family, bytes: &[u8], limits: &Limits) -> Result<(), 
         bytes_text(need.bytes),
         bytes_text(available)
     );
-    Err(ParseError::new(None, message))
+    Err(ParseError::new(None, message).over(Budget::Memory))
 }
