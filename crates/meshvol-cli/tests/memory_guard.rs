@@ -15,6 +15,10 @@ use std::process::{Command, Output};
 /// (`--no-check`).
 const CHECKED: u128 = 200;
 const UNCHECKED: u128 = 8;
+/// docs/security.md: an OBJ's fewest file bytes a triangle, and its bytes a triangle read
+/// and checked.
+const OBJ_FILE: u128 = 30;
+const OBJ_CHECKED: u128 = 200;
 
 fn with_limit(limit: u128, args: &[&str]) -> Output {
     let out = Command::new(common::bin())
@@ -104,6 +108,24 @@ fn a_file_too_large_is_refused_with_the_estimate_and_the_figure_available() {
 }
 
 #[test]
+fn a_text_file_is_estimated_from_its_size() {
+    let sample = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples/barge.obj");
+    let size = u128::from(std::fs::metadata(&sample).unwrap().len());
+    let triangles = size.div_ceil(OBJ_FILE);
+    let out = with_limit(1000, &["check", p(&sample)]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("barge.obj: reading and checking a "), "{stderr}");
+    assert!(
+        stderr.contains(&format!(" OBJ (up to {triangles} triangles) needs about")),
+        "{stderr}"
+    );
+    let (need, rounding) = figure(between(&stderr, "needs about ", ";"));
+    let expected = (triangles * OBJ_CHECKED + size) as f64;
+    assert!((need - expected).abs() <= rounding, "{need} for {expected}: {stderr}");
+}
+
+#[test]
 fn a_file_that_fits_is_measured_and_one_byte_less_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let stl = write(dir.path(), "box.stl", box_stl());
@@ -141,4 +163,19 @@ fn the_server_answers_503_for_an_upload_too_large_for_its_memory() {
     assert!(error.starts_with(&format!("part.stl: reading and checking {triangles} triangles")));
     let (need, rounding) = figure(between(error, "needs about ", ";"));
     assert!((need - estimate(&sample, CHECKED) as f64).abs() <= rounding, "{error}");
+}
+
+#[test]
+fn a_grid_is_held_to_the_same_figure() {
+    // 10⁶ cells of one float64 each: 8,000,000 bytes, above a limit of 10⁶ bytes (976.6
+    // KiB) that the file itself (24 triangles) fits in.
+    let sample = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples/part.obj");
+    let dir = tempfile::tempdir().unwrap();
+    let out_file = dir.path().join("cells.npy");
+    let args = ["grid", p(&sample), "--cells", "100,100,100", "--out", p(&out_file)];
+    let out = with_limit(1_000_000, &args);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("has 1000000 cells") && stderr.contains("; 976.6 KiB is available"));
+    assert!(!out_file.exists());
 }
