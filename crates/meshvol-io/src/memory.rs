@@ -28,8 +28,9 @@ pub use crate::source::{available_memory, MEMORY_LIMIT_VARIABLE};
 /// What a triangle costs in one layout: the fewest file bytes it takes as exporters
 /// write it, and the heap's bytes at the peak of reading the file, and of reading and
 /// checking it (the file's own bytes are counted apart). Measured by
-/// tests/memory_estimate.rs on a sphere of 100,800 triangles, each figure about 1.3 to
-/// 1.9 times what was measured (in brackets): the heap counted there is not all of the
+/// tests/memory_estimate.rs on a sphere of 100,800 triangles (in brackets after each:
+/// file bytes, heap read, heap checked): `file` a little under what was measured, the
+/// others 1.4 to 1.9 times what was measured, since the heap counted there is not all of the
 /// process's resident memory (a checked binary STL of 5 to 20 million triangles peaks
 /// at 206 to 239 bytes a triangle resident, issue 53, against 250 estimated here), and a
 /// vector growing by doubling may hold more at another size. Text with fewer digits
@@ -42,7 +43,7 @@ struct Cost {
 
 /// A binary STL, read in place: its triangle count is its header's, and `file` the size
 /// of its records.
-const BINARY_STL: Cost = Cost { file: 50, read: 8, checked: 200 }; // (0.2, 107)
+const BINARY_STL: Cost = Cost { file: 50, read: 8, checked: 200 }; // (50, 0.2, 107)
 const ASCII_STL: Cost = Cost { file: 140, read: 250, checked: 280 }; // (153.5, 164, 191)
 const OBJ: Cost = Cost { file: 30, read: 150, checked: 200 }; // (34.6, 103, 131)
 const OFF: Cost = Cost { file: 30, read: 70, checked: 200 }; // (33.6, 44, 131)
@@ -78,7 +79,6 @@ fn ply_is_ascii(bytes: &[u8]) -> bool {
 }
 
 /// What reading (and checking) a file is estimated to need.
-#[derive(Debug, PartialEq, Eq)]
 pub(crate) struct Estimate {
     /// The triangles: a binary STL's count, else the most a file of its size holds.
     pub triangles: u128,
