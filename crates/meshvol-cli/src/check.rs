@@ -55,7 +55,7 @@ pub fn run(args: CheckArgs, quiet: bool) -> ExitCode {
     driver::each(&inputs, output, |path, progress| {
         let name = path.display().to_string();
         progress.stage("reading", path);
-        let loaded = input::load(path)?;
+        let loaded = input::load(path, true)?;
         progress.stage("checking", path);
         let kernel = progress.kernel(format!("checking {name}"));
         let c = check_loaded(&name, &loaded, &options, &kernel).map_err(|e| e.to_string())?;

@@ -88,7 +88,7 @@ pub fn run(args: CutFillArgs, quiet: bool) -> ExitCode {
 
 fn read(path: &Path, progress: &Progress) -> Result<(Source, meshvol_io::LoadedSurface), String> {
     progress.stage("reading", path);
-    let loaded = input::load(path)?;
+    let loaded = input::load(path, false)?;
     let name = path.display().to_string();
     if loaded.face_count() == 0 {
         return Err(format!("{name}: {}", meshvol_report::volume::NO_FACES));

@@ -39,12 +39,16 @@ fn stdin_bytes() -> Result<Vec<u8>, String> {
         .map_err(|e| format!("-: cannot read standard input: {e}"))
 }
 /// Reads a mesh from a file, or from standard input for `-` (all of it, then the format
-/// from its content).
-pub fn load(path: &Path) -> Result<Loaded, String> {
-    if is_stdin(path) {
-        return meshvol_io::read_bytes(path, stdin_bytes()?).map_err(|e| e.to_string());
-    }
-    meshvol_io::read(path).map_err(|e| e.to_string())
+/// from its content). A file whose reading (and, if `checked`, checking) would not fit
+/// in the memory available is refused before it is parsed ([`meshvol_io::memory`]).
+pub fn load(path: &Path, checked: bool) -> Result<Loaded, String> {
+    let limits = meshvol_io::Limits { checked, ..meshvol_io::Limits::from_env() };
+    let read = if is_stdin(path) {
+        meshvol_io::read_bytes_within(path, stdin_bytes()?, &limits)
+    } else {
+        meshvol_io::read_file_within(path, &limits)
+    };
+    read.map_err(|e| e.to_string())
 }
 
 /// Reads polygons from a file, or from standard input for `-`.

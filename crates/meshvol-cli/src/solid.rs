@@ -51,7 +51,7 @@ pub fn read(
 ) -> Result<Checked, String> {
     progress.stage("reading", path);
     let name = path.display().to_string();
-    let loaded = input::load(path)?;
+    let loaded = input::load(path, options.is_some())?;
     refuse_empty(&name, &loaded)?;
     if options.is_some() {
         progress.stage("checking", path);

@@ -15,6 +15,8 @@ pub enum Budget {
     InflatedBytes,
     Placements,
     Faces,
+    /// The memory available ([`crate::memory`]).
+    Memory,
 }
 
 /// Where in a file a [`ReadError`] was found.

@@ -70,6 +70,7 @@ pub mod geojson;
 pub mod gltf;
 pub mod grid_out;
 pub mod limits;
+pub mod memory;
 pub mod obj;
 pub mod off;
 pub mod ply;
@@ -338,8 +339,14 @@ impl Loaded {
 /// (`.gz`, `.bz2`, `.zst`, `.zip`; without an extension, by its first bytes) is
 /// decompressed first, within the stream limit ([`compressed`]).
 pub fn read(path: &Path) -> Result<Loaded, ReadError> {
+    read_file_within(path, &Limits::from_env())
+}
+
+/// [`read`] within `limits` instead of the command's (a read that no check follows needs
+/// less memory: `checked: false`).
+pub fn read_file_within(path: &Path, limits: &Limits) -> Result<Loaded, ReadError> {
     let bytes = Bytes::open(path).map_err(|e| ReadError::of_file(path, e.to_string()))?;
-    read_within(path, bytes, &Limits::from_env())
+    read_within(path, bytes, limits)
 }
 
 /// Reads a mesh from bytes already in memory, as [`read`] would read a file at `path`
@@ -447,6 +454,7 @@ fn load(
             return Err(ReadError::of_file(path, what));
         }
     };
+    memory::fits(family, &bytes, limits.memory, limits.checked).map_err(with_path)?;
     let mut objects = Vec::new();
     let mut bodies = Vec::new();
     let mut unit = None;

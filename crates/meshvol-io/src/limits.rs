@@ -1,12 +1,13 @@
 //! What one read may cost, checked before the work it bounds: the bytes a compressed
 //! input (or a 3MF part) inflates to, the placed copies a 3MF build or a glTF scene
-//! expands to, and the faces of that expansion. The command reads with
+//! expands to, the faces of that expansion, and the memory of reading (and checking)
+//! the file ([`crate::memory`]). The command reads with
 //! [`Limits::from_env`]; a server reading uploads sets its own per request
 //! ([`crate::read_bytes_within`]), and an error past one names it ([`Budget`]).
 
 pub use crate::error::Budget;
 use crate::error::ParseError;
-use crate::source::stream_limit;
+use crate::source::{available_memory, stream_limit};
 
 /// The limits of one read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,6 +19,11 @@ pub struct Limits {
     pub placements: u64,
     /// The most triangles the placed copies expand to.
     pub faces: u64,
+    /// The bytes of memory the read, and the check after it, may use: a file estimated
+    /// to need more is refused before it is parsed. `None` where unknown: not refused.
+    pub memory: Option<u128>,
+    /// Whether the file is checked after it is read: the check's memory is counted.
+    pub checked: bool,
 }
 
 /// The placed copies read without another limit: a 6 KB 3MF can place a part this
@@ -26,9 +32,17 @@ const MAX_PLACEMENTS: u64 = 10_000_000;
 
 impl Limits {
     /// The command's limits: [`stream_limit`] inflated bytes (`MESHVOL_MAX_STREAM_BYTES`,
-    /// 2 GiB), 10⁷ placements, and faces bounded by the bytes only.
+    /// 2 GiB), 10⁷ placements, faces bounded by the bytes only, and the memory available
+    /// ([`available_memory`]: `MESHVOL_MEMORY_LIMIT`, else the system's) for a read that
+    /// a check follows.
     pub fn from_env() -> Limits {
-        Limits { inflated_bytes: stream_limit(), placements: MAX_PLACEMENTS, faces: u64::MAX }
+        Limits {
+            inflated_bytes: stream_limit(),
+            placements: MAX_PLACEMENTS,
+            faces: u64::MAX,
+            memory: available_memory(),
+            checked: true,
+        }
     }
 
     /// An error unless an expansion into `placements` copies of `faces` triangles in all

@@ -3,7 +3,8 @@
 //!
 //! Streams (pipes, standard input) have no size to check before reading, and may never
 //! end: they are read up to [`stream_limit`] bytes and refused beyond it. Devices
-//! (`/dev/zero`, `/dev/random`) are refused outright.
+//! (`/dev/zero`, `/dev/random`) are refused outright. What the bytes may cost in memory
+//! is bounded by [`available_memory`] ([`crate::memory`] estimates it).
 
 use std::fs::File;
 use std::io::Read;
@@ -96,4 +97,24 @@ impl Deref for Bytes {
             Bytes::Owned(v) => v,
         }
     }
+}
+
+/// The environment variable that sets [`available_memory`], in bytes.
+pub const MEMORY_LIMIT_VARIABLE: &str = "MESHVOL_MEMORY_LIMIT";
+
+/// The memory a read may use: `MESHVOL_MEMORY_LIMIT` bytes when it is set to a number,
+/// else what /proc/meminfo calls available (free memory and the caches the system can
+/// drop), where there is one; `None` elsewhere.
+pub fn available_memory() -> Option<u128> {
+    match std::env::var(MEMORY_LIMIT_VARIABLE).ok().and_then(|v| v.trim().parse().ok()) {
+        Some(limit) => Some(limit),
+        None => meminfo_available(),
+    }
+}
+
+fn meminfo_available() -> Option<u128> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }

@@ -76,7 +76,8 @@ fn limits_are_checked_before_the_build_is_expanded() {
     );
     let build = r#"<item objectid="1"/><item objectid="2"/><item objectid="3"/>"#;
     let bytes = three_mf(&model("", &resources, build));
-    let within = Limits { inflated_bytes: 1 << 20, placements: 8, faces: 60 };
+    let within =
+        Limits { inflated_bytes: 1 << 20, placements: 8, faces: 60, memory: None, checked: true };
     let read = |limits: Limits| {
         meshvol_io::read_bytes_within(std::path::Path::new("a.3mf"), bytes.clone(), &limits)
     };

@@ -25,7 +25,9 @@ fn measure_one(path: &Path, check: bool, options: &VolumeOptions, timings: bool)
     let clock = timings.then(Clock::new);
     let report = (|| -> Result<String, String> {
         crate::timings::stage(clock.as_ref(), "reading");
-        let loaded = meshvol_io::read(path).map_err(|e| e.to_string())?;
+        // Within the memory of the reading, and of the check only where one follows.
+        let limits = meshvol_io::Limits { checked: check, ..meshvol_io::Limits::from_env() };
+        let loaded = meshvol_io::read_file_within(path, &limits).map_err(|e| e.to_string())?;
         refuse_empty(&name, &loaded)?;
         let check_with = check.then(CheckOptions::default);
         if check {

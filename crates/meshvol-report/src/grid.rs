@@ -7,6 +7,7 @@ use crate::Report;
 use meshvol::accumulate::CompensatedSum;
 use meshvol::grid::{bytes_text, occupancy, Grid, GridError, Occupancy};
 use meshvol::{Bounds, Point};
+use meshvol_io::memory::available_memory;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::fmt::Write;
@@ -73,17 +74,11 @@ pub fn layer_holding(grid: &Grid, axis: usize, value: f64) -> Option<usize> {
     Some(k)
 }
 
-/// Memory the machine has available, from /proc/meminfo where there is one.
-fn available_memory() -> Option<u128> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
-
 /// Refuses `counts` cells held in memory at once (`arrays` f64 values per cell) where
 /// they would not fit in the memory available, naming what they would need: an
-/// allocation the system overcommits would kill the process later instead. `what` names
+/// allocation the system overcommits would kill the process later instead. The memory
+/// available is the readers' ([`available_memory`]: `MESHVOL_MEMORY_LIMIT`, else the
+/// system's), so a grid and a file are held to the same figure. `what` names
 /// the cells: `grid`, `block`, or a `chunk row` of a grid written chunk by chunk.
 pub fn check_memory(counts: [usize; 3], arrays: u128, what: &str) -> Result<(), String> {
     let cells = counts.iter().map(|&n| n as u128).product::<u128>();

@@ -191,6 +191,9 @@ async fn handle(
                 error(StatusCode::UNPROCESSABLE_ENTITY, Some(&shown), &e)
             }
             Ok(Err(Failure::Over { budget, message })) => over_budget(&shown, budget, &message),
+            Ok(Err(Failure::NoMemory(message))) => {
+                error(StatusCode::SERVICE_UNAVAILABLE, Some(&shown), &message)
+            }
             Ok(Err(Failure::Cancelled)) => {
                 error(StatusCode::SERVICE_UNAVAILABLE, Some(&shown), "the server is stopping")
             }

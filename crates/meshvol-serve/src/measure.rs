@@ -64,17 +64,23 @@ pub enum Failure {
     Unreadable(String),
     /// It goes past a budget, named by its flag.
     Over { budget: &'static str, message: String },
+    /// Reading and checking it would need more memory than the server has available:
+    /// another time, or another server, may have it.
+    NoMemory(String),
     /// `hook` said the answer is no longer wanted.
     Cancelled,
 }
 
-/// The flag of a reader's limit.
-fn flag(budget: Budget) -> &'static str {
-    match budget {
+/// Why a read was refused: past one of the budgets that the request's flags set, or the
+/// memory the server has.
+fn refused(budget: Budget, message: String) -> Failure {
+    let budget = match budget {
         Budget::InflatedBytes => "--max-inflated",
         Budget::Placements => "--max-placements",
         Budget::Faces => "--max-faces",
-    }
+        Budget::Memory => return Failure::NoMemory(message),
+    };
+    Failure::Over { budget, message }
 }
 
 /// Reads `bytes`, uploaded as `name` (a plain file name), as if it were a file of that
@@ -98,11 +104,15 @@ pub fn measure(
         inflated_bytes: budgets.inflated_bytes,
         placements: budgets.placements,
         faces: budgets.faces,
+        // The server's own memory, as the command's: an upload too large for it is
+        // refused before it is parsed, not a server the system kills.
+        memory: meshvol_io::memory::available_memory(),
+        checked: true,
     };
     let loaded = meshvol_io::read_bytes_within(&path, bytes, &limits).map_err(|e| {
         let message = unfold(e.to_string());
         match e.budget {
-            Some(budget) => Failure::Over { budget: flag(budget), message },
+            Some(budget) => refused(budget, message),
             None => Failure::Unreadable(message),
         }
     })?;
