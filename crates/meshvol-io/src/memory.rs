@@ -129,7 +129,8 @@ pub(crate) fn fits(
         )
     };
     let message = format!(
-        "{doing} {triangles} needs about {}; {} is available",
+        "{doing} {triangles} needs about {}; {} is available (the estimate errs high: \
+         {MEMORY_LIMIT_VARIABLE}=BYTES sets the figure available, to try anyway)",
         bytes_text(need.bytes),
         bytes_text(available)
     );
