@@ -49,12 +49,13 @@ crate::dict::report_methods!(PyBelow, "Below");
 #[pymethods]
 impl PyMesh {
     /// The part of the solid below a plane (`meshvol below`): plane=(nx, ny, nz, d) for
-    /// the part where n·x <= d; or volume=V for the level along direction (default z)
+    /// the part where n·x <= d, or any plane `meshvol below --plane` takes ('z=H',
+    /// 'nx,ny,nz,d', 'px,py,pz,nx,ny,nz', or [point, normal]); or volume=V for the level along direction (default z)
     /// that holds V below it (a draft). heel and trim turn the normal by that many
     /// degrees about x, then about y. check=True (the default) measures the checked
     /// solid, as every command does.
     ///
-    /// plane and direction take any sequence or NumPy array of 4 and 3 numbers. units
+    /// plane and direction take any sequence or NumPy array of 4 (or (2, 3)) and 3 numbers. units
     /// and density as the command's --units and --density ('mm:m', '1025kg/m3': the
     /// displaced mass). timings=True adds `timings`, as in mass_properties.
     #[pyo3(
@@ -77,15 +78,16 @@ impl PyMesh {
     ) -> PyResult<PyBelow> {
         let unit_options = crate::units::options(units, density)?;
         require_faces(&self.mesh)?;
-        let plane = plane
-            .map(|p| crate::convert::float_argument(p, "plane", &[4], "(nx, ny, nz, d)"))
-            .transpose()?;
+        let plane = plane.map(crate::convert::plane_arg).transpose()?;
         let direction = match direction {
             Some(d) => crate::convert::vector3(d, "direction")?,
             None => [0.0, 0.0, 1.0],
         };
         let waterline = match (plane, volume) {
-            (Some(p), None) => Waterline::Plane { normal: [p[0], p[1], p[2]], d: p[3] },
+            (Some(p), None) => {
+                let (normal, d) = p.normal_offset();
+                Waterline::Plane { normal, d }
+            }
             (None, Some(volume)) => Waterline::Volume { direction, volume },
             _ => return Err(bad_argument("give plane=(nx, ny, nz, d) or volume=V, not both")),
         };

@@ -8,8 +8,9 @@
 //! booleans, complex numbers, strings and `longdouble` (which float64 would round) are
 //! refused with a message naming the dtype.
 
-use crate::errors::invalid;
+use crate::errors::{bad_argument, invalid};
 use meshvol::{Faces, MeshError};
+use meshvol_report::plane::PlaneArg;
 use numpy::{
     Element, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
@@ -353,4 +354,31 @@ pub fn vector3(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<[f64; 3]> {
 pub fn bounds(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<([f64; 3], [f64; 3])> {
     let v = float_argument(obj, what, &[2, 3], "((x0, y0, z0), (x1, y1, z1))")?;
     Ok(([v[0], v[1], v[2]], [v[3], v[4], v[5]]))
+}
+
+/// A plane argument: text in any form the command's `--plane` takes ('z=H', 'x=H',
+/// 'y=H', 'nx,ny,nz,d', 'px,py,pz,nx,ny,nz', read by its parser), a (2, 3) array-like (a
+/// point, a normal), or four numbers (nx, ny, nz, d) for n·x = d: what `Mesh.section`
+/// and `Mesh.below` take, as `meshvol section --plane` and `meshvol below --plane` do.
+pub fn plane_arg(plane: &Bound<'_, PyAny>) -> PyResult<PlaneArg> {
+    const FORM: &str =
+        "plane must be 'z=H' ('x=H', 'y=H'), [point, normal] (a (2, 3) array-like), \
+                        or (nx, ny, nz, d)";
+    let arg = if let Ok(text) = plane.extract::<String>() {
+        text.parse::<PlaneArg>().map_err(bad_argument)?
+    } else {
+        let numpy = plane.py().import("numpy")?;
+        let size: usize = numpy
+            .call_method1("size", (plane,))
+            .and_then(|s| s.extract())
+            .map_err(|_| bad_argument(FORM))?;
+        if size == 4 {
+            let v = crate::convert::float_argument(plane, "plane", &[4], "(nx, ny, nz, d)")?;
+            PlaneArg::NormalOffset { normal: [v[0], v[1], v[2]], d: v[3] }
+        } else {
+            let v = crate::convert::float_argument(plane, "plane", &[2, 3], "[point, normal]")?;
+            PlaneArg::PointNormal { point: [v[0], v[1], v[2]], normal: [v[3], v[4], v[5]] }
+        }
+    };
+    Ok(arg)
 }

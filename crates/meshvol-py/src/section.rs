@@ -6,9 +6,7 @@ use crate::errors::{bad_argument, mesh_error};
 use crate::mesh::PyMesh;
 use crate::properties::require_faces;
 use meshvol::polygon::Polygon;
-use meshvol::section::Plane;
 use meshvol::{Faces, Mesh, Surface};
-use meshvol_report::plane::PlaneArg;
 use meshvol_report::quantities::Quantities;
 use meshvol_report::section::{section, SectionReport};
 use numpy::ndarray::{arr2, Array2};
@@ -111,32 +109,6 @@ impl PySection {
 
 crate::dict::report_methods!(PySection, "Section");
 
-/// A plane argument: text in any form the command's `--plane` takes ('z=H', 'x=H',
-/// 'y=H', 'nx,ny,nz,d', 'px,py,pz,nx,ny,nz', read by its parser), a (2, 3) array-like (a
-/// point, a normal), or four numbers (nx, ny, nz, d) for n·x = d.
-fn plane_of(plane: &Bound<'_, PyAny>) -> PyResult<Plane> {
-    const FORM: &str =
-        "plane must be 'z=H' ('x=H', 'y=H'), [point, normal] (a (2, 3) array-like), \
-                        or (nx, ny, nz, d)";
-    let arg = if let Ok(text) = plane.extract::<String>() {
-        text.parse::<PlaneArg>().map_err(bad_argument)?
-    } else {
-        let numpy = plane.py().import("numpy")?;
-        let size: usize = numpy
-            .call_method1("size", (plane,))
-            .and_then(|s| s.extract())
-            .map_err(|_| bad_argument(FORM))?;
-        if size == 4 {
-            let v = crate::convert::float_argument(plane, "plane", &[4], "(nx, ny, nz, d)")?;
-            PlaneArg::NormalOffset { normal: [v[0], v[1], v[2]], d: v[3] }
-        } else {
-            let v = crate::convert::float_argument(plane, "plane", &[2, 3], "[point, normal]")?;
-            PlaneArg::PointNormal { point: [v[0], v[1], v[2]], normal: [v[3], v[4], v[5]] }
-        }
-    };
-    arg.plane().map_err(|e| bad_argument(format!("plane: {e}")))
-}
-
 /// The mesh of one body: its faces' fans, vertices shared where positions are equal.
 fn body_mesh<S: Surface>(body: &S) -> Result<Mesh, meshvol::MeshError> {
     let mut index: HashMap<[u64; 3], u32> = HashMap::new();
@@ -182,7 +154,9 @@ impl PyMesh {
         timings: bool,
     ) -> PyResult<PySection> {
         require_faces(&self.mesh)?;
-        let plane = plane_of(plane)?;
+        let plane = crate::convert::plane_arg(plane)?
+            .plane()
+            .map_err(|e| bad_argument(format!("plane: {e}")))?;
         let options = crate::units::area_options(units, density)?;
         let clock = timings.then(crate::timings::Clock::new);
         let (report, polygons) = self.with_subject(py, check, clock.as_ref(), |subject| {

@@ -61,6 +61,11 @@ def test_vectors_from_any_array_like():
         assert mesh.below(volume=6.0, direction=direction).level == by_tuple.level == 1.0
     plane = mesh.below(plane=np.array([0.0, 0.0, 1.0, 2.0]))
     assert plane.volume == 12.0  # half of 2 x 3 x 4
+    # Every form the command's --plane takes names the same plane z = 2.
+    for form in ("z=2", "0,0,1,2", "0,0,2,0,0,1", [[0, 0, 2], [0, 0, 1]], (0, 0, 1, 2)):
+        assert mesh.below(plane=form).volume == 12.0, form
+    # A tilted plane through the box's centre (1, 1.5, 2) halves it too.
+    assert mesh.below(plane="1,1.5,2,1,1,1").volume == pytest.approx(12.0, rel=1e-15)
     region = mesh.grid(cells=(2, 3, 4), region=np.array([[0, 1], [0, 3], [0, 4]]))
     assert region.shape == (1, 3, 4)
     assert mesh.grid(pitch=np.array([1.0, 1.0, 2.0])).shape == (2, 3, 2)
@@ -80,7 +85,8 @@ def test_vectors_from_any_array_like():
         (lambda m: m.grid(cells=(2, 2, 2), region=(0, 1)), ValueError, r"region must be .*shape \(3, 2\)"),
         (lambda m: m.below(volume=1.0, direction=(0, 1)), ValueError,
          r"direction must be \(x, y, z\), an array-like of shape \(3,\); got shape \(2,\)"),
-        (lambda m: m.below(plane=np.eye(3)), ValueError, r"plane must be .*shape \(4,\); got shape \(3, 3\)"),
+        (lambda m: m.below(plane=np.eye(3)), ValueError, r"plane must be .*got shape \(3, 3\)"),
+        (lambda m: m.below(plane="z=two"), ValueError, r"z=H"),
         (lambda m: m.below(volume=1.0, direction=[1j, 0, 1]), TypeError, r"direction must be numbers.*complex128"),
     ],
 )

@@ -297,7 +297,7 @@ class Mesh:
         """Volume below each level along an axis (`meshvol profile`)."""
     def below(
         self,
-        plane: Optional[_ArrayLike] = None,
+        plane: Optional[_Union[str, _ArrayLike]] = None,
         volume: Optional[float] = None,
         direction: _ArrayLike = (0.0, 0.0, 1.0),
         heel: float = 0.0,
