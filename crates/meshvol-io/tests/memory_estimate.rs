@@ -10,48 +10,11 @@ use meshvol::shapes::uv_sphere;
 use meshvol::topology::{check_assembled, CheckOptions};
 use meshvol::{Mesh, Surface};
 use meshvol_io::Limits;
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::io::Write;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
-/// The system allocator, counting the bytes live and the most live at once.
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-fn grew(bytes: usize) {
-    let live = LIVE.fetch_add(bytes, Relaxed) + bytes;
-    PEAK.fetch_max(live, Relaxed);
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        grew(layout.size());
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        grew(layout.size());
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size(), Relaxed);
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        // Counted as the new block before the old is let go: a moving realloc holds both.
-        grew(new_size);
-        LIVE.fetch_sub(layout.size(), Relaxed);
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Counting = Counting;
+#[path = "../../meshvol/tests/counting_allocator/mod.rs"]
+mod counting_allocator;
 
 /// Coordinates as exporters write them: six decimals (shorter text than the shortest
 /// round trip meshvol's writers use, so more triangles a byte: the case the estimate
@@ -190,24 +153,23 @@ fn mesh_triangles(mesh: &Mesh, mut each: impl FnMut([[f64; 3]; 3])) {
 /// bytes (mapped, or held, while it is read), and the file's triangles.
 fn peak(path: &Path, checked: bool) -> (u128, usize) {
     let unlimited = Limits { memory: None, checked, ..Limits::from_env() };
-    let before = LIVE.load(Relaxed);
-    PEAK.store(before, Relaxed);
-    let loaded = meshvol_io::read_file_within(path, &unlimited).unwrap();
-    let triangles = loaded.triangle_count();
-    if checked {
-        let bodies = loaded.body_faces();
-        let c = check_assembled(
-            &loaded.surface,
-            loaded.assembly.as_ref(),
-            &bodies,
-            &CheckOptions::default(),
-            &(),
-        )
-        .unwrap();
-        assert!(c.bounds_a_volume());
-    }
-    drop(loaded);
-    let heap = PEAK.load(Relaxed) - before;
+    let (triangles, heap) = counting_allocator::peak_above_start(|| {
+        let loaded = meshvol_io::read_file_within(path, &unlimited).unwrap();
+        let triangles = loaded.triangle_count();
+        if checked {
+            let bodies = loaded.body_faces();
+            let c = check_assembled(
+                &loaded.surface,
+                loaded.assembly.as_ref(),
+                &bodies,
+                &CheckOptions::default(),
+                &(),
+            )
+            .unwrap();
+            assert!(c.bounds_a_volume());
+        }
+        triangles
+    });
     (heap as u128 + std::fs::metadata(path).unwrap().len() as u128, triangles)
 }
 

@@ -5,46 +5,9 @@
 
 use meshvol::shapes::uv_sphere;
 use meshvol::topology::{check, CheckOptions};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
-/// The system allocator, counting the bytes live and the most live at once.
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-fn grew(bytes: usize) {
-    let live = LIVE.fetch_add(bytes, Relaxed) + bytes;
-    PEAK.fetch_max(live, Relaxed);
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        grew(layout.size());
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        grew(layout.size());
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size(), Relaxed);
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        // Counted as the new block before the old is let go: a moving realloc holds both.
-        grew(new_size);
-        LIVE.fetch_sub(layout.size(), Relaxed);
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Counting = Counting;
+#[path = "counting_allocator/mod.rs"]
+mod counting_allocator;
 
 #[test]
 fn check_needs_under_160_bytes_a_triangle() {
@@ -52,10 +15,8 @@ fn check_needs_under_160_bytes_a_triangle() {
     // as triangles: three corners a triangle, as an STL has.
     let mesh = uv_sphere(1.0, 600, 334).triangulated();
     let triangles = mesh.face_count();
-    let before = LIVE.load(Relaxed);
-    PEAK.store(before, Relaxed);
-    let c = check(&mesh, &CheckOptions::default()).unwrap();
-    let peak = PEAK.load(Relaxed) - before;
+    let (c, peak) =
+        counting_allocator::peak_above_start(|| check(&mesh, &CheckOptions::default()).unwrap());
     assert!(c.bounds_a_volume() && c.shells.len() == 1);
     let per_triangle = peak as f64 / triangles as f64;
     // Measured 133 when this was written (the peak is the triangles in space and their
