@@ -18,11 +18,11 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use meshvol_io::{Loaded, PointCloud, PolygonFile};
-use meshvol_report::timings::StageTiming;
+use meshvol_report::timings::{Running, StageTiming};
 
 /// How long a run goes before its bar appears, unless `MESHVOL_PROGRESS_DELAY_MS` says.
 const DELAY: Duration = Duration::from_secs(1);
@@ -86,28 +86,19 @@ pub struct Progress {
 /// the one before it.
 struct Clock {
     done: Vec<StageTiming>,
-    current: Option<(String, Instant, f64)>,
+    current: Option<Running>,
 }
 
 impl Clock {
     fn close(&mut self) {
-        if let Some((stage, start, cpu)) = self.current.take() {
-            let wall_s = start.elapsed().as_secs_f64();
-            self.done.push(StageTiming {
-                stage,
-                wall_s,
-                cpu_s: (meshvol_report::timings::process_cpu_seconds() - cpu).max(0.0),
-            });
+        if let Some(stage) = self.current.take() {
+            self.done.push(stage.finish());
         }
     }
 
     fn start(&mut self, stage: &str) {
         self.close();
-        self.current = Some((
-            stage.to_string(),
-            Instant::now(),
-            meshvol_report::timings::process_cpu_seconds(),
-        ));
+        self.current = Some(Running::start(stage));
     }
 }
 

@@ -36,13 +36,15 @@ fn every_measuring_command_lists_its_stages_in_order() {
         let names: Vec<&str> = stages.iter().map(|s| s["stage"].as_str().unwrap()).collect();
         assert_eq!(names.first(), Some(&"reading"), "{args:?}: {names:?}");
         assert!(names.contains(&"welding"), "{args:?}: the check's stages are listed: {names:?}");
-        let mut wall = 0.0;
+        let (mut wall, mut peak) = (0.0, 0.0);
         for s in &stages {
             let keys: Vec<&String> = s.as_object().unwrap().keys().collect();
-            assert_eq!(keys.len(), 3, "{args:?}: {s}");
-            let (w, c) = (f(&s["wall_s"]), f(&s["cpu_s"]));
+            assert_eq!(keys.len(), 4, "{args:?}: {s}");
+            let (w, c, p) = (f(&s["wall_s"]), f(&s["cpu_s"]), f(&s["peak_mb"]));
             assert!(w >= 0.0 && c >= 0.0, "{args:?}: {s}");
-            wall += w;
+            // The process's high-water mark: it never falls from one stage to the next.
+            assert!(p > 0.0 && p >= peak, "{args:?}: {s} after a peak of {peak} MB");
+            (wall, peak) = (wall + w, p);
         }
         assert!(wall > 0.0 && wall <= seen, "{args:?}: stages {wall} s in a run of {seen} s");
     }
@@ -56,7 +58,7 @@ fn without_the_flag_there_is_no_list_and_in_text_it_goes_to_stderr() {
     let out = meshvol(&["--timings", SAMPLE, "-q"]);
     assert!(out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("timings (wall s, cpu s)") && err.contains("welding"), "{err}");
+    assert!(err.contains("timings (wall s, cpu s, peak MB)") && err.contains("welding"), "{err}");
     assert!(!String::from_utf8_lossy(&out.stdout).contains("timings"));
 }
 

@@ -2,13 +2,12 @@
 //! command's `--timings` lists them (`meshvol_report::timings`): the check's stages
 //! (the core's progress hook names them), then the measuring.
 
-use meshvol_report::timings::StageTiming;
+use meshvol_report::timings::{Running, StageTiming};
 use pyo3::prelude::*;
 use std::sync::Mutex;
-use std::time::Instant;
 
-/// The stages done, and the current one: its name, start and CPU seconds then.
-type Stages = (Vec<StageTiming>, Option<(String, Instant, f64)>);
+/// The stages done, and the current one.
+type Stages = (Vec<StageTiming>, Option<Running>);
 
 /// The stages of one call as they pass: each stage named ends the one before it.
 pub struct Clock {
@@ -24,11 +23,7 @@ impl Clock {
     pub fn start(&self, stage: &str) {
         let mut state = self.state.lock().unwrap_or_else(|e| e.into_inner());
         close(&mut state);
-        state.1 = Some((
-            stage.to_string(),
-            Instant::now(),
-            meshvol_report::timings::process_cpu_seconds(),
-        ));
+        state.1 = Some(Running::start(stage));
     }
 
     /// The stages, the last ending now.
@@ -40,13 +35,8 @@ impl Clock {
 }
 
 fn close(state: &mut Stages) {
-    if let Some((stage, start, cpu)) = state.1.take() {
-        let wall_s = start.elapsed().as_secs_f64();
-        state.0.push(StageTiming {
-            stage,
-            wall_s,
-            cpu_s: (meshvol_report::timings::process_cpu_seconds() - cpu).max(0.0),
-        });
+    if let Some(stage) = state.1.take() {
+        state.0.push(stage.finish());
     }
 }
 

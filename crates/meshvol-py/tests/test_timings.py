@@ -3,6 +3,7 @@ the command's --timings lists them; they add up to (at most) the call's own time
 
 import json
 import os
+import resource
 import subprocess
 import time
 
@@ -35,11 +36,17 @@ def test_stages_add_up_to_the_call(call):
     mesh = sphere()
     assert "timings" not in call(mesh, False).to_dict()
     start = time.perf_counter()
+    peak_before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 / 1e6
     report = call(mesh, True)
+    peak_after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 / 1e6
     elapsed = time.perf_counter() - start
     stages = report.timings
+    # Each stage's peak is the process's high-water mark at its end, as the system
+    # reports it to Python: never falling, and between the marks before and after.
+    peaks = [s["peak_mb"] for s in stages]
+    assert peaks == sorted(peaks) and peak_before <= peaks[0] and peaks[-1] <= peak_after
     assert stages == report.to_dict()["timings"] and list(report.to_dict())[-1] == "timings"
-    assert [set(s) for s in stages] == [{"stage", "wall_s", "cpu_s"}] * len(stages)
+    assert [set(s) for s in stages] == [{"stage", "wall_s", "cpu_s", "peak_mb"}] * len(stages)
     names = [s["stage"] for s in stages]
     assert names[0] == "checking" and "welding" in names and "finding edges" in names
     assert all(s["wall_s"] >= 0 and s["cpu_s"] >= 0 for s in stages)
@@ -72,7 +79,7 @@ def test_the_kernels_stages(call):
     elapsed = time.perf_counter() - start
     stages = report.timings
     assert stages == report.to_dict()["timings"] and list(report.to_dict())[-1] == "timings"
-    assert [set(s) for s in stages] == [{"stage", "wall_s", "cpu_s"}] * len(stages)
+    assert [set(s) for s in stages] == [{"stage", "wall_s", "cpu_s", "peak_mb"}] * len(stages)
     assert stages[0]["stage"] == "measuring" and len(stages) >= 2
     assert all(s["wall_s"] >= 0 and s["cpu_s"] >= 0 for s in stages)
     assert sum(s["wall_s"] for s in stages) <= elapsed

@@ -436,7 +436,7 @@ class MassProperties(_CheckFacts):
     def to_mjcf(self) -> str:
         """MuJoCo's <inertial pos mass fullinertia> element."""
     timings: _Timings
-    """With timings=True: the stages' {stage, wall_s, cpu_s} (else absent)."""
+    """With timings=True: the stages' {stage, wall_s, cpu_s, peak_mb} (else absent)."""
     def to_dict(self) -> dict[str, Any]:
         """Plain values with the keys of `meshvol volume --json`."""
 

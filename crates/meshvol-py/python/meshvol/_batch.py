@@ -119,7 +119,7 @@ def measure(
     recursive, glob: the command's -r and --glob, for directories and patterns.
     timings: the command's --timings: a 'timings' column, each file's stages
     (reading, checking and the check's own, measuring) as a list of {stage, wall_s,
-    cpu_s} (a failed file's is NaN, as the command's error line has none).
+    cpu_s, peak_mb} (a failed file's is NaN, as the command's error line has none).
     The rows' warnings are in the 'warnings' column; none is issued.
     """
     import pandas

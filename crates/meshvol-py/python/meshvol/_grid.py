@@ -46,7 +46,7 @@ class Grid(NDArrayOperatorsMixin):
 
     @property
     def timings(self) -> list:
-        """With Mesh.grid(timings=True): the stages' {stage, wall_s, cpu_s} (else absent)."""
+        """With Mesh.grid(timings=True): the stages' {stage, wall_s, cpu_s, peak_mb} (else absent)."""
         if self._timings is None:
             raise AttributeError("timings: ask Mesh.grid(..., timings=True)")
         return self._timings
