@@ -289,6 +289,12 @@ impl Surface for LoadedSurface {
             LoadedSurface::Mesh(m) => m.triangle_f32(face),
         }
     }
+
+    fn release_pages(&self) {
+        if let LoadedSurface::StlSoup(s) = self {
+            s.release_pages()
+        }
+    }
 }
 
 /// A file read: its format, its surface, its objects and unit, and what was read but

@@ -294,6 +294,13 @@ pub trait Surface: Sync {
     fn vector_area_is_zero(&self) -> bool {
         false
     }
+
+    /// A hint that the faces will not be read for a while: a surface that reads a
+    /// memory-mapped file in place lets the system drop the pages it has read (they are
+    /// read again from the file if asked, the same bytes), so that a check of a large
+    /// file does not keep both the file and its own arrays in memory. Reads after it
+    /// give the same faces. Nothing (the default) for a surface in ordinary memory.
+    fn release_pages(&self) {}
 }
 
 /// Face `face`'s one triangle, of a surface whose [`Surface::faces_are_triangles`].
@@ -344,6 +351,10 @@ impl<S: Surface + ?Sized> Surface for &S {
 
     fn vector_area_is_zero(&self) -> bool {
         (**self).vector_area_is_zero()
+    }
+
+    fn release_pages(&self) {
+        (**self).release_pages()
     }
 }
 

@@ -248,6 +248,10 @@ impl Surface for StlSoup {
     fn triangle_f32(&self, face: usize) -> Option<[[f32; 3]; 3]> {
         Some(StlSoup::triangle_f32(self, face))
     }
+
+    fn release_pages(&self) {
+        self.bytes.release_pages();
+    }
 }
 
 /// Records per parallel work item when checking coordinates.
