@@ -111,7 +111,7 @@ impl Where {
             (Err(e), Backend::Auto) => return fallback(e, Box::new(cpu)),
             (Err(e), _) => return Err(e),
         };
-        progress.stage("OpenCL: opening the device, building the kernel");
+        progress.stage("OpenCL: opening the device");
         let gpu = Device::open(index).and_then(|mut device| {
             device.cell_volumes_region_with(surface, grid, region, Options::default(), progress)
         });

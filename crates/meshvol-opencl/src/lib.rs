@@ -27,6 +27,7 @@
 mod backend;
 mod devices;
 mod fault;
+mod moments;
 mod run;
 mod slabs;
 
