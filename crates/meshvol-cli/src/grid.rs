@@ -217,13 +217,16 @@ fn extension(path: &Path) -> Option<String> {
 /// Runs the command: one summary for all the files.
 pub fn run(args: GridArgs, quiet: bool) -> ExitCode {
     // Usage errors, before any file is read: an OpenCL device asked for (--backend
-    // opencl, --opencl-device) with what only the CPU computes (the cut cells, the
-    // union, a .zarr written row by row); an OpenCL device asked for that is not there
-    // (no OpenCL library, no such device, no f64).
+    // opencl, --opencl-device) with what only the CPU computes (the cut cells' extra
+    // arrays, the union, a .zarr written row by row); an OpenCL device asked for that
+    // is not there (no OpenCL library, no such device, no f64).
     let zarr = args.out.as_deref().and_then(extension).as_deref() == Some("zarr");
-    for (cpu_only, what) in
-        [(args.moments, "--moments"), (args.union, "--union"), (zarr, "a .zarr output")]
-    {
+    for (cpu_only, what) in [
+        (args.second_moments, "--second-moments"),
+        (args.face_centroids, "--face-centroids"),
+        (args.union, "--union"),
+        (zarr, "a .zarr output"),
+    ] {
         if let (true, Err(e)) = (cpu_only, args.backend.cpu_only(what)) {
             eprintln!("meshvol: error: {e}");
             return ExitCode::from(2);
@@ -340,7 +343,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
         let hook = progress.kernel("computing the union's cell volumes".to_string());
         union_cell_volumes_with(&bodies, &grid, &hook).map_err(|e| e.to_string())?
     } else if args.moments {
-        cut = Some(cut_cells_of(&together, &grid, extras, progress)?);
+        cut = Some(args.backend.cut_cells(&together, &grid, extras, progress)?);
         (Vec::new(), 0)
     } else {
         (args.backend.cell_volumes(&together, &grid, progress)?, 0)
@@ -381,7 +384,7 @@ fn measure(args: &GridArgs, files: &[PathBuf], progress: &Progress) -> Result<Gr
     Ok(reported_summary(&scale, &reported, volumes, run))
 }
 
-/// The cut cells of `surface` on the whole of `grid`.
+/// The cut cells of `surface` on the whole of `grid`, on the CPU (the union's boundary).
 fn cut_cells_of<S: Surface + ?Sized>(
     surface: &S,
     grid: &Grid,

@@ -1,8 +1,8 @@
 //! `meshvol grid --backend opencl` against `--backend cpu`: the same file, byte for
 //! byte, where an OpenCL device with f64 is installed (PoCL in CI; otherwise the
-//! comparisons say they skipped); `meshvol devices`; what only the CPU computes; a
-//! device that fails (a build or an allocation the driver refuses, provoked through
-//! `MESHVOL_OPENCL_FAULT`).
+//! comparisons say they skipped), the volumes and the cut cells (`--moments`);
+//! `meshvol devices`; what only the CPU computes; a device that fails (a build or an
+//! allocation the driver refuses, provoked through `MESHVOL_OPENCL_FAULT`).
 
 mod common;
 use common::{box_obj, p, write};
@@ -86,13 +86,45 @@ fn opencl_files_are_the_cpu_files_byte_for_byte() {
 }
 
 #[test]
+fn opencl_moments_files_are_the_cpu_files_byte_for_byte() {
+    if !have_device() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/../../samples/flanged-bushing.stl");
+    let open =
+        write(dir.path(), "open.obj", box_obj([0.1, 0.2, 0.3], [2.3, 1.9, 2.8], 1, true, true));
+    let cases: [(&str, &[&str]); 3] = [
+        (sample, &["--cells", "23,19,11"]),
+        // Bounds cutting through the part, in other units.
+        (sample, &["--cells", "13,9,11", "--bounds", "-10,-35,5,40,10,20", "--units", "mm:cm"]),
+        (p(&open), &["--cells", "7,6,5", "--no-check", "--bounds", "0,0,0,3,3,3"]),
+    ];
+    for (k, (file, extra)) in cases.iter().enumerate() {
+        for ext in ["npz", "vti"] {
+            let run = |backend: &str| {
+                let out = dir.path().join(format!("{k}-{backend}.{ext}"));
+                let mut args =
+                    vec!["grid", file, "--moments", "--out", p(&out), "--backend", backend];
+                args.extend_from_slice(extra);
+                let run = meshvol(&args);
+                assert!(run.status.success(), "{args:?}: {}", String::from_utf8_lossy(&run.stderr));
+                std::fs::read(out).unwrap()
+            };
+            assert!(run("cpu") == run("opencl"), "case {k} {extra:?}, .{ext}: the files differ");
+        }
+    }
+}
+
+#[test]
 fn what_only_the_cpu_computes_refuses_opencl() {
     let dir = tempfile::tempdir().unwrap();
     let cube = write(dir.path(), "cube.obj", box_obj([0.0; 3], [1.0; 3], 1, true, false));
     let npz = dir.path().join("cells.npz");
     let zarr = dir.path().join("cells.zarr");
     for (args, what) in [
-        (vec!["--out", p(&npz), "--moments"], "--moments"),
+        (vec!["--out", p(&npz), "--moments", "--second-moments"], "--second-moments"),
+        (vec!["--out", p(&npz), "--moments", "--face-centroids"], "--face-centroids"),
         (vec!["--union"], "--union"),
         (vec!["--out", p(&zarr)], ".zarr"),
     ] {
@@ -136,10 +168,14 @@ fn a_failing_device_is_an_error_naming_it_and_auto_falls_back_to_the_cpu_bits() 
     let dir = tempfile::tempdir().unwrap();
     let sample = concat!(env!("CARGO_MANIFEST_DIR"), "/../../samples/flanged-bushing.stl");
     let device = index.to_string();
-    let run = |backend: &str, fault: Option<&str>| {
-        let out = dir.path().join(format!("{backend}-{}.npy", fault.unwrap_or("none")));
+    let run = |backend: &str, fault: Option<&str>, moments: bool| {
+        let ext = if moments { "npz" } else { "npy" };
+        let out = dir.path().join(format!("{backend}-{}.{ext}", fault.unwrap_or("none")));
         let mut command = Command::new(BIN);
         command.args(["grid", sample, "--cells", "21,19,13", "--out", p(&out)]);
+        if moments {
+            command.arg("--moments");
+        }
         command.args(["--backend", backend]);
         if backend != "cpu" {
             command.args(["--opencl-device", &device]);
@@ -151,19 +187,23 @@ fn a_failing_device_is_an_error_naming_it_and_auto_falls_back_to_the_cpu_bits() 
         let stderr = String::from_utf8_lossy(&output.stderr).to_string();
         (output.status, stderr, std::fs::read(out).ok())
     };
-    let (status, _, cpu) = run("cpu", None);
-    assert!(status.success());
-    for (fault, says) in [("build", "did not build"), ("alloc", "clCreateBuffer (cells)")] {
-        // --backend opencl: an error naming the device and what OpenCL said, no file.
-        let (status, stderr, file) = run("opencl", Some(fault));
-        assert_eq!(status.code(), Some(1), "{fault}: {stderr}");
-        assert!(stderr.contains(&name) && stderr.contains(says), "{fault}: {stderr}");
-        assert!(file.is_none(), "{fault}: a file was written");
-        // --backend auto: a warning saying the same, and the CPU's file, byte for byte.
-        let (status, stderr, file) = run("auto", Some(fault));
-        assert!(status.success(), "{fault}: {stderr}");
-        assert!(stderr.contains("warning") && stderr.contains(&name), "{fault}: {stderr}");
-        assert!(stderr.contains(says) && stderr.contains("on the CPU"), "{fault}: {stderr}");
-        assert!(file == cpu, "{fault}: auto's file is not the CPU's");
+    // The volumes, and the cut cells (--moments).
+    for moments in [false, true] {
+        let (status, _, cpu) = run("cpu", None, moments);
+        assert!(status.success());
+        for (fault, says) in [("build", "did not build"), ("alloc", "clCreateBuffer (cells)")] {
+            let fault_of = format!("{fault}, moments: {moments}");
+            // --backend opencl: an error naming the device and what OpenCL said, no file.
+            let (status, stderr, file) = run("opencl", Some(fault), moments);
+            assert_eq!(status.code(), Some(1), "{fault_of}: {stderr}");
+            assert!(stderr.contains(&name) && stderr.contains(says), "{fault_of}: {stderr}");
+            assert!(file.is_none(), "{fault_of}: a file was written");
+            // --backend auto: a warning saying the same, and the CPU's file, byte for byte.
+            let (status, stderr, file) = run("auto", Some(fault), moments);
+            assert!(status.success(), "{fault_of}: {stderr}");
+            assert!(stderr.contains("warning") && stderr.contains(&name), "{fault_of}: {stderr}");
+            assert!(stderr.contains(says) && stderr.contains("on the CPU"), "{fault_of}: {stderr}");
+            assert!(file == cpu, "{fault_of}: auto's file is not the CPU's");
+        }
     }
 }

@@ -1,9 +1,9 @@
-//! Where a grid's cell volumes run, as `grid --backend` and Python's `backend=` ask:
-//! the one choice both make (`cpu`, `opencl`, `auto`), and the run with `auto`'s
-//! fallback to the CPU.
+//! Where a grid's cell volumes and cut cells run, as `grid --backend` and Python's
+//! `backend=` ask: the one choice both make (`cpu`, `opencl`, `auto`), and the run with
+//! `auto`'s fallback to the CPU.
 
 use crate::{auto_choice, devices, Device, Error, Listing, Options};
-use meshvol::grid::{Grid, Region};
+use meshvol::grid::{CutCells, Grid, Region};
 use meshvol::progress::Progress;
 use meshvol::Surface;
 
@@ -39,13 +39,13 @@ pub struct Where {
 }
 
 impl Where {
-    /// Refuses an OpenCL device for `what` (`"--moments"`), which only the CPU computes,
+    /// Refuses an OpenCL device for `what` (`"--union"`), which only the CPU computes,
     /// saying `instead` (how the caller asks for the CPU); `auto` takes the CPU for it.
     pub fn cpu_only(&self, what: &str, instead: &str) -> Result<(), String> {
         if self.backend == Backend::Opencl || self.device.is_some() {
             return Err(format!(
                 "{what} runs on the CPU only: {instead} (the OpenCL grid computes cell \
-                 volumes and fractions)"
+                 volumes, fractions and the cut cells' default arrays)"
             ));
         }
         Ok(())
@@ -101,7 +101,41 @@ impl Where {
         cpu: impl FnOnce() -> Result<Vec<f64>, String>,
         warn: impl Fn(&str),
     ) -> Result<Vec<f64>, String> {
-        let fallback = |e: String, cpu: Box<dyn FnOnce() -> Result<Vec<f64>, String> + '_>| {
+        let gpu = |device: &mut Device| {
+            device.cell_volumes_region_with(surface, grid, region, Options::default(), progress)
+        };
+        self.run(progress, gpu, cpu, warn)
+    }
+
+    /// The cut cells (`cut_cells_region`, no extras) of `surface` on `region` of `grid`
+    /// where this says, as [`Where::cell_volumes`]: on the device, the sweeps and each
+    /// column's sums, then the x and y apertures and the surface centroids on the CPU
+    /// (the same bits); `auto`'s fallback recomputes it all on the CPU.
+    pub fn cut_cells<S: Surface + ?Sized>(
+        &self,
+        surface: &S,
+        grid: &Grid,
+        region: &Region,
+        progress: &dyn Progress,
+        cpu: impl FnOnce() -> Result<CutCells, String>,
+        warn: impl Fn(&str),
+    ) -> Result<CutCells, String> {
+        let gpu = |device: &mut Device| {
+            device.cut_cells_region_with(surface, grid, region, Options::default(), progress)
+        };
+        self.run(progress, gpu, cpu, warn)
+    }
+
+    /// `gpu` on the device this chooses, or `cpu`; `auto` falls back to `cpu` (after
+    /// `warn`) where the device cannot be listed, opened or run.
+    fn run<T>(
+        &self,
+        progress: &dyn Progress,
+        gpu: impl FnOnce(&mut Device) -> Result<T, Error>,
+        cpu: impl FnOnce() -> Result<T, String>,
+        warn: impl Fn(&str),
+    ) -> Result<T, String> {
+        let fallback = |e: String, cpu: Box<dyn FnOnce() -> Result<T, String> + '_>| {
             warn(&format!("{e}; computing on the CPU"));
             cpu()
         };
@@ -111,12 +145,10 @@ impl Where {
             (Err(e), Backend::Auto) => return fallback(e, Box::new(cpu)),
             (Err(e), _) => return Err(e),
         };
-        progress.stage("OpenCL: opening the device, building the kernel");
-        let gpu = Device::open(index).and_then(|mut device| {
-            device.cell_volumes_region_with(surface, grid, region, Options::default(), progress)
-        });
-        match (gpu, self.backend) {
-            (Ok(volumes), _) => Ok(volumes),
+        progress.stage("OpenCL: opening the device");
+        let result = Device::open(index).and_then(|mut device| gpu(&mut device));
+        match (result, self.backend) {
+            (Ok(values), _) => Ok(values),
             (Err(e), Backend::Auto) => fallback(e.to_string(), Box::new(cpu)),
             (Err(e), _) => Err(e.to_string()),
         }

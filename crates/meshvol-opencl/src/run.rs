@@ -14,11 +14,25 @@ use opencl3::context::Context;
 use opencl3::error_codes::ClError;
 use opencl3::kernel::Kernel;
 use opencl3::memory::{Buffer, ClMem, CL_MEM_COPY_HOST_PTR, CL_MEM_READ_ONLY, CL_MEM_READ_WRITE};
-use opencl3::program::Program;
 use opencl3::types::{cl_double, cl_ulong, CL_BLOCKING};
 use std::ptr;
 
-const SOURCE: &str = include_str!("grid.cl");
+/// The cell volumes' program: the polygons, the sweeps, the volumes' sink and kernel.
+pub(crate) const VOLUMES: Program = Program {
+    source: concat!(
+        include_str!("cl/clip.cl"),
+        include_str!("cl/sweeps.cl"),
+        include_str!("cl/volumes.cl")
+    ),
+    kernel: "tile_volumes",
+};
+
+/// One of the grid's OpenCL programs: its source and its kernel's name.
+#[derive(Clone, Copy)]
+pub(crate) struct Program {
+    pub(crate) source: &'static str,
+    pub(crate) kernel: &'static str,
+}
 
 /// How the grid is cut into work: none of these changes a bit of the result.
 #[derive(Clone, Copy, Debug, Default)]
@@ -33,13 +47,16 @@ pub struct Options {
     pub slab_bytes: Option<u64>,
 }
 
-/// An OpenCL device with the grid kernel built for it.
+/// An OpenCL device, and the grid's kernels built for it, each the first time a grid
+/// needs it (a build takes seconds on some drivers).
 pub struct Device {
-    info: DeviceInfo,
-    units: usize,
-    context: Context,
-    queue: CommandQueue,
-    kernel: Kernel,
+    pub(crate) info: DeviceInfo,
+    pub(crate) units: usize,
+    pub(crate) context: Context,
+    pub(crate) queue: CommandQueue,
+    /// The kernels built: taken out while a grid runs, put back after.
+    pub(crate) volumes: Option<Kernel>,
+    pub(crate) moments: Option<Kernel>,
 }
 
 /// The device buffers that hold a slab's results, allocated once for the largest slab.
@@ -67,16 +84,34 @@ impl Device {
         let context = Context::from_device(&device).map_err(named("clCreateContext"))?;
         let queue = CommandQueue::create_default_with_properties(&context, 0, 0)
             .map_err(named("clCreateCommandQueueWithProperties"))?;
+        Ok(Device { info, units: units.max(1), context, queue, volumes: None, moments: None })
+    }
+
+    /// `built` (one of this device's kernels, taken out of its field), or `program`
+    /// built now, telling `progress`.
+    pub(crate) fn kernel(
+        &self,
+        built: Option<Kernel>,
+        program: Program,
+        progress: &dyn Progress,
+    ) -> Result<Kernel, Error> {
+        if let Some(kernel) = built {
+            return Ok(kernel);
+        }
+        progress.stage("OpenCL: building the kernel");
+        let name = &self.info.name;
         let source = match fault::asked() {
-            Some(Fault::Build) => format!("{SOURCE}\n#error MESHVOL_OPENCL_FAULT=build\n"),
-            _ => SOURCE.to_string(),
+            Some(Fault::Build) => {
+                format!("{}\n#error MESHVOL_OPENCL_FAULT=build\n", program.source)
+            }
+            _ => program.source.to_string(),
         };
         // No -cl-fast-relaxed-math, -cl-mad-enable or -cl-unsafe-math-optimizations: the
         // pragma in the source turns contraction off and IEEE rules hold.
-        let program = Program::create_and_build_from_source(&context, &source, "")
-            .map_err(|log| Error::Build { device: name.clone(), log })?;
-        let kernel = Kernel::create(&program, "tile_volumes").map_err(named("clCreateKernel"))?;
-        Ok(Device { info, units: units.max(1), context, queue, kernel })
+        let built =
+            opencl3::program::Program::create_and_build_from_source(&self.context, &source, "")
+                .map_err(|log| Error::Build { device: name.clone(), log })?;
+        Kernel::create(&built, program.kernel).map_err(on(name, "clCreateKernel"))
     }
 
     /// The device's name, as errors give it.
@@ -125,7 +160,9 @@ impl Device {
             bytes: options.slab_bytes.unwrap_or(self.info.memory / 2),
             max_alloc: self.info.max_alloc,
         };
-        let rows = rows_per_slab(&x, width, depth, areas, budget, &self.info.name)?;
+        let rows = rows_per_slab(&x, width, [depth + areas, areas], budget, &self.info.name)?;
+        let built = self.volumes.take();
+        let kernel = self.kernel(built, VOLUMES, progress)?;
         let len = x.len() * width * depth;
         let mut volumes = bytemuck::allocation::try_zeroed_vec::<f64>(len)
             .map_err(|_| GridError::OutOfMemory { bytes: len as u128 * 8 })?;
@@ -148,34 +185,42 @@ impl Device {
                 Some(t) => t,
                 None => triangles.insert(self.triangles(&work)?),
             };
-            self.run(&work, triangles, &results, options.work_group, out, progress)?;
+            self.run(&kernel, &work, triangles, &results, options.work_group, out, progress)?;
         }
+        self.volumes = Some(kernel);
         Ok(volumes)
     }
 
     /// The buffers of a slab's `cells` and area sums `areas` (each at least one value:
     /// an empty buffer is invalid in OpenCL).
     fn results(&self, cells: usize, areas: usize) -> Result<Results, Error> {
-        let name = &self.info.name;
-        let cells = match fault::asked() {
-            Some(Fault::Alloc) => (self.info.max_alloc / 8 + 1) as usize,
-            _ => cells,
-        };
-        let scratch = |len: usize, what| {
-            // SAFETY: no host pointer; the device allocates `len` doubles.
-            unsafe {
-                Buffer::<f64>::create(&self.context, CL_MEM_READ_WRITE, len.max(1), ptr::null_mut())
-            }
-            .map_err(|e| call(name, what, e))
-        };
         Ok(Results {
-            cells: scratch(cells, "clCreateBuffer (cells)")?,
-            areas: scratch(areas, "clCreateBuffer (column areas)")?,
+            cells: self.scratch(self.cells_len(cells), "clCreateBuffer (cells)")?,
+            areas: self.scratch(areas, "clCreateBuffer (column areas)")?,
         })
     }
 
+    /// `cells`, or with `MESHVOL_OPENCL_FAULT=alloc` one value more than the device's
+    /// largest allocation: the length of a grid's first results buffer.
+    pub(crate) fn cells_len(&self, cells: usize) -> usize {
+        match fault::asked() {
+            Some(Fault::Alloc) => (self.info.max_alloc / 8 + 1) as usize,
+            _ => cells,
+        }
+    }
+
+    /// A device buffer of `len` doubles (at least one: an empty buffer is invalid in
+    /// OpenCL) that the kernel writes, `what` naming it in an error.
+    pub(crate) fn scratch(&self, len: usize, what: &'static str) -> Result<Buffer<f64>, Error> {
+        // SAFETY: no host pointer; the device allocates `len` doubles.
+        unsafe {
+            Buffer::<f64>::create(&self.context, CL_MEM_READ_WRITE, len.max(1), ptr::null_mut())
+        }
+        .map_err(|e| call(&self.info.name, what, e))
+    }
+
     /// The triangles of `work` on the device, checked against its largest allocation.
-    fn triangles(&self, work: &TileWork) -> Result<Buffer<f64>, Error> {
+    pub(crate) fn triangles(&self, work: &TileWork) -> Result<Buffer<f64>, Error> {
         let name = &self.info.name;
         self.fits("the triangles", work.triangles.len() * 9, 8)?;
         // An empty buffer is invalid in OpenCL: an unused entry stands in for none.
@@ -188,7 +233,7 @@ impl Device {
 
     /// A clear refusal of a buffer over the device's largest allocation, instead of a
     /// driver's error code.
-    fn fits(&self, what: &'static str, len: usize, size: usize) -> Result<(), Error> {
+    pub(crate) fn fits(&self, what: &'static str, len: usize, size: usize) -> Result<(), Error> {
         let bytes = len as u128 * size as u128;
         if bytes > self.info.max_alloc as u128 {
             return Err(Error::TooLarge {
@@ -202,8 +247,10 @@ impl Device {
     }
 
     /// One slab: its tile lists uploaded, one work item a tile, its cells read into `out`.
+    #[allow(clippy::too_many_arguments)]
     fn run(
-        &mut self,
+        &self,
+        kernel: &Kernel,
         work: &TileWork,
         triangles: &Buffer<f64>,
         results: &Results,
@@ -213,66 +260,23 @@ impl Device {
     ) -> Result<(), Error> {
         let name = &self.info.name;
         let named = |call_name| on(name, call_name);
-        let [nx, ny, nz] = work.counts;
-        let depth = work.shape[2];
-        let columns = work.columns();
-        let tiles = work.tiles();
-        self.fits("the tiles' triangle lists", work.entries.len(), 4)?;
-        let entries: &[u32] = match work.entries.is_empty() {
-            true => &[0],
-            false => &work.entries,
-        };
-        let offsets = input(&self.context, &work.offsets, name, "clCreateBuffer (tile offsets)")?;
-        let entries = input(&self.context, entries, name, "clCreateBuffer (tile triangles)")?;
-        let u = |x: usize| x as cl_ulong;
-        let scalars = [
-            u(tiles),
-            u(work.per_tile),
-            u(columns),
-            u(nx),
-            u(ny),
-            u(nz),
-            u(work.start[0]),
-            u(work.start[1]),
-            u(work.shape[1]),
-            u(depth),
-            u(work.start[2]),
-            u(work.areas),
-        ];
+        let (offsets, entries) = self.tile_lists(work)?;
+        let scalars = scalars(work);
         let set = |result: Result<(), ClError>| result.map_err(named("clSetKernelArg"));
         // SAFETY: each argument has the type and order of `tile_volumes`' parameters.
         unsafe {
-            set(self.kernel.set_arg(0, &triangles.get()))?;
-            set(self.kernel.set_arg(1, &offsets.get()))?;
-            set(self.kernel.set_arg(2, &entries.get()))?;
-            set(self.kernel.set_arg(3, &results.cells.get()))?;
-            set(self.kernel.set_arg(4, &results.areas.get()))?;
+            set(kernel.set_arg(0, &triangles.get()))?;
+            set(kernel.set_arg(1, &offsets.get()))?;
+            set(kernel.set_arg(2, &entries.get()))?;
+            set(kernel.set_arg(3, &results.cells.get()))?;
+            set(kernel.set_arg(4, &results.areas.get()))?;
             for (k, value) in scalars.iter().enumerate() {
-                set(self.kernel.set_arg(5 + k as u32, value))?;
+                set(kernel.set_arg(5 + k as u32, value))?;
             }
             let scale: cl_double = work.scale;
-            set(self.kernel.set_arg(17, &scale))?;
+            set(kernel.set_arg(17, &scale))?;
         }
-        let global = match work_group {
-            Some(g) => tiles.div_ceil(g.max(1)) * g.max(1),
-            None => tiles,
-        };
-        let local = work_group.map(|g| [g.max(1)]);
-        progress.stage("OpenCL: the kernel");
-        // SAFETY: the arguments are set; the sizes are one-dimensional.
-        unsafe {
-            self.queue.enqueue_nd_range_kernel(
-                self.kernel.get(),
-                1,
-                ptr::null(),
-                [global].as_ptr(),
-                local.as_ref().map_or(ptr::null(), |l| l.as_ptr()),
-                &[],
-            )
-        }
-        .map_err(named("clEnqueueNDRangeKernel"))?;
-        // Waited for here, not in the read, so that the kernel's time is its own stage.
-        self.queue.finish().map_err(named("clFinish"))?;
+        self.launch(kernel, work.tiles(), work_group, progress)?;
         progress.stage("OpenCL: reading back");
         // SAFETY: `out` is the slab's cells, no more than the buffer holds; the read
         // blocks until done.
@@ -282,13 +286,87 @@ impl Device {
     }
 }
 
+impl Device {
+    /// The tile lists of `work` on the device: where each tile's entries start, and the
+    /// triangles they name.
+    pub(crate) fn tile_lists(&self, work: &TileWork) -> Result<TileLists, Error> {
+        let name = &self.info.name;
+        self.fits("the tiles' triangle lists", work.entries.len(), 4)?;
+        // An empty buffer is invalid in OpenCL: an unused entry stands in for none.
+        let entries: &[u32] = match work.entries.is_empty() {
+            true => &[0],
+            false => &work.entries,
+        };
+        let offsets = input(&self.context, &work.offsets, name, "clCreateBuffer (tile offsets)")?;
+        let entries = input(&self.context, entries, name, "clCreateBuffer (tile triangles)")?;
+        Ok((offsets, entries))
+    }
+
+    /// Runs `kernel` (its arguments set), one work item a tile, `work_group` items a
+    /// group (`None`: the driver's choice), and waits for it.
+    pub(crate) fn launch(
+        &self,
+        kernel: &Kernel,
+        tiles: usize,
+        work_group: Option<usize>,
+        progress: &dyn Progress,
+    ) -> Result<(), Error> {
+        let named = |call_name| on(&self.info.name, call_name);
+        let global = match work_group {
+            Some(g) => tiles.div_ceil(g.max(1)) * g.max(1),
+            None => tiles,
+        };
+        let local = work_group.map(|g| [g.max(1)]);
+        progress.stage("OpenCL: the kernel");
+        // SAFETY: the arguments are set; the sizes are one-dimensional.
+        unsafe {
+            self.queue.enqueue_nd_range_kernel(
+                kernel.get(),
+                1,
+                ptr::null(),
+                [global].as_ptr(),
+                local.as_ref().map_or(ptr::null(), |l| l.as_ptr()),
+                &[],
+            )
+        }
+        .map_err(named("clEnqueueNDRangeKernel"))?;
+        // Waited for here, not in the read, so that the kernel's time is its own stage.
+        self.queue.finish().map_err(named("clFinish"))
+    }
+}
+
+/// A slab's tile lists on the device: where each tile's entries start, the triangles.
+pub(crate) type TileLists = (Buffer<u64>, Buffer<u32>);
+
+/// The block's shape and the tiling of `work`, the kernels' integer arguments after
+/// their buffers: tiles, columns per tile, columns; the grid's counts; the block's first
+/// x and y cell, its width; its depth, its first layer, the area sums a column.
+pub(crate) fn scalars(work: &TileWork) -> [cl_ulong; 12] {
+    let u = |x: usize| x as cl_ulong;
+    let [nx, ny, nz] = work.counts;
+    [
+        u(work.tiles()),
+        u(work.per_tile),
+        u(work.columns()),
+        u(nx),
+        u(ny),
+        u(nz),
+        u(work.start[0]),
+        u(work.start[1]),
+        u(work.shape[1]),
+        u(work.shape[2]),
+        u(work.start[2]),
+        u(work.areas),
+    ]
+}
+
 /// Turns an OpenCL error code into an error naming the device and the call.
-fn on<'a>(device: &'a str, call_name: &'static str) -> impl Fn(ClError) -> Error + 'a {
+pub(crate) fn on<'a>(device: &'a str, call_name: &'static str) -> impl Fn(ClError) -> Error + 'a {
     move |e| call(device, call_name, e)
 }
 
 /// A read-only device buffer holding a copy of `data` (not empty).
-fn input<T>(
+pub(crate) fn input<T>(
     context: &Context,
     data: &[T],
     device: &str,

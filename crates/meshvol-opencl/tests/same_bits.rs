@@ -1,14 +1,15 @@
 //! The OpenCL grid against the CPU kernel (itself tested against closed forms in
-//! crates/meshvol/tests/grid.rs): the same bits, cell for cell, on any OpenCL device
-//! with f64 (PoCL's CPU device in CI), for several tilings and work-group sizes, and a
-//! slab at a time. Without
-//! an OpenCL library or such a device, each test says it skipped.
+//! crates/meshvol/tests/grid.rs and cut_cells.rs): the same bits, cell for cell, on any
+//! OpenCL device with f64 (PoCL's CPU device in CI), for several tilings and work-group
+//! sizes, and a slab at a time: the cell volumes, and the cut cells (every array
+//! `cut_cells` writes). Without an OpenCL library or such a device, each test says it
+//! skipped.
 
 #[path = "../../meshvol/tests/common/mod.rs"]
 mod common;
 
 use common::{bumpy_sphere, mapped, open_box, rotation, XorShift};
-use meshvol::grid::{cell_volumes, cell_volumes_region, Grid, Region};
+use meshvol::grid::{cell_volumes, cell_volumes_region, cut_cells_region, CutCells, Grid, Region};
 use meshvol::shapes::{cuboid, torus, uv_sphere};
 use meshvol::{Mesh, Surface};
 use meshvol_opencl::{devices, Device, Listing, Options};
@@ -241,4 +242,149 @@ fn a_layer_over_the_slab_budget_is_refused_naming_the_device() {
     let e = device.cell_volumes_region(&sphere, &grid, &[2..2, 0..7, 0..8], options);
     let cpu = cell_volumes_region(&sphere, &grid, &[2..2, 0..7, 0..8]).unwrap_err();
     assert_eq!(e.unwrap_err().to_string(), cpu.to_string());
+}
+
+/// Every array of `cells`, named, as bits.
+fn cut_bits(cells: &CutCells) -> Vec<(&'static str, Vec<u64>)> {
+    let points = |p: &[[f64; 3]]| bits(p.as_flattened());
+    vec![
+        ("volume", bits(&cells.volume)),
+        ("centroid", points(&cells.centroid)),
+        ("boundary_area", bits(&cells.boundary_area)),
+        ("boundary_vector", points(&cells.boundary_vector)),
+        ("boundary_centroid", points(&cells.boundary_centroid)),
+        ("aperture_x", bits(&cells.aperture[0])),
+        ("aperture_y", bits(&cells.aperture[1])),
+        ("aperture_z", bits(&cells.aperture[2])),
+    ]
+}
+
+/// The cut cells of `surface` on `region` of `grid` (the whole grid with `None`) on the
+/// device with each of `options` are the CPU's, array for array and bit for bit.
+fn same_cut_cells<S: Surface + ?Sized>(
+    device: &mut Device,
+    what: &str,
+    surface: &S,
+    grid: &Grid,
+    region: Option<Region>,
+    options: &[Options],
+) {
+    let region = region.unwrap_or_else(|| grid.counts.map(|n| 0..n));
+    let cpu = cut_cells_region(surface, grid, &region).unwrap();
+    assert!(cpu.volume.iter().any(|&v| v != 0.0), "{what}: the grid misses the solid");
+    assert!(cpu.boundary_area.iter().any(|&v| v != 0.0), "{what}: no surface in the grid");
+    let want = cut_bits(&cpu);
+    for &options in options {
+        let gpu = device.cut_cells_region_with(surface, grid, &region, options, &()).unwrap();
+        assert_eq!((&gpu.grid, &gpu.region), (&cpu.grid, &cpu.region), "{what}, {options:?}");
+        for ((name, got), (_, want)) in cut_bits(&gpu).iter().zip(&want) {
+            assert_eq!(got.len(), want.len(), "{what}, {options:?}: {name}");
+            if let Some(k) = (0..want.len()).find(|&k| got[k] != want[k]) {
+                let [g, w] = [got[k], want[k]].map(f64::from_bits);
+                panic!("{what}, {options:?}: {name}[{k}] is {g:e} on OpenCL, {w:e} on the CPU");
+            }
+        }
+    }
+}
+
+#[test]
+fn cut_cells_of_solids_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    let sphere = uv_sphere(1.0, 32, 17);
+    let grid = around(&sphere, [13, 11, 12], 0.05);
+    same_cut_cells(&mut device, "sphere", &sphere, &grid, None, &OPTIONS);
+    // Triangles (an indexed mesh: no polygon normals), and a block of the grid.
+    let triangles = sphere.triangulated();
+    same_cut_cells(&mut device, "sphere, triangles", &triangles, &grid, None, &OPTIONS[..2]);
+    same_cut_cells(&mut device, "block", &sphere, &grid, Some([3..9, 2..11, 4..9]), &OPTIONS[3..]);
+    // Every face on a plane of the grid, and a box filling the grid: its faces on the
+    // far faces (the top one a part lying on the grid's top plane).
+    let cube = cuboid([1.0, 1.0, 1.0], [3.0, 4.0, 2.0]);
+    let grid = Grid::new([0.0; 3], [1.0; 3], [5, 5, 5]).unwrap();
+    same_cut_cells(&mut device, "box on grid planes", &cube, &grid, None, &OPTIONS);
+    let grid = Grid::new([1.0; 3], [0.5; 3], [4, 6, 2]).unwrap();
+    same_cut_cells(&mut device, "box filling the grid", &cube, &grid, None, &OPTIONS[..3]);
+    let mut rng = XorShift::new(52);
+    let r = rotation(&mut rng);
+    let turned = mapped(&torus(2.0, 0.7, 30, 14), |p| {
+        [0, 1, 2].map(|a| r[a][0] * p[0] + r[a][1] * p[1] + r[a][2] * p[2] + 0.3)
+    });
+    let grid = around(&turned, [19, 17, 11], 0.2);
+    same_cut_cells(&mut device, "turned torus", &turned, &grid, None, &OPTIONS[2..4]);
+    // The grid over part of the sphere: parts above, below and beside it.
+    let grid = Grid::from_bounds([-0.4, -1.3, -0.55], [1.3, 0.6, 0.45], [9, 8, 7]).unwrap();
+    same_cut_cells(&mut device, "bounds partly outside", &sphere, &grid, None, &OPTIONS[..2]);
+}
+
+#[test]
+fn cut_cells_of_open_and_inward_surfaces_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    // An open surface, as `--no-check` measures it: the box without its top.
+    let open = open_box([0.2, 0.1, 0.3], [2.9, 1.7, 2.2]);
+    same_cut_cells(&mut device, "open box", &open, &around(&open, [7, 6, 9], 0.4), None, &OPTIONS);
+    let sphere = uv_sphere(2.0, 20, 11);
+    let inward = Mesh::from_polygons(
+        sphere.positions().to_vec(),
+        (0..sphere.face_count())
+            .map(|f| sphere.face(f).iter().rev().copied().collect::<Vec<_>>())
+            .collect::<Vec<_>>()
+            .iter()
+            .map(|f| &f[..]),
+    )
+    .unwrap();
+    let grid = around(&inward, [9, 10, 11], 0.3);
+    same_cut_cells(&mut device, "inward sphere", &inward, &grid, None, &OPTIONS[1..3]);
+}
+
+#[test]
+fn cut_cells_in_slabs_match_the_cpu() {
+    let Some(mut device) = device() else { return };
+    // A slab's device bytes: per column, 12 values a cell and one more, and three sums a
+    // layer from the region's first to above the grid's top, and one more.
+    let budget = |grid: &Grid, [_, y, z]: &Region, rows: usize| {
+        let areas = grid.counts[2] + 1 - z.start;
+        let column = 12 * z.len() + 1 + 3 * areas + 1;
+        (rows * y.len() * column * 8) as u64
+    };
+    let slabs = |rows: usize, grid: &Grid, region: &Region| {
+        let bytes = budget(grid, region, rows);
+        [bytes, bytes + budget(grid, region, 1) - 1].map(|slab_bytes| Options {
+            columns_per_item: Some(2),
+            work_group: None,
+            slab_bytes: Some(slab_bytes),
+        })
+    };
+    let sphere = uv_sphere(1.0, 24, 13);
+    let grid = around(&sphere, [11, 9, 10], 0.05);
+    let whole = grid.counts.map(|n| 0..n);
+    for rows in [1, 4, 16] {
+        let options = slabs(rows, &grid, &whole);
+        same_cut_cells(
+            &mut device,
+            &format!("sphere, slabs of {rows}"),
+            &sphere,
+            &grid,
+            None,
+            &options,
+        );
+        // As many slabs as the budget says (one tile layout each).
+        let laid_out = AtomicUsize::new(0);
+        let count = |stage: &'static str| {
+            if stage.starts_with("laying out") {
+                laid_out.fetch_add(1, Ordering::Relaxed);
+            }
+        };
+        device.cut_cells_region_with(&sphere, &grid, &whole, options[1], &count).unwrap();
+        assert_eq!(laid_out.into_inner(), 11usize.div_ceil(rows), "slabs of {rows}");
+    }
+    // A block in slabs: the region reaching the far faces is what the device sweeps.
+    let block = [2..6, 3..9, 2..8];
+    let reach = [2..11, 3..9, 2..8];
+    let options = slabs(3, &grid, &reach);
+    same_cut_cells(&mut device, "block in slabs", &sphere, &grid, Some(block), &options);
+    // A box over x cells 2..8 of 10, in slabs of 2: its x faces on slab boundaries.
+    let cube = cuboid([2.0, 0.5, 0.25], [8.0, 3.5, 2.75]);
+    let grid = Grid::new([0.0; 3], [1.0; 3], [10, 4, 3]).unwrap();
+    let options = slabs(2, &grid, &grid.counts.map(|n| 0..n));
+    same_cut_cells(&mut device, "box on slab planes", &cube, &grid, None, &options);
 }

@@ -110,6 +110,7 @@ pub fn cut_cells<'py, S: Surface>(
     Place { cells, bounds, pitch, region }: Place<'_, 'py>,
     extras: grid::Extras,
     scale: &meshvol_report::units::Scale,
+    on: &meshvol_opencl::Where,
 ) -> PyResult<Bound<'py, PyAny>> {
     use numpy::ndarray::{Array, IxDyn};
     let grid = grid_of(py, mesh, cells, bounds, pitch)?;
@@ -126,16 +127,25 @@ pub fn cut_cells<'py, S: Surface>(
         }
     }
     let region = region.unwrap_or_else(|| grid.counts.map(|n| 0..n));
-    let mut c = py
-        .detach(|| -> Result<_, String> {
-            let mut c = grid::cut_cells_extras(mesh, &grid, &region, extras, &())
-                .map_err(|e| e.to_string())?;
-            // In the report's units, where they are (the one conversion every grid sink
-            // takes): at 256³ the arrays are 1.9 GB, the only copy.
-            reported_cells::cut_cells(scale, &mut c)?;
-            Ok(c)
-        })
-        .map_err(mesh_error)?;
+    let cpu =
+        || grid::cut_cells_extras(mesh, &grid, &region, extras, &()).map_err(|e| e.to_string());
+    let fell_back = std::sync::Mutex::new(Vec::new());
+    let warn = |w: &str| fell_back.lock().unwrap_or_else(|e| e.into_inner()).push(w.to_string());
+    let c = py.detach(|| -> Result<_, String> {
+        // On the CPU or an OpenCL device (the same bits), as `grid --backend` chooses;
+        // the extra arrays on the CPU (`Mesh.cells` refused 'opencl' for them).
+        let mut c = match extras == grid::Extras::default() {
+            true => on.cut_cells(mesh, &grid, &region, &(), cpu, warn)?,
+            false => cpu()?,
+        };
+        // In the report's units, where they are (the one conversion every grid sink
+        // takes): at 256³ the arrays are 1.9 GB, the only copy.
+        reported_cells::cut_cells(scale, &mut c)?;
+        Ok(c)
+    });
+    let fell_back = fell_back.into_inner().unwrap_or_else(|e| e.into_inner());
+    crate::errors::warn_all(py, &fell_back)?;
+    let mut c = c.map_err(mesh_error)?;
     let [nx, ny, nz] = c.shape();
     let fraction = c.fraction();
     let dict = pyo3::types::PyDict::new(py);

@@ -157,8 +157,10 @@ impl PyMesh {
     /// solid, NaN where the aperture is 0. docs/cells.md has the definitions.
     /// moments=True (the default) is what it computes, named as meshvol.dask.grid
     /// names it; moments=False is a ValueError pointing to Mesh.grid, the volumes alone.
-    /// backend as Mesh.grid's: the cut cells run on the CPU ('opencl' is refused, 'auto'
-    /// takes the CPU).
+    /// backend as Mesh.grid's: on an OpenCL device the sweeps and each column's sums run
+    /// there and the x and y apertures on the CPU, the same bits; second_moments and
+    /// face_centroids run on the CPU only ('opencl' is refused for them, 'auto' takes
+    /// the CPU).
     #[pyo3(signature = (cells = None, bounds = None, pitch = None, check = true, region = None, units = None, second_moments = false, face_centroids = false, moments = true, backend = "auto", opencl_device = None))]
     #[allow(clippy::too_many_arguments)]
     fn cells<'py>(
@@ -176,9 +178,14 @@ impl PyMesh {
         backend: &str,
         opencl_device: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        grid::backend(backend, opencl_device)?
-            .cpu_only("the cut cells (Mesh.cells)", "leave backend='auto' or give 'cpu'")
+        let on = grid::backend(backend, opencl_device)?;
+        if second_moments || face_centroids {
+            on.cpu_only(
+                "second_moments=True and face_centroids=True",
+                "leave backend='auto' or give 'cpu'",
+            )
             .map_err(crate::errors::bad_argument)?;
+        }
         if !moments {
             return Err(crate::errors::bad_argument(
                 "Mesh.cells computes the cut cells (moments=True); for the cells' volumes alone use Mesh.grid",
@@ -195,7 +202,7 @@ impl PyMesh {
         let measured = subject.measured();
         let extras = meshvol::grid::Extras { second_moments, face_centroids };
         let place = grid::Place { cells, bounds, pitch, region };
-        grid::cut_cells(py, &measured, place, extras, &scale)
+        grid::cut_cells(py, &measured, place, extras, &scale, &on)
     }
 
     /// The volume below each level along an axis (a strapping table): levels=N gives N

@@ -1,5 +1,6 @@
 """backend= of Mesh.grid, Mesh.cells and meshvol.dask.grid, as the command's --backend:
-on an OpenCL device (PoCL's CPU device in CI) the cells are the CPU's bit for bit."""
+on an OpenCL device (PoCL's CPU device in CI) the cells, and the cut cells, are the
+CPU's bit for bit."""
 
 import re
 
@@ -38,14 +39,49 @@ def test_opencl_cells_are_the_cpus_bit_for_bit():
     assert np.array_equal(auto, np.asarray(mesh.grid(cells=(9, 7, 11), backend="cpu")))
 
 
+def opencl_cells(mesh, **kwargs):
+    """Mesh.cells on an OpenCL device, or a skip saying why there is none."""
+    try:
+        return mesh.cells(backend="opencl", **kwargs)
+    except (meshvol.MeshError, ValueError) as e:
+        if "OpenCL" in str(e):
+            pytest.skip(f"no OpenCL device with f64 here: {e}")
+        raise
+
+
+def same_arrays(cpu, gpu, what):
+    """Every array of two meshvol.CutCells, bit for bit."""
+    assert sorted(cpu) == sorted(gpu), what
+    for name in cpu:
+        a, b = np.asarray(cpu[name]), np.asarray(gpu[name])
+        assert a.shape == b.shape, (what, name)
+        assert np.array_equal(a.view(np.uint64), b.view(np.uint64)), (what, name)
+
+
+def test_opencl_cut_cells_are_the_cpus_bit_for_bit():
+    mesh = sphere()
+    for kwargs in [dict(cells=(9, 7, 11)), dict(cells=(9, 7, 11), region=((2, 7), (0, 7), (3, 9))),
+                   dict(pitch=0.3, check=False), dict(cells=(4, 5, 6), units="mm:cm")]:
+        same_arrays(mesh.cells(backend="cpu", **kwargs), opencl_cells(mesh, **kwargs), kwargs)
+    # auto: a GPU when there is one, else the CPU: the same bits either way.
+    same_arrays(mesh.cells(cells=(9, 7, 11), backend="cpu"), mesh.cells(cells=(9, 7, 11)), "auto")
+    pytest.importorskip("dask")
+    import meshvol.dask
+
+    lazy = meshvol.dask.grid(mesh, cells=(6, 6, 6), chunks=(3, 3, 6), moments=True, backend="opencl")
+    same_arrays(mesh.cells(cells=(6, 6, 6), backend="cpu"),
+                {name: a.compute() for name, a in lazy.items()}, "dask")
+
+
 def test_backends_that_cannot_be_are_refused():
     mesh = sphere()
     with pytest.raises(ValueError, match="one of cpu, opencl, auto"):
         mesh.grid(cells=(2, 2, 2), backend="gpu")
-    with pytest.raises(ValueError, match="CPU only"):
-        mesh.cells(cells=(2, 2, 2), backend="opencl")
-    # auto takes the CPU for the cut cells.
-    assert mesh.cells(cells=(2, 2, 2))["volume"].shape == (2, 2, 2)
+    for extra in ["second_moments", "face_centroids"]:
+        with pytest.raises(ValueError, match="CPU only"):
+            mesh.cells(cells=(2, 2, 2), backend="opencl", **{extra: True})
+        # auto takes the CPU for them.
+        assert mesh.cells(cells=(2, 2, 2), **{extra: True})["volume"].shape == (2, 2, 2)
     with pytest.raises((meshvol.MeshError, ValueError), match="OpenCL"):
         mesh.grid(cells=(2, 2, 2), backend="opencl", opencl_device=999)
 
@@ -58,7 +94,7 @@ def test_dask_grid_takes_the_backend():
     lazy = meshvol.dask.grid(mesh, cells=(6, 6, 6), chunks=(3, 3, 6), backend="cpu")
     assert np.array_equal(lazy.compute(), np.asarray(mesh.grid(cells=(6, 6, 6), backend="cpu")))
     with pytest.raises(ValueError, match="CPU only"):
-        meshvol.dask.grid(mesh, cells=(6, 6, 6), moments=True, backend="opencl")
+        meshvol.dask.grid(mesh, cells=(6, 6, 6), moments=True, second_moments=True, backend="opencl")
 
 
 def test_a_failing_device_is_an_error_and_auto_warns_and_takes_the_cpu(monkeypatch):
@@ -68,6 +104,7 @@ def test_a_failing_device_is_an_error_and_auto_warns_and_takes_the_cpu(monkeypat
     mesh = sphere()
     opencl_grid(mesh, cells=(2, 2, 2))  # skips where there is no device
     cpu = np.asarray(mesh.grid(cells=(9, 7, 11), backend="cpu"))
+    cut = mesh.cells(cells=(5, 6, 7), backend="cpu")
     # The number of the device backend="opencl" took (the first with f64), for auto,
     # which takes a CPU device only when named.
     device = None
@@ -86,3 +123,9 @@ def test_a_failing_device_is_an_error_and_auto_warns_and_takes_the_cpu(monkeypat
         with pytest.warns(meshvol.MeshWarning, match=re.escape(says)):
             auto = np.asarray(mesh.grid(cells=(9, 7, 11), backend="auto", opencl_device=device))
         assert np.array_equal(auto.view(np.uint64), cpu.view(np.uint64)), fault
+        # The cut cells alike.
+        with pytest.raises((meshvol.MeshError, ValueError), match=re.escape(says)):
+            mesh.cells(cells=(5, 6, 7), backend="opencl", opencl_device=device)
+        with pytest.warns(meshvol.MeshWarning, match=re.escape(says)):
+            auto = mesh.cells(cells=(5, 6, 7), backend="auto", opencl_device=device)
+        same_arrays(cut, auto, fault)

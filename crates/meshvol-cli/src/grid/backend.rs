@@ -1,18 +1,19 @@
-//! `grid --backend`: the cell volumes on the CPU or on an OpenCL device (the same
-//! bits: crates/meshvol-opencl), and which one `auto` takes.
+//! `grid --backend`: the cell volumes and the cut cells (`--moments`) on the CPU or on
+//! an OpenCL device (the same bits: crates/meshvol-opencl), and which one `auto` takes.
 
 use crate::input::Progress;
 use clap::{Args, ValueEnum};
-use meshvol::grid::{cell_volumes_with, Grid};
+use meshvol::grid::{cell_volumes_with, cut_cells_extras, CutCells, Extras, Grid};
 use meshvol::Surface;
 use meshvol_opencl::Where;
 
 #[derive(Args)]
 pub struct BackendArgs {
-    /// Where the cell volumes are computed: `cpu`; `opencl`, an OpenCL device (any kind,
-    /// PoCL's CPU device included; `meshvol devices` lists them); `auto`, an OpenCL GPU
-    /// with f64 when there is one, else the CPU. The same bits either way. --moments,
-    /// --union and .zarr outputs run on the CPU.
+    /// Where the cell volumes (and with --moments the cut cells) are computed: `cpu`;
+    /// `opencl`, an OpenCL device (any kind, PoCL's CPU device included; `meshvol
+    /// devices` lists them); `auto`, an OpenCL GPU with f64 when there is one, else the
+    /// CPU. The same bits either way. --second-moments, --face-centroids, --union and
+    /// .zarr outputs run on the CPU.
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
     backend: Backend,
     /// The OpenCL device to use, by its number in `meshvol devices` (default: the one
@@ -46,7 +47,7 @@ impl BackendArgs {
     }
 
     /// Refuses `--backend opencl` (or `--opencl-device`) for what only the CPU computes:
-    /// `what` names it (`"--moments"`).
+    /// `what` names it (`"--union"`).
     pub fn cpu_only(&self, what: &str) -> Result<(), String> {
         self.choice().cpu_only(what, "leave out --backend opencl and --opencl-device")
     }
@@ -74,5 +75,29 @@ impl BackendArgs {
             None => &(),
         };
         self.choice().cell_volumes(surface, grid, &whole, hook, on_cpu, warn)
+    }
+
+    /// The cut cells of `surface` on `grid` with `extras`, where the backend says (the
+    /// extras, which only the CPU computes, on the CPU: `run` refused `opencl` for them).
+    /// `auto` falls back to the CPU, with a warning, when the OpenCL device fails.
+    pub fn cut_cells<S: Surface + ?Sized>(
+        &self,
+        surface: &S,
+        grid: &Grid,
+        extras: Extras,
+        progress: &Progress,
+    ) -> Result<CutCells, String> {
+        let whole = grid.counts.map(|n| 0..n);
+        let on_cpu = || {
+            let hook = progress.kernel("computing the cut cells".to_string());
+            cut_cells_extras(surface, grid, &whole, extras, &hook).map_err(|e| e.to_string())
+        };
+        if self.backend == Backend::Cpu || extras != Extras::default() {
+            return on_cpu();
+        }
+        let warn = |e: &str| progress.warn("--backend auto", e);
+        // The device's stages and the CPU's sums after them are the run's --timings.
+        let hook = progress.kernel("computing the cut cells (OpenCL)".to_string());
+        self.choice().cut_cells(surface, grid, &whole, &hook, on_cpu, warn)
     }
 }

@@ -101,14 +101,16 @@ def _cut_block(
     check: bool,
     region: Tuple[Tuple[int, int], ...],
     extras: Tuple[bool, bool],
+    backend: Backend = "auto",
 ) -> Dict[str, np.ndarray]:
-    """One chunk of the cut cells, on a worker; each face array cut to the faces the
-    chunk owns (its low faces, and its high faces where it ends the grid)."""
+    """One chunk of the cut cells, on a worker (on its OpenCL device with
+    backend='opencl' or 'auto'); each face array cut to the faces the chunk owns (its low
+    faces, and its high faces where it ends the grid)."""
     mesh = source if isinstance(source, Mesh) else _mesh_at(*source)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", MeshWarning)
         block = mesh.cells(cells=cells, bounds=bounds, check=check, region=region,
-                           second_moments=extras[0], face_centroids=extras[1])
+                           second_moments=extras[0], face_centroids=extras[1], backend=backend)
     arrays = dict(block)
     for name in arrays:
         a = _face_axis(name)
@@ -139,6 +141,7 @@ def _moments(
     check: bool,
     chunks: Tuple[Tuple[int, ...], ...],
     extras: Tuple[bool, bool],
+    backend: Backend,
 ) -> Dict[str, da.Array]:
     """The cut cells as a dict of lazy arrays, each chunk computed once by _cut_block."""
     source_key = dask.delayed(where, pure=True, traverse=False)
@@ -157,7 +160,7 @@ def _moments(
             lines: Dict[str, List[Any]] = {name: [] for name in names}
             for k0, bz in zip(starts[2], chunks[2]):
                 region = ((i0, i0 + bx), (j0, j0 + by), (k0, k0 + bz))
-                arrays = block(source_key, counts, fixed, check, region, extras)
+                arrays = block(source_key, counts, fixed, check, region, extras, backend)
                 for name in names:
                     shape: Tuple[int, ...] = (bx, by, bz)
                     a = _face_axis(name)
@@ -242,7 +245,8 @@ def grid(
     cuts its columns' faces through every layer anyway (the layers above it hand their
     areas down): chunks split along z repeat that work.
     backend: as Mesh.grid's ('auto', 'cpu', 'opencl'), on each worker: the same bits;
-    the cut cells (moments=True) run on the CPU ('opencl' is refused).
+    with moments=True as Mesh.cells' (second_moments and face_centroids on the CPU only:
+    'opencl' is refused for them).
     """
     if backend not in ("auto", "cpu", "opencl"):
         raise ValueError(f"backend '{backend}': one of cpu, opencl, auto")
@@ -272,9 +276,9 @@ def grid(
     if moments:
         if fraction:
             raise ValueError("moments=True gives fraction among its arrays: leave fraction=False")
-        if backend == "opencl":
-            raise ValueError("the cut cells (moments=True) run on the CPU only: leave backend='auto' or give 'cpu'")
-        return _moments(where, counts, fixed, check, blocks, (second_moments, face_centroids))
+        if backend == "opencl" and (second_moments or face_centroids):
+            raise ValueError("second_moments and face_centroids run on the CPU only: leave backend='auto' or give 'cpu'")
+        return _moments(where, counts, fixed, check, blocks, (second_moments, face_centroids), backend)
 
     # One graph key holds the mesh (or its path): each worker receives it once.
     source_key = dask.delayed(where, pure=True, traverse=False)

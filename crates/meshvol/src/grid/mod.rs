@@ -42,8 +42,8 @@ mod tile_work;
 mod union;
 
 pub use cut_cells::{
-    cut_cells, cut_cells_extras, cut_cells_region, cut_cells_rows, cut_cells_with, CutCellRows,
-    CutCells, Extras,
+    cut_cells, cut_cells_extras, cut_cells_region, cut_cells_rows, cut_cells_swept, cut_cells_with,
+    cut_tile_work, CutCellRows, CutCells, Extras, SweptCells,
 };
 pub use intersect::{
     intersection, intersection_placed, intersection_with, overlapping_boxes, Bounded, Contact,

@@ -17,17 +17,27 @@
 //! strip, column and layer sweeps of each listed triangle, the sink's sums, and the
 //! compensated suffix sum per column. A tile owns its run of cells and of area
 //! accumulators, so the tiles are independent and any number may run at once.
+//!
+//! The cut cells ([`cut_tile_work`](super::cut_cells::cut_tile_work)) lay out the same
+//! way, with two differences that are their kernel's: every triangle is kept (a wall,
+//! without projected area, still has a surface in its cells), and each triangle carries
+//! its face's unit normal where the face is a polygon (the sign its parts' areas count
+//! with).
 
 use super::cells::{Bins, Block, Piece, Tiling, Units};
 use super::{check_region, Grid, GridError, Region};
-use crate::Surface;
+use crate::{Point, Surface};
 
 /// The work of one grid (or one block of it) for a device.
 #[derive(Clone, Debug)]
 pub struct TileWork {
     /// Triangles in grid units (cell `(i, j, k)` is `[i, i+1] × [j, j+1] × [k, k+1]`),
-    /// nine coordinates each (`a`, `b`, `c`); those with zero projected area left out.
+    /// nine coordinates each (`a`, `b`, `c`); for the volumes, those with zero projected
+    /// area left out.
     pub triangles: Vec<[f64; 9]>,
+    /// For the cut cells, one per triangle: its face's unit normal (world) and 1 where
+    /// the face is a polygon with one, else zeros; empty for the volumes.
+    pub normals: Vec<[f64; 4]>,
     /// Tile `t` cuts the triangles `entries[offsets[t]..offsets[t + 1]]`, in this order.
     pub offsets: Vec<u64>,
     pub entries: Vec<u32>,
@@ -65,6 +75,18 @@ pub fn tile_work<S: Surface + ?Sized>(
     region: &Region,
     per_tile: usize,
 ) -> Result<TileWork, GridError> {
+    laid_out(surface, grid, region, per_tile, None::<fn(usize) -> Option<Point>>)
+}
+
+/// [`tile_work`]; with `normal` (a face's unit normal, if it is a polygon with one), the
+/// cut cells' layout instead: every triangle kept, each with its face's normal.
+pub(crate) fn laid_out<S: Surface + ?Sized>(
+    surface: &S,
+    grid: &Grid,
+    region: &Region,
+    per_tile: usize,
+    normal: Option<impl Fn(usize) -> Option<Point>>,
+) -> Result<TileWork, GridError> {
     let grid = Grid::new(grid.origin, grid.cell, grid.counts)?;
     check_region(&grid, region)?;
     let block = Block { counts: grid.counts, region: region.clone() };
@@ -73,13 +95,21 @@ pub fn tile_work<S: Surface + ?Sized>(
     // Each face's triangles once: face `f` has triangles first[f]..first[f + 1].
     let faces = surface.face_count();
     let mut triangles = Vec::new();
+    let mut normals = Vec::new();
     let mut first = Vec::with_capacity(faces + 1);
     for face in 0..faces {
         first.push(triangles.len());
+        let n = match normal.as_ref().map(|normal| normal(face)) {
+            Some(Some(n)) => [n[0], n[1], n[2], 1.0],
+            _ => [0.0; 4],
+        };
         surface.fan(face, |a, b, c| {
             let (a, b, c) = (units.map(a), units.map(b), units.map(c));
-            if Piece::triangle(a, b, c).area() != 0.0 {
+            if normal.is_some() || Piece::triangle(a, b, c).area() != 0.0 {
                 triangles.push([a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]]);
+                if normal.is_some() {
+                    normals.push(n);
+                }
             }
         });
     }
@@ -100,6 +130,7 @@ pub fn tile_work<S: Surface + ?Sized>(
     }
     Ok(TileWork {
         triangles,
+        normals,
         offsets,
         entries,
         counts: grid.counts,

@@ -399,21 +399,19 @@ fn central(m2: [f64; 6], m1: Point, v: f64, (c, trivial): (Point, bool), cell: P
 /// moments `(∫ x', ∫ y') dA` (grid units) of each z face's wetted part (else empty).
 pub(super) type Swept = (CutCells, Vec<Extra>, Vec<[f64; 2]>);
 
-/// The cut-cell values of the cells of `block` of `grid` (validated), from `surface`'s
-/// faces, and the z apertures of its columns; the x and y apertures are left to
-/// [`super::apertures`] and the surface centroids to [`finish_boundary_centroids`].
-pub(super) fn cut_cells<S: Surface + ?Sized, const X: bool>(
-    surface: &S,
+/// The cut cells' arrays for `block` of `grid`, zeroed (the sweeps add into them), but
+/// for the extra ones, left empty.
+pub(super) fn allocated(
     grid: &Grid,
     block: &Block,
     progress: &dyn Progress,
-) -> Result<Swept, GridError> {
+) -> Result<CutCells, GridError> {
     let [bx, by, depth] = block.shape();
     let len = bx * by * depth;
     // Its own stage: at 256³ the arrays are 1.9 GB, and their first touch (the system
     // zeroing fresh pages) can take longer than the sweeps.
     progress.stage("allocating the cells' arrays");
-    let mut out = CutCells {
+    Ok(CutCells {
         grid: *grid,
         region: block.region.clone(),
         volume: zeroed(len)?,
@@ -428,7 +426,21 @@ pub(super) fn cut_cells<S: Surface + ?Sized, const X: bool>(
         ],
         inertia: Vec::new(),
         aperture_centroid: Default::default(),
-    };
+    })
+}
+
+/// The cut-cell values of the cells of `block` of `grid` (validated), from `surface`'s
+/// faces, and the z apertures of its columns; the x and y apertures are left to
+/// [`super::apertures`] and the surface centroids to [`finish_boundary_centroids`].
+pub(super) fn cut_cells<S: Surface + ?Sized, const X: bool>(
+    surface: &S,
+    grid: &Grid,
+    block: &Block,
+    progress: &dyn Progress,
+) -> Result<Swept, GridError> {
+    let [bx, by, depth] = block.shape();
+    let len = bx * by * depth;
+    let mut out = allocated(grid, block, progress)?;
     let mut extra: Vec<Extra> = if X { zeroed(len)? } else { Vec::new() };
     let mut planes: Vec<[f64; 2]> = if X { zeroed(len + bx * by)? } else { Vec::new() };
     let nz = grid.counts[2];

@@ -73,6 +73,7 @@
 //! | the integrals over one part | [`integrals`] |
 //! | sweeps, sums and per-column finish | [`kernel`] |
 //! | x and y apertures, surface centroids | [`apertures`] |
+//! | the per-column stage run elsewhere (a device), the rest here | [`device`] |
 //!
 //! ```
 //! use meshvol::grid::{cut_cells, Grid};
@@ -91,8 +92,11 @@
 //! ```
 
 mod apertures;
+mod device;
 mod integrals;
 mod kernel;
+
+pub use device::{cut_cells_swept, cut_tile_work, SweptCells};
 
 use super::cells::Block;
 use super::{Grid, GridError, Region};
