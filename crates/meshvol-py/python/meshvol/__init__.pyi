@@ -2,10 +2,12 @@
 Mesh, MassProperties, Check and Shell of the extension module are written here, its
 other reports and its functions in _meshvol.pyi; measure, Grid, CutCells and the OSError
 classes are typed Python (_batch.py, _grid.py, _errors.py). Checked against the runtime
-by mypy's stubtest (tests/test_typing.py)."""
+by mypy's stubtest (tests/test_typing.py), which also finds every name of the runtime's
+__all__ here: the stub keeps no second list of them, its public names are its own classes
+and the `X as X` re-exports."""
 
 import os
-from typing import Any, Literal, Optional, Sequence, Tuple, Union as _Union, final
+from typing import Any, Literal, Optional, Tuple, Union as _Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -38,50 +40,8 @@ from ._meshvol import (
     cutfill as cutfill,
     volume as volume,
 )
-
-__all__ = [
-    "AreaProperties",
-    "Below",
-    "Check",
-    "CutCells",
-    "CutFill",
-    "Grid",
-    "Hull",
-    "Intersection",
-    "InvalidMeshError",
-    "LossyWriteError",
-    "MassProperties",
-    "Mesh",
-    "MeshError",
-    "MeshFileNotFoundError",
-    "MeshIsADirectoryError",
-    "MeshOSError",
-    "MeshPermissionError",
-    "MeshWarning",
-    "Profile",
-    "ReadError",
-    "Section",
-    "Shell",
-    "Union",
-    "__version__",
-    "convex_hull",
-    "cutfill",
-    "hull_volume",
-    "intersection",
-    "intersections",
-    "load",
-    "measure",
-    "polygon_area",
-    "union",
-    "volume",
-]
-
-_ArrayLike = npt.ArrayLike
-_F64 = npt.NDArray[np.float64]
-_Faces = _Union[npt.ArrayLike, Sequence[Sequence[int]]]
-_Density = _Union[float, str]
-_Timings = list[dict[str, Any]]
-_Path = _Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
+# The aliases _meshvol.pyi types its functions with (private: not re-exported).
+from ._meshvol import _ArrayLike, _Density, _F64, _Faces, _Timings
 
 class MeshError(ValueError):
     """Base class of meshvol's errors, with the meshvol command's messages."""
