@@ -2,9 +2,7 @@
 Mesh, MassProperties, Check and Shell of the extension module are written here, its
 other reports and its functions in _meshvol.pyi; measure, Grid, CutCells and the OSError
 classes are typed Python (_batch.py, _grid.py, _errors.py). Checked against the runtime
-by mypy's stubtest (tests/test_typing.py), which also finds every name of the runtime's
-__all__ here: the stub keeps no second list of them, its public names are its own classes
-and the `X as X` re-exports."""
+by mypy's stubtest (tests/test_typing.py)."""
 
 import os
 from typing import Any, Literal, Optional, Tuple, Union as _Union, final
@@ -42,6 +40,43 @@ from ._meshvol import (
 )
 # The aliases _meshvol.pyi types its functions with (private: not re-exported).
 from ._meshvol import _ArrayLike, _Density, _F64, _Faces, _Timings
+
+__all__ = [
+    "AreaProperties",
+    "Below",
+    "Check",
+    "CutCells",
+    "CutFill",
+    "Grid",
+    "Hull",
+    "Intersection",
+    "InvalidMeshError",
+    "LossyWriteError",
+    "MassProperties",
+    "Mesh",
+    "MeshError",
+    "MeshFileNotFoundError",
+    "MeshIsADirectoryError",
+    "MeshOSError",
+    "MeshPermissionError",
+    "MeshWarning",
+    "Profile",
+    "ReadError",
+    "Section",
+    "Shell",
+    "Union",
+    "__version__",
+    "convex_hull",
+    "cutfill",
+    "hull_volume",
+    "intersection",
+    "intersections",
+    "load",
+    "measure",
+    "polygon_area",
+    "union",
+    "volume",
+]
 
 class MeshError(ValueError):
     """Base class of meshvol's errors, with the meshvol command's messages."""
