@@ -4,11 +4,13 @@
 use crate::dict::Fields;
 use crate::errors::{bad_argument, mesh_error};
 use crate::load::{warn_for, MeshArg};
-use crate::mesh::PyMesh;
 use meshvol::assembly::Affine;
-use meshvol::topology::Check;
+use meshvol::overlap::Body;
+use meshvol::Mesh;
 use meshvol_report::intersect::{intersect_poses, intersect_prepared, rigid_pose, IntersectReport};
 use meshvol_report::quantities::Quantities;
+use meshvol_report::subject::Subject;
+use meshvol_report::units::UnitOptions;
 use numpy::ndarray::arr2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -124,20 +126,53 @@ fn rigid(m: &[[f64; 4]; 4], what: &str) -> PyResult<Affine> {
     rigid_pose(m).map_err(|why| bad_argument(format!("{what} is not rigid: {why}")))
 }
 
-/// With a clock (`timings=True`) and `check`, each body's check run again, its stages
-/// timed; then `measuring` starts.
-fn timed_checks(
-    py: Python<'_>,
-    [a, b]: [&Bound<'_, PyMesh>; 2],
+/// What intersection and intersections share once their own arguments are read: the
+/// two bodies as given (read here from a path, or taken), their subjects and prepared
+/// solids, `measure` run on them without the GIL, and its reports in `options`' units.
+/// With `timings`, each check is run again and timed, then `measuring` starts.
+fn measure_pair<'py, F>(
+    py: Python<'py>,
+    [a, b]: [&Bound<'py, PyAny>; 2],
     check: bool,
-    clock: Option<&crate::timings::Clock>,
-) -> PyResult<Option<(Check, Check)>> {
-    let timed = match (clock, check) {
+    timings: bool,
+    options: &UnitOptions,
+    measure: F,
+) -> PyResult<Measured<'py>>
+where
+    F: Send + FnOnce(&Subject<'_, Mesh>, &Subject<'_, Mesh>, [Option<&Body>; 2]) -> Reports,
+{
+    let given = [MeshArg::of(a)?, MeshArg::of(b)?];
+    let (a, b) = (&given[0].mesh, &given[1].mesh);
+    let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
+    let clock = timings.then(crate::timings::Clock::new);
+    let timed = match (&clock, check) {
         (Some(c), true) => Some((a.get().timed_check(py, c)?, b.get().timed_check(py, c)?)),
         _ => None,
     };
-    crate::timings::stage(clock, "measuring");
-    Ok(timed)
+    crate::timings::stage(clock.as_ref(), "measuring");
+    if let Some((ca, cb)) = &timed {
+        (sa.check, sb.check) = (Some(ca), Some(cb));
+    }
+    let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
+    let reports = py.detach(|| measure(&sa, &sb, bodies)).map_err(mesh_error)?;
+    let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
+    let reports = reports
+        .into_iter()
+        .map(|r| r.in_units(options, &files))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(mesh_error)?;
+    Ok(Measured { reports, given, clock })
+}
+
+/// What `measure` gives [`measure_pair`]: one report a pose.
+type Reports = Result<Vec<IntersectReport>, String>;
+
+/// [`measure_pair`]'s answer: the reports, the meshes as given (whose warnings the caller
+/// issues with the reports'), and the clock still running.
+struct Measured<'py> {
+    reports: Vec<IntersectReport>,
+    given: [MeshArg<'py>; 2],
+    clock: Option<crate::timings::Clock>,
 }
 
 /// The volume of the intersection of two bodies as a certified interval, with IoU,
@@ -175,20 +210,11 @@ pub fn intersection(
         return Err(bad_argument(format!("tolerance must be a positive number; got {tolerance}")));
     }
     let poses = [pose_of(pose_a, "pose_a")?, pose_of(pose_b, "pose_b")?];
-    let given = [MeshArg::of(a)?, MeshArg::of(b)?];
-    let (a, b) = (&given[0].mesh, &given[1].mesh);
-    let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
-    let clock = timings.then(crate::timings::Clock::new);
-    let timed = timed_checks(py, [a, b], check, clock.as_ref())?;
-    if let Some((ca, cb)) = &timed {
-        (sa.check, sb.check) = (Some(ca), Some(cb));
-    }
-    let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
-    let report = py
-        .detach(|| intersect_prepared(&sa, &sb, bodies, poses, tolerance, &()))
-        .map_err(mesh_error)?;
-    let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
-    let report = report.in_units(&options, &files).map_err(mesh_error)?;
+    let Measured { mut reports, given, clock } =
+        measure_pair(py, [a, b], check, timings, &options, |sa, sb, bodies| {
+            intersect_prepared(sa, sb, bodies, poses, tolerance, &()).map(|r| vec![r])
+        })?;
+    let report = reports.remove(0); // one pose, one report
     warn_for(py, &given, &report.warnings)?;
     let fields = Fields::new(&report)?.with_timings(clock.map(|c| c.finish()))?;
     Ok(PyIntersection { fields, report })
@@ -238,23 +264,10 @@ pub fn intersections(
     }
     let pick = |p: &Option<Vec<Affine>>, k: usize| p.as_ref().map(|v| v[k.min(v.len() - 1)]);
     let pairs: Vec<[Option<Affine>; 2]> = (0..n).map(|k| [pick(&pa, k), pick(&pb, k)]).collect();
-    let given = [MeshArg::of(a)?, MeshArg::of(b)?];
-    let (a, b) = (&given[0].mesh, &given[1].mesh);
-    let (mut sa, mut sb) = (a.get().subject(py, check)?, b.get().subject(py, check)?);
-    let clock = timings.then(crate::timings::Clock::new);
-    let timed = timed_checks(py, [a, b], check, clock.as_ref())?;
-    if let Some((ca, cb)) = &timed {
-        (sa.check, sb.check) = (Some(ca), Some(cb));
-    }
-    let bodies = [a.get().prepared(py, check)?, b.get().prepared(py, check)?];
-    let reports =
-        py.detach(|| intersect_poses(&sa, &sb, bodies, &pairs, tolerance)).map_err(mesh_error)?;
-    let files = [(sa.source.name(), sa.source.unit), (sb.source.name(), sb.source.unit)];
-    let reports = reports
-        .into_iter()
-        .map(|r| r.in_units(&options, &files))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(mesh_error)?;
+    let Measured { reports, given, clock } =
+        measure_pair(py, [a, b], check, timings, &options, |sa, sb, bodies| {
+            intersect_poses(sa, sb, bodies, &pairs, tolerance)
+        })?;
     let mut warnings: Vec<String> = Vec::new();
     for w in reports.iter().flat_map(|r| &r.warnings) {
         if !warnings.contains(w) {

@@ -64,39 +64,6 @@ from ._batch import measure
 from ._errors import MeshFileNotFoundError, MeshIsADirectoryError, MeshOSError, MeshPermissionError
 from ._grid import CutCells, Grid
 
-__all__ = [
-    "AreaProperties",
-    "Below",
-    "Check",
-    "CutCells",
-    "CutFill",
-    "Grid",
-    "Hull",
-    "Intersection",
-    "InvalidMeshError",
-    "LossyWriteError",
-    "MassProperties",
-    "Mesh",
-    "MeshError",
-    "MeshFileNotFoundError",
-    "MeshIsADirectoryError",
-    "MeshOSError",
-    "MeshPermissionError",
-    "MeshWarning",
-    "Profile",
-    "ReadError",
-    "Section",
-    "Shell",
-    "Union",
-    "__version__",
-    "convex_hull",
-    "cutfill",
-    "hull_volume",
-    "intersection",
-    "intersections",
-    "load",
-    "measure",
-    "polygon_area",
-    "union",
-    "volume",
-]
+# The public names are those imported above, and __version__ (`from meshvol import *`
+# gives them); __init__.pyi lists them for type checkers, and stubtest checks the two agree.
+__all__ = sorted([name for name in globals() if not name.startswith("_")] + ["__version__"])

@@ -5,7 +5,7 @@ classes are typed Python (_batch.py, _grid.py, _errors.py). Checked against the 
 by mypy's stubtest (tests/test_typing.py)."""
 
 import os
-from typing import Any, Literal, Optional, Sequence, Tuple, Union as _Union, final
+from typing import Any, Literal, Optional, Tuple, Union as _Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -38,6 +38,8 @@ from ._meshvol import (
     cutfill as cutfill,
     volume as volume,
 )
+# The aliases _meshvol.pyi types its functions with (private: not re-exported).
+from ._meshvol import _ArrayLike, _Density, _F64, _Faces, _Timings
 
 __all__ = [
     "AreaProperties",
@@ -75,13 +77,6 @@ __all__ = [
     "union",
     "volume",
 ]
-
-_ArrayLike = npt.ArrayLike
-_F64 = npt.NDArray[np.float64]
-_Faces = _Union[npt.ArrayLike, Sequence[Sequence[int]]]
-_Density = _Union[float, str]
-_Timings = list[dict[str, Any]]
-_Path = _Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
 class MeshError(ValueError):
     """Base class of meshvol's errors, with the meshvol command's messages."""

@@ -63,18 +63,22 @@ _Density = _Union[float, str]
 _Timings = list[dict[str, Any]]
 _Path = _Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
-@final
-class Profile:
-    """Volume below each level (`meshvol profile --json`'s keys)."""
+class _Report:
+    """What every report of a command has (a base of the stubs alone, as _CheckFacts)."""
+
     units: Optional[dict[str, Any]]
     """Names of the reported units; None: the file's own units."""
-
-    axis: str
-    file: Optional[str]
     warnings: list[str]
     timings: _Timings
+    """With timings=True: the stages' {stage, wall_s, cpu_s} (else absent)."""
     def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol profile --json`."""
+        """Plain values with the keys of the command's --json report."""
+
+@final
+class Profile(_Report):
+    """Volume below each level (`meshvol profile --json`'s keys)."""
+    axis: str
+    file: Optional[str]
     @property
     def levels(self) -> _F64: ...
     @property
@@ -85,11 +89,8 @@ class Profile:
     def section_area(self) -> _F64: ...
 
 @final
-class Union:
+class Union(_Report):
     """The union's volume as a certified interval (`meshvol union --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
     lower: float
     upper: float
     certified: bool
@@ -105,23 +106,16 @@ class Union:
     flipped: list[int]
     volume_uncertainty: float
     """The caps on holes' uncertainty, included in [lower, upper]."""
-    warnings: list[str]
     file: str
     """The meshes' names (their files, or 'mesh'), joined by ', '."""
     files: list[str]
     body_names: list[str]
     grid: list[int]
     seconds: float
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol union --json`."""
 
 @final
-class Intersection:
+class Intersection(_Report):
     """The intersection of two bodies, certified (`meshvol intersect --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
     lower: float
     upper: float
     certified: bool
@@ -153,15 +147,11 @@ class Intersection:
     """The caps on holes' uncertainty, included in [lower, upper]."""
     method: str
     """'boxes' (apart: 0), 'boundary' (each face's part inside the other body) or 'grid'."""
-    warnings: list[str]
     file: str
     """The meshes' names (their files, or 'mesh'), joined by ', '."""
     files: list[str]
     grid: list[int]
     seconds: float
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol intersect --json`."""
     @property
     def centroid(self) -> Optional[_F64]: ...
     @property
@@ -174,11 +164,8 @@ class Intersection:
         """contact_vector scaled to length 1 (None where it is 0)."""
 
 @final
-class AreaProperties:
+class AreaProperties(_Report):
     """Area, perimeter, centroid and second moments of plane polygons."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
     area: float
     perimeter: float
     ix: float
@@ -193,10 +180,6 @@ class AreaProperties:
     inertia: Optional[dict[str, Any]]
     """The second moments as `meshvol area --json` nests them; None without area."""
     rings: list[dict[str, Any]]
-    warnings: list[str]
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol area --json`."""
     @property
     def centroid(self) -> Optional[_F64]:
         """Shape (2,); None when the area is zero."""
@@ -208,17 +191,13 @@ class AreaProperties:
         """Shape (2, 2): row k is the axis of principal_moments[k]."""
 
 @final
-class Below:
+class Below(_Report):
     """The part of a solid below a plane (`meshvol below --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
     file: Optional[str]
     level: float
     volume: float
     wetted_area: float
     section_area: float
-    warnings: list[str]
     @property
     def normal(self) -> _F64:
         """Shape (3,): the plane's unit normal."""
@@ -228,16 +207,10 @@ class Below:
     @property
     def section_centroid(self) -> Optional[_F64]:
         """Shape (3,): the waterplane's centroid; None without a section."""
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol below --json`."""
 
 @final
-class CutFill:
+class CutFill(_Report):
     """Cut and fill between two surfaces (`meshvol cutfill --json`'s keys)."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
     file: Optional[str]
     design: str
     level: Optional[float]
@@ -250,8 +223,6 @@ class CutFill:
     existing_area: float
     design_area: Optional[float]
     grid: Optional[dict[str, list[Any]]]
-    warnings: list[str]
-    timings: _Timings
     @property
     def footprint_bounds(self) -> Optional[_F64]:
         """Shape (2, 2): [[x0, y0], [x1, y1]]; None without a footprint."""
@@ -261,15 +232,10 @@ class CutFill:
     @property
     def fill_cells(self) -> Optional[_F64]:
         """Shape (nx, ny): fill volume per plan cell; None without cells or pitch."""
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol cutfill --json`."""
 
 @final
-class Hull:
+class Hull(_Report):
     """A convex hull (`meshvol hull --json`'s keys) and its mesh."""
-    units: Optional[dict[str, Any]]
-    """Names of the reported units; None: the file's own units."""
-
     points: int
     point_count: int
     hull_vertices: int
@@ -283,15 +249,11 @@ class Hull:
     mesh: Optional[Mesh]
     file: Optional[str]
     format: Optional[str]
-    warnings: list[str]
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol hull --json`."""
     @property
     def centroid(self) -> Optional[_F64]: ...
 
 @final
-class Section:
+class Section(_Report):
     """The cross-section of a solid by a plane (`meshvol section --json`'s keys)."""
 
     file: Optional[str]
@@ -307,8 +269,6 @@ class Section:
     loops: int
     segments: int
     open_chains: int
-    units: Optional[dict[str, Any]]
-    warnings: list[str]
     @property
     def centroid(self) -> Optional[_F64]:
         """Shape (2,), in the plane's coordinates; None without area."""
@@ -328,9 +288,6 @@ class Section:
         """A WKT MULTIPOLYGON (`meshvol section --wkt`)."""
     def to_geojson(self) -> dict[str, Any]:
         """A GeoJSON Feature (`meshvol section --geojson`)."""
-    timings: _Timings
-    def to_dict(self) -> dict[str, Any]:
-        """Plain values with the keys of `meshvol section --json`."""
 
 _MeshArg = _Union[Mesh, _Path, Any]
 """A meshvol.Mesh, a path (read as load reads it), or an object with .vertices and
@@ -410,14 +367,8 @@ def intersection(
         Each one body (every shell).
     pose_a, pose_b : array_like, optional
         A 4×4 rigid transform placing each body's checked solid.
-    tolerance : float
-        Refinement stops once upper - lower <= tolerance * lower.
-    check : bool
-        True: each mesh's checked solid; False: the surfaces as wound.
-    units, density : str, optional
-        As the command's --units and --density.
-    timings : bool
-        Add `timings`: each check (run again), then measuring.
+    tolerance, check, units, density, timings
+        As for union.
 
     Returns
     -------
