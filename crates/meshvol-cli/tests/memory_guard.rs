@@ -13,7 +13,7 @@ use std::process::{Command, Output};
 
 /// docs/security.md: a binary STL's bytes a triangle, read and checked, and read alone
 /// (`--no-check`).
-const CHECKED: u128 = 200;
+const CHECKED: u128 = 120;
 const UNCHECKED: u128 = 8;
 /// docs/security.md: an OBJ's fewest file bytes a triangle, and its bytes a triangle read
 /// and checked.

@@ -1,7 +1,7 @@
 """The memory guard (docs/security.md#memory): a file whose reading and checking would
 not fit in the memory available is refused before it is read, as the command refuses it.
 MESHVOL_MEMORY_LIMIT stands in for the machine's memory; the estimate is computed here
-from the documented figures (a binary STL's header count times 200 bytes a triangle
+from the documented figures (a binary STL's header count times 120 bytes a triangle
 checked, 8 read alone, plus the file's bytes)."""
 
 import struct
@@ -13,7 +13,7 @@ import pytest
 import meshvol
 
 SAMPLE = Path(__file__).resolve().parents[3] / "samples" / "flanged-bushing.stl"
-CHECKED, UNCHECKED = 200, 8
+CHECKED, UNCHECKED = 120, 8
 
 
 def triangles():
