@@ -109,10 +109,7 @@ impl Device {
         for slab in slabs(&x, rows) {
             progress.stage("laying out the tiles (CPU)");
             let columns = slab.len() * width;
-            let per_item = options
-                .columns_per_item
-                .unwrap_or_else(|| columns.div_ceil(64 * self.units))
-                .max(1);
+            let per_item = options.per_item(columns, self.units);
             let first = (slab.start - x.start) * width;
             let cells = first * depth..(first + columns) * depth;
             let points = 3 * cells.start..3 * cells.end;

@@ -47,6 +47,14 @@ pub struct Options {
     pub slab_bytes: Option<u64>,
 }
 
+impl Options {
+    /// The columns each work item takes of a slab of `columns`, on a device of `units`
+    /// compute units: as asked, or enough tiles for 64 work items a unit, at least one.
+    pub(crate) fn per_item(&self, columns: usize, units: usize) -> usize {
+        self.columns_per_item.unwrap_or_else(|| columns.div_ceil(64 * units)).max(1)
+    }
+}
+
 /// An OpenCL device, and the grid's kernels built for it, each the first time a grid
 /// needs it (a build takes seconds on some drivers).
 pub struct Device {
@@ -171,10 +179,7 @@ impl Device {
         for slab in slabs(&x, rows) {
             progress.stage("laying out the tiles (CPU)");
             let columns = slab.len() * width;
-            let per_item = options
-                .columns_per_item
-                .unwrap_or_else(|| columns.div_ceil(64 * self.units))
-                .max(1);
+            let per_item = options.per_item(columns, self.units);
             let at = (slab.start - x.start) * width * depth;
             let out = &mut volumes[at..at + columns * depth];
             let work = tile_work(surface, &grid, &[slab, y.clone(), z.clone()], per_item)?;

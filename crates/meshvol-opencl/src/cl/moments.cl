@@ -233,31 +233,14 @@ __kernel void tile_moments(
     s.scale[0] = sx;
     s.scale[1] = sy;
     s.scale[2] = sz;
-    for (ulong e = 0; e < n * depth; e++) {
-        s.volume[e] = 0.0;
-        s.area[e] = 0.0;
-    }
-    for (ulong e = 0; e < 3 * n * depth; e++) {
-        s.centroid[e] = 0.0;
-        s.vector[e] = 0.0;
-        s.weighted[e] = 0.0;
-    }
-    for (ulong e = 0; e < 3 * n * areas; e++) {
-        s.handed[e] = 0.0;
-    }
-    for (ulong e = 0; e < n; e++) {
-        s.on_top[e] = 0.0;
-    }
-    Columns c;
-    c.ny = ny;
-    c.nz = nz;
-    c.x0 = x0;
-    c.y0 = y0;
-    c.width = width;
-    c.first_row = x0 + col_start / width;
-    c.last_row = x0 + (col_end - 1) / width;
-    c.col_start = col_start;
-    c.col_end = col_end;
+    zero(s.volume, n * depth);
+    zero(s.area, n * depth);
+    zero(s.centroid, 3 * n * depth);
+    zero(s.vector, 3 * n * depth);
+    zero(s.weighted, 3 * n * depth);
+    zero(s.handed, 3 * n * areas);
+    zero(s.on_top, n);
+    Columns c = columns_of(ny, nz, x0, y0, width, col_start, col_end);
     for (ulong e = offsets[tile]; e < offsets[tile + 1]; e++) {
         ulong triangle = (ulong)entries[e];
         __global const double *v = triangles + 9 * triangle;

@@ -59,6 +59,29 @@ typedef struct {
     ulong col_start, col_end;
 } Columns;
 
+// Columns col_start..col_end of a tile, counted from (x0, y0) in layers `width` wide.
+static Columns columns_of(ulong ny, ulong nz, ulong x0, ulong y0, ulong width, ulong col_start,
+                          ulong col_end) {
+    Columns c;
+    c.ny = ny;
+    c.nz = nz;
+    c.x0 = x0;
+    c.y0 = y0;
+    c.width = width;
+    c.first_row = x0 + col_start / width;
+    c.last_row = x0 + (col_end - 1) / width;
+    c.col_start = col_start;
+    c.col_end = col_end;
+    return c;
+}
+
+// Zeroes a work item's own n values.
+static void zero(__global double *values, ulong n) {
+    for (ulong e = 0; e < n; e++) {
+        values[e] = 0.0;
+    }
+}
+
 // The y sweep of one strip (row i): sweep_axis(strip, 1, ...) with `for_each_piece`'s
 // column callback, each piece swept through the layers.
 static void sweep_row(const Poly *strip, ulong i, const Columns *c, const Sink *s) {

@@ -62,22 +62,9 @@ __kernel void tile_volumes(
     s.areas = areas;
     s.first = first;
     ulong n = col_end - col_start;
-    for (ulong e = 0; e < n * depth; e++) {
-        s.cells[e] = 0.0;
-    }
-    for (ulong e = 0; e < n * areas; e++) {
-        s.area[e] = 0.0;
-    }
-    Columns c;
-    c.ny = ny;
-    c.nz = nz;
-    c.x0 = x0;
-    c.y0 = y0;
-    c.width = width;
-    c.first_row = x0 + col_start / width;
-    c.last_row = x0 + (col_end - 1) / width;
-    c.col_start = col_start;
-    c.col_end = col_end;
+    zero(s.cells, n * depth);
+    zero(s.area, n * areas);
+    Columns c = columns_of(ny, nz, x0, y0, width, col_start, col_end);
     for (ulong e = offsets[tile]; e < offsets[tile + 1]; e++) {
         __global const double *v = triangles + 9 * (ulong)entries[e];
         Poly t;

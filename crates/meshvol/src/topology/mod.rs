@@ -68,6 +68,7 @@
 //! | 3b. sheets | faces around a non-manifold edge paired by their angular order | `sheets.rs` |
 //! | 4. shells | connected components and orientation (a parallel union–find with parities), open shells | `shells.rs` |
 //! | 5. holes | open edges in loops, their caps, capped shell volumes | `holes.rs` |
+//! | 3–5 in order | the stages that need no triangles, run one after the other | `connect.rs` |
 //! | 6. nesting | candidates, containment rays, overlaps, roles, the volume | `nesting.rs` |
 //! | 6b. bodies | nesting within each body; overlapping bodies; the solid's bodies | `bodies.rs` |
 //! | 7. crossings | triangles in space, crossing face pairs | `crossings.rs` |
@@ -83,6 +84,7 @@
 
 mod assembled;
 mod bodies;
+mod connect;
 mod crossings;
 mod edges;
 mod euler;
@@ -108,6 +110,7 @@ use crate::bvh::Bvh;
 use crate::properties::Bounds;
 use crate::vector::norm;
 use crate::Surface;
+use connect::connect;
 use loops::Loops;
 use rayon::prelude::*;
 use std::collections::BTreeSet;
@@ -436,22 +439,11 @@ fn analyse<S: Surface + ?Sized>(
     } else {
         None
     };
-    let Connected {
-        vertices,
-        edges,
-        edge_counts,
-        unpaired,
-        shells,
-        caps,
-        shell_signed,
-        candidates,
-        counts,
-    } = connected;
     // Triangles (fans of kept faces) in spatial order, with their corners inline, and
     // a hierarchy over their boxes: only when something asks for them.
     let (triangles, bvh, crossing) = match space {
         Some((triangles, bvh, crossing)) => (triangles, bvh, Some(crossing)),
-        None if candidates.any() => {
+        None if connected.candidates.any() => {
             let (triangles, bvh) = crossings::triangles_in_space(loops, &classes.spatial, welded);
             (triangles, bvh, None)
         }
@@ -459,8 +451,13 @@ fn analyse<S: Surface + ?Sized>(
     };
     let mut overlapping_shells = BTreeSet::new();
     enter(stage, "nesting shells")?;
-    let mut containers =
-        nesting::containers(&triangles, &bvh, &shells, &candidates, &mut overlapping_shells);
+    let mut containers = nesting::containers(
+        &triangles,
+        &bvh,
+        &connected.shells,
+        &connected.candidates,
+        &mut overlapping_shells,
+    );
     let keep = options.keep_spatial_index && tolerance.is_none() && crossing.is_some();
     let spatial_index = if keep {
         Some(triangles.into_index(bvh))
@@ -469,19 +466,24 @@ fn analyse<S: Surface + ?Sized>(
         None
     };
     let crossings = crossing.map(|pairs| {
-        crossings::face_pairs(pairs, &shells.of_face, options.examples, &mut overlapping_shells)
+        crossings::face_pairs(
+            pairs,
+            &connected.shells.of_face,
+            options.examples,
+            &mut overlapping_shells,
+        )
     });
-    let body_of_shell = bodies::of_shells(bodies, &shells, kept);
+    let body_of_shell = bodies::of_shells(bodies, &connected.shells, kept);
     let overlapping_bodies =
         bodies::split(&body_of_shell, &mut containers, &mut overlapping_shells);
     let roles = nesting::roles(
         &containers,
-        &shell_signed,
-        &shells,
-        &counts,
-        &caps.per_shell,
+        &connected.shell_signed,
+        &connected.shells,
+        &connected.counts,
+        &connected.caps.per_shell,
         kept,
-        &edge_counts.face_inconsistent,
+        &connected.edge_counts.face_inconsistent,
     );
     let orientation = if roles.shells.is_empty() {
         None
@@ -494,15 +496,18 @@ fn analyse<S: Surface + ?Sized>(
     };
 
     enter(stage, "building the solid")?;
-    let (flip, flip_shell, shell_of_face) = (&shells.flip, &roles.flip_shell, &shells.of_face);
+    let (flip, flip_shell, shell_of_face) =
+        (&connected.shells.flip, &roles.flip_shell, &connected.shells.of_face);
     let face_flip: Vec<bool> = (0..faces)
         .into_par_iter()
         .map(|f| kept[f] && (flip[f] ^ flip_shell[shell_of_face[f] as usize]))
         .collect();
-    let cap_flip: Vec<bool> = caps.shell.iter().map(|&s| flip_shell[s as usize]).collect();
-    let mut solid_vertices = Vec::with_capacity(welded.positions.len() + caps.centres.len());
+    let cap_flip: Vec<bool> =
+        connected.caps.shell.iter().map(|&s| flip_shell[s as usize]).collect();
+    let mut solid_vertices =
+        Vec::with_capacity(welded.positions.len() + connected.caps.centres.len());
     solid_vertices.par_extend(welded.positions.par_iter().copied());
-    solid_vertices.extend(caps.centres);
+    solid_vertices.extend(connected.caps.centres);
     let mut solid = Solid::new(
         solid::Faces {
             kept,
@@ -512,25 +517,32 @@ fn analyse<S: Surface + ?Sized>(
             start: loops.start.par_iter().map(|&s| s as usize).collect(),
         },
         solid_vertices,
-        solid::Caps { points: caps.points, ids: caps.ids, flip: &cap_flip, shell: &caps.shell },
+        solid::Caps {
+            points: connected.caps.points,
+            ids: connected.caps.ids,
+            flip: &cap_flip,
+            shell: &connected.caps.shell,
+        },
         tolerance.is_none(),
     );
 
     let count = |flags: &[bool]| flags.par_iter().filter(|&&f| f).count();
     let kept_faces = count(kept);
-    let closed = kept_faces > 0 && edge_counts.boundary == 0 && edge_counts.non_manifold == 0;
-    solid.mark_balanced(closed && edge_counts.consistently_oriented);
+    let closed = kept_faces > 0
+        && connected.edge_counts.boundary == 0
+        && connected.edge_counts.non_manifold == 0;
+    solid.mark_balanced(closed && connected.edge_counts.consistently_oriented);
     Ok(Check {
         weld_tolerance: tolerance,
-        vertices: vertices.used,
-        edges,
+        vertices: connected.vertices.used,
+        edges: connected.edges,
         faces,
         closed,
-        boundary_edges: edge_counts.boundary,
-        boundary_loops: caps.per_shell.iter().sum(),
-        non_manifold_edges: edge_counts.non_manifold,
-        unpaired_at_non_manifold_edges: unpaired,
-        non_manifold_vertices: vertices.non_manifold,
+        boundary_edges: connected.edge_counts.boundary,
+        boundary_loops: connected.caps.per_shell.iter().sum(),
+        non_manifold_edges: connected.edge_counts.non_manifold,
+        unpaired_at_non_manifold_edges: connected.unpaired,
+        non_manifold_vertices: connected.vertices.non_manifold,
         degenerate_faces: (0..faces)
             .into_par_iter()
             .filter(|&f| classes.collapsed[f] || classes.flat[f])
@@ -538,7 +550,7 @@ fn analyse<S: Surface + ?Sized>(
         flat_faces: count(&classes.flat),
         duplicate_faces: count(&classes.duplicate),
         double_wall_faces: count(&classes.double_wall),
-        consistently_oriented: edge_counts.consistently_oriented,
+        consistently_oriented: connected.edge_counts.consistently_oriented,
         orientation,
         cavities: roles.shells.iter().filter(|s| s.cavity).count(),
         shells: roles.shells,
@@ -546,60 +558,12 @@ fn analyse<S: Surface + ?Sized>(
         overlapping_bodies,
         self_intersections: crossings.as_ref().map(|c| c.self_intersections),
         intersection_examples: crossings.map(|c| c.examples).unwrap_or_default(),
-        euler_characteristic: vertices.used as i64 - edges as i64 + kept_faces as i64,
+        euler_characteristic: connected.vertices.used as i64 - connected.edges as i64
+            + kept_faces as i64,
         volume: roles.volume,
-        volume_uncertainty: caps.volume_uncertainty,
+        volume_uncertainty: connected.caps.volume_uncertainty,
         solid,
         spatial_index,
         object_of_shell: (!bodies.is_empty()).then_some(body_of_shell),
-    })
-}
-
-/// What the check derives from how faces connect, by edges and vertices (stages 3–5,
-/// and the candidates of stage 6 and the counts of stage 8 that need no triangles).
-struct Connected {
-    vertices: edges::VertexCounts,
-    edges: usize,
-    edge_counts: edges::EdgeCounts,
-    /// Faces left alone at non-manifold edges.
-    unpaired: usize,
-    shells: shells::Shells,
-    caps: holes::Caps,
-    /// Per shell: its volume as propagated from its first face, holes capped.
-    shell_signed: Vec<f64>,
-    candidates: nesting::Candidates,
-    counts: Vec<euler::ShellCounts>,
-}
-
-/// Edges, shells, orientation, caps and per-shell volumes of the kept faces.
-fn connect<S: Surface + ?Sized>(
-    surface: &S,
-    loops: &Loops,
-    welded: &weld::Welded,
-    kept: &[bool],
-    stage: StageReport<'_>,
-) -> Result<Connected, CheckError> {
-    enter(stage, "finding edges")?;
-    let (mut edges, vertices) = edges::edges(loops, welded, kept);
-    let unpaired = sheets::pair(&mut edges, loops, welded);
-    let edge_counts = edges::count(&edges, kept.len());
-    enter(stage, "finding shells")?;
-    let shells = shells::shells(loops, kept, &edges);
-    enter(stage, "capping holes")?;
-    let caps = holes::caps(loops, welded, &edges, &shells);
-    let shell_signed = holes::shell_volumes(surface, welded, kept, &shells, &caps);
-    enter(stage, "counting shells")?;
-    let candidates = nesting::candidates(loops, welded, kept, &shells);
-    let counts = euler::per_shell(loops, welded, kept, &shells, &edges, vertices.used);
-    Ok(Connected {
-        vertices,
-        edges: edges.len(),
-        edge_counts,
-        unpaired,
-        shells,
-        caps,
-        shell_signed,
-        candidates,
-        counts,
     })
 }
