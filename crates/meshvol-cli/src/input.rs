@@ -44,8 +44,11 @@ fn stdin_bytes() -> Result<Vec<u8>, String> {
 pub fn load(path: &Path, checked: bool) -> Result<Loaded, String> {
     let limits = meshvol_io::Limits { checked, ..meshvol_io::Limits::from_env() };
     let read = if is_stdin(path) {
-        meshvol_io::read_bytes_within(path, stdin_bytes()?, &limits)
+        let bytes = stdin_bytes()?;
+        crate::allocator::reading(bytes.len() as u64);
+        meshvol_io::read_bytes_within(path, bytes, &limits)
     } else {
+        crate::allocator::reading(std::fs::metadata(path).map_or(0, |m| m.len()));
         meshvol_io::read_file_within(path, &limits)
     };
     read.map_err(|e| e.to_string())

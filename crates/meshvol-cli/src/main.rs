@@ -4,6 +4,7 @@
 //! (`driver`), which prints them and decides the exit status: 0 when every file was
 //! measured (and, for `check`, bounds a volume), 1 when any failed, 2 on a usage error.
 
+mod allocator;
 mod area;
 mod below;
 mod check;
@@ -243,42 +244,6 @@ fn edits(a: &str, b: &str) -> usize {
     row[b.len()]
 }
 
-/// mimalloc reuses the large short-lived arrays of a check instead of returning them to
-/// the kernel (see Cargo.toml).
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
-/// mimalloc's `mi_option_purge_delay` and `mi_option_disallow_arena_alloc` (mimalloc.h of
-/// the v3 sources libmimalloc-sys builds; it names no constants for them).
-const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
-const MI_OPTION_DISALLOW_ARENA_ALLOC: libmimalloc_sys::mi_option_t = 26;
-
-/// Takes each large array from the system and gives it back when freed, instead of
-/// carving it from mimalloc's arenas. A check's arrays come and go by stage; in arenas
-/// the space a freed one leaves is not always the shape the next stage asks for, so
-/// the arenas grew to about twice what the check holds at once. Measured on a
-/// 5M-triangle binary STL (`volume`, `/usr/bin/time`, four alternated runs each, 2
-/// cores): with arenas 1001–1011 MB at the peak, 2.79–3.28 s, 1.2–2.1 s of system time;
-/// without, 515 MB, 2.28–2.43 s, 0.63–0.70 s (glibc's allocator: 563 MB, 2.70–3.31 s).
-/// At a million triangles the fresh pages' first touch costs a little: medians of 10
-/// alternated runs, 0.380 → 0.406 s on a binary STL and 0.392 → 0.411 s on an OBJ, for
-/// 235 → 118 MB.
-fn allocate_large_arrays_from_the_system() {
-    // SAFETY: sets one option value; called in main before any other thread starts.
-    unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_DISALLOW_ARENA_ALLOC, 1) };
-}
-
-/// Keeps freed memory for reuse instead of giving it back to the kernel after a delay.
-/// A run is one short process: memory given back is only faulted in again, zeroed, by
-/// the next stage. Measured on a 5M-triangle check (`/usr/bin/time`, same file): 14,013
-/// to 16,903 page faults with the default delay, 3,764 to 3,797 with none, peak memory
-/// 0.92–0.99 GB against 1.00–1.02 GB. (System time still varies, 0.15–1.3 s, with the
-/// kernel's compaction for huge pages on a busy machine.)
-fn keep_freed_memory() {
-    // SAFETY: sets one option value; called in main before any other thread starts.
-    unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };
-}
-
 /// More worker threads than this many per core only cost memory and time.
 const THREADS_PER_CORE: usize = 4;
 
@@ -304,11 +269,7 @@ fn main() -> ExitCode {
         }
         Err(e) => e.exit(),
     };
-    allocate_large_arrays_from_the_system();
-    // A server runs for long: memory a check frees goes back to the system.
-    if !matches!(cli.command, Command::Serve(_)) {
-        keep_freed_memory();
-    }
+    allocator::configure(matches!(cli.command, Command::Serve(_)));
     input::TIMINGS.store(cli.timings, std::sync::atomic::Ordering::Relaxed);
     if let Some(n) = cli.threads {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
