@@ -17,7 +17,8 @@
 //! So a run reuses until it reads an input of [`LARGE_INPUT`] bytes or more (about 2M
 //! triangles of binary STL), and from then on takes large arrays from the system: small
 //! inputs go fastest, and large ones fit (a 100M-triangle check in 10.2 GB). A server
-//! always takes them from the system, since it runs for long.
+//! keeps mimalloc's default, giving freed memory back after a delay, since it runs for
+//! long; its uploads are held to the memory guard's estimate.
 
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -28,13 +29,12 @@ const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
 const MI_OPTION_DISALLOW_ARENA_ALLOC: libmimalloc_sys::mi_option_t = 26;
 
 /// The input size from which large arrays come from the system.
-pub const LARGE_INPUT: u64 = 100_000_000;
+const LARGE_INPUT: u64 = 100_000_000;
 
-/// Sets the allocator up for a run: reuse, unless the run is a server.
+/// Sets the allocator up for a run: freed memory kept for reuse, unless the run is a
+/// server.
 pub fn configure(server: bool) {
-    if server {
-        from_the_system();
-    } else {
+    if !server {
         keep_freed_memory();
     }
 }

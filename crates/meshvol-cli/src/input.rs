@@ -35,8 +35,15 @@ pub fn is_stdin(path: &Path) -> bool {
 /// All of standard input, up to the stream limit (`MESHVOL_MAX_STREAM_BYTES`): an
 /// endless input is an error, not a process that fills memory.
 fn stdin_bytes() -> Result<Vec<u8>, String> {
-    meshvol_io::read_stream(std::io::stdin().lock())
-        .map_err(|e| format!("-: cannot read standard input: {e}"))
+    let bytes = meshvol_io::read_stream(std::io::stdin().lock())
+        .map_err(|e| format!("-: cannot read standard input: {e}"))?;
+    crate::allocator::reading(bytes.len() as u64);
+    Ok(bytes)
+}
+
+/// Tells the allocator the size of the file at `path`, before it is read.
+fn reading_file(path: &Path) {
+    crate::allocator::reading(std::fs::metadata(path).map_or(0, |m| m.len()));
 }
 /// Reads a mesh from a file, or from standard input for `-` (all of it, then the format
 /// from its content). A file whose reading (and, if `checked`, checking) would not fit
@@ -44,11 +51,9 @@ fn stdin_bytes() -> Result<Vec<u8>, String> {
 pub fn load(path: &Path, checked: bool) -> Result<Loaded, String> {
     let limits = meshvol_io::Limits { checked, ..meshvol_io::Limits::from_env() };
     let read = if is_stdin(path) {
-        let bytes = stdin_bytes()?;
-        crate::allocator::reading(bytes.len() as u64);
-        meshvol_io::read_bytes_within(path, bytes, &limits)
+        meshvol_io::read_bytes_within(path, stdin_bytes()?, &limits)
     } else {
-        crate::allocator::reading(std::fs::metadata(path).map_or(0, |m| m.len()));
+        reading_file(path);
         meshvol_io::read_file_within(path, &limits)
     };
     read.map_err(|e| e.to_string())
@@ -59,6 +64,7 @@ pub fn load_polygons(path: &Path) -> Result<PolygonFile, String> {
     if is_stdin(path) {
         return meshvol_io::read_polygons_bytes(path, &stdin_bytes()?).map_err(|e| e.to_string());
     }
+    reading_file(path);
     meshvol_io::read_polygons(path).map_err(|e| e.to_string())
 }
 
@@ -67,6 +73,7 @@ pub fn load_points(path: &Path) -> Result<PointCloud, String> {
     if is_stdin(path) {
         return meshvol_io::read_points_bytes(path, stdin_bytes()?).map_err(|e| e.to_string());
     }
+    reading_file(path);
     meshvol_io::read_points(path).map_err(|e| e.to_string())
 }
 

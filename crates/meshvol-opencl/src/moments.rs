@@ -4,7 +4,7 @@
 //! after by the core on the CPU, from what the device wrote.
 
 use crate::run::{input, on, scalars, Device, Options, Program};
-use crate::slabs::{rows_per_slab, slabs, Budget};
+use crate::slabs::{rows_per_slab, slabs};
 use crate::Error;
 use meshvol::grid::{
     cut_cells_swept, cut_tile_work, CutCells, Grid, Region, SweptCells, TileWork,
@@ -95,10 +95,7 @@ impl Device {
     ) -> Result<(), Error> {
         let [x, y, z] = reach.clone();
         let (width, depth, areas) = (y.len(), z.len(), grid.counts[2] + 1 - z.start);
-        let budget = Budget {
-            bytes: options.slab_bytes.unwrap_or(self.info.memory / 2),
-            max_alloc: self.info.max_alloc,
-        };
+        let budget = self.slab_budget(&options);
         let rows = rows_per_slab(&x, width, per_column(depth, areas), budget, &self.info.name)?;
         let buffers = self.buffers(rows * width, depth, areas)?;
         let SweptCells {

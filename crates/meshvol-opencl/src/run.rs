@@ -164,10 +164,7 @@ impl Device {
         check_region(&grid, region)?;
         let [x, y, z] = region.clone();
         let (width, depth, areas) = (y.len(), z.len(), grid.counts[2] + 1 - z.start);
-        let budget = Budget {
-            bytes: options.slab_bytes.unwrap_or(self.info.memory / 2),
-            max_alloc: self.info.max_alloc,
-        };
+        let budget = self.slab_budget(&options);
         let rows = rows_per_slab(&x, width, [depth + areas, areas], budget, &self.info.name)?;
         let built = self.volumes.take();
         let kernel = self.kernel(built, VOLUMES, progress)?;
@@ -203,6 +200,15 @@ impl Device {
             cells: self.scratch(self.cells_len(cells), "clCreateBuffer (cells)")?,
             areas: self.scratch(areas, "clCreateBuffer (column areas)")?,
         })
+    }
+
+    /// What one slab may take of the device: `options.slab_bytes`, or half its memory,
+    /// each buffer within its largest allocation.
+    pub(crate) fn slab_budget(&self, options: &Options) -> Budget {
+        Budget {
+            bytes: options.slab_bytes.unwrap_or(self.info.memory / 2),
+            max_alloc: self.info.max_alloc,
+        }
     }
 
     /// `cells`, or with `MESHVOL_OPENCL_FAULT=alloc` one value more than the device's
