@@ -1,62 +1,127 @@
-//! The allocator, mimalloc, and how it holds the large short-lived arrays of a check
-//! (a check of a million triangles allocates and frees about 0.8 GB of them, stage by
-//! stage).
+//! The allocator: mimalloc for small allocations, and whole pages, reused, for the large
+//! short-lived arrays of a check (a check of a million triangles allocates and frees
+//! about 0.8 GB of them, stage by stage).
 //!
-//! Two ways, each best somewhere. **Reuse** (mimalloc's arenas, freed memory kept): no
-//! page is faulted in twice, but a freed array's space is not always the shape the next
-//! stage asks for, so the arenas grow to about twice what a check holds at once.
-//! **From the system** (each large array mapped, and unmapped when freed): the process
-//! holds what the check holds, and every array's pages are faulted in fresh. Measured on
-//! this project's 2-core machine (`meshvol volume`, binary STL spheres, alternated runs):
+//! Arrays of [`LARGE`] bytes or more are pages of their own ([`pages`]): freed, their
+//! pages are kept, resident, and the next large array is made of them, in place or
+//! moved by their page tables; fresh pages are touched only beyond the most the run
+//! has held at once. Neither way used before did both: mimalloc's arenas reuse freed
+//! space only where the next array fits, and grow to about twice what a check holds;
+//! mapping each array from the system holds no more than the check does, but faults in
+//! and zeroes every array's pages afresh, which on this project's virtual machine was a
+//! quarter of a 5M-triangle check's time (`perf`: `clear_page_erms` 23%, 1.8% with the
+//! pages reused). Measured there (`meshvol volume`, binary STL spheres and an OBJ,
+//! 5 alternated runs, CPU seconds with both cores busy with other builds):
 //!
-//! | triangles | reuse | from the system |
+//! | input | before: arenas below 100 MB of input, the system above | pages reused |
 //! |---|---|---|
-//! | 1M (8 runs) | 0.423 s, 230 MB | 0.528 s, 115 MB |
-//! | 5M (4 runs) | 2.79–3.28 s, 1001–1011 MB | 2.28–2.43 s, 515 MB |
+//! | 1M STL | 0.729 s, 234 MB | 0.684 s, 141 MB |
+//! | 1M OBJ | 0.636 s, 237 MB | 0.648 s, 217 MB |
+//! | 5M STL | 4.987 s, 511 MB | 3.925 s, 521 MB |
 //!
-//! So a run reuses until it reads an input of [`LARGE_INPUT`] bytes or more (about 2M
-//! triangles of binary STL), and from then on takes large arrays from the system: small
-//! inputs go fastest, and large ones fit (a 100M-triangle check in 10.2 GB). A server
-//! keeps mimalloc's default, giving freed memory back after a delay, since it runs for
-//! long; its uploads are held to the memory guard's estimate.
+//! A server, too, reuses the pages of its large arrays from request to request, holding
+//! the most its requests have held at once, as mimalloc's arenas did (8 checks of a 1M
+//! STL uploaded one after another, twice: 6.05 s and 253–255 MB against 6.21–6.23 s and
+//! 258–263 MB); its small allocations keep mimalloc's default, which gives freed memory
+//! back after a delay.
+
+mod pages;
+
+use std::alloc::{GlobalAlloc, Layout};
+
+/// Allocations of at least this many bytes are whole pages of their own.
+const LARGE: usize = 1 << 20;
+
+/// mimalloc's `mi_option_purge_delay` (mimalloc.h of the v3 sources libmimalloc-sys
+/// builds; it names no constant for it).
+const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
+
+/// mimalloc below [`LARGE`], [`pages`] from it.
+struct Allocator;
 
 #[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+static ALLOCATOR: Allocator = Allocator;
 
-/// mimalloc's `mi_option_purge_delay` and `mi_option_disallow_arena_alloc` (mimalloc.h of
-/// the v3 sources libmimalloc-sys builds; it names no constants for them).
-const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
-const MI_OPTION_DISALLOW_ARENA_ALLOC: libmimalloc_sys::mi_option_t = 26;
+/// Whether `layout` is served by [`pages`]: large, and aligned to no more than a page.
+fn paged(layout: Layout) -> bool {
+    layout.size() >= LARGE && layout.align() <= pages::PAGE
+}
 
-/// The input size from which large arrays come from the system.
-const LARGE_INPUT: u64 = 100_000_000;
+// SAFETY: each block is freed by the allocator that made it, told apart by its layout
+// (which the caller passes unchanged); `realloc` moves a block across the threshold by
+// a copy.
+unsafe impl GlobalAlloc for Allocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if paged(layout) {
+            pages::alloc(layout.size(), false)
+        } else {
+            // SAFETY: the caller's contract, passed on.
+            unsafe { mimalloc::MiMalloc.alloc(layout) }
+        }
+    }
 
-/// Sets the allocator up for a run: freed memory kept for reuse, unless the run is a
-/// server.
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        if paged(layout) {
+            pages::alloc(layout.size(), true)
+        } else {
+            // SAFETY: the caller's contract, passed on.
+            unsafe { mimalloc::MiMalloc.alloc_zeroed(layout) }
+        }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        if paged(layout) {
+            pages::free(ptr, layout.size());
+        } else {
+            // SAFETY: the caller's contract, passed on.
+            unsafe { mimalloc::MiMalloc.dealloc(ptr, layout) }
+        }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        // SAFETY: `realloc`'s contract: `new_size` with this alignment is a valid layout.
+        let new = unsafe { Layout::from_size_align_unchecked(new_size, layout.align()) };
+        match (paged(layout), paged(new)) {
+            (true, true) => pages::resize(ptr, layout.size(), new_size),
+            // SAFETY: the caller's contract, passed on.
+            (false, false) => unsafe { mimalloc::MiMalloc.realloc(ptr, layout, new_size) },
+            _ => {
+                // SAFETY: a block for the new layout, the old contents copied up to the
+                // smaller size, then the old block freed by its own allocator.
+                unsafe {
+                    let moved = self.alloc(new);
+                    if !moved.is_null() {
+                        std::ptr::copy_nonoverlapping(ptr, moved, layout.size().min(new_size));
+                        self.dealloc(ptr, layout);
+                    }
+                    moved
+                }
+            }
+        }
+    }
+}
+
+/// Sets the allocator up for a run: mimalloc's freed memory kept for reuse, unless the
+/// run is a server.
 pub fn configure(server: bool) {
     if !server {
         keep_freed_memory();
     }
 }
 
-/// Called with each input's size before it is read.
-pub fn reading(bytes: u64) {
-    if bytes >= LARGE_INPUT {
-        from_the_system();
-    }
+/// Gives the large arrays' freed pages back to the system: called when a run's check
+/// has ended, since what follows (measuring) reads the surface again, a mapped file's
+/// pages among it, and needs few large arrays. (Kept, a 5M-triangle `volume` peaked at
+/// 800 MB in its measuring stage, against 548 MB given back.)
+pub fn trim() {
+    pages::trim();
 }
 
-/// Large arrays from the system from now on, not from mimalloc's arenas.
-fn from_the_system() {
-    // SAFETY: sets one option value, which mimalloc reads on each allocation.
-    unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_DISALLOW_ARENA_ALLOC, 1) };
-}
-
-/// Keeps freed memory for reuse instead of giving it back to the kernel after a delay.
-/// A run is one short process: memory given back is only faulted in again, zeroed, by
-/// the next stage. Measured on a 5M-triangle check (`/usr/bin/time`, same file): 14,013
-/// to 16,903 page faults with the default delay, 3,764 to 3,797 with none, peak memory
-/// 0.92–0.99 GB against 1.00–1.02 GB.
+/// Keeps mimalloc's freed memory for reuse instead of giving it back to the kernel after
+/// a delay. A run is one short process: memory given back is only faulted in again,
+/// zeroed, by the next stage. Measured on a 5M-triangle check (`/usr/bin/time`, same
+/// file): 14,013 to 16,903 page faults with the default delay, 3,764 to 3,797 with none,
+/// peak memory 0.92–0.99 GB against 1.00–1.02 GB.
 fn keep_freed_memory() {
     // SAFETY: sets one option value, which mimalloc reads when it purges.
     unsafe { libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, -1) };

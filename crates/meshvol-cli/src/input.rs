@@ -35,16 +35,10 @@ pub fn is_stdin(path: &Path) -> bool {
 /// All of standard input, up to the stream limit (`MESHVOL_MAX_STREAM_BYTES`): an
 /// endless input is an error, not a process that fills memory.
 fn stdin_bytes() -> Result<Vec<u8>, String> {
-    let bytes = meshvol_io::read_stream(std::io::stdin().lock())
-        .map_err(|e| format!("-: cannot read standard input: {e}"))?;
-    crate::allocator::reading(bytes.len() as u64);
-    Ok(bytes)
+    meshvol_io::read_stream(std::io::stdin().lock())
+        .map_err(|e| format!("-: cannot read standard input: {e}"))
 }
 
-/// Tells the allocator the size of the file at `path`, before it is read.
-fn reading_file(path: &Path) {
-    crate::allocator::reading(std::fs::metadata(path).map_or(0, |m| m.len()));
-}
 /// Reads a mesh from a file, or from standard input for `-` (all of it, then the format
 /// from its content). A file whose reading (and, if `checked`, checking) would not fit
 /// in the memory available is refused before it is parsed ([`meshvol_io::memory`]).
@@ -53,7 +47,6 @@ pub fn load(path: &Path, checked: bool) -> Result<Loaded, String> {
     let read = if is_stdin(path) {
         meshvol_io::read_bytes_within(path, stdin_bytes()?, &limits)
     } else {
-        reading_file(path);
         meshvol_io::read_file_within(path, &limits)
     };
     read.map_err(|e| e.to_string())
@@ -64,7 +57,6 @@ pub fn load_polygons(path: &Path) -> Result<PolygonFile, String> {
     if is_stdin(path) {
         return meshvol_io::read_polygons_bytes(path, &stdin_bytes()?).map_err(|e| e.to_string());
     }
-    reading_file(path);
     meshvol_io::read_polygons(path).map_err(|e| e.to_string())
 }
 
@@ -73,7 +65,6 @@ pub fn load_points(path: &Path) -> Result<PointCloud, String> {
     if is_stdin(path) {
         return meshvol_io::read_points_bytes(path, stdin_bytes()?).map_err(|e| e.to_string());
     }
-    reading_file(path);
     meshvol_io::read_points(path).map_err(|e| e.to_string())
 }
 

@@ -57,7 +57,10 @@ pub fn read(
         progress.stage("checking", path);
     }
     let kernel = progress.kernel(format!("checking {name}"));
-    Checked::of(&name, loaded, options.as_ref(), &kernel).map_err(|e| e.to_string())
+    let checked = Checked::of(&name, loaded, options.as_ref(), &kernel);
+    // The check's arrays are gone: their pages need not stay beside the surface's.
+    crate::allocator::trim();
+    checked.map_err(|e| e.to_string())
 }
 
 /// The subjects of several inputs.
