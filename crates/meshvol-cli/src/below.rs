@@ -2,7 +2,7 @@
 //! centre of buoyancy, wetted area, waterplane; or the level that holds a volume.
 
 use crate::driver;
-use crate::solid::{self, SolidArgs};
+use crate::solid;
 use clap::Args;
 use meshvol_report::below::{below, BelowOptions, Waterline};
 use meshvol_report::plane::PlaneArg;
@@ -37,11 +37,7 @@ pub struct BelowArgs {
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
     trim: f64,
     #[command(flatten)]
-    output: driver::OutputArgs,
-    #[command(flatten)]
-    units: crate::units::UnitArgs,
-    #[command(flatten)]
-    solid: SolidArgs,
+    report: driver::SolidReportArgs,
 }
 
 fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
@@ -69,10 +65,10 @@ pub fn run(args: BelowArgs, quiet: bool) -> ExitCode {
         }
     };
     let options = BelowOptions { waterline, heel: args.heel, trim: args.trim };
-    let check = args.solid.check();
-    let units = args.units.options();
+    let check = args.report.solid.check();
+    let units = args.report.units.options();
     let inputs = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
-    driver::each(&inputs, args.output.output(quiet), |path, progress| {
+    driver::each(&inputs, args.report.output.output(quiet), |path, progress| {
         let input = solid::read(path, check, progress)?;
         progress.stage("measuring", path);
         below(&input.subject(), &options)?.in_units(&units, input.source.unit)

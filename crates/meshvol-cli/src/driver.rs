@@ -48,6 +48,18 @@ pub struct OutputArgs {
     pub format: Option<Format>,
 }
 
+/// The flags of the commands that measure each input's solid and print a report of it
+/// (`below`, `intersect`), after their own: how to print, the units, the check.
+#[derive(clap::Args)]
+pub struct SolidReportArgs {
+    #[command(flatten)]
+    pub output: OutputArgs,
+    #[command(flatten)]
+    pub units: crate::units::UnitArgs,
+    #[command(flatten)]
+    pub solid: crate::solid::SolidArgs,
+}
+
 impl OutputArgs {
     /// The output these flags ask for.
     pub fn output(&self, quiet: bool) -> Output {

@@ -4,7 +4,7 @@
 //! whose boxes overlap.
 
 use crate::driver::{self, Output};
-use crate::solid::{self, SolidArgs};
+use crate::solid;
 use clap::Args;
 use meshvol::overlap::Body;
 use meshvol::topology::CheckOptions;
@@ -34,16 +34,12 @@ pub struct IntersectArgs {
     #[arg(long, value_name = "REL", default_value_t = 1e-9, value_parser = crate::positive_finite, allow_hyphen_values = true)]
     tolerance: f64,
     #[command(flatten)]
-    output: driver::OutputArgs,
-    #[command(flatten)]
-    units: crate::units::UnitArgs,
-    #[command(flatten)]
-    solid: SolidArgs,
+    report: driver::SolidReportArgs,
 }
 
 /// Runs the command: one report for the pair, or one per overlapping pair.
 pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
-    let output = args.output.output(quiet);
+    let output = args.report.output.output(quiet);
     let files = args.walk.expand(&args.files, meshvol_io::InputKind::Mesh);
     if args.pairs {
         return pairs(&args, &files, output);
@@ -71,7 +67,7 @@ pub fn run(args: IntersectArgs, quiet: bool) -> ExitCode {
         let files: Vec<_> = inputs.iter().map(|i| (i.source.name(), i.source.unit)).collect();
         let bodies = [bodies[0].as_ref(), bodies[1].as_ref()];
         intersect_prepared(&subjects[0], &subjects[1], bodies, [None, None], args.tolerance, &hook)?
-            .in_units(&args.units.options(), &files)
+            .in_units(&args.report.units.options(), &files)
     })
 }
 
@@ -122,7 +118,7 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
             let hook = driver.progress.kernel(what);
             let files = [(a.source.name(), a.source.unit), (b.source.name(), b.source.unit)];
             intersect_prepared(a, b, [body(i), body(j)], [None, None], args.tolerance, &hook)
-                .and_then(|r| r.in_units(&args.units.options(), &files))
+                .and_then(|r| r.in_units(&args.report.units.options(), &files))
         };
         match result {
             Ok(report) => driver.report(&report),
@@ -138,5 +134,5 @@ fn pairs(args: &IntersectArgs, files: &crate::walk::Inputs, output: Output) -> E
 /// The check each input gets: the command's, keeping the crossing search's spatial index
 /// for the input's body to take ([`CheckOptions::keep_spatial_index`]).
 fn check_options(args: &IntersectArgs) -> Option<CheckOptions> {
-    args.solid.check().map(|options| CheckOptions { keep_spatial_index: true, ..options })
+    args.report.solid.check().map(|options| CheckOptions { keep_spatial_index: true, ..options })
 }

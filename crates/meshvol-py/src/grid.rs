@@ -363,7 +363,7 @@ impl PyUnion {
         let r = &self.report;
         format!(
             "Union(lower={:?}, upper={:?}, bodies={}, sum_of_volumes={:?})",
-            r.lower, r.upper, r.bodies, r.sum_of_volumes
+            r.interval.lower, r.interval.upper, r.bodies, r.sum_of_volumes
         )
     }
 }

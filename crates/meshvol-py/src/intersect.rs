@@ -59,8 +59,8 @@ impl PyIntersection {
         let r = &self.report;
         format!(
             "Intersection(lower={:?}, upper={:?}, iou={:?}, disjoint={})",
-            r.lower,
-            r.upper,
+            r.interval.lower,
+            r.interval.upper,
             r.iou,
             if r.disjoint { "True" } else { "False" }
         )

@@ -33,7 +33,7 @@ impl PyShell {
     }
 
     fn __repr__(&self) -> String {
-        let r = &self.report;
+        let r = &self.report.0;
         let py_bool = |b: bool| if b { "True" } else { "False" };
         format!(
             "Shell(faces={}, closed={}, volume={:?}, cavity={})",

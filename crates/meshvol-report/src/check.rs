@@ -6,38 +6,30 @@ use crate::subject::Source;
 use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::topology::{Check, Orientation, Shell};
+use serde::ser::{SerializeStruct, Serializer};
 use serde::Serialize;
 use std::fmt::Write;
 
-/// One shell in the report.
-#[derive(Clone, Debug, Serialize)]
-pub struct ShellReport {
-    pub faces: usize,
-    pub closed: bool,
-    pub orientable: bool,
-    pub volume: f64,
-    pub cavity: bool,
-    pub parent: Option<usize>,
-    pub wound_outward: Option<bool>,
-    pub boundary_loops: usize,
-    pub euler_characteristic: i64,
-    pub genus: Option<i64>,
-}
+/// One shell in the report: the check's [`Shell`], whose facts are its JSON keys, all but
+/// `consistently_oriented` (the report says that of the whole surface).
+#[derive(Clone, Debug)]
+pub struct ShellReport(pub Shell);
 
-impl From<&Shell> for ShellReport {
-    fn from(s: &Shell) -> Self {
-        ShellReport {
-            faces: s.faces,
-            closed: s.closed,
-            orientable: s.orientable,
-            volume: s.volume,
-            cavity: s.cavity,
-            parent: s.parent,
-            wound_outward: s.wound_outward,
-            boundary_loops: s.boundary_loops,
-            euler_characteristic: s.euler_characteristic,
-            genus: s.genus,
-        }
+impl Serialize for ShellReport {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let shell = &self.0;
+        let mut keys = serializer.serialize_struct("ShellReport", 10)?;
+        keys.serialize_field("faces", &shell.faces)?;
+        keys.serialize_field("closed", &shell.closed)?;
+        keys.serialize_field("orientable", &shell.orientable)?;
+        keys.serialize_field("volume", &shell.volume)?;
+        keys.serialize_field("cavity", &shell.cavity)?;
+        keys.serialize_field("parent", &shell.parent)?;
+        keys.serialize_field("wound_outward", &shell.wound_outward)?;
+        keys.serialize_field("boundary_loops", &shell.boundary_loops)?;
+        keys.serialize_field("euler_characteristic", &shell.euler_characteristic)?;
+        keys.serialize_field("genus", &shell.genus)?;
+        keys.end()
     }
 }
 
@@ -117,7 +109,7 @@ impl CheckFacts {
             winding: c.orientation.and_then(Orientation::winding),
             shells: c.shells.len(),
             cavities: c.cavities,
-            shell_details: c.shells.iter().map(ShellReport::from).collect(),
+            shell_details: c.shells.iter().cloned().map(ShellReport).collect(),
             overlapping_shells: c.overlapping_shells.clone(),
             overlapping_objects: c
                 .overlapping_bodies
@@ -139,7 +131,7 @@ impl CheckFacts {
     pub fn convert(&mut self, to: &Converter) {
         to.one(Volume, &mut self.solid_volume);
         to.one(Volume, &mut self.volume_uncertainty);
-        to.all(Volume, self.shell_details.iter_mut().map(|s| &mut s.volume));
+        to.all(Volume, self.shell_details.iter_mut().map(|s| &mut s.0.volume));
         to.some(Length, &mut self.weld_tolerance);
     }
 }
@@ -229,7 +221,7 @@ impl Report for CheckReport {
             r.shells,
             count(r.cavities, "cavity", "cavities")
         );
-        for (i, sh) in r.shell_details.iter().enumerate().take(LISTED) {
+        for (i, ShellReport(sh)) in r.shell_details.iter().enumerate().take(LISTED) {
             let role = if sh.cavity { "cavity" } else { "solid" };
             let parent = sh.parent.map(|p| format!(" inside shell {p}")).unwrap_or_default();
             let genus = sh.genus.map(|g| format!(", genus {g}")).unwrap_or_default();

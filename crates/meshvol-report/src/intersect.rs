@@ -5,7 +5,7 @@
 use crate::number::num;
 use crate::quantities::{Converter, Dimension::*, Quantities};
 use crate::subject::{joined_names, Subject};
-use crate::union::{footer_text, grid_text, interval_text, uncertified, Interval};
+use crate::union::{footer_text, grid_text, uncertified, CertifiedInterval, Interval};
 use crate::units::{Mass, UnitNames};
 use crate::Report;
 use meshvol::assembly::Affine;
@@ -24,15 +24,10 @@ pub struct IntersectReport {
     /// The two inputs, joined by `, `.
     pub file: String,
     pub files: Vec<String>,
-    /// `lower ≤ |A∩B| ≤ upper`; `volume` is the midpoint.
-    pub lower: f64,
-    pub upper: f64,
-    /// Whether [lower, upper] is proven to hold |A∩B| of the measured solids (the
-    /// union's rule, each input one body).
-    pub certified: bool,
-    /// Why it is not, when it is not (null when certified).
-    pub uncertified_reason: Option<String>,
-    pub volume: f64,
+    /// `lower ≤ |A∩B| ≤ upper`, `certified` (the union's rule, each input one body),
+    /// `uncertified_reason`, `volume` (the midpoint).
+    #[serde(flatten)]
+    pub interval: CertifiedInterval,
     /// |A| and |B|: the volumes of the two checked solids.
     pub volume_a: f64,
     pub volume_b: f64,
@@ -254,11 +249,7 @@ pub fn intersect_prepared<S: Surface + Sync>(
     Ok(IntersectReport {
         file: joined_names(&subjects),
         files: names,
-        lower: i.lower,
-        upper: i.upper,
-        certified: certification.is_none(),
-        uncertified_reason: certification,
-        volume: i.volume(),
+        interval: CertifiedInterval::new((i.lower, i.upper), i.volume(), certification),
         volume_a: i.volume_a,
         volume_b: i.volume_b,
         union: union.value,
@@ -323,8 +314,7 @@ impl Report for IntersectReport {
     fn text(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(s, "intersection of {} and {}", self.files[0], self.files[1]);
-        let (bounds, why) = ((self.lower, self.upper), self.uncertified_reason.as_deref());
-        interval_text(&mut s, self.volume, bounds, why, self.volume_uncertainty);
+        self.interval.text(&mut s, self.volume_uncertainty);
         if let Some(c) = self.centroid {
             let c: Vec<String> = c.iter().map(|&x| num(x, 10)).collect();
             let _ = writeln!(s, "  centroid         ({})", c.join(", "));
@@ -364,10 +354,10 @@ impl Report for IntersectReport {
 
 impl Quantities for IntersectReport {
     fn convert(&mut self, to: &Converter) {
-        to.interval(&mut self.lower, &mut self.upper);
+        self.interval.convert(to);
         to.interval(&mut self.union_lower, &mut self.union_upper);
-        let volumes = [&mut self.volume, &mut self.volume_a, &mut self.volume_b];
-        to.all(Volume, volumes.into_iter().chain([&mut self.union, &mut self.a_minus_b]));
+        let volumes = [&mut self.volume_a, &mut self.volume_b, &mut self.union];
+        to.all(Volume, volumes.into_iter().chain([&mut self.a_minus_b]));
         to.all(Volume, [&mut self.b_minus_a, &mut self.volume_uncertainty]);
         to.point(&mut self.centroid);
         to.all(VolumeMoment, self.inertia.iter_mut().flatten().flatten());
@@ -376,7 +366,7 @@ impl Quantities for IntersectReport {
     }
 
     fn mass_basis(&self) -> f64 {
-        self.volume
+        self.interval.volume
     }
 
     crate::unit_slots!();
@@ -410,12 +400,15 @@ mod tests {
         let posed = intersect_posed(&sa, &sb, [None, Some(pose)], 1e-9, &()).unwrap();
         let direct = intersect(&sa, &sm, 1e-9).unwrap();
         // 0.5 × 1.5 × 1.5 in common.
-        assert!(posed.lower <= 1.125 && 1.125 <= posed.upper, "{posed:?}");
-        assert_eq!((posed.lower, posed.upper), (direct.lower, direct.upper));
+        assert!(posed.interval.lower <= 1.125 && 1.125 <= posed.interval.upper, "{posed:?}");
+        assert_eq!(
+            (posed.interval.lower, posed.interval.upper),
+            (direct.interval.lower, direct.interval.upper)
+        );
         assert_eq!(posed.centroid, direct.centroid);
         let far = rigid_pose(&translation([10.0, 0.0, 0.0])).unwrap();
         let apart = intersect_posed(&sa, &sb, [Some(far), None], 1e-9, &()).unwrap();
-        assert!(apart.disjoint && apart.upper == 0.0);
+        assert!(apart.disjoint && apart.interval.upper == 0.0);
     }
 
     #[test]
@@ -436,12 +429,19 @@ mod tests {
         let many = intersect_poses(&sa, &sb, bodies, &poses, 1e-9).unwrap();
         for (k, (report, pair)) in many.iter().zip(&poses).enumerate() {
             let alone = intersect_posed(&sa, &sb, *pair, 1e-9, &()).unwrap();
-            assert_eq!((report.lower, report.upper), (alone.lower, alone.upper), "pose {k}");
+            assert_eq!(
+                (report.interval.lower, report.interval.upper),
+                (alone.interval.lower, alone.interval.upper),
+                "pose {k}"
+            );
             assert_eq!(report.contact_vector, alone.contact_vector, "pose {k}");
             // B (1 × 2 × 2) moved 0.5k along x into A (2 × 2 × 2), 0.25 along y: the
             // overlap is min(1, 2 − 0.5k)⁺ × 1.75 × 2.
             let exact = (2.0 - 0.5 * k as f64).clamp(0.0, 1.0) * 1.75 * 2.0;
-            assert!(report.lower <= exact && exact <= report.upper, "pose {k}: {exact}");
+            assert!(
+                report.interval.lower <= exact && exact <= report.interval.upper,
+                "pose {k}: {exact}"
+            );
         }
     }
 

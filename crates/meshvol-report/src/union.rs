@@ -19,15 +19,10 @@ pub struct UnionReport {
     /// The inputs, joined by `, `.
     pub file: String,
     pub files: Vec<String>,
-    pub lower: f64,
-    pub upper: f64,
-    /// Whether [lower, upper] is proven to hold the union of the measured solids (see
-    /// [`uncertified`]: the rule).
-    pub certified: bool,
-    /// Why it is not, when it is not (null when certified).
-    pub uncertified_reason: Option<String>,
-    /// The midpoint of [lower, upper].
-    pub volume: f64,
+    /// `lower`, `upper`, `certified` (proven to hold the union of the measured solids),
+    /// `uncertified_reason`, `volume` (the midpoint).
+    #[serde(flatten)]
+    pub interval: CertifiedInterval,
     pub bodies: usize,
     /// Each body's name: `FILE`, or `FILE, shell N` for the bodies of a single input
     /// (`FILE, OBJECT (shell N)` where its objects are bodies).
@@ -106,11 +101,7 @@ pub fn union_with<S: Surface + Sync>(
     Ok(UnionReport {
         file: joined_names(subjects),
         files: subjects.iter().map(|s| s.source.name().to_string()).collect(),
-        lower: u.lower,
-        upper: u.upper,
-        certified: certification.is_none(),
-        uncertified_reason: certification,
-        volume: u.volume(),
+        interval: CertifiedInterval::new((u.lower, u.upper), u.volume(), certification),
         bodies: u.bodies,
         body_names: names,
         sum_of_volumes: u.sum_of_volumes,
@@ -125,6 +116,62 @@ pub fn union_with<S: Surface + Sync>(
         mass: None,
         warnings,
     })
+}
+
+/// The volume as the union's machinery (`union`, `intersect`) gives it: an interval,
+/// whether it is certified, and its midpoint. Flattened into the reports: the field names
+/// are their JSON keys.
+#[derive(Clone, Debug, Serialize)]
+pub struct CertifiedInterval {
+    /// `lower ≤ volume ≤ upper`.
+    pub lower: f64,
+    pub upper: f64,
+    /// Whether [lower, upper] is proven to hold the volume of the measured solids (see
+    /// [`uncertified`]: the rule).
+    pub certified: bool,
+    /// Why it is not, when it is not (null when certified).
+    pub uncertified_reason: Option<String>,
+    /// The midpoint of [lower, upper].
+    pub volume: f64,
+}
+
+impl CertifiedInterval {
+    /// `bounds` with their `midpoint`, certified unless there is a reason it is not
+    /// (`uncertified`'s).
+    pub fn new((lower, upper): (f64, f64), midpoint: f64, uncertified: Option<String>) -> Self {
+        let certified = uncertified.is_none();
+        CertifiedInterval {
+            lower,
+            upper,
+            certified,
+            uncertified_reason: uncertified,
+            volume: midpoint,
+        }
+    }
+
+    /// The bounds and midpoint in reported units (the bounds widened outward).
+    pub(crate) fn convert(&mut self, to: &Converter) {
+        to.interval(&mut self.lower, &mut self.upper);
+        to.one(Volume, &mut self.volume);
+    }
+
+    /// The text lines of the interval: its midpoint, its bounds and width, `certified`
+    /// only when it is (else the reason it is not), and the caps' share of it.
+    pub(crate) fn text(&self, s: &mut String, caps: f64) {
+        let (lower, upper) = (self.lower, self.upper);
+        let _ = writeln!(s, "  volume           {}  (midpoint)", num(self.volume, 15));
+        let bounds = format!("[{}, {}]", num(lower, 17), num(upper, 17));
+        let width = num(upper - lower, 3);
+        let _ = match &self.uncertified_reason {
+            None => writeln!(s, "  certified        {bounds}  (width {width})"),
+            Some(why) => {
+                writeln!(s, "  interval         {bounds}  (width {width}; not certified: {why})")
+            }
+        };
+        if caps > 0.0 {
+            let _ = writeln!(s, "  caps on holes    ± {} (in the interval)", num(caps, 4));
+        }
+    }
 }
 
 /// Why the interval of the union's machinery (`union`, `intersect`) over `subjects` is
@@ -233,29 +280,6 @@ impl Interval<'_> {
     }
 }
 
-/// The text lines of an interval: its midpoint, its bounds and width, `certified` only
-/// when it is (else the reason it is not, `uncertified`), and the caps' share of it.
-pub(crate) fn interval_text(
-    s: &mut String,
-    volume: f64,
-    (lower, upper): (f64, f64),
-    uncertified: Option<&str>,
-    caps: f64,
-) {
-    let _ = writeln!(s, "  volume           {}  (midpoint)", num(volume, 15));
-    let bounds = format!("[{}, {}]", num(lower, 17), num(upper, 17));
-    let width = num(upper - lower, 3);
-    let _ = match uncertified {
-        None => writeln!(s, "  certified        {bounds}  (width {width})"),
-        Some(why) => {
-            writeln!(s, "  interval         {bounds}  (width {width}; not certified: {why})")
-        }
-    };
-    if caps > 0.0 {
-        let _ = writeln!(s, "  caps on holes    ± {} (in the interval)", num(caps, 4));
-    }
-}
-
 impl Report for UnionReport {
     fn file(&self) -> &str {
         &self.file
@@ -273,8 +297,7 @@ impl Report for UnionReport {
             count(self.bodies, "body", "bodies"),
             self.body_names.join("; ")
         );
-        let (bounds, why) = ((self.lower, self.upper), self.uncertified_reason.as_deref());
-        interval_text(&mut s, self.volume, bounds, why, self.volume_uncertainty);
+        self.interval.text(&mut s, self.volume_uncertainty);
         let _ = writeln!(s, "  sum of volumes   {}", num(self.sum_of_volumes, 15));
         grid_text(&mut s, self.grid, self.cells_refined, self.cells_resolved_exactly);
         footer_text(&mut s, self.seconds, &self.units, &self.mass);
@@ -305,14 +328,13 @@ pub(crate) fn footer_text(
 
 impl Quantities for UnionReport {
     fn convert(&mut self, to: &Converter) {
-        to.interval(&mut self.lower, &mut self.upper);
-        to.all(Volume, [&mut self.volume, &mut self.sum_of_volumes]);
-        to.one(Volume, &mut self.volume_uncertainty);
+        self.interval.convert(to);
+        to.all(Volume, [&mut self.sum_of_volumes, &mut self.volume_uncertainty]);
     }
 
     /// The interval's midpoint's.
     fn mass_basis(&self) -> f64 {
-        self.volume
+        self.interval.volume
     }
 
     crate::unit_slots!();

@@ -30,18 +30,20 @@ fn agree(name: &str, b: &IntersectReport, g: &IntersectReport, rel: f64) {
     assert_ne!(g.method, "boundary", "{name}");
     // Boxes apart or touching are seen by both before any method.
     assert_eq!(b.method == "boxes", g.method == "boxes", "{name}");
-    let slack = 1e-12 * g.upper.max(b.upper);
+    let slack = 1e-12 * g.interval.upper.max(b.interval.upper);
     assert!(
-        b.lower <= g.upper + slack && g.lower <= b.upper + slack,
+        b.interval.lower <= g.interval.upper + slack
+            && g.interval.lower <= b.interval.upper + slack,
         "{name}: boundary [{}, {}] and grid [{}, {}] do not meet",
-        b.lower,
-        b.upper,
-        g.lower,
-        g.upper
+        b.interval.lower,
+        b.interval.upper,
+        g.interval.lower,
+        g.interval.upper
     );
     // Moments mean something where the volume is known to a part in a thousand (not a
     // flat "solid" of rounding-sized volume).
-    if !(b.lower > 0.999 * b.upper && g.lower > 0.999 * g.upper) {
+    if !(b.interval.lower > 0.999 * b.interval.upper && g.interval.lower > 0.999 * g.interval.upper)
+    {
         return;
     }
     let scale = b.volume_a.cbrt();
@@ -119,7 +121,7 @@ fn dirty_constructions_give_meeting_intervals() {
     let quarter = Affine([[0.0, -1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]);
     let (b, _) = both(&boxed, quarter).unwrap();
     assert_eq!(b.method, "grid");
-    assert!(b.lower <= 1.0 && 1.0 <= b.upper, "{b:?}");
+    assert!(b.interval.lower <= 1.0 && 1.0 <= b.interval.upper, "{b:?}");
 }
 
 #[test]

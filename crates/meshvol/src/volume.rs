@@ -71,7 +71,7 @@ use crate::accumulate::CHUNK_FACES;
 use crate::accumulate::{ordered_reduce_on, CompensatedSum, UNIT_ROUNDOFF};
 use crate::lanes::{dispatch, Lanes, OnLanes};
 use crate::mesh::MeshError;
-use crate::volume_sums::{LaneSums, VolumeSums};
+use crate::volume_sums::{add_face_fan, LaneSums, VolumeSums};
 use crate::{Point, Surface};
 use wide::f64x4;
 
@@ -165,17 +165,11 @@ pub fn signed_volume<S: Surface + ?Sized>(surface: &S) -> Volume {
             let mut lanes = LaneSums::default();
             let mut triangle = 0usize;
             for (k, face) in range.enumerate() {
-                let mut vector_area = [0.0; 3];
-                let mut magnitude = [0.0; 3];
-                let mut fan = 0usize;
-                surface.fan(face, |a, b, c| {
-                    let (cross, m) = lanes.0[triangle % 4].add_fan_triangle(r, a, b, c);
-                    for k in 0..3 {
-                        vector_area[k] += cross[k];
-                        magnitude[k] += m[k];
-                    }
-                    fan += 1;
+                let (vector_area, magnitude, fan) = add_face_fan(surface, face, |a, b, c| {
+                    let sums = &mut lanes.0[triangle % 4];
                     triangle += 1;
+                    let (cross, magnitude, _) = sums.add_fan_triangle(r, a, b, c);
+                    (cross, magnitude)
                 });
                 lanes.0[k % 4].add_vector_area(vector_area, magnitude, fan);
             }
@@ -535,7 +529,7 @@ fn chunk_sums_any<I: VertexIndex, L: Lanes>(
         let [a, b, c] = corner;
         // The remainder starts at a multiple of 4 from the chunk's start.
         let sums = &mut sums.0[lane];
-        let (cross, magnitude) = sums.add_fan_triangle(r, a, b, c);
+        let (cross, magnitude, _) = sums.add_fan_triangle(r, a, b, c);
         sums.add_vector_area(cross.map(|x| 0.0 + x), magnitude, 1);
         face += 1;
     }

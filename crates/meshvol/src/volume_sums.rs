@@ -5,7 +5,7 @@
 
 use crate::accumulate::{gamma, CompensatedSum, UNIT_ROUNDOFF};
 use crate::vector::{dot, sub};
-use crate::Point;
+use crate::{Point, Surface};
 
 /// The sums the signed volume and its bound are made of: what [`crate::mass_properties`] and
 /// [`crate::volume`] share, summed in the same order by both, so that both give the same
@@ -58,7 +58,8 @@ impl VolumeSums {
     }
 
     /// Adds fan triangle (a, b, c) of a face: D (see [`Self::add_determinant`]); returns
-    /// its cross product and magnitudes for the face's vector area.
+    /// its cross product and magnitudes for the face's vector area, and D (which the
+    /// moments weigh their terms by).
     #[inline(always)]
     pub(crate) fn add_fan_triangle(
         &mut self,
@@ -66,10 +67,10 @@ impl VolumeSums {
         a: Point,
         b: Point,
         c: Point,
-    ) -> (Point, Point) {
+    ) -> (Point, Point, f64) {
         let (cross, magnitude) = cross_products(a, b, c);
-        self.add_determinant(sub(a, r), cross, magnitude);
-        (cross, magnitude)
+        let d = self.add_determinant(sub(a, r), cross, magnitude);
+        (cross, magnitude, d)
     }
 
     /// Adds a face's vector area (its fan's cross products summed plainly), their
@@ -84,6 +85,31 @@ impl VolumeSums {
             }
         }
     }
+}
+
+/// Adds face `face` of `surface` triangle by triangle of its fan, each by `add` (which
+/// returns its cross product and magnitudes), and returns what the face's vector area is
+/// made of: the cross products summed plainly, their magnitudes, and the fan's length
+/// (for [`VolumeSums::add_vector_area`]). The one loop over a polygon's fan, so that
+/// [`crate::mass_properties`] and [`crate::volume`] sum it in the same order.
+#[inline(always)]
+pub(crate) fn add_face_fan<S: Surface + ?Sized>(
+    surface: &S,
+    face: usize,
+    mut add: impl FnMut(Point, Point, Point) -> (Point, Point),
+) -> (Point, Point, usize) {
+    let mut vector_area = [0.0; 3];
+    let mut magnitude = [0.0; 3];
+    let mut fan = 0usize;
+    surface.fan(face, |a, b, c| {
+        let (cross, m) = add(a, b, c);
+        for k in 0..3 {
+            vector_area[k] += cross[k];
+            magnitude[k] += m[k];
+        }
+        fan += 1;
+    });
+    (vector_area, magnitude, fan)
 }
 
 /// The cross product (b − a)×(c − a) as plus − minus of its components' two products,

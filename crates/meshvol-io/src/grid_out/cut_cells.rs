@@ -57,14 +57,38 @@ pub fn npz<W: Write + Seek>(
     density: Option<f64>,
 ) -> io::Result<()> {
     check_len(grid, volumes)?;
-    let cell = grid.cell_volume();
+    npz_arrays(out, grid, volume_arrays(&grid.counts, volumes, grid.cell_volume(), density))
+}
+
+/// A `.vti` file with cell arrays `volume` and `fraction`, and with a `density` (mass
+/// per volume unit) `mass`.
+pub fn vti(
+    out: &mut impl Write,
+    grid: &Grid,
+    volumes: &[f64],
+    density: Option<f64>,
+) -> io::Result<()> {
+    check_len(grid, volumes)?;
+    let arrays = volume_arrays(&grid.counts, volumes, grid.cell_volume(), density);
+    let written: Vec<_> = arrays
+        .iter()
+        .map(|a| move |c: usize, _: usize| a.written_as.of(a.values[c], a.cell))
+        .collect();
+    let cells: Vec<VtiArray> = arrays
+        .iter()
+        .zip(&written)
+        .map(|(a, values)| VtiArray { name: a.name, components: 1, values })
+        .collect();
+    vti_arrays(out, grid, &cells, &[])
+}
+
+/// A `.npz` of a grid's `origin`, `cell_size` and `arrays`.
+fn npz_arrays<W: Write + Seek>(out: W, grid: &Grid, arrays: Vec<CellArray>) -> io::Result<()> {
     let mut zip = ZipWriter::new(out);
     entry(&mut zip, "origin", &[3], grid.origin.into_iter())?;
     entry(&mut zip, "cell_size", &[3], grid.cell.into_iter())?;
-    entry(&mut zip, "volume", &grid.counts, volumes.iter().copied())?;
-    entry(&mut zip, "fraction", &grid.counts, volumes.iter().map(|v| v / cell))?;
-    if let Some(rho) = density {
-        entry(&mut zip, "mass", &grid.counts, volumes.iter().map(|v| v * rho))?;
+    for array in arrays {
+        entry(&mut zip, array.name, &array.shape, array.written())?;
     }
     zip.finish().map_err(io::Error::other)?;
     Ok(())
@@ -90,6 +114,30 @@ impl CellArray<'_> {
     }
 }
 
+/// The arrays every grid file makes of the cells' `volumes` (of `shape`, in cells of
+/// volume `cell`), named and ordered as written: `volume`, `fraction`, and given a
+/// `density` (mass per volume unit), `mass`.
+fn volume_arrays<'a>(
+    shape: &[usize],
+    volumes: &'a [f64],
+    cell: f64,
+    density: Option<f64>,
+) -> Vec<CellArray<'a>> {
+    let of_volumes = |name, written_as| CellArray {
+        name,
+        shape: shape.to_vec(),
+        values: volumes,
+        written_as,
+        cell,
+    };
+    let mut arrays = vec![
+        of_volumes("volume", CellValues::Volume),
+        of_volumes("fraction", CellValues::Fraction),
+    ];
+    arrays.extend(density.map(|rho| of_volumes("mass", CellValues::Mass(rho))));
+    arrays
+}
+
 /// The arrays of `cells` as every cut-cell output names and orders them (module docs),
 /// over the cells' region: the whole grid, or a block of it; given a `density` (mass
 /// per volume unit), `mass` after `fraction`.
@@ -104,13 +152,7 @@ pub fn cut_cell_arrays(cells: &CutCells, density: Option<f64>) -> Vec<CellArray<
         written_as: CellValues::Volume,
         cell,
     };
-    let of_volumes =
-        |name, written_as| CellArray { written_as, ..array(name, shape.to_vec(), &cells.volume) };
-    let mut arrays = vec![
-        array("volume", shape.to_vec(), &cells.volume),
-        of_volumes("fraction", CellValues::Fraction),
-    ];
-    arrays.extend(density.map(|rho| of_volumes("mass", CellValues::Mass(rho))));
+    let mut arrays = volume_arrays(&shape, &cells.volume, cell, density);
     arrays.extend([
         array("centroid", vectors.clone(), cells.centroid.as_flattened()),
         array("boundary_area", shape.to_vec(), &cells.boundary_area),
@@ -143,16 +185,8 @@ pub fn npz_cut_cells<W: Write + Seek>(
     cells: &CutCells,
     density: Option<f64>,
 ) -> io::Result<()> {
-    let grid = &cells.grid;
-    check_len(grid, &cells.volume)?;
-    let mut zip = ZipWriter::new(out);
-    entry(&mut zip, "origin", &[3], grid.origin.into_iter())?;
-    entry(&mut zip, "cell_size", &[3], grid.cell.into_iter())?;
-    for array in cut_cell_arrays(cells, density) {
-        entry(&mut zip, array.name, &array.shape, array.written())?;
-    }
-    zip.finish().map_err(io::Error::other)?;
-    Ok(())
+    check_len(&cells.grid, &cells.volume)?;
+    npz_arrays(out, &cells.grid, cut_cell_arrays(cells, density))
 }
 
 /// A `.vti` of the cut-cell geometry (module docs), with the cell array `mass` given a

@@ -12,7 +12,8 @@
 //!   text that reads back to the same bits, and two `Float64` cell arrays, `volume`
 //!   and `fraction`, in VTK's order (x fastest), as raw little-endian appended data with
 //!   `UInt64` byte counts: ParaView, VisIt and `vtk` read it.
-//! - **`.npz`**, and the cut-cell geometry as `.npz` or `.vti`: the `cut_cells` module.
+//! - **`.npz`**, `.vti`'s writer, and the cut-cell geometry as `.npz` or `.vti`: the
+//!   `cut_cells` module.
 //! - **`.csv`**: `i,j,k,volume,fraction` (and `mass` given a density), one row per non-empty cell (|volume| above
 //!   [`OCCUPANCY_TOLERANCE`] of a cell), numbers in shortest round-trip form.
 //! - **`.zarr`** (feature `zarr`): a Zarr v3 group (the array, its coordinates)
@@ -34,7 +35,7 @@ pub mod zarr;
 use meshvol::grid::{Grid, OCCUPANCY_TOLERANCE};
 use std::io::{self, Write};
 
-pub use cut_cells::{cut_cell_arrays, npz, npz_cut_cells, vti_cut_cells, CellArray};
+pub use cut_cells::{cut_cell_arrays, npz, npz_cut_cells, vti, vti_cut_cells, CellArray};
 pub use picture::{png, png_map, Legend};
 
 fn check_len(grid: &Grid, volumes: &[f64]) -> io::Result<()> {
@@ -146,25 +147,6 @@ pub fn npy_array(
     out.write_all(&(header.len() as u16).to_le_bytes())?;
     out.write_all(header.as_bytes())?;
     write_f64s(out, values)
-}
-
-/// A `.vti` file with cell arrays `volume` and `fraction`, and with a `density` (mass
-/// per volume unit) `mass`.
-pub fn vti(
-    out: &mut impl Write,
-    grid: &Grid,
-    volumes: &[f64],
-    density: Option<f64>,
-) -> io::Result<()> {
-    check_len(grid, volumes)?;
-    let cell = grid.cell_volume();
-    let rho = density.unwrap_or(1.0);
-    let arrays = [
-        VtiArray { name: "volume", components: 1, values: &|c, _| volumes[c] },
-        VtiArray { name: "fraction", components: 1, values: &|c, _| volumes[c] / cell },
-        VtiArray { name: "mass", components: 1, values: &|c, _| volumes[c] * rho },
-    ];
-    vti_arrays(out, grid, &arrays[..if density.is_some() { 3 } else { 2 }], &[])
 }
 
 /// A named array of a `.vti` file: `values(c, m)` is component `m` of entry `c` (a cell

@@ -199,10 +199,7 @@ __kernel void tile_moments(
     __global double *aperture_z,
     __global double *handed,
     __global double *on_top,
-    ulong tiles, ulong per_tile, ulong columns,
-    ulong nx, ulong ny, ulong nz,
-    ulong x0, ulong y0, ulong width,
-    ulong depth, ulong first, ulong areas,
+    TILE_SCALARS,
     double ox, double oy, double oz,
     double dx, double dy, double dz,
     double cell_volume, double tolerance,
@@ -249,12 +246,7 @@ __kernel void tile_moments(
         s.normal[1] = normal[1];
         s.normal[2] = normal[2];
         s.has_normal = normal[3] != 0.0;
-        Poly t;
-        t.len = 0;
-        push(&t, v[0], v[1], v[2]);
-        push(&t, v[3], v[4], v[5]);
-        push(&t, v[6], v[7], v[8]);
-        sweep_triangle(&t, nx, &c, &s);
+        sweep_corners(v, nx, &c, &s);
     }
     Frame g;
     g.origin[0] = ox;

@@ -9,6 +9,16 @@ typedef struct Sink Sink;
 static void sink_slab(const Sink *s, ulong column, ulong layer, const Poly *part);
 static void sink_above(const Sink *s, ulong column, const Poly *part);
 
+// The tile kernels' integer arguments after their buffers, in the order the host's
+// `run::scalars` gives them: tiles, columns per tile, columns; the grid's counts; the
+// block's first x and y cell, its width; its depth, its first layer, the area sums a
+// column.
+#define TILE_SCALARS \
+    ulong tiles, ulong per_tile, ulong columns, \
+    ulong nx, ulong ny, ulong nz, \
+    ulong x0, ulong y0, ulong width, \
+    ulong depth, ulong first, ulong areas
+
 // sweep_layers: the piece cut at the layer planes, each part to the sink.
 static void sweep_layers(const Poly *piece, double z0, double z1, ulong nz, const Sink *s, ulong column) {
     if (z1 < 0.0 || (z1 == 0.0 && z0 < 0.0)) {
@@ -180,4 +190,15 @@ static void sweep_triangle(const Poly *t, ulong nx, const Columns *c, const Sink
             return;
         }
     }
+}
+
+// sweep_triangle of a tile's triangle, its corners the nine coordinates at v (as the
+// host lays them out).
+static void sweep_corners(__global const double *v, ulong nx, const Columns *c, const Sink *s) {
+    Poly t;
+    t.len = 0;
+    push(&t, v[0], v[1], v[2]);
+    push(&t, v[3], v[4], v[5]);
+    push(&t, v[6], v[7], v[8]);
+    sweep_triangle(&t, nx, c, s);
 }

@@ -43,10 +43,7 @@ __kernel void tile_volumes(
     __global const uint *entries,
     __global double *cells,
     __global double *areas_buf,
-    ulong tiles, ulong per_tile, ulong columns,
-    ulong nx, ulong ny, ulong nz,
-    ulong x0, ulong y0, ulong width,
-    ulong depth, ulong first, ulong areas,
+    TILE_SCALARS,
     double scale)
 {
     ulong tile = get_global_id(0);
@@ -67,12 +64,7 @@ __kernel void tile_volumes(
     Columns c = columns_of(ny, nz, x0, y0, width, col_start, col_end);
     for (ulong e = offsets[tile]; e < offsets[tile + 1]; e++) {
         __global const double *v = triangles + 9 * (ulong)entries[e];
-        Poly t;
-        t.len = 0;
-        push(&t, v[0], v[1], v[2]);
-        push(&t, v[3], v[4], v[5]);
-        push(&t, v[6], v[7], v[8]);
-        sweep_triangle(&t, nx, &c, &s);
+        sweep_corners(v, nx, &c, &s);
     }
     for (ulong col = 0; col < n; col++) {
         __global double *cell = s.cells + col * depth;

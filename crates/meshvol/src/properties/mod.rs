@@ -74,7 +74,7 @@ pub use bounds::Bounds;
 use crate::accumulate::{ordered_reduce_on, CHUNK_FACES, UNIT_ROUNDOFF};
 use crate::mesh::only_triangle;
 use crate::vector::{add, norm, scale};
-use crate::volume_sums::VolumeFinish;
+use crate::volume_sums::{add_face_fan, VolumeFinish};
 use crate::{Point, Surface};
 use partial::{Partial, BLOCK_FACES};
 use triangles::{triangles_partial, EachTriangle, Indexed};
@@ -176,20 +176,13 @@ pub fn mass_properties<S: Surface + ?Sized>(surface: &S) -> MassProperties {
             let mut bounds = Bounds::of(r);
             let mut triangle = 0usize;
             for (k, face) in range.enumerate() {
-                let mut vector_area = [0.0; 3];
-                let mut magnitude = [0.0; 3];
-                let mut fan = 0usize;
-                surface.fan(face, |a, b, c| {
-                    let (cross, m) = lanes[triangle % 4].add_triangle(r, a, b, c);
-                    for k in 0..3 {
-                        vector_area[k] += cross[k];
-                        magnitude[k] += m[k];
-                    }
-                    fan += 1;
+                let (vector_area, magnitude, fan) = add_face_fan(surface, face, |a, b, c| {
+                    let sums = &mut lanes[triangle % 4];
+                    triangle += 1;
                     bounds.include(a);
                     bounds.include(b);
                     bounds.include(c);
-                    triangle += 1;
+                    sums.add_triangle(r, a, b, c)
                 });
                 let lane = &mut lanes[k % 4];
                 lane.block[9] += norm(vector_area);

@@ -5,7 +5,7 @@
 use super::bounds::Bounds;
 use crate::accumulate::CompensatedSum;
 use crate::vector::sub;
-use crate::volume_sums::{cross_products, VolumeSums};
+use crate::volume_sums::VolumeSums;
 use crate::Point;
 use std::ops::{Add, Mul};
 
@@ -66,8 +66,9 @@ impl Partial {
         total
     }
 
-    /// Adds fan triangle (a, b, c): its D and its moments' terms about r; returns its
-    /// cross product and magnitudes for the face's vector area.
+    /// Adds fan triangle (a, b, c): its D ([`VolumeSums::add_fan_triangle`]) and its
+    /// moments' terms about r; returns its cross product and magnitudes for the face's
+    /// vector area.
     #[inline(always)]
     pub(super) fn add_triangle(
         &mut self,
@@ -76,10 +77,8 @@ impl Partial {
         b: Point,
         c: Point,
     ) -> (Point, Point) {
-        let (cross, magnitude) = cross_products(a, b, c);
-        let (a, b, c) = (sub(a, r), sub(b, r), sub(c, r));
-        let d = self.volume.add_determinant(a, cross, magnitude);
-        let terms = moment_terms(a, b, c);
+        let (cross, magnitude, d) = self.volume.add_fan_triangle(r, a, b, c);
+        let terms = moment_terms(sub(a, r), sub(b, r), sub(c, r));
         for (sum, t) in self.block.iter_mut().zip(terms) {
             *sum += d * t;
         }

@@ -38,7 +38,7 @@ use super::frames::counted_columns;
 use super::frames::Frame;
 use super::{setup, Bodies, Grid, GridError, Rule, UnionError};
 use crate::grid::intersect::turned_properties;
-use crate::grid::union::KeptPieces;
+use crate::grid::union::{KeptPiece, KeptPieces};
 use crate::progress::{Counter, Progress};
 use crate::surface::{Moved, Oriented};
 use crate::{mass_properties, MassProperties, Point, Surface};
@@ -248,8 +248,8 @@ struct Kept {
 }
 
 impl KeptPieces for Kept {
-    fn add(&mut self, _: usize, triangle: &[Point; 3], vertices: &[Point], cell: Point, _: bool) {
-        let [p, q, r] = *triangle;
+    fn add(&mut self, piece: KeptPiece<'_>, cell: Point) {
+        let (vertices, [p, q, r]) = (piece.vertices, *piece.triangle);
         if vertices.len() < 3 || !self.frame.counts(p, q, r) {
             return;
         }

@@ -5,7 +5,7 @@
 //! (`grid::intersect::contact`) and the union's boundary read these sums.
 
 use super::bounds::Bodies;
-use super::resolve::KeptPieces;
+use super::resolve::{KeptPiece, KeptPieces};
 use crate::accumulate::CompensatedSum;
 use crate::assembly::Affine;
 use crate::grid::piece_moments::{add_piece, Sums};
@@ -90,17 +90,11 @@ impl BoundarySums {
 }
 
 impl KeptPieces for BoundarySums {
-    /// Adds a kept piece (`vertices` in grid units; `cell` the grid's cell size) of
-    /// `body`'s `triangle` (this frame's coordinates, as oriented); `interface`: it was
-    /// kept for lying inside the other body, not on a face the two share.
-    fn add(
-        &mut self,
-        body: usize,
-        triangle: &[Point; 3],
-        vertices: &[Point],
-        cell: [f64; 3],
-        interface: bool,
-    ) {
+    /// Adds the piece's moments (in the identity frame) and, for a piece of one of the
+    /// two bodies kept for lying inside the other (`interface`), its share of the
+    /// interface.
+    fn add(&mut self, piece: KeptPiece<'_>, cell: Point) {
+        let KeptPiece { body, triangle, vertices, interface } = piece;
         if self.frame == Frame::Identity {
             add_piece(vertices, cell, &mut self.moments);
         }

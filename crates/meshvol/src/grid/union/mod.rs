@@ -114,8 +114,8 @@ mod resolve;
 pub use boundary::{union_boundary, union_boundary_with, UnionBoundary};
 pub use cells::{union_cell_volumes, union_cell_volumes_with};
 pub(crate) use frames::{counted_in, BoundaryTotal, Frame, Interface};
-pub(crate) use resolve::KeptPieces;
 pub use resolve::COPLANAR_TOLERANCE;
+pub(crate) use resolve::{KeptPiece, KeptPieces};
 
 use super::{Grid, GridError};
 use crate::accumulate::CompensatedSum;

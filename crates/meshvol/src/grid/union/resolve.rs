@@ -167,18 +167,19 @@ impl<S: Surface + ?Sized> Bodies<'_, S> {
 /// [`BoundarySums`](super::frames::BoundarySums)) or keep (the
 /// union's boundary, [`super::boundary`]).
 pub(crate) trait KeptPieces {
-    /// A kept piece (`vertices` in grid units, in its triangle's winding; `cell` the
-    /// grid's cell size) of `body`'s `triangle` (the column's coordinates, as oriented);
-    /// `interface`: it was kept off every other body's faces, not on a face it shares
-    /// with one.
-    fn add(
-        &mut self,
-        body: usize,
-        triangle: &[Point; 3],
-        vertices: &[Point],
-        cell: [f64; 3],
-        interface: bool,
-    );
+    /// Adds a kept piece; `cell` is the grid's cell size.
+    fn add(&mut self, piece: KeptPiece<'_>, cell: Point);
+}
+
+/// A piece a column's resolution keeps: `vertices` (in grid units, in its triangle's
+/// winding) of `body`'s `triangle` (the column's coordinates, as oriented); `interface`:
+/// it was kept off every other body's faces, not on a face it shares with one.
+#[derive(Clone, Copy)]
+pub(crate) struct KeptPiece<'a> {
+    pub(crate) body: usize,
+    pub(crate) triangle: &'a [Point; 3],
+    pub(crate) vertices: &'a [Point],
+    pub(crate) interface: bool,
 }
 
 /// A triangle of a touching body that meets an open cell.
@@ -370,7 +371,10 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
             // Its body alone touches the cell: inside the other bodies (which fill it,
             // else the cell would be settled).
             if let Some(sums) = self.boundary.as_deref_mut() {
-                sums.add(self.body, &self.triangle, part.vertices(), cell_size, true);
+                let (body, triangle) = (self.body, &self.triangle);
+                let piece =
+                    KeptPiece { body, triangle, vertices: part.vertices(), interface: true };
+                sums.add(piece, cell_size);
             }
             return part.area_and_moment(layer as f64);
         };
@@ -379,9 +383,10 @@ impl<S: Surface + ?Sized> KeptSink<'_, '_, S> {
         match resolve(part, layer as f64, self.body, own, open, rule, self.rays, self.scratch) {
             Some(kept) => {
                 if let Some(sums) = self.boundary.as_deref_mut() {
+                    let (body, triangle) = (self.body, &self.triangle);
                     for &(k, interface) in &self.scratch.kept {
-                        let piece = self.scratch.pieces[k].vertices();
-                        sums.add(self.body, &self.triangle, piece, cell_size, interface);
+                        let vertices = self.scratch.pieces[k].vertices();
+                        sums.add(KeptPiece { body, triangle, vertices, interface }, cell_size);
                     }
                 }
                 kept
