@@ -2,7 +2,7 @@
 //! short-lived arrays of a check (a check of a million triangles allocates and frees
 //! about 0.8 GB of them, stage by stage).
 //!
-//! Arrays of [`LARGE`] bytes or more are pages of their own ([`pages`]): freed, their
+//! Arrays of [`LARGE`] bytes (256 KiB) or more are pages of their own ([`pages`]): freed, their
 //! pages are kept, resident, and the next large array is made of them, in place or
 //! moved by their page tables; fresh pages are touched only beyond the most the run
 //! has held at once. Neither way used before did both: mimalloc's arenas reuse freed
@@ -29,8 +29,12 @@ mod pages;
 
 use std::alloc::{GlobalAlloc, Layout};
 
-/// Allocations of at least this many bytes are whole pages of their own.
-const LARGE: usize = 1 << 20;
+/// Allocations of at least this many bytes are whole pages of their own. (A reader's
+/// per-block arrays are a few hundred KiB: from pages, a 1M-triangle OBJ's `volume`
+/// peaked at 167 MB against 209 MB with 1 MiB here, mimalloc's arenas holding them in
+/// huge pages; 1M STL 122 MB against 141 MB; CPU time the same within the noise, 5 runs
+/// each. 64 KiB gave 155 and 119 MB.)
+const LARGE: usize = 256 << 10;
 
 /// mimalloc's `mi_option_purge_delay` (mimalloc.h of the v3 sources libmimalloc-sys
 /// builds; it names no constant for it).
