@@ -424,7 +424,6 @@ const KNOWN_CIRCLES: &[&str] = &[
     "meshvol-io: ply ↔ ply::ascii ↔ ply::binary ↔ ply::header",
     "meshvol-opencl: (crate root) ↔ devices",
     "meshvol-report: (crate root) ↔ quantities",
-    "meshvol-report: units ↔ units::density",
     "meshvol-serve: (crate root) ↔ api ↔ conn ↔ measure ↔ upload",
 ];
 
