@@ -423,7 +423,6 @@ const KNOWN_CIRCLES: &[&str] = &[
     "meshvol-io: (crate root) ↔ family ↔ gltf ↔ gltf::buffers ↔ gltf::scene ↔ memory ↔ obj ↔ stl::ascii ↔ threemf ↔ threemf::model ↔ transform",
     "meshvol-io: ply ↔ ply::ascii ↔ ply::binary ↔ ply::header",
     "meshvol-opencl: (crate root) ↔ devices",
-    "meshvol-report: (crate root) ↔ quantities",
     "meshvol-serve: (crate root) ↔ api ↔ conn ↔ measure ↔ upload",
 ];
 
