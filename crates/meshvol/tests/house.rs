@@ -415,6 +415,8 @@ fn no_source_file_is_over_600_lines() {
 /// The circles this check found when it learnt to read every form of path, still to be
 /// broken by moving what the files share down into a leaf. The list may only shrink: a
 /// circle not in it fails the check, and so does one in it that is gone (take it out).
+/// `HOUSE_ALL=1 cargo test -p meshvol --test house -- --nocapture` prints the edges of
+/// the known ones too, with the path that makes each.
 const KNOWN_CIRCLES: &[&str] = &[
     "meshvol: grid ↔ grid::cells ↔ grid::cut_cells ↔ grid::cut_cells::apertures ↔ grid::cut_cells::kernel ↔ grid::profile ↔ grid::tile_work ↔ grid::union ↔ grid::union::bounds ↔ grid::union::frames ↔ grid::union::policy ↔ grid::union::refine ↔ grid::union::resolve",
     "meshvol: hull ↔ hull::incremental",
@@ -446,7 +448,7 @@ fn no_import_circle_between_files() {
                 "{crate_name}: {}",
                 circle.iter().map(named).collect::<Vec<_>>().join(" ↔ ")
             );
-            if !KNOWN_CIRCLES.contains(&text.as_str()) {
+            if std::env::var_os("HOUSE_ALL").is_some() || !KNOWN_CIRCLES.contains(&text.as_str()) {
                 for from in &circle {
                     for (to, path) in paths[from].iter().filter(|(to, _)| circle.contains(to)) {
                         eprintln!("{crate_name}: {} → {} (names {path})", named(from), named(to));
