@@ -286,7 +286,7 @@ fn main() -> ExitCode {
             n
         };
         if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n).build_global() {
-            eprintln!("meshvol: cannot start {n} threads: {e}");
+            eprintln!("meshvol: error: cannot start {n} threads: {e}");
             return ExitCode::from(2);
         }
     }

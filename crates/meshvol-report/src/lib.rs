@@ -32,20 +32,6 @@ macro_rules! file_and_warnings {
 }
 pub(crate) use file_and_warnings;
 
-/// `Quantities::unit_slots` of a report with the fields `warnings`, `units` and `mass`.
-macro_rules! unit_slots {
-    () => {
-        fn unit_slots(&mut self) -> crate::quantities::UnitSlots<'_> {
-            crate::quantities::UnitSlots {
-                warnings: &mut self.warnings,
-                units: &mut self.units,
-                mass: &mut self.mass,
-            }
-        }
-    };
-}
-pub(crate) use unit_slots;
-
 pub mod area;
 pub mod below;
 pub mod check;
@@ -71,6 +57,8 @@ pub mod view;
 pub mod view_slices;
 pub mod volume;
 pub mod written;
+
+pub(crate) use quantities::unit_slots;
 
 use serde::Serialize;
 

@@ -16,6 +16,20 @@ use crate::Report;
 use meshvol::accumulate::UNIT_ROUNDOFF;
 use meshvol_io::LengthUnit;
 
+/// `Quantities::unit_slots` of a report with the fields `warnings`, `units` and `mass`.
+macro_rules! unit_slots {
+    () => {
+        fn unit_slots(&mut self) -> crate::quantities::UnitSlots<'_> {
+            crate::quantities::UnitSlots {
+                warnings: &mut self.warnings,
+                units: &mut self.units,
+                mass: &mut self.mass,
+            }
+        }
+    };
+}
+pub(crate) use unit_slots;
+
 /// What a quantity measures, and so how a change of units scales it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Dimension {

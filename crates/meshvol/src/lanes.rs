@@ -7,8 +7,21 @@
 //! lane (never a fused multiply-add), so all give the same bits; `every_copy` runs each
 //! copy this CPU has, for the tests that compare them.
 //!
-//! `Avx` is private to this module and named only by the copies compiled with AVX, run
-//! after the CPU was asked for it: its safe methods can only run where AVX is enabled.
+//! The AVX copies are behind tokens: [`on_avx2`] and [`on_avx512`], the only functions
+//! here compiled with `#[target_feature(enable = ...)]`, each take a zero-sized token
+//! ([`token::Avx2`], [`token::Avx512`]) whose one field is private to the `token`
+//! module, so that the only way to get one is that module's `detect`, which returns it
+//! only after `is_x86_feature_detected!` said yes to every feature the function
+//! enables. Holding a token is therefore the proof that the CPU has those features:
+//! calling an AVX copy without detecting them first does not compile, and the one
+//! `unsafe` call of each copy (in the token's `run`) rests on the token alone. Tokens
+//! are `Copy` and zero-sized: passing one costs nothing.
+//!
+//! `Avx` is private to this module and named only by the copies compiled with AVX,
+//! which only a token can call: its values are made (by the [`Lanes`] methods, whose
+//! signatures the generic loops share with `wide::f64x4` and so take no token) and used
+//! only inside those copies, where AVX is enabled, so its safe methods can only run
+//! there.
 
 use std::ops::{Add, AddAssign, Mul, Sub};
 use wide::f64x4;
@@ -27,35 +40,79 @@ pub(crate) trait OnLanes {
 pub(crate) fn dispatch<K: OnLanes>(k: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
     {
-        if has_avx512() {
-            // SAFETY: the CPU has every feature the copy is compiled with.
-            return unsafe { on_avx512(k) };
+        if let Some(t) = token::Avx512::detect() {
+            return t.run(k);
         }
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { on_avx2(k) };
+        if let Some(t) = token::Avx2::detect() {
+            return t.run(k);
         }
     }
     k.run::<f64x4>()
 }
 
-/// Whether the CPU has all that [`on_avx512`] is compiled with.
+/// The proofs that the CPU has an AVX copy's features (module docs): zero-sized, `Copy`,
+/// and made only by `detect`, after the CPU said it has every feature the copy enables.
 #[cfg(target_arch = "x86_64")]
-fn has_avx512() -> bool {
-    std::arch::is_x86_feature_detected!("avx2")
-        && std::arch::is_x86_feature_detected!("avx512f")
-        && std::arch::is_x86_feature_detected!("avx512vl")
+mod token {
+    use super::OnLanes;
+
+    /// Proof that the CPU has AVX2, all that [`super::on_avx2`] enables.
+    #[derive(Clone, Copy)]
+    pub(super) struct Avx2(());
+
+    impl Avx2 {
+        /// A token if the CPU has AVX2, the one feature [`super::on_avx2`] enables.
+        #[inline]
+        pub(super) fn detect() -> Option<Self> {
+            std::arch::is_x86_feature_detected!("avx2").then_some(Avx2(()))
+        }
+
+        /// `k` run by the copy compiled for AVX2.
+        #[inline]
+        pub(super) fn run<K: OnLanes>(self, k: K) -> K::Output {
+            // SAFETY: `self` exists, so `detect` found AVX2 on this CPU, every feature
+            // `on_avx2` enables.
+            unsafe { super::on_avx2(self, k) }
+        }
+    }
+
+    /// Proof that the CPU has AVX2, AVX-512F and AVX-512VL, all that
+    /// [`super::on_avx512`] enables.
+    #[derive(Clone, Copy)]
+    pub(super) struct Avx512(());
+
+    impl Avx512 {
+        /// A token if the CPU has AVX2, AVX-512F and AVX-512VL, every feature
+        /// [`super::on_avx512`] enables.
+        #[inline]
+        pub(super) fn detect() -> Option<Self> {
+            (std::arch::is_x86_feature_detected!("avx2")
+                && std::arch::is_x86_feature_detected!("avx512f")
+                && std::arch::is_x86_feature_detected!("avx512vl"))
+            .then_some(Avx512(()))
+        }
+
+        /// `k` run by the copy compiled for AVX-512F and VL.
+        #[inline]
+        pub(super) fn run<K: OnLanes>(self, k: K) -> K::Output {
+            // SAFETY: `self` exists, so `detect` found AVX2, AVX-512F and AVX-512VL on
+            // this CPU, every feature `on_avx512` enables.
+            unsafe { super::on_avx512(self, k) }
+        }
+    }
 }
 
+/// The copy compiled for AVX-512F and VL; its token proves the CPU has them.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,avx512f,avx512vl")]
-fn on_avx512<K: OnLanes>(k: K) -> K::Output {
+fn on_avx512<K: OnLanes>(_: token::Avx512, k: K) -> K::Output {
     k.run::<Avx>()
 }
 
+/// The copy compiled for AVX2; its token proves the CPU has it.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn on_avx2<K: OnLanes>(k: K) -> K::Output {
+fn on_avx2<K: OnLanes>(_: token::Avx2, k: K) -> K::Output {
     k.run::<Avx>()
 }
 
@@ -66,13 +123,11 @@ pub(crate) fn every_copy<K: OnLanes + Clone>(k: K) -> Vec<K::Output> {
     let mut outputs = vec![k.clone().run::<f64x4>()];
     #[cfg(target_arch = "x86_64")]
     {
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            outputs.push(unsafe { on_avx2(k.clone()) });
+        if let Some(t) = token::Avx2::detect() {
+            outputs.push(t.run(k.clone()));
         }
-        if has_avx512() {
-            // SAFETY: the CPU has every feature the copy is compiled with.
-            outputs.push(unsafe { on_avx512(k) });
+        if let Some(t) = token::Avx512::detect() {
+            outputs.push(t.run(k));
         }
     }
     outputs
@@ -163,8 +218,8 @@ mod avx {
     use std::ops::{Add, AddAssign, Mul, Sub};
 
     // SAFETY (every `unsafe` here): `Avx` is named only by `on_avx2` and `on_avx512`,
-    // compiled with AVX enabled and run on a CPU that has it (`dispatch`), so its
-    // values are made and used only there.
+    // compiled with AVX enabled and callable only with a token that proves the CPU has
+    // it (module docs), so its values are made and used only there.
     macro_rules! op {
         ($trait:ident, $f:ident, $intrinsic:ident) => {
             impl $trait for Avx {

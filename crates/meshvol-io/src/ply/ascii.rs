@@ -7,8 +7,8 @@
 use meshvol::Point;
 use rayon::prelude::*;
 
+use super::body::{self, Body, Layout, STRIP_END};
 use super::header::{Element, Header, Kind};
-use super::{Body, Layout, STRIP_END};
 use crate::error::ParseError;
 use crate::text::{self, NumberError};
 
@@ -145,7 +145,7 @@ pub(super) fn read(
     }
     let skipped = chunks.iter().map(|c| c.skipped).sum();
     let first_skipped = chunks.iter().find_map(|c| c.first_skipped);
-    super::warn_skipped(
+    body::warn_skipped(
         skipped,
         first_skipped.map(|at| format!("line {}", crate::error::line_of(bytes, at))),
         warnings,
@@ -173,7 +173,7 @@ pub(super) fn read(
         strips.extend_from_slice(&c.strips);
     }
     let all_triangles = index_count == 3 * face_count;
-    let faces = super::faces(indices, face_ends.into_iter(), all_triangles);
+    let faces = body::faces(indices, face_ends.into_iter(), all_triangles);
     Ok(Body { positions, faces, strips })
 }
 

@@ -9,8 +9,8 @@
 use meshvol::{Faces, Point};
 use rayon::prelude::*;
 
+use super::body::{self, Body, Layout, STRIP_END};
 use super::header::{Element, Header, Kind, Scalar};
-use super::{Body, Layout, STRIP_END};
 use crate::error::{Location, ParseError};
 
 /// Reads `N` bytes at `at`; the caller guarantees they are in range.
@@ -100,16 +100,16 @@ pub(super) fn read(
         ));
     }
     let BinaryFaces { indices, triangles, uniform, offsets, skipped, first_skipped } = faces;
-    super::warn_skipped(skipped, first_skipped.map(|f| format!("face {f}")), warnings);
+    body::warn_skipped(skipped, first_skipped.map(|f| format!("face {f}")), warnings);
     let faces = match uniform {
         Some(3) => Faces::Triangles(triangles),
         Some(k) => {
             let count = indices.len().checked_div(k).unwrap_or(0);
-            super::faces(indices, (1..=count).map(|f| f * k), false)
+            body::faces(indices, (1..=count).map(|f| f * k), false)
         }
         None => {
             let all_triangles = offsets.windows(2).all(|w| w[1] - w[0] == 3);
-            super::faces(indices, offsets.into_iter().skip(1), all_triangles)
+            body::faces(indices, offsets.into_iter().skip(1), all_triangles)
         }
     };
     Ok(Body { positions, faces, strips })

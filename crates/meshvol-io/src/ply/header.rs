@@ -1,8 +1,15 @@
 //! The PLY header: the encoding, and each element's name, count and properties.
 
-use super::Encoding;
 use crate::error::ParseError;
 use crate::text;
+
+/// How the data after the header is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Encoding {
+    Ascii,
+    BinaryLittleEndian,
+    BinaryBigEndian,
+}
 
 /// A PLY scalar type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

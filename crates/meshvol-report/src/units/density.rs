@@ -1,7 +1,7 @@
 //! `--density VALUE[UNIT]`: a mass per volume (or, for the commands that measure areas,
 //! per area), with the mass units it knows.
 
-use super::{report_length, Unit, KNOWN_MASSES};
+use super::unit::{report_length, Unit, KNOWN_MASSES};
 use std::str::FromStr;
 
 /// A mass unit: its symbol and kilograms.

@@ -4,7 +4,7 @@
 use crate::progress::Progress;
 use rayon::prelude::*;
 
-use crate::vector::{cross, dot, orient3d, sign, sub};
+use crate::vector::{cross, dot, orient2d, orient3d, sign, sub};
 use crate::Point;
 
 /// "No face" and "no point": the end of a conflict list, a point inside the hull.
@@ -440,7 +440,7 @@ fn first_tetrahedron(points: &[Point]) -> [u32; 4] {
     };
     let b = find(&|p| p != a, "not all points coincide");
     let pb = points[b as usize];
-    let c = find(&|p| !super::collinear(a, pb, p), "not all points are collinear");
+    let c = find(&|p| !collinear(a, pb, p), "not all points are collinear");
     let pc = points[c as usize];
     let d = find(&|p| orient3d(a, pb, pc, p) != 0.0, "not all points are coplanar");
     [0, b, c, d]
@@ -520,4 +520,12 @@ pub(super) fn hull_triangles(points: &[Point], progress: &dyn Progress) -> Vec<[
     progress.stage("inserting the corners again");
     let (triangles, _) = hull_pass(&corner_points, progress);
     triangles.into_iter().map(|t| t.map(|v| corners[v as usize])).collect()
+}
+
+/// Whether a, b, c lie on one line, exactly: all three coordinate-plane projections are
+/// collinear.
+pub(super) fn collinear(a: Point, b: Point, c: Point) -> bool {
+    [[0, 1], [1, 2], [2, 0]]
+        .iter()
+        .all(|&[i, j]| orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]]) == 0.0)
 }

@@ -91,8 +91,10 @@
 
 mod incremental;
 
+use incremental::collinear;
+
 use crate::progress::{Counter, Progress};
-use crate::vector::{add, orient2d, orient3d, sub};
+use crate::vector::{add, orient3d, sub};
 use crate::{mass_properties, MassProperties, Mesh, Point};
 
 /// Why a point set has no solid hull.
@@ -148,14 +150,6 @@ impl Hull {
     pub fn volume(&self) -> f64 {
         self.properties.volume()
     }
-}
-
-/// Whether a, b, c lie on one line, exactly: all three coordinate-plane projections are
-/// collinear.
-fn collinear(a: Point, b: Point, c: Point) -> bool {
-    [[0, 1], [1, 2], [2, 0]]
-        .iter()
-        .all(|&[i, j]| orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]]) == 0.0)
 }
 
 /// The exact degeneracy of a point set, if it has one.

@@ -111,3 +111,42 @@ pub fn rotation(rng: &mut XorShift) -> [[f64; 3]; 3] {
         [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
     ]
 }
+
+/// The compensated sum of `v`.
+pub fn sum(v: &[f64]) -> f64 {
+    let mut s = meshvol::accumulate::CompensatedSum::default();
+    v.iter().for_each(|&x| s.add(x));
+    s.value()
+}
+
+/// Asserts that `a` and `b` differ by at most `tolerance`.
+pub fn assert_close(what: &str, a: f64, b: f64, tolerance: f64) {
+    assert!((a - b).abs() <= tolerance, "{what}: {a} vs {b} (difference {:e})", a - b);
+}
+
+/// A grid of `counts` cells over the surface's bounding box grown by `margin` of its
+/// size on each side.
+pub fn grid_around(mesh: &Mesh, counts: [usize; 3], margin: f64) -> Grid {
+    let b = meshvol::mass_properties(mesh).bounds.unwrap();
+    let size = b.size();
+    let cell = [0, 1, 2].map(|a| size[a] * (1.0 + 2.0 * margin) / counts[a] as f64);
+    let origin = [0, 1, 2].map(|a| b.min[a] - margin * size[a]);
+    Grid::new(origin, cell, counts).unwrap()
+}
+
+/// Two overlapping boxes in one mesh, a dirty surface (its cells count the overlap twice,
+/// as the raw surface says).
+pub fn overlapping_boxes() -> Mesh {
+    let a = cuboid([0.0; 3], [1.0, 0.7, 0.9]);
+    let b = cuboid([0.4, 0.3, 0.2], [1.3, 1.1, 1.2]);
+    let (mut p, mut f) = (a.positions().to_vec(), face_lists(&a));
+    let n = p.len() as u32;
+    p.extend_from_slice(b.positions());
+    f.extend(face_lists(&b).into_iter().map(|f| f.iter().map(|v| v + n).collect()));
+    polygons(&p, &f)
+}
+
+/// The check of `mesh` with the default options.
+pub fn checked(mesh: &Mesh) -> meshvol::topology::Check {
+    meshvol::topology::check(mesh, &meshvol::topology::CheckOptions::default()).unwrap()
+}
