@@ -422,7 +422,6 @@ const KNOWN_CIRCLES: &[&str] = &[
     "meshvol: topology ↔ topology::bodies ↔ topology::connect ↔ topology::crossings ↔ topology::edges ↔ topology::euler ↔ topology::faces ↔ topology::holes ↔ topology::loops ↔ topology::nesting ↔ topology::sheets ↔ topology::shells ↔ topology::verdict",
     "meshvol-cli: (crate root) ↔ below ↔ check ↔ cutfill ↔ grid ↔ intersect ↔ manual ↔ profile ↔ repair ↔ section ↔ serve ↔ solid ↔ union ↔ volume",
     "meshvol-io: (crate root) ↔ family ↔ gltf ↔ gltf::buffers ↔ gltf::scene ↔ memory ↔ obj ↔ stl::ascii ↔ threemf ↔ threemf::model ↔ transform",
-    "meshvol-serve: (crate root) ↔ api ↔ conn ↔ measure ↔ upload",
 ];
 
 #[test]
