@@ -1,4 +1,4 @@
-//! The name a typo was meant to be (a subcommand, a manual page): a leaf for main.rs and manual.rs.
+//! The name a typo was meant to be (a subcommand, a man page): a leaf for main.rs, manual.rs.
 
 /// The name of `names` that `typed` was probably meant to be: one at most two edits
 /// away (`chek` → `check`), or one it begins (`vol` → `volume`); the nearest first.

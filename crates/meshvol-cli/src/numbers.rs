@@ -1,4 +1,4 @@
-//! The numbers flags take (clap value parsers): a leaf the command modules name without importing main.rs.
+//! The flags' number parsers (clap value parsers): a leaf the command modules import.
 
 /// Parses a flag's value that must be a finite number, zero or more.
 pub fn non_negative_finite(s: &str) -> Result<f64, String> {

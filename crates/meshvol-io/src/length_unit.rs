@@ -1,4 +1,4 @@
-//! [`LengthUnit`], the unit a file declares: a leaf, so the readers that find one need not import the crate root.
+//! [`LengthUnit`], the unit a file declares: a leaf the readers import.
 
 use std::fmt;
 

@@ -1,4 +1,4 @@
-//! [`Object`], a named run of a file's faces: a leaf, so the readers that return them need not import the crate root.
+//! [`Object`], a named run of a file's faces: a leaf the readers import.
 
 /// A named part of a file: a contiguous run of the loaded surface's faces.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -1,4 +1,4 @@
-//! The crate's [`Error`]: a leaf file, so the files that return it need not import the crate root.
+//! The crate's [`Error`]: a leaf, so the files that return it need not import lib.rs.
 
 /// Why no OpenCL library loads. A statically linked musl binary (the release binary of
 /// scripts/dist.sh) builds and runs, but musl's static `dlopen` loads nothing.

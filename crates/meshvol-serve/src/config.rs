@@ -1,4 +1,4 @@
-//! What the server is told ([`Config`], [`Budgets`]): a leaf, so the files that read it need not import the crate root.
+//! What the server is told ([`Config`], [`Budgets`]): a leaf the other files import.
 
 use std::net::IpAddr;
 use std::time::Duration;

@@ -1,4 +1,4 @@
-//! Sizes in bytes read from and written as words (`256MiB`), a leaf for the flags and the messages.
+//! Sizes in bytes, read (`256MiB`) and written in words: a leaf for flags and messages.
 
 /// Parses a size: bytes, or a number with `KiB`, `MiB`, `GiB` (powers of 1024) or `KB`,
 /// `MB`, `GB` (powers of 1000); `256MiB`, `1.5GB`, `1000000`.
