@@ -25,7 +25,7 @@ pub struct BelowArgs {
     #[arg(long, value_name = "PLANE", allow_hyphen_values = true)]
     plane: Option<PlaneArg>,
     /// The volume to hold below: finds the level D along --direction (a draft).
-    #[arg(long, value_name = "V", value_parser = crate::positive_finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "V", value_parser = crate::numbers::positive_finite, allow_hyphen_values = true)]
     volume: Option<f64>,
     /// The direction the level is taken along, with --volume (default: z).
     #[arg(long, value_name = "NX,NY,NZ", value_parser = parse_numbers::<3>, allow_hyphen_values = true, requires = "volume")]

@@ -32,7 +32,7 @@ pub struct CutFillArgs {
     #[arg(long, value_name = "NX,NY", value_parser = parse_cells)]
     cells: Option<[usize; 2]>,
     /// Cut and fill per cell: square cells of size P over the common footprint's box.
-    #[arg(long, value_name = "P", value_parser = crate::positive_finite)]
+    #[arg(long, value_name = "P", value_parser = crate::numbers::positive_finite)]
     pitch: Option<f64>,
     /// Write the per-cell volumes as .npy: float64, shape (2, NX, NY), [0] cut, [1] fill.
     #[arg(long, short, value_name = "OUT", value_parser = parse_out, requires = "spacing")]

@@ -31,7 +31,7 @@ pub struct IntersectArgs {
     #[arg(long, value_name = "N", default_value_t = 10_000)]
     max_pairs: usize,
     /// Stop refining once (upper − lower) ≤ REL · lower.
-    #[arg(long, value_name = "REL", default_value_t = 1e-9, value_parser = crate::positive_finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "REL", default_value_t = 1e-9, value_parser = crate::numbers::positive_finite, allow_hyphen_values = true)]
     tolerance: f64,
     #[command(flatten)]
     report: driver::SolidReportArgs,

@@ -16,6 +16,8 @@ mod hull;
 mod input;
 mod intersect;
 mod manual;
+mod nearest;
+mod numbers;
 mod profile;
 mod repair;
 mod section;
@@ -155,20 +157,6 @@ const EXAMPLES_SERVE: &str = "Examples:\n  meshvol serve                       #
 const EXAMPLES_COMPLETIONS: &str = "Examples:\n  meshvol completions bash > ~/.local/share/bash-completion/completions/meshvol\n  meshvol completions zsh > ~/.zfunc/_meshvol\n  meshvol completions fish > ~/.config/fish/completions/meshvol.fish\n  meshvol completions elvish > ~/.config/elvish/lib/meshvol.elv\n  meshvol completions powershell >> $PROFILE";
 const EXAMPLES_MAN: &str = "Examples:\n  meshvol man > meshvol.1 && man ./meshvol.1\n  meshvol man volume > meshvol-volume.1\n  meshvol man --all ~/.local/share/man/man1";
 
-fn non_negative_finite(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-        _ => Err(format!("must be zero or a positive number; got {s}")),
-    }
-}
-
-fn positive_finite(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        _ => Err(format!("must be a positive number; got {s}")),
-    }
-}
-
 /// Inserts `volume` when the first argument after the global options is not a
 /// subcommand, so `meshvol part.stl` means `meshvol volume part.stl` and
 /// `meshvol -q part.stl` means `meshvol -q volume part.stl`.
@@ -201,7 +189,7 @@ fn first_argument(args: &[std::ffi::OsString]) -> usize {
     i
 }
 
-/// The subcommand `arg` was probably meant to be, when it is not a file ([`nearest`]).
+/// The subcommand `arg` was probably meant to be, when it is not a file ([`nearest`](nearest::nearest)).
 fn misspelt_command(arg: &std::ffi::OsStr) -> Option<String> {
     let a = arg.to_str()?;
     if a.len() < 2
@@ -215,33 +203,7 @@ fn misspelt_command(arg: &std::ffi::OsStr) -> Option<String> {
     if a == "help" || command.get_subcommands().any(|c| c.get_name() == a) {
         return None;
     }
-    nearest(a, command.get_subcommands().map(|c| c.get_name()))
-}
-
-/// The name of `names` that `typed` was probably meant to be: one at most two edits
-/// away (`chek` → `check`), or one it begins (`vol` → `volume`); the nearest first.
-fn nearest<'a>(typed: &str, names: impl Iterator<Item = &'a str>) -> Option<String> {
-    names
-        .map(|name| (edits(typed, name), name))
-        .filter(|(d, name)| *d <= 2 || (typed.len() >= 3 && name.starts_with(typed)))
-        .min()
-        .map(|(_, name)| name.to_string())
-}
-
-/// Levenshtein distance.
-fn edits(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut previous = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let next = (previous + usize::from(ca != cb)).min(row[j] + 1).min(row[j + 1] + 1);
-            previous = row[j + 1];
-            row[j + 1] = next;
-        }
-    }
-    row[b.len()]
+    nearest::nearest(a, command.get_subcommands().map(|c| c.get_name()))
 }
 
 /// More worker threads than this many per core only cost memory and time.

@@ -22,7 +22,7 @@ pub fn man(mut command: Command, name: Option<&str>) -> ExitCode {
             None => {
                 let names: Vec<&str> = pages(&command).map(|c| c.get_name()).collect();
                 let list = names.join(", ");
-                let why = match crate::nearest(name, names.iter().copied()) {
+                let why = match crate::nearest::nearest(name, names.iter().copied()) {
                     Some(meant) => format!("did you mean `{meant}`? (one of {list})"),
                     None => format!("one of {list}"),
                 };

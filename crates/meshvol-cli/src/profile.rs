@@ -31,7 +31,7 @@ pub struct ProfileArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=(meshvol::grid::MAX_LEVELS as u64 - 1)))]
     levels: Option<u64>,
     /// A level every H from the minimum, up to the first at or above the maximum.
-    #[arg(long, value_name = "H", value_parser = crate::positive_finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "H", value_parser = crate::numbers::positive_finite, allow_hyphen_values = true)]
     step: Option<f64>,
     /// Print one JSON object: axis, levels, volume_below, slab_volume, section_area.
     #[arg(long, conflicts_with = "csv")]

@@ -33,7 +33,7 @@ pub struct RepairArgs {
     /// Weld vertices whose coordinates differ by at most T; 0 welds exactly equal
     /// positions only. Default: exactly, and when that leaves holes, again within 1e-9 of
     /// the bounding box diagonal (reported as `weld_tolerance`).
-    #[arg(long, value_name = "T", value_parser = crate::non_negative_finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "T", value_parser = crate::numbers::non_negative_finite, allow_hyphen_values = true)]
     weld_tolerance: Option<f64>,
 }
 

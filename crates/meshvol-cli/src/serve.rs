@@ -31,12 +31,12 @@ pub struct ServeArgs {
     queue: usize,
     /// The longest a request may wait for a check and be checked, in seconds. Longer:
     /// 503, and its check is stopped.
-    #[arg(long, value_name = "SECONDS", default_value_t = 120.0, value_parser = crate::positive_finite)]
+    #[arg(long, value_name = "SECONDS", default_value_t = 120.0, value_parser = crate::numbers::positive_finite)]
     timeout: f64,
     /// The longest a client may keep a connection waiting, in seconds: for a request's
     /// header, between requests, for reading an answer; and before its upload must
     /// keep to --min-rate.
-    #[arg(long, value_name = "SECONDS", default_value_t = 10.0, value_parser = crate::positive_finite)]
+    #[arg(long, value_name = "SECONDS", default_value_t = 10.0, value_parser = crate::numbers::positive_finite)]
     client_timeout: f64,
     /// The slowest an upload may arrive, per second (on average, after
     /// --client-timeout). Slower: 408.

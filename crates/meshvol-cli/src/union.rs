@@ -17,7 +17,7 @@ pub struct UnionArgs {
     #[command(flatten)]
     walk: crate::walk::WalkArgs,
     /// Stop refining once (upper − lower) ≤ REL · lower.
-    #[arg(long, value_name = "REL", default_value_t = 1e-6, value_parser = crate::positive_finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "REL", default_value_t = 1e-6, value_parser = crate::numbers::positive_finite, allow_hyphen_values = true)]
     tolerance: f64,
     /// Print one JSON object: lower, upper, volume, bodies, sum_of_volumes, cells_refined,
     /// cells_resolved_exactly, volume_uncertainty, warnings.

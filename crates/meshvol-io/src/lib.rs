@@ -69,9 +69,11 @@ mod family;
 pub mod geojson;
 pub mod gltf;
 pub mod grid_out;
+mod length_unit;
 pub mod limits;
 pub mod memory;
 pub mod obj;
+mod object;
 pub mod off;
 pub mod ply;
 pub mod points;
@@ -87,6 +89,8 @@ pub mod wkt;
 pub mod write;
 
 pub use error::{Location, ReadError};
+pub use length_unit::LengthUnit;
+pub use object::Object;
 pub use points::{read_points, read_points_bytes, PointCloud, PointSource};
 pub use polygons::{
     read_polygons, read_polygons_bytes, PolygonFeature, PolygonFile, PolygonFormat,
@@ -155,59 +159,6 @@ impl FormatSource {
             FormatSource::Content => "content",
         }
     }
-}
-
-/// A length unit a file can declare.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum LengthUnit {
-    Micrometre,
-    Millimetre,
-    Centimetre,
-    Metre,
-    Inch,
-    Foot,
-}
-
-impl LengthUnit {
-    /// Metres per unit.
-    pub fn metres(&self) -> f64 {
-        match self {
-            LengthUnit::Micrometre => 1e-6,
-            LengthUnit::Millimetre => 1e-3,
-            LengthUnit::Centimetre => 1e-2,
-            LengthUnit::Metre => 1.0,
-            LengthUnit::Inch => 0.0254,
-            LengthUnit::Foot => 0.3048,
-        }
-    }
-
-    /// The symbol: `um`, `mm`, `cm`, `m`, `in`, `ft`.
-    pub fn symbol(&self) -> &'static str {
-        match self {
-            LengthUnit::Micrometre => "um",
-            LengthUnit::Millimetre => "mm",
-            LengthUnit::Centimetre => "cm",
-            LengthUnit::Metre => "m",
-            LengthUnit::Inch => "in",
-            LengthUnit::Foot => "ft",
-        }
-    }
-}
-
-impl fmt::Display for LengthUnit {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.symbol())
-    }
-}
-
-/// A named part of a file: a contiguous run of the loaded surface's faces.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Object {
-    /// The name the file gives it (an STL solid's name, an OBJ `o`/`g` name, a 3MF
-    /// object's name, a glTF node's or mesh's name); possibly empty.
-    pub name: String,
-    /// Its faces: indices into [`Loaded::surface`]'s faces.
-    pub faces: std::ops::Range<usize>,
 }
 
 impl fmt::Display for Format {

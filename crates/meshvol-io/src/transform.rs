@@ -7,7 +7,7 @@ use meshvol::assembly::{Affine, Assembly, Placement};
 use meshvol::{Mesh, Point};
 use rayon::prelude::*;
 
-use crate::Object;
+use crate::object::Object;
 
 /// Triangle meshes placed by transforms, gathered into one mesh, with the objects and the
 /// bodies the reader names (see [`crate::Loaded::bodies`]).

@@ -10,11 +10,13 @@
 //! answered 503 and the check is cancelled at its next stage, which frees its place.
 //! A check that panics is a 500 with a message, not a stopped server.
 
+use crate::config::Config;
 use crate::guard::{self, Hosts};
 use crate::measure::{self, Failure};
+use crate::page;
 use crate::respond::{error, json, json_bytes, not_found, over_budget};
+use crate::size::size_words;
 use crate::upload::{self, Params};
-use crate::{page, size_words, Config};
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{Query, Request, State};
 use axum::http::{header, StatusCode};

@@ -13,7 +13,7 @@
 //!   graceful shutdown) for at most `client_timeout`: the checks running are cancelled,
 //!   so their requests end at their check's next stage with 503.
 
-use crate::Config;
+use crate::config::Config;
 use axum::Router;
 use hyper::server::conn::http1;
 use hyper_util::rt::{TokioIo, TokioTimer};

@@ -1,7 +1,7 @@
 //! One upload measured: bytes → reader → check → the reports and the view, exactly as
 //! `meshvol check --json` and `meshvol volume --json` make them.
 
-use crate::Budgets;
+use crate::config::Budgets;
 use meshvol::grid::{Axis, Levels};
 use meshvol::progress::Progress;
 use meshvol::topology::{self, CheckError, CheckOptions};

@@ -2,9 +2,10 @@
 //! requests may hold, then its file and options (the raw body named by `?name=` or
 //! `X-File-Name`, or a `multipart/form-data` form's `file` field and option fields).
 
+use crate::config::Config;
 use crate::measure::{self, Options};
 use crate::respond::error;
-use crate::{size_words, Config};
+use crate::size::size_words;
 use axum::body::Body;
 use axum::extract::{FromRequest, Multipart, Request};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};

@@ -412,20 +412,6 @@ fn no_source_file_is_over_600_lines() {
     assert!(long.is_empty(), "over {MAX_LINES} lines: {long:#?}");
 }
 
-/// The circles this check found when it learnt to read every form of path, still to be
-/// broken by moving what the files share down into a leaf. The list may only shrink: a
-/// circle not in it fails the check, and so does one in it that is gone (take it out).
-/// `HOUSE_ALL=1 cargo test -p meshvol --test house -- --nocapture` prints the edges of
-/// the known ones too, with the path that makes each.
-const KNOWN_CIRCLES: &[&str] = &[
-    "meshvol: grid ↔ grid::cells ↔ grid::cut_cells ↔ grid::cut_cells::apertures ↔ grid::cut_cells::kernel ↔ grid::profile ↔ grid::tile_work ↔ grid::union ↔ grid::union::bounds ↔ grid::union::frames ↔ grid::union::policy ↔ grid::union::refine ↔ grid::union::resolve",
-    "meshvol: topology ↔ topology::bodies ↔ topology::connect ↔ topology::crossings ↔ topology::edges ↔ topology::euler ↔ topology::faces ↔ topology::holes ↔ topology::loops ↔ topology::nesting ↔ topology::sheets ↔ topology::shells ↔ topology::verdict",
-    "meshvol-cli: (crate root) ↔ below ↔ check ↔ cutfill ↔ grid ↔ intersect ↔ manual ↔ profile ↔ repair ↔ section ↔ serve ↔ solid ↔ union ↔ volume",
-    "meshvol-io: (crate root) ↔ family ↔ gltf ↔ gltf::buffers ↔ gltf::scene ↔ memory ↔ obj ↔ stl::ascii ↔ threemf ↔ threemf::model ↔ transform",
-    "meshvol-opencl: (crate root) ↔ devices",
-    "meshvol-serve: (crate root) ↔ api ↔ conn ↔ measure ↔ upload",
-];
-
 #[test]
 fn no_import_circle_between_files() {
     let mut found = Vec::new();
@@ -447,20 +433,18 @@ fn no_import_circle_between_files() {
                 "{crate_name}: {}",
                 circle.iter().map(named).collect::<Vec<_>>().join(" ↔ ")
             );
-            if std::env::var_os("HOUSE_ALL").is_some() || !KNOWN_CIRCLES.contains(&text.as_str()) {
-                for from in &circle {
-                    for (to, path) in paths[from].iter().filter(|(to, _)| circle.contains(to)) {
-                        eprintln!("{crate_name}: {} → {} (names {path})", named(from), named(to));
-                    }
+            for from in &circle {
+                for (to, path) in paths[from].iter().filter(|(to, _)| circle.contains(to)) {
+                    eprintln!("{crate_name}: {} → {} (names {path})", named(from), named(to));
                 }
             }
             found.push(text);
         }
     }
-    let new: Vec<&String> = found.iter().filter(|c| !KNOWN_CIRCLES.contains(&c.as_str())).collect();
-    let gone: Vec<&&str> =
-        KNOWN_CIRCLES.iter().filter(|c| !found.iter().any(|f| f == *c)).collect();
-    assert!(new.is_empty() && gone.is_empty(), "new import circles (the edges that make them are printed above): {new:#?}\nknown circles no longer found (take them out of KNOWN_CIRCLES): {gone:#?}");
+    assert!(
+        found.is_empty(),
+        "import circles (the edges that make them, and the path that makes each, are printed above; break each by moving what the files share down into a leaf): {found:#?}"
+    );
 }
 
 fn module(m: &str) -> Vec<String> {

@@ -9,8 +9,7 @@ use std::path::{self, Path, PathBuf};
 use base64::Engine;
 use rayon::prelude::*;
 
-use super::at;
-use super::schema::Document;
+use super::schema::{at, Document};
 use crate::compressed::Archive;
 use crate::error::{Location, ParseError};
 

@@ -43,10 +43,10 @@ use meshvol::Mesh;
 use crate::compressed::Archive;
 use crate::error::{Location, ParseError};
 use crate::limits::Limits;
-use crate::Object;
+use crate::object::Object;
 use buffers::{glb_chunks, Buffers};
 use scene::place;
-use schema::Document;
+use schema::{at, Document};
 
 /// What a glTF file gave.
 pub(crate) struct Scene {
@@ -69,11 +69,6 @@ pub(crate) fn looks_like_glb(bytes: &[u8]) -> bool {
 pub(crate) fn looks_like_json(bytes: &[u8]) -> bool {
     let start = crate::text::skip_space(bytes, crate::text::bom_len(bytes));
     bytes.get(start) == Some(&b'{')
-}
-
-/// An error at a JSON item.
-fn at(item: impl Into<String>, message: impl Into<String>) -> ParseError {
-    ParseError::new(Some(Location::Json(item.into())), message)
 }
 
 /// Reads a `.gltf` or `.glb` file within `limits`; `path`, or the zip `archive` it was

@@ -4,9 +4,8 @@
 use meshvol::Point;
 use rayon::prelude::*;
 
-use super::at;
 use super::buffers::{packed_triangles, read_accessor, strided, Buffers, Component};
-use super::schema::{Document, Node, Primitive};
+use super::schema::{at, Document, Node, Primitive};
 use crate::error::ParseError;
 use crate::limits::Limits;
 use crate::transform::{Gathered, Placed};

@@ -1,7 +1,14 @@
-//! The parts of a glTF document that are read, as serde types. Unknown members are
-//! ignored.
+//! The parts of a glTF document that are read, as serde types, and [`at`], an error at
+//! one of its items. Unknown members are ignored.
 
 use serde::Deserialize;
+
+use crate::error::{Location, ParseError};
+
+/// An error at a JSON item.
+pub(super) fn at(item: impl Into<String>, message: impl Into<String>) -> ParseError {
+    ParseError::new(Some(Location::Json(item.into())), message)
+}
 
 #[derive(Deserialize, Default)]
 #[serde(default)]

@@ -33,8 +33,8 @@ use meshvol::{Faces, Mesh, Point};
 use rayon::prelude::*;
 
 use crate::error::ParseError;
+use crate::object::Object;
 use crate::text::{self, NumberError};
-use crate::Object;
 
 /// Target bytes per parallel chunk.
 const CHUNK: usize = 1 << 20;

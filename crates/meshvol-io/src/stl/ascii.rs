@@ -6,8 +6,8 @@ use rayon::prelude::*;
 
 use super::soup_mesh;
 use crate::error::{line_of, ParseError};
+use crate::object::Object;
 use crate::text::{self, NumberError};
-use crate::Object;
 
 /// Where a chunk of an ASCII file starts and ends, in what state it starts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -46,9 +46,10 @@ use meshvol::Mesh;
 use quick_xml::events::Event;
 
 use crate::error::{line_of, Location, ParseError};
+use crate::length_unit::LengthUnit;
 use crate::limits::{Budget, Limits};
+use crate::object::Object;
 use crate::transform::Placed;
-use crate::{LengthUnit, Object};
 use meshvol::assembly::Assembly;
 use model::{attribute, parse_model, Content, Parsed};
 

@@ -10,7 +10,7 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::name::ResolveResult;
 use quick_xml::NsReader;
 
-use crate::LengthUnit;
+use crate::length_unit::LengthUnit;
 
 /// The 3MF core namespace.
 const CORE: &[u8] = b"http://schemas.microsoft.com/3dmanufacturing/core/2015/02";

@@ -13,21 +13,10 @@
 //! Without bodies (a single-object file: one body of every face) a shell inside an odd
 //! number of others is a cavity, as slicers read one model.
 
+use super::report::{BodyOverlap, Check};
 use super::shells::Shells;
-use super::Check;
 use std::collections::BTreeSet;
 use std::ops::Range;
-
-/// Two bodies whose solids share volume: their surfaces cross, or one lies inside the
-/// other's material.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub struct BodyOverlap {
-    /// The two bodies, numbered as the runs of faces given to the check, smaller first.
-    pub bodies: [usize; 2],
-    /// A shell of one lies wholly inside the other's material, no surface crossing it
-    /// (a part in its packaging); otherwise their surfaces cross.
-    pub nested: bool,
-}
 
 /// Each shell's body: the run of `bodies` holding its first kept face; all 0 without
 /// bodies. Faces outside every run (the runs should cover them) count as one more body.

@@ -2,8 +2,10 @@
 //! shells and their orientation, caps over holes and each shell's volume, the nesting
 //! candidates and the Euler counts (see the stage table in `mod.rs`).
 
+use super::error::{enter, CheckError};
 use super::loops::Loops;
-use super::{edges, enter, euler, holes, nesting, sheets, shells, weld, CheckError, StageReport};
+use super::{edges, euler, holes, nesting, sheets, shells, weld};
+use crate::progress::StageReport;
 use crate::Surface;
 
 /// What the check derives from how faces connect, by edges and vertices (stages 3–5,

@@ -13,8 +13,8 @@
 //! peak. Welding the corners in place from the file's 50-byte records instead, with no
 //! copy, was slower: 0.54 s against 0.40–0.44 s on a 5M-triangle STL, 2 cores.)
 
+use super::error::CheckError;
 use super::weld::Welded;
-use super::CheckError;
 use crate::buckets::{filled, for_each_range_mut, par_starts};
 use crate::{Point, Surface};
 use rayon::prelude::*;

@@ -2,41 +2,7 @@
 //! verdict, the doubts every measurement of the solid carries, and the warnings a volume
 //! report adds.
 
-use super::Check;
-
-/// How the file's faces are wound.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Orientation {
-    /// Every shell is wound so its normals point out of the solid (counter-clockwise
-    /// seen from outside); cavities' normals point into the void.
-    Outward,
-    /// Every shell is wound the other way (clockwise seen from outside, as OpenSCAD's
-    /// polyhedron() wants).
-    Inward,
-    /// Some shells one way, some the other, or faces within a shell disagree.
-    Mixed,
-}
-
-impl Orientation {
-    /// `outward`, `inward` or `mixed`: the names reports use.
-    pub fn name(self) -> &'static str {
-        match self {
-            Orientation::Outward => "outward",
-            Orientation::Inward => "inward",
-            Orientation::Mixed => "mixed",
-        }
-    }
-
-    /// The winding seen from outside: `ccw` for outward normals, `cw` for OpenSCAD's
-    /// convention; `None` when shells disagree.
-    pub fn winding(self) -> Option<&'static str> {
-        match self {
-            Orientation::Outward => Some("ccw"),
-            Orientation::Inward => Some("cw"),
-            Orientation::Mixed => None,
-        }
-    }
-}
+use super::report::{BodyOverlap, Check, Orientation};
 
 impl Check {
     /// A one-line verdict, most important fact first: "closed, 2 shells, 1 cavity:
@@ -222,7 +188,7 @@ pub fn volume_warnings(
 }
 
 /// The doubt of objects that share volume, naming the first few pairs.
-fn overlapping_objects(pairs: &[super::BodyOverlap], object: &dyn Fn(usize) -> String) -> String {
+fn overlapping_objects(pairs: &[BodyOverlap], object: &dyn Fn(usize) -> String) -> String {
     const NAMED: usize = 3;
     let mut named: Vec<String> = pairs
         .iter()

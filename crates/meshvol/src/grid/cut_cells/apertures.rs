@@ -19,9 +19,9 @@
 //! surface. On a plane `z = z_k` they are the column's suffix sums of `∫ x' n_z dA` and
 //! `∫ y' n_z dA`, which the volume's centroid hands down already ([`super::kernel`]).
 
+use super::arrays::CutCells;
 use super::integrals::{face_moments, surface_part};
 use super::kernel::{add_surface, face_areas, finish_boundary_centroids, polygon_normal, Extra};
-use super::CutCells;
 use crate::accumulate::CompensatedSum;
 use crate::grid::cells::{cover, sweep_axis, Piece, Units};
 use crate::grid::clip::Polygon;

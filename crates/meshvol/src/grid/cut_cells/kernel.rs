@@ -9,8 +9,8 @@
 //! The sums that only the second moments and the face centroids need ([`Extra`]) are
 //! behind the const parameter `X`: without them the sweep is compiled without them.
 
+use super::arrays::CutCells;
 use super::integrals::{face_moments, handed_down, projected, second, surface_part};
-use super::CutCells;
 use crate::accumulate::CompensatedSum;
 use crate::grid::cells::{
     for_each_piece, sweep_layers, zeroed, Bins, Block, LayerSink, Piece, Tiling, Units,

@@ -114,6 +114,7 @@ mod resolve;
 pub use boundary::{union_boundary, union_boundary_with, UnionBoundary};
 pub use cells::{union_cell_volumes, union_cell_volumes_with};
 pub(crate) use frames::{counted_in, BoundaryTotal, Frame, Interface};
+pub use refine::{MAX_DEPTH, STALL};
 pub use resolve::COPLANAR_TOLERANCE;
 pub(crate) use resolve::{KeptPiece, KeptPieces};
 
@@ -127,14 +128,6 @@ use bounds::{Bodies, Cell};
 use frames::{boundary_pass, counted_columns, resolve_every_column};
 use rayon::prelude::*;
 use refine::{refine, OpenCell, Refined};
-
-/// A cell whose children's gaps add up to more than this fraction of its own gap is not
-/// refined further: a curve where two surfaces cross leaves about a quarter of the gap
-/// in the children, two surfaces lying on each other about half.
-pub const STALL: f64 = 0.4;
-
-/// Refinement levels at most: each halves the cell size.
-pub const MAX_DEPTH: usize = 4;
 
 /// Open cells per refinement level at most: a level that would hold more is not made.
 const MAX_OPEN: usize = 1 << 18;

@@ -6,8 +6,7 @@
 //! then costs about a quarter of the exact resolution and saves none of it.
 
 use super::bounds::{Bodies, Cell};
-use super::refine::{refine, Refined};
-use super::MAX_DEPTH;
+use super::refine::{refine, Refined, MAX_DEPTH};
 use crate::grid::GridError;
 use crate::Surface;
 use rayon::prelude::*;

@@ -7,14 +7,21 @@
 //! parent's list that meets it; its field is its parent's over its footprint, plus, for
 //! a lower child, the parent's listed faces wholly above the child. So each level costs
 //! what its cells' own faces cost, not their columns'. A cell whose children's gaps add
-//! up to more than [`super::STALL`] of its own is not refined further.
+//! up to more than [`STALL`] of its own is not refined further.
 
 use super::bounds::{face_box, Cell, Rule, Tally};
-use super::{MAX_DEPTH, STALL};
 use crate::grid::cells::{add_faces, finish_column, for_each_piece, Block, Piece, Units};
 use crate::grid::{Grid, GridError};
 use crate::surface::Oriented;
 use crate::{Point, Surface};
+
+/// A cell whose children's gaps add up to more than this fraction of its own gap is not
+/// refined further: a curve where two surfaces cross leaves about a quarter of the gap
+/// in the children, two surfaces lying on each other about half.
+pub const STALL: f64 = 0.4;
+
+/// Refinement levels at most: each halves the cell size.
+pub const MAX_DEPTH: usize = 4;
 
 /// Fine squares to a base column's side: the fields' resolution, which is what the
 /// quadrants of the deepest cells refined need.
