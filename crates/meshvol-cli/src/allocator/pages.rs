@@ -297,8 +297,7 @@ fn move_pages(from: usize, len: usize, to: usize) -> bool {
 fn grow(at: usize, len: usize, new: usize) -> Option<usize> {
     // SAFETY: the region is whole pages of one mapping that nothing else refers to; the
     // kernel returns its new place, or fails and leaves it.
-    let moved =
-        unsafe { libc::mremap(at as *mut libc::c_void, len, new, libc::MREMAP_MAYMOVE) };
+    let moved = unsafe { libc::mremap(at as *mut libc::c_void, len, new, libc::MREMAP_MAYMOVE) };
     (moved != libc::MAP_FAILED).then_some(moved as usize)
 }
 
@@ -337,8 +336,8 @@ mod tests {
     #[test]
     fn a_larger_array_is_made_of_the_free_regions_moved_largest_first() {
         let mut pool = Pool::new();
-        let regions: Vec<(usize, u8)> =
-            [(2 * MB, 2u8), (3 * MB, 3), (4 * MB, 4)].map(|(len, mark)| {
+        let regions: Vec<(usize, u8)> = [(2 * MB, 2u8), (3 * MB, 3), (4 * MB, 4)]
+            .map(|(len, mark)| {
                 let (at, _) = pool.take(len);
                 bytes(at, len).fill(mark);
                 (at, mark)
