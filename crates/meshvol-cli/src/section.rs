@@ -44,13 +44,7 @@ pub struct SectionArgs {
 fn geometry(r: &SectionReport, polygons: &[Polygon], geojson: bool) -> std::io::Result<Vec<u8>> {
     let mut out = Vec::new();
     if geojson {
-        let mut properties = serde_json::Map::new();
-        properties.insert("file".into(), r.file.clone().into());
-        properties.insert("area".into(), r.area.into());
-        if let Ok(plane) = serde_json::to_value(&r.plane) {
-            properties.insert("plane".into(), plane);
-        }
-        meshvol_io::geojson::write_feature(&mut out, polygons, properties)?;
+        meshvol_io::geojson::write_feature(&mut out, polygons, r.geojson_properties())?;
     } else {
         meshvol_io::wkt::write_multipolygon(&mut out, polygons)?;
     }

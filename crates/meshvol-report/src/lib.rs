@@ -37,6 +37,7 @@ pub mod below;
 pub mod check;
 pub mod checked;
 pub mod cutfill;
+pub mod devices;
 pub mod grid;
 pub mod hull;
 pub mod inertial;

@@ -54,6 +54,20 @@ pub struct SectionReport {
     pub warnings: Vec<String>,
 }
 
+impl SectionReport {
+    /// The properties of the section's GeoJSON Feature (`--geojson`, `--out *.geojson`):
+    /// the file, the area in the report's units, and the plane.
+    pub fn geojson_properties(&self) -> serde_json::Map<String, serde_json::Value> {
+        let mut properties = serde_json::Map::new();
+        properties.insert("file".into(), self.file.clone().into());
+        properties.insert("area".into(), self.area.into());
+        if let Ok(plane) = serde_json::to_value(&self.plane) {
+            properties.insert("plane".into(), plane);
+        }
+        properties
+    }
+}
+
 fn plane_report(f: &PlaneFrame) -> PlaneReport {
     PlaneReport { origin: f.origin, normal: f.normal, u: f.u, v: f.v }
 }

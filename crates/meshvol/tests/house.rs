@@ -531,3 +531,23 @@ fn a_circle_is_found_and_a_facade_is_not_one() {
     ]);
     assert_eq!(circles(&edges), two("a", "b"));
 }
+
+/// The command builds no report of its own (ARCHITECTURE.md, "every report goes through
+/// `meshvol-report`"): no JSON object or serialized struct is made in its sources, so
+/// every number it prints comes from a report struct.
+#[test]
+fn the_command_builds_no_report() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../meshvol-cli/src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut found = Vec::new();
+    for file in files {
+        let text = code(&std::fs::read_to_string(&file).unwrap());
+        for marker in ["json!", "Serialize", "serde_json::Map", "serde_json::to_value"] {
+            if text.contains(marker) {
+                found.push(format!("{}: {marker}", file.display()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "reports built in the command, not in meshvol-report: {found:#?}");
+}
