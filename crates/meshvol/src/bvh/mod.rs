@@ -23,8 +23,8 @@
 //!
 //! | stage | file |
 //! |---|---|
-//! | boxes (`Box32`, a leaf's `LeafBoxes`), nodes, the tree's layout | `mod.rs` |
-//! | spatial order, build (top-down split, boxes bottom-up), refit | `build.rs` |
+//! | boxes (`Box32`, a leaf's `LeafBoxes`), nodes, the tree's layout, Morton codes | `mod.rs` |
+//! | spatial order (a counting sort of the Morton codes), build (top-down split, boxes bottom-up), refit | `build.rs` |
 //! | one box against the tree | `query.rs` |
 //! | pairs of overlapping items (one tree, two trees, the first pair) | `pairs.rs` |
 //!
