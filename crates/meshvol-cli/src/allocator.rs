@@ -25,8 +25,11 @@
 //! 258–263 MB); its small allocations keep mimalloc's default, which gives freed memory
 //! back after a delay.
 
+// Linux's: the pool moves pages with `mremap`. Elsewhere mimalloc takes every size.
+#[cfg(target_os = "linux")]
 mod pages;
 
+#[cfg(target_os = "linux")]
 use std::alloc::{GlobalAlloc, Layout};
 
 /// Allocations of at least this many bytes are whole pages of their own. (A reader's
@@ -34,6 +37,7 @@ use std::alloc::{GlobalAlloc, Layout};
 /// peaked at 167 MB against 209 MB with 1 MiB here, mimalloc's arenas holding them in
 /// huge pages; 1M STL 122 MB against 141 MB; CPU time the same within the noise, 5 runs
 /// each. 64 KiB gave 155 and 119 MB.)
+#[cfg(target_os = "linux")]
 const LARGE: usize = 256 << 10;
 
 /// mimalloc's `mi_option_purge_delay` (mimalloc.h of the v3 sources libmimalloc-sys
@@ -41,12 +45,19 @@ const LARGE: usize = 256 << 10;
 const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
 
 /// mimalloc below [`LARGE`], [`pages`] from it.
+#[cfg(target_os = "linux")]
 struct Allocator;
 
+#[cfg(target_os = "linux")]
 #[global_allocator]
 static ALLOCATOR: Allocator = Allocator;
 
+#[cfg(not(target_os = "linux"))]
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Whether `layout` is served by [`pages`]: large, and aligned to no more than a page.
+#[cfg(target_os = "linux")]
 fn paged(layout: Layout) -> bool {
     layout.size() >= LARGE && layout.align() <= pages::PAGE
 }
@@ -54,6 +65,7 @@ fn paged(layout: Layout) -> bool {
 // SAFETY: each block is freed by the allocator that made it, told apart by its layout
 // (which the caller passes unchanged); `realloc` moves a block across the threshold by
 // a copy.
+#[cfg(target_os = "linux")]
 unsafe impl GlobalAlloc for Allocator {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         if paged(layout) {
@@ -118,6 +130,7 @@ pub fn configure(server: bool) {
 /// pages among it, and needs few large arrays. (Kept, a 5M-triangle `volume` peaked at
 /// 800 MB in its measuring stage, against 548 MB given back.)
 pub fn trim() {
+    #[cfg(target_os = "linux")]
     pages::trim();
 }
 
