@@ -136,8 +136,8 @@ pub fn trim() {
 
 /// Keeps mimalloc's freed memory for reuse instead of giving it back to the kernel after
 /// a delay. A run is one short process: memory given back is only faulted in again,
-/// zeroed, by the next stage. Measured on a 5M-triangle check (`/usr/bin/time`, same
-/// file): 14,013 to 16,903 page faults with the default delay, 3,764 to 3,797 with none,
+/// zeroed, by the next stage. Measured on a 5M-triangle check when mimalloc held the
+/// large arrays too (`/usr/bin/time`, same file): 14,013 to 16,903 page faults with the default delay, 3,764 to 3,797 with none,
 /// peak memory 0.92–0.99 GB against 1.00–1.02 GB.
 fn keep_freed_memory() {
     // SAFETY: sets one option value, which mimalloc reads when it purges.

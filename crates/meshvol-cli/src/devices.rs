@@ -24,16 +24,13 @@ pub fn run(args: DevicesArgs) -> ExitCode {
         }
     };
     let report = DevicesReport::of(&listing);
-    if args.json {
-        match serde_json::to_string(&report) {
-            Ok(json) => println!("{json}"),
-            Err(e) => {
-                eprintln!("meshvol: error: {e}");
-                return ExitCode::from(2);
-            }
+    let out = if args.json { meshvol_report::json_line(&report) } else { Ok(report.text()) };
+    match out {
+        Ok(out) => print!("{out}"),
+        Err(e) => {
+            eprintln!("meshvol: error: {e}");
+            return ExitCode::from(2);
         }
-    } else {
-        print!("{}", report.text());
     }
     ExitCode::SUCCESS
 }
