@@ -278,3 +278,51 @@ fn signed_zero_bounds_keep_the_scalar_order() {
         assert_eq!(format!("{:?}", mass_properties(&Fans(&mesh, true))), scalar);
     }
 }
+
+/// A surface read face by face only (no arrays, no word that its faces are triangles),
+/// keeping what it says of its vector area: the scalar loop over the same faces.
+struct FaceByFace<S>(S);
+
+impl<S: Surface> Surface for FaceByFace<S> {
+    fn face_count(&self) -> usize {
+        self.0.face_count()
+    }
+
+    fn fan(&self, face: usize, triangle: impl FnMut(Point, Point, Point)) {
+        self.0.fan(face, triangle)
+    }
+
+    fn vector_area_is_zero(&self) -> bool {
+        self.0.vector_area_is_zero()
+    }
+}
+
+#[test]
+fn a_checked_solid_of_triangles_has_the_bits_of_the_face_by_face_loop() {
+    use meshvol::topology::{check, CheckOptions};
+    // A sphere wound inward (turned by the solid) with a cavity missing a face (its hole
+    // capped), a face given twice and a collapsed face (both dropped): the solid's
+    // faces are some of the surface's, turned, then caps.
+    let (mut positions, outer) = snapped(&uv_sphere(10.0, 48, 24), 0.25);
+    let mut triangles: Vec<[u32; 3]> = outer.iter().map(|&[a, b, c]| [a, c, b]).collect();
+    let (inner, inner_triangles) = snapped(&uv_sphere(3.0, 24, 12), 0.25);
+    let base = positions.len() as u32;
+    positions.extend(inner);
+    triangles
+        .extend(inner_triangles.iter().skip(1).map(|&[a, b, c]| [a + base, c + base, b + base]));
+    triangles.push(triangles[7]);
+    triangles.push([0, 0, 1]);
+    let mesh = Mesh::from_triangles(positions, triangles).unwrap();
+    let checked = check(&mesh, &CheckOptions::default()).unwrap();
+    let solid = checked.solid(&mesh);
+    assert!(solid.faces_are_triangles());
+    assert!(
+        solid.surface_faces() < mesh.face_count() && solid.face_count() > solid.surface_faces()
+    );
+    let fast = mass_properties(&solid);
+    assert_eq!(format!("{fast:?}"), format!("{:?}", mass_properties(&FaceByFace(solid))));
+    // And the solid is the one meant: the cavity subtracted.
+    let expected = meshvol::shapes::uv_sphere_volume(10.0, 48, 24)
+        - meshvol::shapes::uv_sphere_volume(3.0, 24, 12);
+    assert!((fast.signed_volume - expected).abs() < 1.0, "{} {expected}", fast.signed_volume);
+}
