@@ -42,7 +42,7 @@ pub(super) fn connect<S: Surface + ?Sized>(
     let caps = holes::caps(loops, welded, &edges, &shells);
     let shell_signed = holes::shell_volumes(surface, welded, kept, &shells, &caps);
     enter(stage, "counting shells")?;
-    let candidates = nesting::candidates(loops, welded, kept, &shells);
+    let candidates = nesting::candidates(loops, welded, kept, &shells, &caps);
     let counts = euler::per_shell(loops, welded, kept, &shells, &edges, vertices.used);
     Ok(Connected {
         vertices,

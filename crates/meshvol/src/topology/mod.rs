@@ -37,9 +37,11 @@
 //!    area times the rim's largest distance from the cap's plane: zero for a flat hole
 //!    (a missing planar face is recovered exactly), large for a ragged one.
 //! 6. **Nesting**: from the corners of up to 32 triangles spread over each shell, rays
-//!    count signed crossings (winding numbers) with every other closed shell whose box
-//!    overlaps, using exact orientation predicates and a [`Bvh`] (a ray that grazes an
-//!    edge tries the next axis direction; a corner on another surface is skipped). Inside for every sample: the shell is *nested*;
+//!    count signed crossings (winding numbers) with every other orientable shell whose
+//!    box overlaps, closed or closed by its caps (a shell with holes contains what lies
+//!    inside it capped, as the solid measures it), using exact orientation predicates
+//!    and a [`Bvh`] (a ray that grazes an edge tries the next axis direction; a corner on
+//!    another surface is skipped). Inside for every sample: the shell is *nested*;
 //!    inside for some and outside for others: the two *overlap*. A shell inside an odd
 //!    number of others bounds a *cavity*. The solid's volume is Σ ±|shell volume|, +
 //!    for solids and − for cavities, whatever each shell's winding in the file. Where
@@ -301,6 +303,7 @@ fn analyse<S: Surface + ?Sized>(
         &triangles,
         &bvh,
         &connected.shells,
+        &connected.caps,
         &connected.candidates,
         &mut overlapping_shells,
     );

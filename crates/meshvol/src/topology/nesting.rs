@@ -1,12 +1,14 @@
-//! Stage 6, nesting: which closed shells lie inside which, which overlap, and so each
-//! shell's role (solid or cavity, reported as a [`Shell`]) and the solid's volume.
+//! Stage 6, nesting: which shells lie inside which, which overlap, and so each shell's
+//! role (solid or cavity, reported as a [`Shell`]) and the solid's volume.
 //!
-//! Only closed orientable shells can contain anything. For each shell, the candidates
-//! are those whose boxes overlap its own (a [`Bvh`] over the shells' boxes). From the
-//! corners of up to [`NESTING_SAMPLES`] triangles spread over the shell, rays count
-//! signed crossings (winding numbers, each crossing signed as its face was propagated)
-//! with each candidate: along the six axis directions in turn until one meets no edge
-//! or vertex, else an oblique segment to beyond every box; a corner lying on another
+//! Only orientable shells can contain anything: closed ones, and open ones through the
+//! caps over their holes (`holes.rs`), which close them as the solid measures them. For
+//! each shell, the candidates are those whose boxes (caps included) overlap its own (a
+//! [`Bvh`] over the shells' boxes). From the corners of up to [`NESTING_SAMPLES`]
+//! triangles spread over the shell, rays count signed crossings (winding numbers, each
+//! crossing signed as its face was propagated, or its cap's shell) with each candidate's
+//! faces and caps: along the six axis directions in turn until one meets no edge or
+//! vertex, else an oblique segment to beyond every box; a corner lying on another
 //! surface is skipped, and where no corner could tell, the triangles' centroids are
 //! tried. Inside for every sample that could tell: *nested*; inside for some and
 //! outside for others: the two *overlap*.
@@ -18,6 +20,7 @@
 
 use super::crossings::Triangles;
 use super::euler::{self, ShellCounts};
+use super::holes::Caps;
 use super::loops::Loops;
 use super::predicates;
 use super::shells::Shells;
@@ -63,8 +66,8 @@ pub struct Shell {
 /// and overlap.
 const NESTING_SAMPLES: usize = 32;
 
-/// Each shell's box, and the closed orientable shells whose boxes overlap it (its
-/// candidates for nesting and overlap), sorted.
+/// Each shell's box, and the shells that [`can_contain`] others whose boxes overlap it
+/// (its candidates for nesting and overlap), sorted.
 pub(super) struct Candidates {
     /// `None` for a shell without kept faces, and for a lone shell (which has no
     /// candidate, so nothing reads its box).
@@ -79,12 +82,23 @@ impl Candidates {
     }
 }
 
-/// The candidates of each of `shells`, the kept faces of `loops`.
+/// Whether shell `s` can contain others: whether it is orientable (a non-orientable
+/// shell has no inside). A closed one is closed by its faces; an open one by its faces
+/// and its caps, as the solid measures it: the edges an orientable shell leaves open are
+/// the boundary of its faces as propagated, a cycle, so they chain into loops that each
+/// close where they began, and every loop is capped, each rim edge run back by its cap
+/// (`holes.rs`).
+fn can_contain(shells: &Shells, s: usize) -> bool {
+    shells.orientable[s]
+}
+
+/// The candidates of each of `shells`, the kept faces of `loops` with their `caps`.
 pub(super) fn candidates(
     loops: &Loops,
     welded: &Welded,
     kept: &[bool],
     shells: &Shells,
+    caps: &Caps,
 ) -> Candidates {
     let shell_count = shells.count;
     if shell_count < 2 {
@@ -94,11 +108,8 @@ pub(super) fn candidates(
         };
     }
     let vid = |c: usize| welded.corner_vertex[c];
-    // Nesting and overlap concern closed, orientable shells.
-    let solid_shell: Vec<bool> =
-        (0..shell_count).map(|s| shells.orientable[s] && !shells.open[s]).collect();
     // (Boxes are minima and maxima: the same in any order.)
-    let shell_bounds: Vec<Option<Bounds>> = shells.fold_faces(
+    let mut shell_bounds: Vec<Option<Bounds>> = shells.fold_faces(
         kept,
         |bounds: &mut Option<Bounds>, f| {
             for c in loops.face(f) {
@@ -115,12 +126,18 @@ pub(super) fn candidates(
             }
         },
     );
-    // For each shell, the closed shells whose boxes overlap its own, found through a
-    // hierarchy over the closed shells' boxes (files with 100 000 parts are common), in
-    // spatial order: over shells in file order, a soup of scattered open triangles made
-    // every query walk most of the tree.
-    let (solids, boxes): (Vec<usize>, Vec<Bounds>) = (0..shell_count)
-        .filter(|&s| solid_shell[s])
+    // The rays meet a shell's caps as well as its faces, so its box holds both. (A cap's
+    // centre lies in its rim's hull: the box can only grow by a rounding.)
+    for (cap, &s) in caps.points.iter().zip(&caps.shell) {
+        let bounds = shell_bounds[s as usize].get_or_insert(Bounds::of(cap[0]));
+        cap.iter().for_each(|&p| bounds.include(p));
+    }
+    // For each shell, the containing shells whose boxes overlap its own, found through a
+    // hierarchy over their boxes (files with 100 000 parts are common), in spatial
+    // order: over shells in file order, a soup of scattered open triangles made every
+    // query walk most of the tree.
+    let (containing, boxes): (Vec<usize>, Vec<Bounds>) = (0..shell_count)
+        .filter(|&s| can_contain(shells, s))
         .filter_map(|s| shell_bounds[s].map(|b| (s, b)))
         .unzip();
     let (order, shell_tree) = Bvh::over_boxes(&boxes);
@@ -130,7 +147,7 @@ pub(super) fn candidates(
             let mut near = Vec::new();
             if let Some(ba) = shell_bounds[a] {
                 shell_tree.overlapping(&ba, |i| {
-                    let b = solids[order[i] as usize];
+                    let b = containing[order[i] as usize];
                     if b != a {
                         near.push(b);
                     }
@@ -144,12 +161,13 @@ pub(super) fn candidates(
 }
 
 /// For each shell, the shells containing it, found by rays from its samples against the
-/// `triangles` (spatially ordered, under `bvh`); pairs of shells whose samples disagree
-/// go to `overlapping_shells`.
+/// `triangles` (spatially ordered, under `bvh`) and the `caps`; pairs of shells whose
+/// samples disagree go to `overlapping_shells`.
 pub(super) fn containers(
     triangles: &Triangles,
     bvh: &Bvh,
     shells: &Shells,
+    caps: &Caps,
     candidates: &Candidates,
     overlapping_shells: &mut BTreeSet<[usize; 2]>,
 ) -> Vec<Vec<usize>> {
@@ -157,6 +175,7 @@ pub(super) fn containers(
     if !candidates.any() {
         return vec![Vec::new(); shell_count]; // nothing to contain or overlap
     }
+    let candidate_caps = CandidateCaps::of(caps, candidates);
     let (candidates, shell_bounds) = (&candidates.of_shell, &candidates.bounds);
     // Sample up to NESTING_SAMPLES triangles' corners spread over each shell.
     let mut shell_triangles = vec![0usize; shell_count];
@@ -209,6 +228,15 @@ pub(super) fn containers(
                     let (min, max) = predicates::ray_box(p, frame);
                     Bounds { min, max }
                 };
+                let crossing = |v: [Point; 3]| {
+                    if oblique {
+                        predicates::segment_crossing(p, q, v[0], v[1], v[2])
+                    } else {
+                        let rotate = predicates::RAY_FRAMES[frame];
+                        let v = v.map(rotate);
+                        predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
+                    }
+                };
                 winding.fill(0);
                 let mut grazed = false;
                 bvh.overlapping(&ray, |i| {
@@ -218,16 +246,19 @@ pub(super) fn containers(
                         return;
                     }
                     let Ok(k) = candidates.binary_search(&s) else { return };
-                    let v = triangles.points(i);
-                    let crossing = if oblique {
-                        predicates::segment_crossing(p, q, v[0], v[1], v[2])
-                    } else {
-                        let rotate = predicates::RAY_FRAMES[frame];
-                        let v = v.map(rotate);
-                        predicates::ray_crossing(rotate(p), v[0], v[1], v[2])
-                    };
-                    match crossing {
+                    match crossing(triangles.points(i)) {
                         Some(w) => winding[k] += if flip[face] { -w } else { w } as i64,
+                        None => grazed = true,
+                    }
+                });
+                // A cap runs its rim as its shell was propagated: counted as is.
+                candidate_caps.overlapping(&ray, |s, cap| {
+                    if grazed {
+                        return;
+                    }
+                    let Ok(k) = candidates.binary_search(&s) else { return };
+                    match crossing(cap) {
+                        Some(w) => winding[k] += w as i64,
                         None => grazed = true,
                     }
                 });
@@ -275,6 +306,45 @@ pub(super) fn containers(
             counts.iter().filter(|c| c.1 > 0 && c.2 == 0).map(|c| c.0).collect()
         })
         .collect()
+}
+
+/// The caps of the shells that are some shell's candidates, under a hierarchy of their
+/// own: they are not among the triangles in space, and few as caps are, one huge hole
+/// (a terrain's rim) is capped by as many triangles as its rim has edges, of which a
+/// ray should meet only those near it.
+struct CandidateCaps<'a> {
+    caps: &'a Caps,
+    /// The tree's item k is cap `order[k]`.
+    order: Vec<u32>,
+    bvh: Bvh,
+}
+
+impl<'a> CandidateCaps<'a> {
+    fn of(caps: &'a Caps, candidates: &Candidates) -> CandidateCaps<'a> {
+        let mut is_candidate = vec![false; candidates.of_shell.len()];
+        candidates.of_shell.iter().flatten().for_each(|&s| is_candidate[s] = true);
+        let (kept, boxes): (Vec<u32>, Vec<Bounds>) = (caps.points.iter().zip(&caps.shell))
+            .enumerate()
+            .filter(|(_, (_, &s))| is_candidate[s as usize])
+            .map(|(i, (&[a, b, c], _))| {
+                let mut bounds = Bounds::of(a);
+                bounds.include(b);
+                bounds.include(c);
+                (i as u32, bounds)
+            })
+            .unzip();
+        let (order, bvh) = Bvh::over_boxes(&boxes);
+        let order = order.iter().map(|&k| kept[k as usize]).collect();
+        CandidateCaps { caps, order, bvh }
+    }
+
+    /// Calls `visit(shell, cap)` for each cap whose box meets `ray`, with its shell.
+    fn overlapping(&self, ray: &Bounds, mut visit: impl FnMut(usize, [Point; 3])) {
+        self.bvh.overlapping(ray, |k| {
+            let cap = self.order[k] as usize;
+            visit(self.caps.shell[cap] as usize, self.caps.points[cap]);
+        });
+    }
 }
 
 /// The shells in their roles, and what the solid makes of them.
