@@ -145,3 +145,30 @@ fn a_sphere_beside_a_shell_with_a_wide_hole_is_a_second_solid() {
     assert!(c.overlapping_shells.is_empty());
     assert_eq!(against_its_role(&c), 0, "{:?}", c.doubts());
 }
+
+#[test]
+fn a_body_under_an_open_sheet_is_no_cavity_of_it() {
+    // The four sides of a square pyramid (base 10 × 10, height 2), its base open: a
+    // sheet, not a wall with a hole (its cap, the base, is 100 against 107.7 of faces),
+    // so it contains nothing, and the unit cube under its apex stays a solid. The
+    // solid's volume is the capped pyramid's, base × height / 3, plus the cube's.
+    let sheet = Mesh::from_triangles(
+        vec![
+            [0.0, 0.0, 0.0],
+            [10.0, 0.0, 0.0],
+            [10.0, 10.0, 0.0],
+            [0.0, 10.0, 0.0],
+            [5.0, 5.0, 2.0],
+        ],
+        vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+    )
+    .unwrap();
+    let corner =
+        |i: u32| [4.5 + f64::from(i & 1), 4.5 + f64::from(i >> 1 & 1), 0.2 + f64::from(i >> 2)];
+    let quads: [&[u32]; 6] =
+        [&[0, 2, 3, 1], &[4, 5, 7, 6], &[0, 1, 5, 4], &[2, 6, 7, 3], &[0, 4, 6, 2], &[1, 3, 7, 5]];
+    let cube = Mesh::from_polygons((0..8).map(corner).collect(), quads).unwrap();
+    let c = measured(&Mesh::concatenate(&[sheet, cube]), 100.0 * 2.0 / 3.0 + 1.0);
+    assert_eq!((c.boundary_loops, c.shells.len(), c.cavities), (1, 2, 0));
+    assert!(c.shells.iter().all(|s| s.parent.is_none() && !s.cavity));
+}
