@@ -252,6 +252,9 @@ impl Bvh {
             if same {
                 partners &= !((2 << i) - 1); // later items only: each pair once
             }
+            if partners == 0 {
+                continue;
+            }
             if let Some(t) = tags {
                 let item = &t.items[(na.begin + i) as usize];
                 partners &= !t.leaves[nb.start as usize].sharing(item);

@@ -132,10 +132,14 @@ fn exact_representatives<C: Corner>(corners: &[C]) -> Vec<u32> {
     let slices = Buckets::new(count, corners.len(), |range| range.map(|c| (slice(c), c as u32)));
     let mut representative = filled(corners.len(), 0u32);
     let out = SharedItems::new(&mut representative);
-    (0..count).into_par_iter().for_each(|k| {
+    // One table per worker, cleared for each slice: made afresh, each was a large
+    // allocation of its own (1024 of them for 5M triangles).
+    let new_table = HashTable::<(C::Key, u32)>::new;
+    (0..count).into_par_iter().for_each_init(new_table, |table, k| {
         let items = slices.get(k);
         // Keys inline: comparing them reads the table only (small enough for the cache).
-        let mut table: HashTable<(C::Key, u32)> = HashTable::with_capacity(items.len());
+        table.clear();
+        table.reserve(items.len(), |e| C::hash(e.0));
         for (n, &c) in items.iter().enumerate() {
             // A slice's corners are scattered over the arrays: load ahead.
             if let Some(&ahead) = items.get(n + PREFETCH_AHEAD) {
