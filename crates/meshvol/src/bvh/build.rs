@@ -3,7 +3,8 @@
 
 use super::*;
 
-/// Groups of the spatial order's counting sort up to this size are sorted on the stack.
+/// Groups of the spatial order's counting sort up to this size are sorted on the stack,
+/// larger ones in a buffer of their own.
 const SMALL_GROUP: usize = 64;
 
 impl Bvh {
@@ -24,21 +25,27 @@ impl Bvh {
         let mut order = Buckets::new(1 << top, n, |range| {
             range.map(|i| ((codes[i] >> (63 - top)) as u32, i as u32))
         });
-        // Small groups are sorted as (code, item) pairs on the stack: looking the codes
-        // up at each comparison read them scattered, 40 MB for 5M items.
-        order.for_each_mut(|group| match group.len() {
-            0 | 1 => {}
-            n if n <= SMALL_GROUP => {
-                let mut keyed = [(0u64, 0u32); SMALL_GROUP];
-                for (k, &i) in keyed.iter_mut().zip(group.iter()) {
-                    *k = (codes[i as usize], i);
-                }
-                keyed[..n].sort_unstable();
-                for (i, k) in group.iter_mut().zip(&keyed) {
-                    *i = k.1;
-                }
+        // Each group sorted as (code, item) pairs, on the stack when it is small: looking
+        // the codes up at each comparison read them scattered, 40 MB for 5M items.
+        order.for_each_mut(|group| {
+            if group.len() < 2 {
+                return;
             }
-            _ => group.sort_unstable_by_key(|&i| (codes[i as usize], i)),
+            let (mut small, mut large) = ([(0u64, 0u32); SMALL_GROUP], Vec::new());
+            let keyed = match group.len() {
+                n if n <= SMALL_GROUP => &mut small[..n],
+                n => {
+                    large.resize(n, (0, 0));
+                    &mut large[..]
+                }
+            };
+            for (k, &i) in keyed.iter_mut().zip(group.iter()) {
+                *k = (codes[i as usize], i);
+            }
+            keyed.sort_unstable();
+            for (i, k) in group.iter_mut().zip(keyed.iter()) {
+                *i = k.1;
+            }
         });
         order.items
     }

@@ -11,7 +11,6 @@
 use super::loops::Loops;
 use super::weld::Welded;
 use crate::buckets::{for_each_range_mut, Buckets, SharedItems};
-use crate::vector::{add, cross, sub};
 use rayon::prelude::*;
 
 /// Groups of faces (by smallest vertex) settled per parallel task.
@@ -98,13 +97,8 @@ fn classify_sets<K: VertexSet>(
     let (collapsed, flat): (Vec<bool>, Vec<bool>) = (0..faces)
         .into_par_iter()
         .map(|f| {
-            let r = loops.face(f);
             let repeated = set_of(f as u32).repeated();
-            let apex = welded.at(r.start);
-            let area = (r.start + 1..r.end - 1).fold([0.0; 3], |s, c| {
-                add(s, cross(sub(welded.at(c), apex), sub(welded.at(c + 1), apex)))
-            });
-            (repeated, !repeated && area == [0.0; 3])
+            (repeated, !repeated && loops.doubled_vector_area(f, welded) == [0.0; 3])
         })
         .unzip();
     // Duplicates: the same vertex set as another face. Faces grouped by their smallest

@@ -16,6 +16,7 @@
 use super::error::CheckError;
 use super::weld::Welded;
 use crate::buckets::{filled, for_each_range_mut, par_starts};
+use crate::vector::{add, cross, sub};
 use crate::{Point, Surface};
 use rayon::prelude::*;
 
@@ -120,6 +121,16 @@ impl Loops {
 
     pub fn face(&self, f: usize) -> std::ops::Range<usize> {
         self.start[f] as usize..self.start[f + 1] as usize
+    }
+
+    /// Twice face `f`'s vector area, Σ (cᵢ − c₀) × (cᵢ₊₁ − c₀) over its fan of welded
+    /// vertices: zero for a flat face, twice its area in length for a plane one.
+    pub fn doubled_vector_area(&self, f: usize, welded: &Welded) -> Point {
+        let r = self.face(f);
+        let apex = welded.at(r.start);
+        (r.start + 1..r.end - 1).fold([0.0; 3], |s, c| {
+            add(s, cross(sub(welded.at(c), apex), sub(welded.at(c + 1), apex)))
+        })
     }
 
     /// The corner after `c` in its face.

@@ -38,8 +38,8 @@
 //!    (a missing planar face is recovered exactly), large for a ragged one.
 //! 6. **Nesting**: from the corners of up to 32 triangles spread over each shell, rays
 //!    count signed crossings (winding numbers) with every other orientable shell whose
-//!    box overlaps, closed or closed by its caps (a shell with holes contains what lies
-//!    inside it capped, as the solid measures it), using exact orientation predicates
+//!    box overlaps, closed or closed by its caps (a shell with holes, its caps under half
+//!    its faces' area, contains what lies inside it capped, as the solid measures it), using exact orientation predicates
 //!    and a [`Bvh`] (a ray that grazes an edge tries the next axis direction; a corner on
 //!    another surface is skipped). Inside for every sample: the shell is *nested*;
 //!    inside for some and outside for others: the two *overlap*. A shell inside an odd

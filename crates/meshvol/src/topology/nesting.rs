@@ -2,10 +2,9 @@
 //! role (solid or cavity, reported as a [`Shell`]) and the solid's volume.
 //!
 //! Only orientable shells can contain anything: closed ones, and open ones mostly closed
-//! by their own faces through the caps over their holes (`holes.rs`), which close them
-//! as the solid measures them ([`can_contain`]). For
-//! each shell, the candidates are those whose boxes (caps included) overlap its own (a
-//! [`Bvh`] over the shells' boxes). From the corners of up to [`NESTING_SAMPLES`]
+//! by their own faces, through the caps over their holes (`holes.rs`) that close them as
+//! the solid measures them ([`can_contain`]). For each shell, the candidates are those
+//! whose boxes (caps included) overlap its own (a [`Bvh`] over the shells' boxes). From the corners of up to [`NESTING_SAMPLES`]
 //! triangles spread over the shell, rays count signed crossings (winding numbers, each
 //! crossing signed as its face was propagated, or its cap's shell) with each candidate's
 //! faces and caps: along the six axis directions in turn until one meets no edge or
@@ -118,17 +117,12 @@ pub(super) fn candidates(
     let folded: Vec<(Option<Bounds>, f64)> = shells.fold_faces(
         kept,
         |(bounds, area): &mut (Option<Bounds>, f64), f| {
-            let r = loops.face(f);
-            for c in r.clone() {
+            for c in loops.face(f) {
                 let p = welded.positions[vid(c) as usize];
                 bounds.get_or_insert(Bounds::of(p)).include(p);
             }
             if shells.open[shells.of_face[f] as usize] {
-                let apex = welded.at(r.start);
-                let fan = (r.start + 1..r.end - 1).fold([0.0; 3], |s, c| {
-                    add(s, cross(sub(welded.at(c), apex), sub(welded.at(c + 1), apex)))
-                });
-                *area += 0.5 * norm(fan);
+                *area += 0.5 * norm(loops.doubled_vector_area(f, welded));
             }
         },
         |(all, area), (b, a)| {
@@ -341,7 +335,7 @@ impl<'a> CandidateCaps<'a> {
     fn of(caps: &'a Caps, candidates: &Candidates) -> CandidateCaps<'a> {
         let mut is_candidate = vec![false; candidates.of_shell.len()];
         candidates.of_shell.iter().flatten().for_each(|&s| is_candidate[s] = true);
-        let (kept, boxes): (Vec<u32>, Vec<Bounds>) = (caps.points.iter().zip(&caps.shell))
+        let (listed, boxes): (Vec<u32>, Vec<Bounds>) = (caps.points.iter().zip(&caps.shell))
             .enumerate()
             .filter(|(_, (_, &s))| is_candidate[s as usize])
             .map(|(i, (&[a, b, c], _))| {
@@ -352,7 +346,7 @@ impl<'a> CandidateCaps<'a> {
             })
             .unzip();
         let (order, bvh) = Bvh::over_boxes(&boxes);
-        let order = order.iter().map(|&k| kept[k as usize]).collect();
+        let order = order.iter().map(|&k| listed[k as usize]).collect();
         CandidateCaps { caps, order, bvh }
     }
 

@@ -132,8 +132,8 @@ fn exact_representatives<C: Corner>(corners: &[C]) -> Vec<u32> {
     let slices = Buckets::new(count, corners.len(), |range| range.map(|c| (slice(c), c as u32)));
     let mut representative = filled(corners.len(), 0u32);
     let out = SharedItems::new(&mut representative);
-    // One table per worker, cleared for each slice: made afresh, each was a large
-    // allocation of its own (1024 of them for 5M triangles).
+    // A table per parallel task, cleared for each of its slices: made afresh for each
+    // slice, each was a large allocation of its own (1024 of them for 5M triangles).
     let new_table = HashTable::<(C::Key, u32)>::new;
     (0..count).into_par_iter().for_each_init(new_table, |table, k| {
         let items = slices.get(k);
