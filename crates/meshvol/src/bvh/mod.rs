@@ -208,6 +208,24 @@ impl LeafBoxes {
     }
 }
 
+/// An item's partners in a leaf, as item numbers: the leaf's first item plus the set
+/// bits of a lane mask, lowest first.
+struct Partners {
+    mask: u32,
+    first: usize,
+}
+
+impl Iterator for Partners {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        let bit = self.mask.trailing_zeros();
+        self.mask &= self.mask.wrapping_sub(1);
+        (bit < 32).then_some(self.first + bit as usize)
+    }
+}
+
 /// The bits of `mask`, lowest first.
 fn bits(mut mask: u32) -> impl Iterator<Item = u32> {
     std::iter::from_fn(move || {
@@ -298,8 +316,9 @@ impl Tagging<'_> {
 }
 
 /// What a search for overlapping pairs carries down the tree.
-struct Walk<'a, F> {
+struct Walk<'a, G, F> {
     tags: Option<&'a Tagging<'a>>,
+    prepare: &'a G,
     test: &'a F,
 }
 

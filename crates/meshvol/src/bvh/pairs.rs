@@ -63,15 +63,20 @@ impl Bvh {
     /// masks its neighbours off with its box tests (on a 1M-triangle sphere, 6.3M of the
     /// 8.6M pairs of overlapping boxes are neighbours: tested one by one, they were
     /// most of the walk's branches, mispredicted half the time).
-    pub fn overlapping_pairs<T: Ord + Send>(
+    ///
+    /// `prepare(i)` is what `test` needs of item i, made once for all of i's partners
+    /// in a leaf: `test(&prepare(i), i, j)` (3.4 partners an item on that sphere, so
+    /// the first triangle's plane is found once, not 3.4 times).
+    pub fn overlapping_pairs<P, T: Ord + Send>(
         &self,
         tags: Option<&[[u32; 3]]>,
-        test: impl Fn(usize, usize) -> Option<T> + Sync,
+        prepare: impl Fn(usize) -> P + Sync,
+        test: impl Fn(&P, usize, usize) -> Option<T> + Sync,
     ) -> Vec<T> {
         let mut found = Vec::new();
         if !self.nodes.is_empty() {
             let tagging = tags.map(|tags| self.tagging(tags));
-            let walk = Walk { tags: tagging.as_ref(), test: &test };
+            let walk = Walk { tags: tagging.as_ref(), prepare: &prepare, test: &test };
             self.pairs_under(0, 0, &walk, &mut found);
         }
         found.par_sort_unstable();
@@ -107,11 +112,11 @@ impl Bvh {
     /// Adds to `found` what `test` keeps of the overlapping pairs with one item under
     /// node `a` and the other under node `b` (each pair once when `a == b`). Splits
     /// big nodes across threads, then walks small ones with [`Bvh::pairs_in_thread`].
-    fn pairs_under<T: Send, F: Fn(usize, usize) -> Option<T> + Sync>(
+    fn pairs_under<P, T: Send, G: Fn(usize) -> P + Sync, F: Fn(&P, usize, usize) -> Option<T> + Sync>(
         &self,
         a: usize,
         b: usize,
-        test: &Walk<'_, F>,
+        test: &Walk<'_, G, F>,
         found: &mut Vec<T>,
     ) {
         let (na, nb) = (&self.nodes[a], &self.nodes[b]);
@@ -161,15 +166,16 @@ impl Bvh {
     }
 
     /// [`Bvh::pairs_under`] in this thread, with an explicit stack of node pairs.
-    fn pairs_in_thread<T, F: Fn(usize, usize) -> Option<T>>(
+    fn pairs_in_thread<P, T, G: Fn(usize) -> P, F: Fn(&P, usize, usize) -> Option<T>>(
         &self,
         a: usize,
         b: usize,
-        test: &Walk<'_, F>,
+        test: &Walk<'_, G, F>,
         found: &mut Vec<T>,
     ) {
-        let _: ControlFlow<()> = self.walk_pairs(a, b, test.tags, |i, j| {
-            found.extend((test.test)(i, j));
+        let _: ControlFlow<()> = self.walk_pairs(a, b, test.tags, |i, partners| {
+            let prepared = (test.prepare)(i);
+            found.extend(partners.filter_map(|j| (test.test)(&prepared, i, j)));
             ControlFlow::Continue(())
         });
     }
@@ -187,11 +193,10 @@ impl Bvh {
             return None;
         }
         let tagging = tags.map(|tags| self.tagging(tags));
-        let found = self.walk_pairs(0, 0, tagging.as_ref(), |i, j| {
-            if test(i, j) {
-                ControlFlow::Break((i, j))
-            } else {
-                ControlFlow::Continue(())
+        let found = self.walk_pairs(0, 0, tagging.as_ref(), |i, mut partners| {
+            match partners.find(|&j| test(i, j)) {
+                Some(j) => ControlFlow::Break((i, j)),
+                None => ControlFlow::Continue(()),
             }
         });
         match found {
@@ -202,13 +207,14 @@ impl Bvh {
 
     /// Visits the overlapping pairs with one item under node `a` and the other under
     /// node `b` (each pair once when `a == b`), but no pair sharing one of `tags`,
-    /// until `visit` breaks.
+    /// until `visit` breaks: `visit(i, partners)` with an item i and its partners in
+    /// a leaf (at least one).
     fn walk_pairs<B>(
         &self,
         a: usize,
         b: usize,
         tags: Option<&Tagging>,
-        mut visit: impl FnMut(usize, usize) -> ControlFlow<B>,
+        mut visit: impl FnMut(usize, Partners) -> ControlFlow<B>,
     ) -> ControlFlow<B> {
         // Each step pushes at most 3 pairs and descends a level: a few times the depth.
         let mut stack: Vec<(u32, u32)> = Vec::with_capacity(4 * STACK);
@@ -242,7 +248,7 @@ impl Bvh {
         nb: &Node,
         same: bool,
         tags: Option<&Tagging>,
-        visit: &mut impl FnMut(usize, usize) -> ControlFlow<B>,
+        visit: &mut impl FnMut(usize, Partners) -> ControlFlow<B>,
     ) -> ControlFlow<B> {
         let (a, b) = (&self.leaves[na.start as usize], &self.leaves[nb.start as usize]);
         // Only items that reach the other leaf's box can be in a pair.
@@ -258,19 +264,20 @@ impl Bvh {
             if let Some(t) = tags {
                 let item = &t.items[(na.begin + i) as usize];
                 partners &= !t.leaves[nb.start as usize].sharing(item);
+                if partners == 0 {
+                    continue;
+                }
             }
-            for j in bits(partners) {
-                visit((na.begin + i) as usize, (nb.begin + j) as usize)?;
-            }
+            visit((na.begin + i) as usize, Partners { mask: partners, first: nb.begin as usize })?;
         }
         ControlFlow::Continue(())
     }
 
-    fn collect_pairs<T: Send, F: Fn(usize, usize) -> Option<T> + Sync>(
+    fn collect_pairs<P, T: Send, G: Fn(usize) -> P + Sync, F: Fn(&P, usize, usize) -> Option<T> + Sync>(
         &self,
         a: usize,
         b: usize,
-        test: &Walk<'_, F>,
+        test: &Walk<'_, G, F>,
     ) -> Vec<T> {
         let mut found = Vec::new();
         self.pairs_under(a, b, test, &mut found);

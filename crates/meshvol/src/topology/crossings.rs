@@ -4,7 +4,7 @@
 //! The triangles of faces with an interior (flat ones have none) are put in spatial
 //! order and a [`Bvh`] is built over their boxes; every pair of overlapping boxes whose
 //! triangles share no welded vertex (neighbours meet there by design) and come from two
-//! faces is tested with exact orientation predicates ([`predicates::triangles_cross`]).
+//! faces is tested with exact orientation predicates ([`Plane::crossed_by`]).
 //! Touching is not crossing. Pairs within one shell are self-intersections; pairs from
 //! two shells make those shells overlap. The same triangles and hierarchy serve the
 //! nesting rays.
@@ -18,7 +18,7 @@
 //! same; smaller faces keep the fan the measurements use, corner for corner.
 
 use super::loops::Loops;
-use super::predicates;
+use super::predicates::Plane;
 use super::weld::Welded;
 use crate::buckets::{filled, for_each_range_mut, par_starts};
 use crate::bvh::{triangle_centre, Box32, Bvh};
@@ -162,15 +162,16 @@ pub(super) fn crossing_pairs(triangles: &Triangles, bvh: &Bvh) -> Vec<[usize; 2]
     // Tagged by their vertices, neighbours (which meet at shared vertices by design)
     // never reach the test: the walk masks them off with the box tests, and skips the
     // triangles around one vertex wholesale (a cone's apex, a polygon's corner).
-    let test = |i: usize, j: usize| {
-        let (f, g) = (triangles.face[i] as usize, triangles.face[j] as usize);
+    // The first triangle's plane is made once for all its partners in a leaf.
+    let prepare = |i: usize| (triangles.face[i] as usize, Plane::of(triangles.points(i)));
+    let test = |(f, plane): &(usize, Plane), _: usize, j: usize| {
+        let (f, g) = (*f, triangles.face[j] as usize);
         if f == g {
             return None; // a face's own triangles tile it (its validity is not a crossing)
         }
-        predicates::triangles_cross(triangles.points(i), triangles.points(j))
-            .then_some([f.min(g), f.max(g)])
+        plane.crossed_by(triangles.points(j)).then_some([f.min(g), f.max(g)])
     };
-    bvh.overlapping_pairs(Some(&triangles.ids), test)
+    bvh.overlapping_pairs(Some(&triangles.ids), prepare, test)
 }
 
 /// What the crossing pairs say: crossing face pairs within shells and a few examples.

@@ -175,39 +175,43 @@ fn apart(s: [f64; 3]) -> bool {
     !straddle && s != [0.0; 3]
 }
 
-/// Whether two triangles cross properly: an edge of one passes strictly through the
-/// interior of the other. Touching (shared or coplanar parts, an edge lying on a face)
-/// does not count: it neither double-counts volume nor breaks a surface.
-pub(crate) fn triangles_cross(t: [Point; 3], u: [Point; 3]) -> bool {
-    // The corners of u on one closed side of t's plane, not all in it: they cannot
-    // cross. (No edge of u crosses the plane strictly, and u's interior is strictly
-    // off it, where t's edges are not. A corner off the plane makes t a true triangle,
-    // with a plane: a segment-like t has every point in its "plane".) Three orientation
-    // tests settle most pairs before the edge tests; a corner in the plane, which
-    // neighbours across a flat quad have, settles them too, where the strict test went
-    // on to the second plane: on a 5M-triangle sphere snapped to a grid, half the
-    // exact tests were those.
-    let plane_t = Plane::of(t);
-    let side_u = u.map(|p| plane_t.orient(p));
-    if apart(side_u) {
-        return false;
+impl Plane {
+    /// Whether this triangle and `u` cross properly: an edge of one passes strictly
+    /// through the interior of the other. Touching (shared or coplanar parts, an edge
+    /// lying on a face) does not count: it neither double-counts volume nor breaks a
+    /// surface. (A method of the first triangle's plane, made once for all its partners:
+    /// a pair search tests each triangle against several.)
+    pub(crate) fn crossed_by(&self, u: [Point; 3]) -> bool {
+        // The corners of u on one closed side of t's plane, not all in it: they cannot
+        // cross. (No edge of u crosses the plane strictly, and u's interior is strictly
+        // off it, where t's edges are not. A corner off the plane makes t a true
+        // triangle, with a plane: a segment-like t has every point in its "plane".)
+        // Three orientation tests settle most pairs before the edge tests; a corner in
+        // the plane, which neighbours across a flat quad have, settles them too, where
+        // the strict test went on to the second plane: on a 5M-triangle sphere snapped
+        // to a grid, half the exact tests were those.
+        let t = self.t;
+        let side_u = u.map(|p| self.orient(p));
+        if apart(side_u) {
+            return false;
+        }
+        let plane_u = Plane::of(u);
+        let side_t = t.map(|p| plane_u.orient(p));
+        if apart(side_t) {
+            return false;
+        }
+        // An edge crosses the other triangle only with its ends strictly on opposite
+        // sides of that plane: the sides just found, not computed again (on a 5M sphere
+        // snapped to a 2⁻¹⁰ grid, where neighbouring chords are exactly parallel, two
+        // thirds of 10M exact tests were such repeats).
+        let crossing = |side: [f64; 3], plane: &Plane, points: [Point; 3]| {
+            (0..3).any(|i| {
+                let j = (i + 1) % 3;
+                side[i] * side[j] < 0.0 && plane.crossed_inside(points[i], points[j])
+            })
+        };
+        crossing(side_t, &plane_u, t) || crossing(side_u, self, u)
     }
-    let plane_u = Plane::of(u);
-    let side_t = t.map(|p| plane_u.orient(p));
-    if apart(side_t) {
-        return false;
-    }
-    // An edge crosses the other triangle only with its ends strictly on opposite sides
-    // of that plane: the sides just found, not computed again (on a 5M sphere snapped to
-    // a 2⁻¹⁰ grid, where neighbouring chords are exactly parallel, two thirds of 10M
-    // exact tests were such repeats).
-    let crossing = |side: [f64; 3], plane: &Plane, points: [Point; 3]| {
-        (0..3).any(|i| {
-            let j = (i + 1) % 3;
-            side[i] * side[j] < 0.0 && plane.crossed_inside(points[i], points[j])
-        })
-    };
-    crossing(side_t, &plane_u, t) || crossing(side_u, &plane_t, u)
 }
 
 /// The six axis directions a ray can take, as rotations of coordinates that carry the
@@ -296,6 +300,10 @@ pub(crate) fn ray_crossing(p: Point, a: Point, b: Point, c: Point) -> Option<i32
 mod tests {
     use super::*;
 
+    fn triangles_cross(t: [Point; 3], u: [Point; 3]) -> bool {
+        Plane::of(t).crossed_by(u)
+    }
+
     #[test]
     fn axis_plane_shortcut_agrees_with_orient3d() {
         // Small integer coordinates: many triples share a coordinate, many quadruples
@@ -377,7 +385,7 @@ mod tests {
         s[0] != 0.0 && s[0] == s[1] && s[1] == s[2]
     }
 
-    /// [`triangles_cross`] (each orientation computed once, through the filter) against
+    /// [`Plane::crossed_by`] (each orientation computed once, through the filter) against
     /// the textbook form with every orientation exact and computed where it is used, on
     /// pairs made to defeat the filter: on a coarse grid (many exactly coplanar), nearly
     /// coplanar off any grid, touching at a corner or along an edge, slivers, and
