@@ -253,6 +253,14 @@ fn lock() -> std::sync::MutexGuard<'static, Pool> {
     POOL.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
+/// Fresh mappings at least this long are backed by huge pages where the system has
+/// them for the asking (transparent huge pages in `madvise` mode, the common default):
+/// one fault and one zeroing for each 2 MiB instead of 512 of each. Measured on a
+/// 2-core VM, 9 alternated runs each: a checked `volume` of the 1M-triangle STL
+/// spheres and of 85,184 boxes took 7–10% less time, the same peak memory; the 5M
+/// sphere and the 1M OBJ were unchanged.
+const HUGE_PAGES_FROM: usize = 4 << 20;
+
 /// `len` bytes of fresh, zero pages.
 fn map(len: usize) -> Option<usize> {
     // SAFETY: a new private anonymous mapping, at an address the kernel picks.
@@ -266,7 +274,15 @@ fn map(len: usize) -> Option<usize> {
             0,
         )
     };
-    (at != libc::MAP_FAILED).then_some(at as usize)
+    if at == libc::MAP_FAILED {
+        return None;
+    }
+    if len >= HUGE_PAGES_FROM {
+        // SAFETY: advice on the mapping just made; a refusal (no huge pages here) only
+        // leaves it on small pages.
+        unsafe { libc::madvise(at, len, libc::MADV_HUGEPAGE) };
+    }
+    Some(at as usize)
 }
 
 fn unmap(at: usize, len: usize) {
