@@ -253,13 +253,19 @@ fn lock() -> std::sync::MutexGuard<'static, Pool> {
     POOL.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
-/// Fresh mappings at least this long are backed by huge pages where the system has
-/// them for the asking (transparent huge pages in `madvise` mode, the common default):
-/// one fault and one zeroing for each 2 MiB instead of 512 of each. Measured on a
-/// 2-core VM, 9 alternated runs each: a checked `volume` of the 1M-triangle STL
-/// spheres and of 85,184 boxes took 7–10% less time, the same peak memory; the 5M
-/// sphere and the 1M OBJ were unchanged.
+/// Fresh mappings from this long up to [`HUGE_PAGES_BELOW`] are backed by huge pages
+/// where the system has them for the asking (transparent huge pages in `madvise` mode,
+/// the common default): one fault for each 2 MiB instead of 512. Measured on a 2-core
+/// VM, alternated runs: a checked `volume` of the 1M-triangle STL spheres 0.90–0.93 of
+/// the time, the 85,184 boxes 0.90–0.99, the 5M sphere and the 1M OBJ unchanged, the
+/// same peak memory.
 const HUGE_PAGES_FROM: usize = 4 << 20;
+
+/// Longer mappings keep small pages: with huge pages for every length, `grid --moments`
+/// at 256³ (arrays of 134 MB and more) took 3.79 s against 3.56 s (7 alternated runs),
+/// the kernel finding and zeroing whole 2 MiB pages at the first touch (as `Mesh.cells`
+/// did in Python: docs/cells.md); below 64 MiB, 3.60 against 3.53 s.
+const HUGE_PAGES_BELOW: usize = 64 << 20;
 
 /// `len` bytes of fresh, zero pages.
 fn map(len: usize) -> Option<usize> {
@@ -277,7 +283,7 @@ fn map(len: usize) -> Option<usize> {
     if at == libc::MAP_FAILED {
         return None;
     }
-    if len >= HUGE_PAGES_FROM {
+    if (HUGE_PAGES_FROM..HUGE_PAGES_BELOW).contains(&len) {
         // SAFETY: advice on the mapping just made; a refusal (no huge pages here) only
         // leaves it on small pages.
         unsafe { libc::madvise(at, len, libc::MADV_HUGEPAGE) };
