@@ -112,7 +112,12 @@ impl Bvh {
     /// Adds to `found` what `test` keeps of the overlapping pairs with one item under
     /// node `a` and the other under node `b` (each pair once when `a == b`). Splits
     /// big nodes across threads, then walks small ones with [`Bvh::pairs_in_thread`].
-    fn pairs_under<P, T: Send, G: Fn(usize) -> P + Sync, F: Fn(&P, usize, usize) -> Option<T> + Sync>(
+    fn pairs_under<
+        P,
+        T: Send,
+        G: Fn(usize) -> P + Sync,
+        F: Fn(&P, usize, usize) -> Option<T> + Sync,
+    >(
         &self,
         a: usize,
         b: usize,
@@ -273,7 +278,12 @@ impl Bvh {
         ControlFlow::Continue(())
     }
 
-    fn collect_pairs<P, T: Send, G: Fn(usize) -> P + Sync, F: Fn(&P, usize, usize) -> Option<T> + Sync>(
+    fn collect_pairs<
+        P,
+        T: Send,
+        G: Fn(usize) -> P + Sync,
+        F: Fn(&P, usize, usize) -> Option<T> + Sync,
+    >(
         &self,
         a: usize,
         b: usize,

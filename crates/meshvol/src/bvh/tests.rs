@@ -149,7 +149,10 @@ fn random_boxes_of_every_size_give_the_brute_force_pairs_and_queries() {
     let one_tag = vec![[NO_TAG, 7, NO_TAG]; boxes.len()];
     assert_eq!(bvh.first_overlapping_pair(Some(&one_tag), |_, _| true), None);
     let no_tags = vec![[NO_TAG; 3]; boxes.len()];
-    assert_eq!(bvh.overlapping_pairs(Some(&no_tags), |a| a, |&a, _, b| Some((a.min(b), a.max(b)))), brute);
+    assert_eq!(
+        bvh.overlapping_pairs(Some(&no_tags), |a| a, |&a, _, b| Some((a.min(b), a.max(b)))),
+        brute
+    );
     // Queries, some reaching infinity (as rays' boxes do).
     let (inf, x) = (f64::INFINITY, 0.5);
     for q in [
@@ -251,10 +254,14 @@ fn finds_exactly_the_overlapping_boxes() {
         .filter(|&(a, b)| overlap(&boxes[a], &boxes[b]))
         .collect();
     assert_eq!(pairs, brute);
-    let mut pairs = spatial_bvh.overlapping_pairs(None, |a| a, |&a, _, b| {
-        let (a, b) = (order[a] as usize, order[b] as usize);
-        Some((a.min(b), a.max(b)))
-    });
+    let mut pairs = spatial_bvh.overlapping_pairs(
+        None,
+        |a| a,
+        |&a, _, b| {
+            let (a, b) = (order[a] as usize, order[b] as usize);
+            Some((a.min(b), a.max(b)))
+        },
+    );
     pairs.sort();
     assert_eq!(pairs, brute);
 }
