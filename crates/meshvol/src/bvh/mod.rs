@@ -198,8 +198,7 @@ impl LeafBoxes {
     /// row to the stack before taking one lane (six row copies an item in the pair
     /// search's profile).
     #[inline(always)]
-    fn get(&self, i: u32) -> Box32 {
-        let i = i as usize;
+    fn get(&self, i: usize) -> Box32 {
         let (min, max) = (&self.min, &self.max);
         Box32 {
             min: [min[0][i], min[1][i], min[2][i], 0.0],
@@ -208,14 +207,21 @@ impl LeafBoxes {
     }
 }
 
-/// An item's partners in a leaf, as item numbers: the leaf's first item plus the set
-/// bits of a lane mask, lowest first.
-struct Partners {
+/// The items a leaf's lane mask selects, lowest first: the leaf's first item plus each
+/// set bit's lane. (A named type, so that a pair search can hand an item's partners to
+/// its caller.)
+struct Lanes {
     mask: u32,
     first: usize,
 }
 
-impl Iterator for Partners {
+impl Lanes {
+    fn of(mask: u32, first: usize) -> Lanes {
+        Lanes { mask, first }
+    }
+}
+
+impl Iterator for Lanes {
     type Item = usize;
 
     #[inline(always)]
@@ -224,15 +230,6 @@ impl Iterator for Partners {
         self.mask &= self.mask.wrapping_sub(1);
         (bit < 32).then_some(self.first + bit as usize)
     }
-}
-
-/// The bits of `mask`, lowest first.
-fn bits(mut mask: u32) -> impl Iterator<Item = u32> {
-    std::iter::from_fn(move || {
-        let bit = mask.trailing_zeros();
-        mask &= mask.wrapping_sub(1);
-        (bit < 32).then_some(bit)
-    })
 }
 
 /// The tags of a leaf's items by slot, lane i for item i ([`NO_TAG`] past the leaf's

@@ -219,7 +219,7 @@ impl Bvh {
         a: usize,
         b: usize,
         tags: Option<&Tagging>,
-        mut visit: impl FnMut(usize, Partners) -> ControlFlow<B>,
+        mut visit: impl FnMut(usize, Lanes) -> ControlFlow<B>,
     ) -> ControlFlow<B> {
         // Each step pushes at most 3 pairs and descends a level: a few times the depth.
         let mut stack: Vec<(u32, u32)> = Vec::with_capacity(4 * STACK);
@@ -253,12 +253,12 @@ impl Bvh {
         nb: &Node,
         same: bool,
         tags: Option<&Tagging>,
-        visit: &mut impl FnMut(usize, Partners) -> ControlFlow<B>,
+        visit: &mut impl FnMut(usize, Lanes) -> ControlFlow<B>,
     ) -> ControlFlow<B> {
         let (a, b) = (&self.leaves[na.start as usize], &self.leaves[nb.start as usize]);
         // Only items that reach the other leaf's box can be in a pair.
         let reaching = a.overlapping(&nb.bounds) & na.lanes();
-        for i in bits(reaching) {
+        for (i, item) in Lanes::of(reaching, 0).map(|i| (i, na.begin as usize + i)) {
             let mut partners = b.overlapping(&a.get(i)) & nb.lanes();
             if same {
                 partners &= !((2 << i) - 1); // later items only: each pair once
@@ -267,13 +267,12 @@ impl Bvh {
                 continue;
             }
             if let Some(t) = tags {
-                let item = &t.items[(na.begin + i) as usize];
-                partners &= !t.leaves[nb.start as usize].sharing(item);
+                partners &= !t.leaves[nb.start as usize].sharing(&t.items[item]);
                 if partners == 0 {
                     continue;
                 }
             }
-            visit((na.begin + i) as usize, Partners { mask: partners, first: nb.begin as usize })?;
+            visit(item, Lanes::of(partners, nb.begin as usize))?;
         }
         ControlFlow::Continue(())
     }

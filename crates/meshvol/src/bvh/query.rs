@@ -40,7 +40,7 @@ impl Bvh {
             }
             if node.count > 0 {
                 let hits = self.leaves[node.start as usize].overlapping(query) & node.lanes();
-                bits(hits).for_each(|i| visit((node.begin + i) as usize));
+                Lanes::of(hits, node.begin as usize).for_each(&mut visit);
             } else {
                 stack[top] = node.start;
                 stack[top + 1] = node.start + 1;

@@ -38,15 +38,16 @@
 //!    (a missing planar face is recovered exactly), large for a ragged one.
 //! 6. **Nesting**: from the corners of up to 32 triangles spread over each shell, rays
 //!    count signed crossings (winding numbers) with every other orientable shell whose
-//!    box overlaps, closed or closed by its caps (a shell with holes, its caps under half
-//!    its faces' area, contains what lies inside it capped, as the solid measures it), using exact orientation predicates
-//!    and a [`Bvh`] (a ray that grazes an edge tries the next axis direction; a corner on
-//!    another surface is skipped). Inside for every sample: the shell is *nested*;
-//!    inside for some and outside for others: the two *overlap*. A shell inside an odd
-//!    number of others bounds a *cavity*. The solid's volume is Σ ±|shell volume|, +
-//!    for solids and − for cavities, whatever each shell's winding in the file. Where
-//!    the file names separate objects (bodies), nesting pairs shells of one body only;
-//!    between bodies it finds *overlapping bodies* (`bodies.rs`).
+//!    box overlaps, closed or closed by its caps (a shell with holes, its caps under
+//!    half its faces' area, contains what lies inside it capped, as the solid measures
+//!    it), using exact orientation predicates and a [`Bvh`] (a ray that grazes an edge
+//!    tries the next axis direction; a corner on another surface is skipped). Inside
+//!    for every sample: the shell is *nested*; inside for some and outside for others:
+//!    the two *overlap*. A shell inside an odd number of others bounds a *cavity*. The
+//!    solid's volume is Σ ±|shell volume|, + for solids and − for cavities, whatever
+//!    each shell's winding in the file. Where the file names separate objects (bodies),
+//!    nesting pairs shells of one body only; between bodies it finds *overlapping
+//!    bodies* (`bodies.rs`).
 //! 7. **Crossings**: pairs of triangles where an edge of one passes strictly through
 //!    the interior of the other, found through a [`Bvh`] (never all pairs), skipping
 //!    pairs that share a vertex. Pairs from one shell are *self-intersections*; from two

@@ -4,14 +4,14 @@
 //! Only orientable shells can contain anything: closed ones, and open ones mostly closed
 //! by their own faces, through the caps over their holes (`holes.rs`) that close them as
 //! the solid measures them ([`can_contain`]). For each shell, the candidates are those
-//! whose boxes (caps included) overlap its own (a [`Bvh`] over the shells' boxes). From the corners of up to [`NESTING_SAMPLES`]
-//! triangles spread over the shell, rays count signed crossings (winding numbers, each
-//! crossing signed as its face was propagated, or its cap's shell) with each candidate's
-//! faces and caps: along the six axis directions in turn until one meets no edge or
-//! vertex, else an oblique segment to beyond every box; a corner lying on another
-//! surface is skipped, and where no corner could tell, the triangles' centroids are
-//! tried. Inside for every sample that could tell: *nested*; inside for some and
-//! outside for others: the two *overlap*.
+//! whose boxes (caps included) overlap its own (a [`Bvh`] over the shells' boxes). From
+//! the corners of up to [`NESTING_SAMPLES`] triangles spread over the shell, rays count
+//! signed crossings (winding numbers, each crossing signed as its face was propagated,
+//! or its cap's shell) with each candidate's faces and caps: along the six axis
+//! directions in turn until one meets no edge or vertex, else an oblique segment to
+//! beyond every box; a corner lying on another surface is skipped, and where no corner
+//! could tell, the triangles' centroids are tried. Inside for every sample that could
+//! tell: *nested*; inside for some and outside for others: the two *overlap*.
 //!
 //! A shell inside an odd number of others is a *cavity*; its parent is the smallest
 //! shell containing it. The solid's volume is Σ ±|shell volume| in shell order (+ for
@@ -251,29 +251,24 @@ pub(super) fn containers(
                 };
                 winding.fill(0);
                 let mut grazed = false;
-                bvh.overlapping(&ray, |i| {
-                    let face = triangles.face[i] as usize;
-                    let s = shell_of_face[face] as usize;
+                // A crossing with triangle v of shell s, signed as it runs once its shell
+                // is propagated (`turned`: against its own winding).
+                let mut count = |s: usize, v: [Point; 3], turned: bool| {
                     if grazed || s == a {
                         return;
                     }
                     let Ok(k) = candidates.binary_search(&s) else { return };
-                    match crossing(triangles.points(i)) {
-                        Some(w) => winding[k] += if flip[face] { -w } else { w } as i64,
+                    match crossing(v) {
+                        Some(w) => winding[k] += if turned { -w } else { w } as i64,
                         None => grazed = true,
                     }
+                };
+                bvh.overlapping(&ray, |i| {
+                    let face = triangles.face[i] as usize;
+                    count(shell_of_face[face] as usize, triangles.points(i), flip[face]);
                 });
                 // A cap runs its rim as its shell was propagated: counted as is.
-                candidate_caps.overlapping(&ray, |s, cap| {
-                    if grazed {
-                        return;
-                    }
-                    let Ok(k) = candidates.binary_search(&s) else { return };
-                    match crossing(cap) {
-                        Some(w) => winding[k] += w as i64,
-                        None => grazed = true,
-                    }
-                });
+                candidate_caps.overlapping(&ray, |s, cap| count(s, cap, false));
                 !grazed
             });
             if !clean {
