@@ -40,58 +40,65 @@ fn orient_exactly([a, b, c]: [Point; 3], d: Point) -> f64 {
 /// The sign of det[a − d; b − d; c − d] in integer arithmetic, when the nine
 /// differences are exact in f64 and are multiples of one power of two spanning at most
 /// [`GRID_BITS`] bits (points read from a float32 file of one part are); `None`
-/// otherwise. Each product of three then fits in 3 × 40 bits and their sum in an i128.
+/// otherwise. Each product of three then fits in 3 × 40 bits and their sum in an i128;
+/// within [`NARROW_BITS`] (nearby points of one grid, the common case), in an i64.
 /// Exactly coplanar points (flat regions of CAD parts, touching faces) are common, and
 /// for them orient3d's adaptive path computes the whole exact expansion, several times
 /// slower.
 fn orient_on_grid(rows: [Point; 3], d: Point) -> Option<f64> {
-    // Each difference as (mantissa, low, high): mantissa · 2^low, less than 2^high.
-    let mut parts = [(0i64, 0i32, 0i32); 9];
+    let mut x = [0.0; 9];
+    let (mut low, mut high) = (i32::MAX, i32::MIN);
     for (i, p) in rows.iter().enumerate() {
         for k in 0..3 {
-            let x = p[k] - d[k];
+            let difference = p[k] - d[k];
             // Knuth's two-difference: the rounding error of p[k] − d[k], zero when exact.
-            let virtual_d = p[k] - x;
-            let tail = (p[k] - (x + virtual_d)) + (virtual_d - d[k]);
-            if tail != 0.0 || !x.is_finite() {
+            let virtual_d = p[k] - difference;
+            let tail = (p[k] - (difference + virtual_d)) + (virtual_d - d[k]);
+            if tail != 0.0 || !difference.is_finite() {
                 return None;
             }
-            if x != 0.0 {
-                let bits = x.to_bits();
+            if difference != 0.0 {
+                let bits = difference.to_bits();
                 let exponent = ((bits >> 52) & 0x7ff) as i32;
-                let fraction = bits & ((1 << 52) - 1);
-                let (significand, scale) = match exponent {
-                    0 => (fraction, -1074), // subnormal
-                    _ => (fraction | 1 << 52, exponent - 1075),
-                };
-                let zeros = significand.trailing_zeros() as i32;
-                let mantissa = (significand >> zeros) as i64;
-                let high = scale + 64 - significand.leading_zeros() as i32;
-                parts[3 * i + k] =
-                    (if x < 0.0 { -mantissa } else { mantissa }, scale + zeros, high);
+                if exponent == 0 {
+                    return None; // subnormal: left to orient3d
+                }
+                // The lowest set bit's place, and the place above the highest.
+                let significand = bits & ((1 << 52) - 1) | 1 << 52;
+                low = low.min(exponent - 1075 + significand.trailing_zeros() as i32);
+                high = high.max(exponent - 1022);
             }
+            x[3 * i + k] = difference;
         }
     }
-    let nonzero = || parts.iter().filter(|p| p.0 != 0);
-    let (Some(low), Some(high)) = (nonzero().map(|p| p.1).min(), nonzero().map(|p| p.2).max())
-    else {
+    if low == i32::MAX {
         return Some(0.0); // every difference is zero: d is a, b and c
-    };
-    if high - low > GRID_BITS {
+    }
+    if high - low > GRID_BITS || !(-1022..=1000).contains(&low) {
         return None;
     }
-    // In units of 2^low: integers below 2^GRID_BITS.
-    let m = parts.map(|(mantissa, at, _)| match mantissa {
-        0 => 0,
-        _ => i128::from(mantissa) << (at - low),
-    });
-    let det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
-        + m[2] * (m[3] * m[7] - m[4] * m[6]);
+    // In units of 2^low (a power of two, so the scaling is exact): integers below
+    // 2^(high − low).
+    let unit = f64::from_bits(((1023 - low) as u64) << 52);
+    let m = x.map(|v| (v * unit) as i64);
+    let det = if high - low <= NARROW_BITS {
+        // |m| < 2^20: products of three below 2^60, the sum of six below 2^63.
+        m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
+            + m[2] * (m[3] * m[7] - m[4] * m[6])
+    } else {
+        let m = m.map(i128::from);
+        let det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
+            + m[2] * (m[3] * m[7] - m[4] * m[6]);
+        det.signum() as i64
+    };
     Some(det.signum() as f64)
 }
 
 /// The widest span of bits [`orient_on_grid`] takes.
 const GRID_BITS: i32 = 40;
+
+/// The widest span of bits [`orient_on_grid`] computes in an i64.
+const NARROW_BITS: i32 = 20;
 
 /// A triangle with its plane, for exact orientation tests against it.
 ///
@@ -319,6 +326,44 @@ mod tests {
             assert_eq!(orient_exactly([p[0], p[1], p[2]], p[3]), exact, "{p:?}");
             assert_eq!(orient(p[0], p[1], p[2], p[3]), exact, "{p:?}");
         }
+    }
+
+    /// Nearby points of one grid, as a fine mesh has (differences of a few grid steps,
+    /// far from the origin): the spans on both sides of [`NARROW_BITS`], where the
+    /// determinant goes from an i64 to an i128; exactly coplanar, one step off and
+    /// anywhere near (a determinant that overflows an i64 when the span is too wide:
+    /// wrapped, a small one still comes out right), each sign checked against orient3d.
+    #[test]
+    fn narrow_grid_orientation_agrees_with_orient3d() {
+        let mut rng = crate::test_rng::XorShift::new(0x6a09e667f3bcc909);
+        let (mut narrow, mut wide) = (0, 0);
+        for i in 0..40_000 {
+            let step = [1.0 / 1024.0, 1.0, 0.5f64.powi(30)][i % 3];
+            // Differences below 2^bits steps: 2^20 steps is the widest i64 span.
+            let bits = [3, 12, 19, 20, 21, 30][(i / 3) % 6];
+            let origin = [1e5, -3e4, 7e3].map(|x: f64| (x / step).round() * step);
+            let mut offset = || (rng.below(1 << bits) as f64 - (1u64 << (bits - 1)) as f64) * step;
+            let t = [0; 3].map(|_| [0, 1, 2].map(|k| origin[k] + offset()));
+            let near = [0, 1, 2].map(|k| origin[k] + offset());
+            let (s, r) = ((rng.below(3)) as f64 - 1.0, (rng.below(3)) as f64 - 1.0);
+            let mut d =
+                [0, 1, 2].map(|k| t[0][k] + s * (t[1][k] - t[0][k]) + r * (t[2][k] - t[0][k]));
+            match i % 4 {
+                0 | 1 => d[i % 3] += step, // one grid step off the plane
+                2 => d = near,             // anywhere near
+                _ => {}                    // on the plane
+            }
+            let exact = sign(orient3d(c3(t[0]), c3(t[1]), c3(t[2]), c3(d)));
+            let Some(grid) = orient_on_grid(t, d) else { continue };
+            assert_eq!(grid, exact, "{t:?} {d:?}");
+            if bits < 20 {
+                narrow += 1;
+            } else if bits > 20 {
+                wide += 1;
+            }
+        }
+        // Both paths were taken, many times.
+        assert!(narrow > 10_000 && wide > 5_000, "{narrow} {wide}");
     }
 
     #[test]
