@@ -64,14 +64,14 @@ impl Bvh {
     /// 8.6M pairs of overlapping boxes are neighbours: tested one by one, they were
     /// most of the walk's branches, mispredicted half the time).
     ///
-    /// `prepare(i)` is what `test` needs of item i, made once for all of i's partners
-    /// in a leaf: `test(&prepare(i), i, j)` (3.4 partners an item on that sphere, so
-    /// the first triangle's plane is found once, not 3.4 times).
+    /// `prepare(i)` is what `test` needs of item i (i itself, if it needs it), made once
+    /// for all of i's partners in a leaf: `test(&prepare(i), j)` (3.4 partners an item
+    /// on that sphere, so the first triangle's plane is found once, not 3.4 times).
     pub fn overlapping_pairs<P, T: Ord + Send>(
         &self,
         tags: Option<&[[u32; 3]]>,
         prepare: impl Fn(usize) -> P + Sync,
-        test: impl Fn(&P, usize, usize) -> Option<T> + Sync,
+        test: impl Fn(&P, usize) -> Option<T> + Sync,
     ) -> Vec<T> {
         let mut found = Vec::new();
         if !self.nodes.is_empty() {
@@ -112,12 +112,7 @@ impl Bvh {
     /// Adds to `found` what `test` keeps of the overlapping pairs with one item under
     /// node `a` and the other under node `b` (each pair once when `a == b`). Splits
     /// big nodes across threads, then walks small ones with [`Bvh::pairs_in_thread`].
-    fn pairs_under<
-        P,
-        T: Send,
-        G: Fn(usize) -> P + Sync,
-        F: Fn(&P, usize, usize) -> Option<T> + Sync,
-    >(
+    fn pairs_under<P, T: Send, G: Fn(usize) -> P + Sync, F: Fn(&P, usize) -> Option<T> + Sync>(
         &self,
         a: usize,
         b: usize,
@@ -171,7 +166,7 @@ impl Bvh {
     }
 
     /// [`Bvh::pairs_under`] in this thread, with an explicit stack of node pairs.
-    fn pairs_in_thread<P, T, G: Fn(usize) -> P, F: Fn(&P, usize, usize) -> Option<T>>(
+    fn pairs_in_thread<P, T, G: Fn(usize) -> P, F: Fn(&P, usize) -> Option<T>>(
         &self,
         a: usize,
         b: usize,
@@ -180,7 +175,7 @@ impl Bvh {
     ) {
         let _: ControlFlow<()> = self.walk_pairs(a, b, test.tags, |i, partners| {
             let prepared = (test.prepare)(i);
-            found.extend(partners.filter_map(|j| (test.test)(&prepared, i, j)));
+            found.extend(partners.filter_map(|j| (test.test)(&prepared, j)));
             ControlFlow::Continue(())
         });
     }
@@ -277,12 +272,7 @@ impl Bvh {
         ControlFlow::Continue(())
     }
 
-    fn collect_pairs<
-        P,
-        T: Send,
-        G: Fn(usize) -> P + Sync,
-        F: Fn(&P, usize, usize) -> Option<T> + Sync,
-    >(
+    fn collect_pairs<P, T: Send, G: Fn(usize) -> P + Sync, F: Fn(&P, usize) -> Option<T> + Sync>(
         &self,
         a: usize,
         b: usize,

@@ -124,7 +124,7 @@ fn random_boxes_of_every_size_give_the_brute_force_pairs_and_queries() {
         })
         .collect();
     let bvh = Bvh::new(boxes.len(), |i| Box32::around(&boxes[i]));
-    let pairs = bvh.overlapping_pairs(None, |a| a, |&a, _, b| Some((a.min(b), a.max(b))));
+    let pairs = bvh.overlapping_pairs(None, |a| a, |&a, b| Some((a.min(b), a.max(b))));
     let brute: Vec<(usize, usize)> = (0..boxes.len())
         .flat_map(|a| (a + 1..boxes.len()).map(move |b| (a, b)))
         .filter(|&(a, b)| overlap(&boxes[a], &boxes[b]))
@@ -138,7 +138,7 @@ fn random_boxes_of_every_size_give_the_brute_force_pairs_and_queries() {
         (0..boxes.len() as u32).map(|i| [i / 100, 1000 + i % 3, NO_TAG]).collect();
     let apart =
         |&(a, b): &(usize, usize)| !tags[a].iter().any(|t| *t != NO_TAG && tags[b].contains(t));
-    let tagged = bvh.overlapping_pairs(Some(&tags), |a| a, |&a, _, b| Some((a.min(b), a.max(b))));
+    let tagged = bvh.overlapping_pairs(Some(&tags), |a| a, |&a, b| Some((a.min(b), a.max(b))));
     let kept: Vec<(usize, usize)> = brute.iter().copied().filter(apart).collect();
     assert!(kept.len() > 1000 && kept.len() < brute.len(), "{}", kept.len());
     assert_eq!(tagged, kept);
@@ -150,7 +150,7 @@ fn random_boxes_of_every_size_give_the_brute_force_pairs_and_queries() {
     assert_eq!(bvh.first_overlapping_pair(Some(&one_tag), |_, _| true), None);
     let no_tags = vec![[NO_TAG; 3]; boxes.len()];
     assert_eq!(
-        bvh.overlapping_pairs(Some(&no_tags), |a| a, |&a, _, b| Some((a.min(b), a.max(b)))),
+        bvh.overlapping_pairs(Some(&no_tags), |a| a, |&a, b| Some((a.min(b), a.max(b)))),
         brute
     );
     // Queries, some reaching infinity (as rays' boxes do).
@@ -248,7 +248,7 @@ fn finds_exactly_the_overlapping_boxes() {
     Bvh::new(0, |_| Box32::EMPTY).overlapping(&boxes[0], |_| none += 1);
     assert_eq!(none, 0);
     // Every overlapping pair exactly once.
-    let pairs = bvh.overlapping_pairs(None, |a| a, |&a, _, b| Some((a.min(b), a.max(b))));
+    let pairs = bvh.overlapping_pairs(None, |a| a, |&a, b| Some((a.min(b), a.max(b))));
     let brute: Vec<(usize, usize)> = (0..boxes.len())
         .flat_map(|a| (a + 1..boxes.len()).map(move |b| (a, b)))
         .filter(|&(a, b)| overlap(&boxes[a], &boxes[b]))
@@ -257,7 +257,7 @@ fn finds_exactly_the_overlapping_boxes() {
     let mut pairs = spatial_bvh.overlapping_pairs(
         None,
         |a| a,
-        |&a, _, b| {
+        |&a, b| {
             let (a, b) = (order[a] as usize, order[b] as usize);
             Some((a.min(b), a.max(b)))
         },

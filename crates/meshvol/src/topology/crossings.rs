@@ -164,7 +164,7 @@ pub(super) fn crossing_pairs(triangles: &Triangles, bvh: &Bvh) -> Vec<[usize; 2]
     // triangles around one vertex wholesale (a cone's apex, a polygon's corner).
     // The first triangle's plane is made once for all its partners in a leaf.
     let prepare = |i: usize| (triangles.face[i] as usize, Plane::of(triangles.points(i)));
-    let test = |(f, plane): &(usize, Plane), _: usize, j: usize| {
+    let test = |(f, plane): &(usize, Plane), j: usize| {
         let (f, g) = (*f, triangles.face[j] as usize);
         if f == g {
             return None; // a face's own triangles tile it (its validity is not a crossing)

@@ -4,6 +4,7 @@
 use crate::vector::{cross, dot, sign, sub};
 use crate::Point;
 use robust::{orient2d, orient3d, Coord, Coord3D};
+use std::ops::{Add, Mul, Sub};
 
 fn c3(p: Point) -> Coord3D<f64> {
     Coord3D { x: p[0], y: p[1], z: p[2] }
@@ -81,17 +82,19 @@ fn orient_on_grid(rows: [Point; 3], d: Point) -> Option<f64> {
     // 2^(high − low).
     let unit = f64::from_bits(((1023 - low) as u64) << 52);
     let m = x.map(|v| (v * unit) as i64);
-    let det = if high - low <= NARROW_BITS {
+    let sign = if high - low <= NARROW_BITS {
         // |m| < 2^20: products of three below 2^60, the sum of six below 2^63.
-        m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
-            + m[2] * (m[3] * m[7] - m[4] * m[6])
+        determinant(m).signum()
     } else {
-        let m = m.map(i128::from);
-        let det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
-            + m[2] * (m[3] * m[7] - m[4] * m[6]);
-        det.signum() as i64
+        determinant(m.map(i128::from)).signum() as i64
     };
-    Some(det.signum() as f64)
+    Some(sign as f64)
+}
+
+/// The determinant of the 3 × 3 matrix `m` (rows in order), expanded along its first row.
+fn determinant<T: Copy + Add<Output = T> + Sub<Output = T> + Mul<Output = T>>(m: [T; 9]) -> T {
+    m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
+        + m[2] * (m[3] * m[7] - m[4] * m[6])
 }
 
 /// The widest span of bits [`orient_on_grid`] takes.
